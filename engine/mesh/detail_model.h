@@ -1,0 +1,91 @@
+// A detail model: what the Ghost Tile distributes (Ghost Tile §4.1, §4.3).
+//   render mesh      - what is drawn and exported;
+//   sphere set       - the collision proxy: a union of spheres, transformed exactly by rotation,
+//                      translation and uniform scale, so candidate-vs-candidate tests stay cheap;
+//   anchor points    - where the density field is sampled to cull and accept a candidate (§5.1).
+// All in model space: metres, Z up, origin at the model's pivot (the generated assets put it at the
+// centre of the bounding box).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "mesh/triangle_mesh.h"
+
+namespace ug {
+
+struct Sphere {
+    glm::vec3 center{0.0f};
+    float radius = 0.0f;  // metres, > 0
+};
+
+struct SphereFitSettings {
+    uint32_t max_spheres = 96;          // hard upper bound on the fitted set, in [1, 4096]
+    float tolerance_m = 0.0f;           // coverage tolerance; 0 = tolerance_rel * bounding radius
+    float tolerance_rel = 0.04f;        // used when tolerance_m == 0
+    uint32_t surface_samples = 3000;    // samples the coverage is fitted and checked against
+    uint64_t seed = 1;
+};
+
+// Fitted sphere set quality. Guarantee: every one of the fit's surface samples lies within
+// `tolerance_m` of the union of spheres (distance to the nearest sphere surface, 0 inside).
+struct SphereFitReport {
+    float tolerance_m = 0.0f;            // the tolerance that was asked for (absolute)
+    float max_sample_distance_m = 0.0f;  // worst sample's distance outside the union (<= tolerance_m)
+    uint32_t sphere_count = 0;
+    bool radii_grown = false;            // the count bound was hit and radii were grown to reach coverage
+};
+
+enum class AnchorMode : uint8_t {
+    Authored,       // DetailModelSource::authored_anchors
+    Center,         // one anchor at the model origin
+    SphereCenters,  // the centres of the collision spheres
+    Surface,        // `anchor_count` points sampled on the mesh surface, plus the origin
+};
+
+// Where a detail model comes from: a mesh file plus how to derive its collision spheres and anchors.
+struct DetailModelSource {
+    std::string name;                    // e.g. "rock"
+    std::string mesh_path;               // .glb/.gltf (tinygltf) or .obj/.ply/.off/.stl (OpenMesh)
+    float scale = 1.0f;                  // applied to the file's coordinates to get metres, > 0
+    bool y_up = true;                    // glTF files are Y up (spec); set false for Z-up OBJ etc.
+    std::vector<Sphere> authored_spheres;  // non-empty: used as-is instead of fitting
+    SphereFitSettings fit;
+    AnchorMode anchor_mode = AnchorMode::SphereCenters;
+    std::vector<glm::vec3> authored_anchors;  // model space, used when anchor_mode == Authored
+    uint32_t anchor_count = 8;                // for AnchorMode::Surface
+};
+
+struct DetailModel {
+    std::string name;
+    TriangleMesh mesh;
+    std::vector<Sphere> spheres;     // the collision proxy, model space
+    std::vector<glm::vec3> anchors;  // model space, at least one
+    Sphere bounds;                   // encloses every sphere (not only the mesh)
+    SphereFitReport fit_report;      // zeroed for authored sphere sets
+};
+
+// Loads the mesh, converts to metres / Z up, fits (or takes) the sphere set and the anchors.
+// Errors name the file and the reason: missing file, unreadable or unsupported format, no triangles,
+// non-finite coordinates, bad settings (scale <= 0 or NaN, max_spheres out of range, ...).
+bool loadDetailModel(const DetailModelSource& source, DetailModel* out, std::string* error);
+
+// Builds a model from an in-memory mesh (no file), with the same fitting and checks.
+bool makeDetailModel(const DetailModelSource& source, TriangleMesh mesh, DetailModel* out,
+                     std::string* error);
+
+// Fits a bounded union of spheres that covers the mesh surface within the tolerance (see report).
+bool fitSphereSet(const TriangleMesh& mesh, const SphereFitSettings& settings, std::vector<Sphere>* out,
+                  SphereFitReport* report, std::string* error);
+
+// Distance from p to the union of spheres: 0 inside, else the gap to the nearest sphere surface.
+float distanceToSphereUnion(const std::vector<Sphere>& spheres, const glm::vec3& p);
+
+// Points on the surface, uniformly by area, deterministic in seed; optional per-sample normals.
+void sampleSurface(const TriangleMesh& mesh, uint32_t count, uint64_t seed, std::vector<glm::vec3>* points,
+                   std::vector<glm::vec3>* normals);
+
+}  // namespace ug

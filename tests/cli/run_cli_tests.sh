@@ -1,0 +1,3 @@
+#!/usr/bin/env bash
+set -u
+echo "cli tests: placeholder"
