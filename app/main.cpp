@@ -1,1 +1,48 @@
-int main() { return 0; }
+// undergrowth: one binary for the headless CLI (batch jobs, benchmarks) and, later, the editor.
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "cli/commands.h"
+
+namespace {
+
+void printUsage() {
+    std::printf(
+        "Undergrowth — entangled details for natural scenes\n"
+        "\n"
+        "usage:\n"
+        "  undergrowth run [SCENE] [--out DIR] [--threads N]\n"
+        "      the main job on SCENE (default: the bundled assets/scenes/default.json), headless;\n"
+        "      writes statistics, a preview and the Ghost Tile cache under DIR (default: out)\n"
+        "  undergrowth build-tile SCENE [--cache DIR] [--stats FILE] [--threads N]\n"
+        "      build (or load from the verified cache) the scene's Ghost Tile and print its statistics\n"
+        "  undergrowth bench [--quick] [--json FILE] [--threads N] [--filter NAME]\n"
+        "      benchmarks: prints a table; --json writes {\"results\": [...]}\n"
+        "  undergrowth make-assets [--out DIR]\n"
+        "      regenerate the procedural starter models (assets/models/*.glb)\n"
+        "  undergrowth --help | --version\n"
+        "\n"
+        "exit codes: 0 success, 1 the job failed (the message names the file and the reason), 2 bad usage\n");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2) return ug::cli::runMainJob(argc, argv);
+    const std::string command = argv[1];
+    if (command == "run") return ug::cli::runMainJob(argc, argv);
+    if (command == "build-tile") return ug::cli::runBuildTileCommand(argc, argv);
+    if (command == "bench") return ug::cli::runBenchCommand(argc, argv);
+    if (command == "make-assets") return ug::cli::runMakeAssetsCommand(argc, argv);
+    if (command == "--help" || command == "-h" || command == "help") {
+        printUsage();
+        return 0;
+    }
+    if (command == "--version") {
+        std::printf("undergrowth 0.1.0\n");
+        return 0;
+    }
+    std::fprintf(stderr, "undergrowth: unknown command '%s' (try --help)\n", command.c_str());
+    return 2;
+}

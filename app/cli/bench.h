@@ -1,0 +1,24 @@
+// `undergrowth bench`: each section appends rows; the command prints the table and writes the JSON.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "io/bench_report.h"
+
+namespace ug::cli {
+
+struct BenchContext {
+    bool quick = false;        // fewer repetitions and smaller cases, for CI smoke runs
+    int threads = 0;           // 0 = all hardware threads
+    std::string assets_dir;
+    std::string filter;        // run only sections whose name contains this
+    int repetitions() const { return quick ? 3 : 7; }
+};
+
+// Returns false with an error when a section cannot run at all (e.g. a missing asset).
+bool benchGhostTile(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
+
+
+
+}  // namespace ug::cli

@@ -1,0 +1,33 @@
+// Tiny argument parser for the subcommands: positional arguments plus --flag and --key value options.
+// Unknown options are errors, so a typo never silently changes a batch job.
+#pragma once
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace ug::cli {
+
+struct Args {
+    std::vector<std::string> positional;
+    std::map<std::string, std::string> options;  // "--threads" -> "2"; flags map to ""
+
+    bool has(const std::string& key) const { return options.count(key) != 0; }
+    std::string get(const std::string& key, const std::string& fallback = "") const {
+        auto it = options.find(key);
+        return it == options.end() ? fallback : it->second;
+    }
+};
+
+// `with_value`: options that take a value; `flags`: options that don't.
+bool parseArgs(int argc, char** argv, int first, const std::set<std::string>& with_value,
+               const std::set<std::string>& flags, Args* out, std::string* error);
+
+// Parses a whole integer in [lo, hi]; the error names the option.
+bool parseInt(const std::string& option, const std::string& text, long lo, long hi, long* out, std::string* error);
+
+// The assets folder: $UG_ASSETS, else <exe>/../assets or <exe>/../../assets, else the source tree's.
+std::string assetsDir();
+
+}  // namespace ug::cli

@@ -1,0 +1,106 @@
+// The project file: round trip, and errors that name the file, the place and the reason.
+#include <gtest/gtest.h>
+
+#include "scene/project.h"
+
+namespace ug {
+namespace {
+
+const char* kGood = R"({
+  "format": "undergrowth-project", "format_version": 1, "name": "t",
+  "ghost_tile": {"tile_size_m": 0.5, "delta_m": -0.002, "seed": 9},
+  "detail_types": [
+    {"name": "rock", "model": {"mesh": "../models/rock.glb", "spheres": {"max_spheres": 40}},
+     "candidates": {"count": 300, "scale": [0.8, 1.2], "position": "jittered"}},
+    {"name": "leaf", "model": {"mesh": "../models/leaf_oak.glb", "anchors": {"mode": "surface", "count": 5}},
+     "candidates": {"count": 200, "orientation": {"mode": "tilt", "tilt_ranges": [[0, 30, 0.75], [45, 60, 0.25]]}}},
+    {"name": "pebble", "model": {"mesh": "p.obj", "y_up": false, "spheres": [[0, 0, 0, 0.02]],
+     "anchors": {"mode": "authored", "points": [[0, 0, 0]]}}}
+  ]
+})";
+
+TEST(Project, ParsesEveryFieldAndRoundTrips) {
+    Project p;
+    std::string error;
+    ASSERT_TRUE(parseProject(kGood, "t.json", &p, &error)) << error;
+    ASSERT_EQ(p.detail_types.size(), 3u);
+    EXPECT_EQ(p.ghost_tile.seed, 9u);
+    EXPECT_FLOAT_EQ(p.ghost_tile.delta_m, -0.002f);
+    EXPECT_EQ(p.detail_types[0].model.fit.max_spheres, 40u);
+    EXPECT_EQ(p.detail_types[0].ghost.position, PositionMode::Jittered);
+    EXPECT_FLOAT_EQ(p.detail_types[0].ghost.scale_max, 1.2f);
+    EXPECT_EQ(p.detail_types[1].ghost.orientation.mode, OrientationMode::Tilt);
+    ASSERT_EQ(p.detail_types[1].ghost.orientation.tilt_ranges.size(), 2u);
+    EXPECT_FLOAT_EQ(p.detail_types[1].ghost.orientation.tilt_ranges[1].min_deg, 45.0f);
+    EXPECT_EQ(p.detail_types[1].model.anchor_mode, AnchorMode::Surface);
+    EXPECT_EQ(p.detail_types[1].model.anchor_count, 5u);
+    EXPECT_EQ(p.detail_types[2].model.authored_spheres.size(), 1u);
+    EXPECT_FALSE(p.detail_types[2].model.y_up);
+
+    Project back;
+    ASSERT_TRUE(parseProject(projectToJson(p), "back.json", &back, &error)) << error;
+    EXPECT_EQ(projectToJson(back), projectToJson(p));
+}
+
+TEST(Project, ErrorsNameTheFileThePlaceAndTheReason) {
+    struct Case {
+        std::string text;
+        std::string expect;
+    };
+    const std::string head = R"({"format": "undergrowth-project", "format_version": 1, )";
+    const std::string rock = R"({"name": "rock", "model": {"mesh": "r.glb"}})";
+    std::vector<Case> cases = {
+        {"{\"format\": ", "s.json:1:12: invalid JSON"},
+        {"[1, 2]", "s.json: /: expected an object"},
+        {R"({"format": "other", "format_version": 1, "detail_types": []})", "/format: expected \"undergrowth-project\""},
+        {R"({"format": "undergrowth-project", "format_version": 99, "detail_types": []})", "/format_version: version 99 is newer"},
+        {head + R"("detail_types": []})", "/detail_types: at least one"},
+        {head + R"("detail_types": [)" + rock + R"(], "tile_sise_m": 1})", "/tile_sise_m: unknown field"},
+        {head + R"("ghost_tile": {"tile_size_m": "big"}, "detail_types": [)" + rock + "]}",
+         "/ghost_tile/tile_size_m: expected a number, got a string"},
+        {head + R"("ghost_tile": {"tile_size_m": -1}, "detail_types": [)" + rock + "]}",
+         "/ghost_tile/tile_size_m: -1 is out of range"},
+        {head + R"("detail_types": [{"name": "rock", "model": {}}]})", "/detail_types/0/model/mesh: missing"},
+        {head + R"("detail_types": [{"name": "rock", "model": {"mesh": "r.glb"}, "candidates": {"count": -3}}]})",
+         "/detail_types/0/candidates/count: expected a non-negative integer"},
+        {head + R"("detail_types": [{"name": "rock", "model": {"mesh": "r.glb"}, "candidates": {"count": 0}}]})",
+         "/detail_types/0/candidates/count: 0 is out of range"},
+        {head + R"("detail_types": [{"name": "rock", "model": {"mesh": "r.glb"}, "candidates": {"count": 99999999999}}]})",
+         "/detail_types/0/candidates/count: 1e+11 is out of range"},
+        {head + R"("detail_types": [{"name": "rock", "model": {"mesh": "r.glb"}, "candidates": {"scale": [2, 1]}}]})",
+         "/detail_types/0/candidates/scale: expected [min, max] with 0 < min <= max"},
+        {head + R"("detail_types": [{"name": "rock", "model": {"mesh": "r.glb", "scale": 0}}]})",
+         "/detail_types/0/model/scale: 0 is out of range"},
+        {head + R"("detail_types": [{"name": "rock", "model": {"mesh": "r.glb", "spheres": [[0, 0, 0, -1]]}}]})",
+         "/detail_types/0/model/spheres/0/3: radius must be"},
+        {head + R"("detail_types": [)" + rock + "," + rock + "]}", "/detail_types/1/name: duplicate detail type 'rock'"},
+        {head + R"("detail_types": [{"name": "leaf", "model": {"mesh": "l.glb"}, "candidates": {"orientation": {"mode": "tilt"}}}]})",
+         "/detail_types/0/candidates/orientation/tilt_ranges: mode 'tilt' needs"},
+        {head + R"("detail_types": [{"name": "leaf", "model": {"mesh": "l.glb"}, "candidates": {"orientation": {"mode": "tilt", "tilt_ranges": [[0, 200, 1]]}}}]})",
+         "/detail_types/0/candidates/orientation/tilt_ranges/0: needs 0 <= min_deg <= max_deg <= 180"},
+    };
+    for (const Case& c : cases) {
+        Project p;
+        std::string error;
+        EXPECT_FALSE(parseProject(c.text, "s.json", &p, &error)) << c.text;
+        EXPECT_NE(error.find(c.expect), std::string::npos) << "expected: " << c.expect << "\n     got: " << error;
+        EXPECT_EQ(error.rfind("s.json", 0), 0u) << error;
+    }
+}
+
+TEST(Project, MissingFileIsAnErrorNamingIt) {
+    Project p;
+    std::string error;
+    EXPECT_FALSE(loadProject("/nonexistent/scene.json", &p, &error));
+    EXPECT_NE(error.find("/nonexistent/scene.json"), std::string::npos) << error;
+}
+
+TEST(Project, RelativePathsResolveAgainstTheProjectFolder) {
+    Project p;
+    p.base_dir = "/data/scenes";
+    EXPECT_EQ(resolveProjectPath(p, "../models/rock.glb"), "/data/models/rock.glb");
+    EXPECT_EQ(resolveProjectPath(p, "/abs/x.glb"), "/abs/x.glb");
+}
+
+}  // namespace
+}  // namespace ug
