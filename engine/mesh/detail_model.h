@@ -37,6 +37,12 @@ struct SphereFitReport {
     float max_sample_distance_m = 0.0f;  // worst sample's distance outside the union (<= tolerance_m)
     uint32_t sphere_count = 0;
     bool radii_grown = false;            // the count bound was hit and radii were grown to reach coverage
+    // Measured on a second, independent sample set (same count, another seed) after the fit: an honest
+    // estimate of the coverage between the fit's samples. The fit aims below tolerance_m (it covers its
+    // samples to 0.75 * tolerance_m and repairs check samples that fall outside), so this is normally
+    // <= tolerance_m too, but it is a measurement, not a guarantee.
+    float max_check_distance_m = 0.0f;
+    uint32_t check_sample_count = 0;
 };
 
 enum class AnchorMode : uint8_t {
@@ -73,7 +79,9 @@ struct DetailModel {
 // non-finite coordinates, bad settings (scale <= 0 or NaN, max_spheres out of range, ...).
 bool loadDetailModel(const DetailModelSource& source, DetailModel* out, std::string* error);
 
-// Builds a model from an in-memory mesh (no file), with the same fitting and checks.
+// Builds a model from an in-memory mesh (no file), with the same fitting and checks. A TriangleMesh is
+// already Z up by contract, so `source.y_up` is ignored here; `source.scale` is applied;
+// `source.mesh_path` only names the mesh in error messages (with `source.name`).
 bool makeDetailModel(const DetailModelSource& source, TriangleMesh mesh, DetailModel* out,
                      std::string* error);
 

@@ -32,4 +32,18 @@ Bounds3 meshBounds(const TriangleMesh& mesh);
 // Returns false with a reason ("triangle 12 references vertex 900 of 400") otherwise.
 bool validateMesh(const TriangleMesh& mesh, std::string* error);
 
+// Axis conventions. glTF is Y up, the engine Z up; these are exact inverses of each other:
+//   Z up -> Y up: rotate -90 degrees about X, (x, y, z) -> (x, z, -y)
+//   Y up -> Z up: rotate +90 degrees about X, (x, y, z) -> (x, -z, y)
+// Both rotate positions and normals.
+void convertZUpToYUp(TriangleMesh* mesh);
+void convertYUpToZUp(TriangleMesh* mesh);
+
+// Multiplies every position by `factor` (> 0, asserted); normals are unchanged.
+void scaleMesh(TriangleMesh* mesh, float factor);
+
+// Appends `src` to `dst` (indices offset; normals kept only when both meshes have them). dst's
+// base_color is kept.
+void appendMesh(TriangleMesh* dst, const TriangleMesh& src);
+
 }  // namespace ug

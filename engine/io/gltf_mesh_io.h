@@ -1,0 +1,42 @@
+// Plain-mesh glTF 2.0 reading and writing (tinygltf), for detail models and starter assets.
+//
+//   TriangleMesh mesh;
+//   std::string error;
+//   if (!loadGltfMesh("assets/models/rock.glb", &mesh, &error)) { report(error); }
+//   convertYUpToZUp(&mesh);  // glTF files are Y up; the engine is Z up
+//
+// Scene export with instancing lives elsewhere (DESIGN.md, "Files and interfaces"); this file only
+// moves single meshes in and out.
+#pragma once
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "mesh/triangle_mesh.h"
+
+namespace ug {
+
+// Loads every TRIANGLES primitive reachable from the default scene (scene 0 when none is marked
+// default; every mesh when the file has no scene), with node transforms (matrix or TRS) applied, into
+// one mesh. Indexed (ubyte/ushort/uint) and non-indexed primitives; POSITION must be float VEC3.
+// Coordinates stay in the file's axes (glTF: Y up, metres): call convertYUpToZUp for engine space.
+// base_color comes from the first triangle primitive's material pbrMetallicRoughness.baseColorFactor
+// (else the TriangleMesh default). Normals are recomputed (area-weighted).
+// .glb is chosen by the "glTF" magic, anything else is read as JSON .gltf (external buffers resolved
+// next to the file). Returns false, out untouched, with "<path>: <reason>" (tinygltf's text included
+// for parse errors) on a missing file, bad data, out-of-range accessors, non-finite positions or no
+// triangles.
+bool loadGltfMesh(const std::string& path, TriangleMesh* out, std::string* error);
+
+// Writes one glTF mesh and one node per entry (name, mesh), all in the default scene. The meshes are in
+// engine space (Z up) and are written Y up: (x, y, z) -> (x, z, -y). Each gets POSITION and NORMAL
+// (recomputed when the mesh has none) float accessors with min/max, uint32 indices, and a PBR material
+// from base_color (metallic 0, roughness 0.9). ".glb" writes binary, any other extension JSON with the
+// buffer embedded as a data URI. Written atomically: a temporary file in the same folder, then
+// renamed over `path`. Every mesh must pass validateMesh (else false, nothing written).
+bool writeGltfMeshes(const std::string& path,
+                     const std::vector<std::pair<std::string, const TriangleMesh*>>& meshes,
+                     std::string* error);
+
+}  // namespace ug
