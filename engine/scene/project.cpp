@@ -140,18 +140,8 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
     try {
         doc = json::parse(text);
     } catch (const json::parse_error& e) {
-        // nlohmann reports the byte offset; a line and column help a person more.
-        size_t byte = std::min(e.byte, text.size());
-        size_t line = 1, col = 1;
-        for (size_t i = 0; i + 1 < byte; ++i) {
-            if (text[i] == '\n') {
-                ++line;
-                col = 1;
-            } else {
-                ++col;
-            }
-        }
-        *error = source_name + ":" + std::to_string(line) + ":" + std::to_string(col) + ": invalid JSON: " + e.what();
+        // nlohmann's message already carries "line L, column C".
+        *error = source_name + ": invalid JSON: " + e.what();
         return false;
     }
     JsonReader r(source_name, error);

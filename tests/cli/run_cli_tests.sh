@@ -1,3 +1,113 @@
 #!/usr/bin/env bash
+# End-to-end checks of the undergrowth binary: the main job's outputs, read back by independent tools
+# (python3's json module), exit codes, and error messages for bad input. UG_BIN is the binary.
 set -u
-echo "cli tests: placeholder"
+bin="${UG_BIN:?UG_BIN must name the undergrowth binary}"
+root="$(cd "$(dirname "$0")/../.." && pwd)"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+passed=0
+failed=0
+
+ok() { passed=$((passed + 1)); echo "ok   - $1"; }
+bad() { failed=$((failed + 1)); echo "FAIL - $1"; }
+
+# expect_fail NAME EXIT_CODE PATTERN -- command...: the command must exit EXIT_CODE and print PATTERN.
+expect_fail() {
+  local name="$1" code="$2" pattern="$3"
+  shift 4
+  local out rc
+  out="$("$@" 2>&1)"
+  rc=$?
+  if [ "$rc" -eq "$code" ] && grep -qF -- "$pattern" <<<"$out"; then ok "$name"; else
+    bad "$name (exit $rc, wanted $code and '$pattern'): $out"; fi
+}
+
+# 1. The main job on the default scene, twice: the second run must load the verified cache.
+if "$bin" run "$root/assets/scenes/default.json" --out "$tmp/out" >"$tmp/run1.txt" 2>&1; then
+  ok "run: default scene"
+else
+  bad "run: default scene: $(cat "$tmp/run1.txt")"
+fi
+"$bin" run "$root/assets/scenes/default.json" --out "$tmp/out" >"$tmp/run2.txt" 2>&1
+if grep -q "\[loaded\]" "$tmp/run2.txt"; then ok "run: second run loads the cache"; else bad "run: cache not reused: $(cat "$tmp/run2.txt")"; fi
+python3 - "$tmp/out/default.tile-stats.json" <<'PY' && ok "run: statistics file is valid and consistent" || bad "run: statistics file"
+import json, sys
+s = json.load(open(sys.argv[1]))
+g = s["ghost_tile"]
+assert g["candidates"] == sum(t["candidates"] for t in s["detail_types"]), g
+assert g["pairs"] > 0 and abs(g["rho"] - g["pairs"] / g["candidates"]) < 1e-9
+assert g["bytes_per_pair"] <= 4.0, g
+PY
+python3 - "$tmp/out/default.tile-preview.glb" <<'PY' && ok "run: preview is a GLB with one mesh per detail type" || bad "run: preview GLB"
+import json, struct, sys
+data = open(sys.argv[1], "rb").read()
+magic, version, length = struct.unpack_from("<4sII", data, 0)
+assert magic == b"glTF" and version == 2 and length == len(data), (magic, version, length, len(data))
+chunk_len, chunk_type = struct.unpack_from("<I4s", data, 12)
+assert chunk_type == b"JSON"
+doc = json.loads(data[20:20 + chunk_len])
+assert len(doc["meshes"]) == 9, len(doc["meshes"])
+PY
+
+# 2. A corrupted cache is refused and rebuilt, never trusted.
+cache="$(ls "$tmp"/out/cache/*.ugt | head -1)"
+printf 'garbage' | dd of="$cache" bs=1 seek=100 conv=notrunc 2>/dev/null
+"$bin" run "$root/assets/scenes/default.json" --out "$tmp/out" >"$tmp/run3.txt" 2>&1
+if grep -q "corrupt cache" "$tmp/run3.txt" && grep -q "checksum" "$tmp/run3.txt"; then ok "run: corrupt cache is rebuilt"; else
+  bad "run: corrupt cache: $(cat "$tmp/run3.txt")"; fi
+
+# 3. Bad input: clear errors naming the file, the place and the reason; non-zero exit.
+expect_fail "missing scene" 1 "$tmp/nope.json: cannot open" -- "$bin" run "$tmp/nope.json" --out "$tmp/o"
+printf '{"format": "undergrowth-project", "format_version": 1, "detail_types": [' >"$tmp/trunc.json"
+expect_fail "truncated scene" 1 "trunc.json: invalid JSON" -- "$bin" build-tile "$tmp/trunc.json" --cache "$tmp/c"
+cat >"$tmp/badfield.json" <<JSON
+{"format": "undergrowth-project", "format_version": 1,
+ "detail_types": [{"name": "rock", "model": {"mesh": "$root/assets/models/rock.glb"}, "candidates": {"count": "many"}}]}
+JSON
+expect_fail "wrong type" 1 "badfield.json: /detail_types/0/candidates/count: expected a non-negative integer" -- \
+  "$bin" build-tile "$tmp/badfield.json" --cache "$tmp/c"
+cat >"$tmp/nomodel.json" <<JSON
+{"format": "undergrowth-project", "format_version": 1,
+ "detail_types": [{"name": "rock", "model": {"mesh": "missing/rock.glb"}}]}
+JSON
+expect_fail "missing model" 1 "detail type 'rock'" -- "$bin" build-tile "$tmp/nomodel.json" --cache "$tmp/c"
+head -c 300 "$root/assets/models/rock.glb" >"$tmp/rock_cut.glb"
+cat >"$tmp/cutmodel.json" <<JSON
+{"format": "undergrowth-project", "format_version": 1,
+ "detail_types": [{"name": "rock", "model": {"mesh": "rock_cut.glb"}}]}
+JSON
+expect_fail "truncated model" 1 "rock_cut.glb" -- "$bin" build-tile "$tmp/cutmodel.json" --cache "$tmp/c"
+cat >"$tmp/absurd.json" <<JSON
+{"format": "undergrowth-project", "format_version": 1,
+ "detail_types": [{"name": "rock", "model": {"mesh": "$root/assets/models/rock.glb"}, "candidates": {"count": 900000000}}]}
+JSON
+expect_fail "absurd candidate count" 1 "/detail_types/0/candidates/count: 9e+08 is out of range" -- \
+  "$bin" build-tile "$tmp/absurd.json" --cache "$tmp/c"
+cat >"$tmp/tiny.json" <<JSON
+{"format": "undergrowth-project", "format_version": 1, "ghost_tile": {"tile_size_m": 0.01},
+ "detail_types": [{"name": "rock", "model": {"mesh": "$root/assets/models/rock.glb"}}]}
+JSON
+expect_fail "object larger than the tile" 1 "does not fit in the tile" -- "$bin" build-tile "$tmp/tiny.json" --cache "$tmp/c"
+expect_fail "unknown option" 2 "unknown option --frobnicate" -- "$bin" run --frobnicate
+expect_fail "bad thread count" 2 "--threads: expected an integer" -- "$bin" bench --threads lots
+expect_fail "unknown command" 2 "unknown command 'fly'" -- "$bin" fly
+# A parent that is a file cannot be written even by root (CI runs as root, so chmod would not do).
+expect_fail "unwritable stats path" 1 "$tmp/trunc.json/s.json" -- \
+  "$bin" build-tile "$root/assets/scenes/default.json" --cache "$tmp/c" --stats "$tmp/trunc.json/s.json"
+expect_fail "output folder is a file" 1 "cannot create the output folder" -- "$bin" run "$root/assets/scenes/default.json" --out "$tmp/trunc.json/x"
+
+# 4. bench --quick writes the documented JSON shape.
+if "$bin" bench --quick --json "$tmp/bench.json" >"$tmp/bench.txt" 2>&1 && python3 - "$tmp/bench.json" <<'PY'
+import json, sys
+rows = json.load(open(sys.argv[1]))["results"]
+names = {r["name"] for r in rows}
+for needed in ("ghosttile.dense.seconds", "ghosttile.dense.pairs", "ghosttile.bytes_per_pair"):
+    assert needed in names, needed
+for r in rows:
+    assert set(("name", "value", "unit", "target", "paper")) <= set(r), r
+PY
+then ok "bench --quick --json"; else bad "bench --quick: $(tail -5 "$tmp/bench.txt")"; fi
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]

@@ -50,7 +50,7 @@ TEST(Project, ErrorsNameTheFileThePlaceAndTheReason) {
     const std::string head = R"({"format": "undergrowth-project", "format_version": 1, )";
     const std::string rock = R"({"name": "rock", "model": {"mesh": "r.glb"}})";
     std::vector<Case> cases = {
-        {"{\"format\": ", "s.json:1:12: invalid JSON"},
+        {"{\"format\": ", "s.json: invalid JSON: [json.exception.parse_error.101] parse error at line 1, column 12"},
         {"[1, 2]", "s.json: /: expected an object"},
         {R"({"format": "other", "format_version": 1, "detail_types": []})", "/format: expected \"undergrowth-project\""},
         {R"({"format": "undergrowth-project", "format_version": 99, "detail_types": []})", "/format_version: version 99 is newer"},

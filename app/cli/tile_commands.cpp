@@ -1,0 +1,192 @@
+// `run` (the main job on a scene) and `build-tile`: load the project, its models and the Ghost Tile
+// (from the verified cache, or built and cached), then write what the job produced and say where.
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_args.h"
+#include "cli/commands.h"
+#include "core/atomic_file.h"
+#include "ghosttile/ghost_tile_cache.h"
+#include "io/gltf_mesh_io.h"
+#include "mesh/procedural_models.h"
+#include "scene/project.h"
+
+namespace ug::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+struct TileJob {
+    Project project;
+    std::vector<DetailModel> models;
+    GhostTile tile;
+    CacheOutcome outcome = CacheOutcome::BuiltMissing;
+    double models_seconds = 0.0;
+};
+
+bool prepareTile(const std::string& scene, const std::string& cache_dir, int threads, TileJob* job,
+                 std::string* error) {
+    if (!loadProject(scene, &job->project, error)) return false;
+    auto t0 = std::chrono::steady_clock::now();
+    if (!loadProjectModels(job->project, &job->models, error)) return false;
+    job->models_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    GhostTileInput input = ghostTileInput(job->project, job->models);
+    std::string note;
+    int last_percent = -1;
+    BuildOptions options{.threads = threads, .progress = [&](float f) {
+                             int percent = int(f * 100.0f);
+                             if (percent / 10 != last_percent / 10) {
+                                 std::fprintf(stderr, "\r  building Ghost Tile: %3d%%", percent);
+                                 last_percent = percent;
+                             }
+                         }};
+    bool ok = loadOrBuildGhostTile(cache_dir, input, options, &job->tile, &job->outcome, &note, error);
+    if (last_percent >= 0) std::fprintf(stderr, "\n");
+    if (!ok) {
+        *error = scene + ": " + *error;
+        return false;
+    }
+    if (!note.empty()) std::fprintf(stderr, "  note: %s\n", note.c_str());
+    return true;
+}
+
+nlohmann::json tileStatsJson(const TileJob& job, const std::string& cache_path) {
+    const GhostTileStats& st = job.tile.stats;
+    nlohmann::json types = nlohmann::json::array();
+    for (size_t t = 0; t < job.models.size(); ++t) {
+        const DetailModel& m = job.models[t];
+        types.push_back({{"name", m.name},
+                         {"candidates", job.project.detail_types[t].ghost.candidate_count},
+                         {"spheres", m.spheres.size()},
+                         {"anchors", m.anchors.size()},
+                         {"triangles", m.mesh.triangleCount()},
+                         {"sphere_fit_tolerance_m", m.fit_report.tolerance_m},
+                         {"sphere_fit_max_distance_m", m.fit_report.max_sample_distance_m}});
+    }
+    return {{"scene", job.project.name},
+            {"cache", {{"path", cache_path}, {"outcome", cacheOutcomeName(job.outcome)}}},
+            {"ghost_tile",
+             {{"key", hex64(job.tile.key)},
+              {"tile_size_m", job.tile.settings.tile_size_m},
+              {"delta_m", job.tile.settings.delta_m},
+              {"candidates", st.candidate_count},
+              {"pairs", st.pair_count},
+              {"rho", st.rho},
+              {"build_seconds", st.build_seconds},
+              {"graph_bytes", st.graph_bytes},
+              {"bytes_per_pair", st.bytes_per_pair}}},
+            {"models_seconds", job.models_seconds},
+            {"detail_types", types}};
+}
+
+// A look at the tile: every candidate's mesh placed at its frame, one merged mesh per detail type,
+// capped so the file stays small. Candidates overlap by design (paper Fig. 3).
+bool writeTilePreview(const TileJob& job, const std::string& path, std::string* error) {
+    const CandidateSet& c = job.tile.candidates;
+    std::vector<TriangleMesh> merged(job.models.size());
+    for (uint32_t t = 0; t < c.typeCount(); ++t) {
+        const TriangleMesh& src = job.models[t].mesh;
+        TriangleMesh& dst = merged[t];
+        dst.base_color = src.base_color;
+        const uint32_t limit = std::min(c.type_begin[t + 1], c.type_begin[t] + 200u);
+        for (uint32_t i = c.type_begin[t]; i < limit; ++i) {
+            const uint32_t base = uint32_t(dst.positions.size());
+            for (size_t v = 0; v < src.positions.size(); ++v) {
+                dst.positions.push_back(c.position[i] + c.rotation[i] * (c.scale[i] * src.positions[v]));
+                if (v < src.normals.size()) dst.normals.push_back(c.rotation[i] * src.normals[v]);
+            }
+            for (uint32_t idx : src.indices) dst.indices.push_back(base + idx);
+        }
+    }
+    std::vector<std::pair<std::string, const TriangleMesh*>> meshes;
+    for (size_t t = 0; t < merged.size(); ++t) meshes.push_back({job.models[t].name, &merged[t]});
+    return writeGltfMeshes(path, meshes, error);
+}
+
+int fail(const char* command, const std::string& message, int code = 1) {
+    std::fprintf(stderr, "undergrowth %s: %s\n", command, message.c_str());
+    return code;
+}
+
+bool parseThreads(const Args& args, int* threads, std::string* error) {
+    if (!args.has("--threads")) return true;
+    long t;
+    if (!parseInt("--threads", args.get("--threads"), 0, 256, &t, error)) return false;
+    *threads = int(t);
+    return true;
+}
+
+}  // namespace
+
+int runMainJob(int argc, char** argv) {
+    Args args;
+    std::string error;
+    if (!parseArgs(argc, argv, 2, {"--out", "--threads"}, {}, &args, &error) || args.positional.size() > 1)
+        return fail("run", error.empty() ? "usage: undergrowth run [SCENE] [--out DIR] [--threads N]" : error, 2);
+    int threads = 0;
+    if (!parseThreads(args, &threads, &error)) return fail("run", error, 2);
+    const std::string scene = args.positional.empty() ? assetsDir() + "/scenes/default.json" : args.positional[0];
+    const std::string out_dir = args.get("--out", "out");
+    std::error_code ec;
+    fs::create_directories(out_dir, ec);
+    if (ec) return fail("run", out_dir + ": cannot create the output folder: " + ec.message());
+
+    std::fprintf(stderr, "undergrowth: running %s headless\n", scene.c_str());
+    TileJob job;
+    const std::string cache_dir = (fs::path(out_dir) / "cache").string();
+    if (!prepareTile(scene, cache_dir, threads, &job, &error)) return fail("run", error);
+    const std::string stem = job.project.name.empty() ? fs::path(scene).stem().string() : job.project.name;
+    const std::string stats_path = (fs::path(out_dir) / (stem + ".tile-stats.json")).string();
+    const std::string preview_path = (fs::path(out_dir) / (stem + ".tile-preview.glb")).string();
+    const std::string cache_path = ghostTileCachePath(cache_dir, job.tile.key);
+    if (!writeTextFileAtomically(stats_path, tileStatsJson(job, cache_path).dump(2) + "\n", &error))
+        return fail("run", error);
+    if (!writeTilePreview(job, preview_path, &error)) return fail("run", error);
+    const GhostTileStats& st = job.tile.stats;
+    std::printf("Ghost Tile: %u candidates, %llu colliding pairs (rho %.1f), %.3f s, %.2f bytes/pair [%s]\n",
+                st.candidate_count, static_cast<unsigned long long>(st.pair_count), st.rho, st.build_seconds,
+                st.bytes_per_pair, cacheOutcomeName(job.outcome));
+    std::printf("wrote:\n  %s  (statistics)\n  %s  (tile preview, glTF)\n  %s  (cache)\n", stats_path.c_str(),
+                preview_path.c_str(), cache_path.c_str());
+    return 0;
+}
+
+int runBuildTileCommand(int argc, char** argv) {
+    Args args;
+    std::string error;
+    if (!parseArgs(argc, argv, 2, {"--cache", "--threads", "--stats"}, {}, &args, &error) || args.positional.size() != 1)
+        return fail("build-tile", error.empty() ? "usage: undergrowth build-tile SCENE [--cache DIR] [--stats FILE] [--threads N]"
+                                                : error, 2);
+    int threads = 0;
+    if (!parseThreads(args, &threads, &error)) return fail("build-tile", error, 2);
+    const std::string cache_dir = args.get("--cache", "out/cache");
+    TileJob job;
+    if (!prepareTile(args.positional[0], cache_dir, threads, &job, &error)) return fail("build-tile", error);
+    const std::string cache_path = ghostTileCachePath(cache_dir, job.tile.key);
+    const std::string json = tileStatsJson(job, cache_path).dump(2) + "\n";
+    if (args.has("--stats")) {
+        if (!writeTextFileAtomically(args.get("--stats"), json, &error)) return fail("build-tile", error);
+    } else {
+        std::printf("%s", json.c_str());
+    }
+    return 0;
+}
+
+int runMakeAssetsCommand(int argc, char** argv) {
+    Args args;
+    std::string error;
+    if (!parseArgs(argc, argv, 2, {"--out"}, {}, &args, &error) || !args.positional.empty())
+        return fail("make-assets", error.empty() ? "usage: undergrowth make-assets [--out DIR]" : error, 2);
+    const std::string dir = args.get("--out", assetsDir() + "/models");
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (!writeStarterAssets(dir, &error)) return fail("make-assets", error);
+    std::printf("wrote the starter models to %s\n", dir.c_str());
+    return 0;
+}
+
+}  // namespace ug::cli
