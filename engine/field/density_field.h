@@ -115,7 +115,8 @@ float evaluate(const DensityField& field, glm::vec3 p_m);
 glm::vec4 evaluateWithGradient(const DensityField& field, glm::vec3 p_m);
 
 // The primitives and the pruned tree of one box (a tile). Reuse one across tiles: buildTileList clears
-// and refills it without freeing memory.
+// and refills it without freeing memory. A list is valid for the field it was built from, unchanged:
+// rebuild it after any edit of that field.
 struct TileNode {
     uint32_t node = 0;  // the field node this evaluates
     FieldOp op = FieldOp::Blend;

@@ -49,7 +49,7 @@ AxisCell locate(float coord_m, float origin_m, float cell_m, int n) {
     float u = (coord_m - origin_m) / cell_m;
     AxisCell c;
     c.inside = (u >= 0.0f && u <= last) ? 1.0f : 0.0f;
-    u = std::clamp(u, 0.0f, last);  // also maps NaN-free input only; callers pass finite points
+    u = std::clamp(u, 0.0f, last);  // callers pass finite points (a NaN would clamp to garbage)
     if (n == 1) return AxisCell{0, 0, 0.0f, 0.0f};
     c.i0 = std::min(int(u), n - 2);
     c.i1 = c.i0 + 1;
