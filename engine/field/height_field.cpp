@@ -1,0 +1,217 @@
+// Height fields: the terrain the Ghost Tile paper's layers and solids are defined against (Ghost Tile
+// §6.1, "density fields are modified by computing the difference with ... the terrain"; §6.1 Figure 20,
+// "the dried grass density field was automatically computed from the input height field").
+//
+// Bilinear patches are the simplest interpolant that is exact at the samples and continuous; their
+// gradient is analytic inside a cell and jumps across cell edges, which is fine for the density kernels
+// (they only need a gradient for orientation constraints, not for root finding).
+#include "field/height_field.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <cstdio>
+#include <utility>
+
+#include <stb_image.h>
+
+#include "core/hash.h"
+
+namespace ug {
+
+HeightField::HeightField(glm::vec2 origin_m, float cell_size_m, int width, int height, std::vector<float> heights_m)
+    : origin_m_(origin_m), cell_size_m_(cell_size_m), width_(width), height_(height), heights_m_(std::move(heights_m)) {
+    assert(std::isfinite(cell_size_m) && cell_size_m > 0.0f);
+    assert(width >= 1 && height >= 1 && width <= kMaxHeightFieldSide && height <= kMaxHeightFieldSide);
+    assert(heights_m_.size() == size_t(width) * size_t(height));
+    min_height_m_ = heights_m_[0];
+    max_height_m_ = heights_m_[0];
+    for (float h : heights_m_) {
+        assert(std::isfinite(h));
+        min_height_m_ = std::min(min_height_m_, h);
+        max_height_m_ = std::max(max_height_m_, h);
+    }
+}
+
+namespace {
+
+// Where a world coordinate falls along one axis of n samples: the cell's first sample, the fraction in
+// [0, 1] across it, and whether the coordinate was inside the covered span (not clamped).
+struct AxisCell {
+    int i0;
+    int i1;
+    float f;
+    float inside;  // 1 inside, 0 when clamped: multiplies the derivative along this axis
+};
+
+AxisCell locate(float coord_m, float origin_m, float cell_m, int n) {
+    const float last = float(n - 1);
+    float u = (coord_m - origin_m) / cell_m;
+    AxisCell c;
+    c.inside = (u >= 0.0f && u <= last) ? 1.0f : 0.0f;
+    u = std::clamp(u, 0.0f, last);  // callers pass finite points (a NaN would clamp to garbage)
+    if (n == 1) return AxisCell{0, 0, 0.0f, 0.0f};
+    c.i0 = std::min(int(u), n - 2);
+    c.i1 = c.i0 + 1;
+    c.f = u - float(c.i0);
+    return c;
+}
+
+}  // namespace
+
+glm::vec3 HeightField::sampleWithGradient(float x_m, float y_m) const {
+    assert(!empty());
+    const AxisCell cx = locate(x_m, origin_m_.x, cell_size_m_, width_);
+    const AxisCell cy = locate(y_m, origin_m_.y, cell_size_m_, height_);
+    const float h00 = at(cx.i0, cy.i0), h10 = at(cx.i1, cy.i0);
+    const float h01 = at(cx.i0, cy.i1), h11 = at(cx.i1, cy.i1);
+    const float gx = 1.0f - cx.f, gy = 1.0f - cy.f;
+    // Written so that at a sample (f = 0 or 1) the result is that sample exactly: x * 1 + y * 0 == x.
+    const float bottom = h00 * gx + h10 * cx.f;
+    const float top = h01 * gx + h11 * cx.f;
+    const float h = bottom * gy + top * cy.f;
+    const float dhdx = ((h10 - h00) * gy + (h11 - h01) * cy.f) / cell_size_m_ * cx.inside;
+    const float dhdy = (top - bottom) / cell_size_m_ * cy.inside;
+    return glm::vec3(h, dhdx, dhdy);
+}
+
+float HeightField::sample(float x_m, float y_m) const { return sampleWithGradient(x_m, y_m).x; }
+
+glm::vec2 HeightField::gradient(float x_m, float y_m) const {
+    const glm::vec3 s = sampleWithGradient(x_m, y_m);
+    return glm::vec2(s.y, s.z);
+}
+
+namespace {
+
+// Lattice value in [-1, 1] from a counter-based hash: no generator state, so any sample can be computed
+// alone and the same seed gives the same terrain everywhere.
+float latticeValue(uint64_t seed, int octave, int64_t i, int64_t j) {
+    return unitFloat(hashWords(seed, uint64_t(octave), uint64_t(i), uint64_t(j))) * 2.0f - 1.0f;
+}
+
+// Quintic fade (Perlin 2002): C2 across lattice lines, so the fBm has no visible creases.
+double fade(double t) { return t * t * t * (t * (t * 6.0 - 15.0) + 10.0); }
+
+double valueNoise(uint64_t seed, int octave, double x, double y) {
+    const double fx = std::floor(x), fy = std::floor(y);
+    const int64_t i = int64_t(fx), j = int64_t(fy);
+    const double tx = fade(x - fx), ty = fade(y - fy);
+    const double v00 = latticeValue(seed, octave, i, j), v10 = latticeValue(seed, octave, i + 1, j);
+    const double v01 = latticeValue(seed, octave, i, j + 1), v11 = latticeValue(seed, octave, i + 1, j + 1);
+    const double a = v00 + (v10 - v00) * tx;
+    const double b = v01 + (v11 - v01) * tx;
+    return a + (b - a) * ty;
+}
+
+bool fail(std::string* error, std::string message) {
+    if (error) *error = std::move(message);
+    return false;
+}
+
+bool finitePositive(float v) { return std::isfinite(v) && v > 0.0f; }
+
+std::string stbReason() {
+    const char* r = stbi_failure_reason();
+    return r ? r : "unknown reason";
+}
+
+}  // namespace
+
+bool makeProceduralHeightField(const ProceduralTerrainDesc& d, HeightField* out, std::string* error) {
+    assert(out);
+    const std::string where = "procedural terrain: ";
+    if (!std::isfinite(d.origin_m.x) || !std::isfinite(d.origin_m.y))
+        return fail(error, where + "origin_m must be finite");
+    if (!finitePositive(d.cell_size_m)) return fail(error, where + "cell_size_m must be finite and > 0");
+    if (d.width < 1 || d.height < 1 || d.width > kMaxHeightFieldSide || d.height > kMaxHeightFieldSide)
+        return fail(error, where + "width and height must be in [1, " + std::to_string(kMaxHeightFieldSide) +
+                               "], got " + std::to_string(d.width) + "x" + std::to_string(d.height));
+    if (d.octaves < 1 || d.octaves > 16)
+        return fail(error, where + "octaves must be in [1, 16], got " + std::to_string(d.octaves));
+    if (!std::isfinite(d.base_height_m)) return fail(error, where + "base_height_m must be finite");
+    if (!std::isfinite(d.amplitude_m) || d.amplitude_m < 0.0f)
+        return fail(error, where + "amplitude_m must be finite and >= 0");
+    if (!finitePositive(d.feature_size_m)) return fail(error, where + "feature_size_m must be finite and > 0");
+    if (!finitePositive(d.lacunarity)) return fail(error, where + "lacunarity must be finite and > 0");
+    if (!finitePositive(d.gain) || d.gain > 1.0f) return fail(error, where + "gain must be in (0, 1]");
+
+    double norm = 0.0, amp = 1.0;
+    for (int k = 0; k < d.octaves; ++k, amp *= d.gain) norm += amp;
+
+    std::vector<float> heights(size_t(d.width) * size_t(d.height));
+    for (int j = 0; j < d.height; ++j) {
+        for (int i = 0; i < d.width; ++i) {
+            const double x = double(d.origin_m.x) + double(i) * d.cell_size_m;
+            const double y = double(d.origin_m.y) + double(j) * d.cell_size_m;
+            double sum = 0.0, a = 1.0, freq = 1.0 / d.feature_size_m;
+            for (int k = 0; k < d.octaves; ++k, a *= d.gain, freq *= d.lacunarity)
+                sum += a * valueNoise(d.seed, k, x * freq, y * freq);
+            heights[size_t(j) * size_t(d.width) + size_t(i)] = float(d.base_height_m + d.amplitude_m * sum / norm);
+        }
+    }
+    *out = HeightField(d.origin_m, d.cell_size_m, d.width, d.height, std::move(heights));
+    return true;
+}
+
+bool loadHeightFieldPng(const std::string& path, const HeightFieldImageDesc& d, HeightField* out,
+                        std::string* error) {
+    assert(out);
+    const std::string where = path + ": ";
+    if (!std::isfinite(d.origin_m.x) || !std::isfinite(d.origin_m.y))
+        return fail(error, where + "origin_m must be finite");
+    if (!finitePositive(d.cell_size_m)) return fail(error, where + "cell_size_m must be finite and > 0");
+    if (!std::isfinite(d.min_height_m) || !std::isfinite(d.max_height_m) || d.max_height_m < d.min_height_m)
+        return fail(error, where + "min_height_m and max_height_m must be finite with min <= max");
+
+    FILE* file = std::fopen(path.c_str(), "rb");
+    if (!file) return fail(error, where + "cannot open the file (missing or unreadable)");
+    int w = 0, h = 0, channels = 0;
+    // Read the header first so an absurd size is refused before anything is decoded.
+    if (!stbi_info_from_file(file, &w, &h, &channels)) {
+        std::fclose(file);
+        return fail(error, where + "not an image stb_image can read (" + stbReason() + ")");
+    }
+    if (w <= 0 || h <= 0) {
+        std::fclose(file);
+        return fail(error, where + "the image has zero size");
+    }
+    if (w > kMaxHeightFieldSide || h > kMaxHeightFieldSide) {
+        std::fclose(file);
+        return fail(error, where + "the image is " + std::to_string(w) + "x" + std::to_string(h) +
+                               ", larger than the " + std::to_string(kMaxHeightFieldSide) + " per side accepted");
+    }
+    const bool sixteen = stbi_is_16_bit_from_file(file) != 0;
+    std::vector<float> heights(size_t(w) * size_t(h));
+    const float range = d.max_height_m - d.min_height_m;
+    int lw = 0, lh = 0, lc = 0;
+    if (sixteen) {
+        stbi_us* pixels = stbi_load_from_file_16(file, &lw, &lh, &lc, 1);
+        std::fclose(file);
+        if (!pixels || lw != w || lh != h) {
+            if (pixels) stbi_image_free(pixels);
+            return fail(error, where + "cannot decode the image (" + stbReason() + ")");
+        }
+        for (int j = 0; j < h; ++j)
+            for (int i = 0; i < w; ++i)
+                heights[size_t(j) * size_t(w) + size_t(i)] =
+                    d.min_height_m + range * (float(pixels[size_t(h - 1 - j) * size_t(w) + size_t(i)]) / 65535.0f);
+        stbi_image_free(pixels);
+    } else {
+        stbi_uc* pixels = stbi_load_from_file(file, &lw, &lh, &lc, 1);
+        std::fclose(file);
+        if (!pixels || lw != w || lh != h) {
+            if (pixels) stbi_image_free(pixels);
+            return fail(error, where + "cannot decode the image (" + stbReason() + ")");
+        }
+        for (int j = 0; j < h; ++j)
+            for (int i = 0; i < w; ++i)
+                heights[size_t(j) * size_t(w) + size_t(i)] =
+                    d.min_height_m + range * (float(pixels[size_t(h - 1 - j) * size_t(w) + size_t(i)]) / 255.0f);
+        stbi_image_free(pixels);
+    }
+    *out = HeightField(d.origin_m, d.cell_size_m, w, h, std::move(heights));
+    return true;
+}
+
+}  // namespace ug
