@@ -35,9 +35,11 @@
 namespace ug {
 namespace {
 
-constexpr float kFitToleranceFraction = 0.75f;     // fit below the asked tolerance (see above)
-constexpr float kRepairToleranceFraction = 0.90f;  // check-set points beyond this join the fit set
-constexpr int kRepairRounds = 2;
+constexpr float kFitToleranceFraction = 0.70f;     // fit below the asked tolerance (see above)
+constexpr float kRepairToleranceFraction = 0.80f;  // check-set points beyond this join the fit set
+constexpr int kRepairRounds = 6;
+constexpr float kBulgeFraction = 0.5f;  // medial balls may stand this much (x tolerance) off the surface
+constexpr int kCoarsenAttempts = 4;
 constexpr uint64_t kRepairSeedSalt = 0x5e11'0c4e'c4ull;
 constexpr uint64_t kReportSeedSalt = 0x0e90'47ull;
 
@@ -46,46 +48,72 @@ bool fail(std::string* error, const std::string& why) {
     return false;
 }
 
-struct FitResult {
-    std::vector<Sphere> spheres;
-    bool radii_grown = false;
-};
+// Distance along the unit direction d from o to the nearest triangle (Moller-Trumbore), or +inf.
+float rayHit(const TriangleMesh& mesh, const glm::vec3& o, const glm::vec3& d) {
+    float best = std::numeric_limits<float>::infinity();
+    for (size_t t = 0; t < mesh.indices.size(); t += 3) {
+        const glm::vec3 a = mesh.positions[mesh.indices[t]];
+        const glm::vec3 e1 = mesh.positions[mesh.indices[t + 1]] - a, e2 = mesh.positions[mesh.indices[t + 2]] - a;
+        const glm::vec3 pv = glm::cross(d, e2);
+        const float det = glm::dot(e1, pv);
+        if (std::abs(det) < 1e-20f) continue;
+        const float inv = 1.0f / det;
+        const glm::vec3 tv = o - a;
+        const float u = glm::dot(tv, pv) * inv;
+        if (u < 0.0f || u > 1.0f) continue;
+        const glm::vec3 qv = glm::cross(tv, e1);
+        const float v = glm::dot(d, qv) * inv;
+        if (v < 0.0f || u + v > 1.0f) continue;
+        const float dist = glm::dot(e2, qv) * inv;
+        if (dist > 0.0f && dist < best) best = dist;
+    }
+    return best;
+}
 
-// Steps 2-4 above on a fixed sample set.
-FitResult fitToSamples(const std::vector<glm::vec3>& points, const std::vector<glm::vec3>& normals,
-                       const Bounds3& box, float tolerance_m, float fit_tolerance_m, uint32_t max_spheres) {
+// Steps 2-4 above: appends spheres to `spheres` until every point of `points` is within
+// `fit_tolerance_m` of the union (growing radii once `max_spheres` is reached). `medial_points` is every
+// sample known on the surface; the shrinking balls are bound by them. Returns true if radii were grown.
+bool coverPoints(const TriangleMesh& mesh, const std::vector<glm::vec3>& medial_points, const std::vector<glm::vec3>& points,
+                 const std::vector<glm::vec3>& normals, const Bounds3& box, float tolerance_m, float fit_tolerance_m,
+                 uint32_t max_spheres, float bulge_m, std::vector<Sphere>* spheres) {
     const size_t n = points.size();
+    if (n == 0) return false;
     const glm::vec3 extent = box.max - box.min;
     const float max_radius_m = 0.5f * std::max(extent.x, std::max(extent.y, extent.z));
     const glm::vec3 lo = box.min - glm::vec3(tolerance_m), hi = box.max + glm::vec3(tolerance_m);
 
-    // Candidate balls, one per sample (a slot per index keeps the result thread-count independent).
+    // Candidate balls, one per point (a slot per index keeps the result thread-count independent).
     std::vector<Sphere> cand(n);
-    std::vector<uint8_t> cand_ok(n, 0);
     parallelFor(n, 0, 64, [&](size_t begin, size_t end, int) {
         for (size_t i = begin; i < end; ++i) {
             const glm::vec3 p = points[i], m = -normals[i];
             float r = std::numeric_limits<float>::max();
-            for (size_t j = 0; j < n; ++j) {
-                const glm::vec3 d = points[j] - p;
+            for (const glm::vec3& q : medial_points) {
+                const glm::vec3 d = q - p;
                 const float along = glm::dot(m, d);
                 if (along <= 0.0f) continue;
-                const float rj = glm::dot(d, d) / (2.0f * along);
-                r = std::min(r, rj);
+                r = std::min(r, glm::dot(d, d) / (2.0f * along));
             }
             if (!(r < max_radius_m)) r = 0.0f;  // nothing binds: open or inverted surface here
-            const glm::vec3 c = p + r * m;
-            cand[i] = Sphere{c, std::max(r, tolerance_m)};
-            cand_ok[i] = glm::all(glm::greaterThanEqual(c, lo)) && glm::all(glm::lessThanEqual(c, hi));
+            // Samples are sparser than a leaf is thick, so a ball bound only by samples can slip through
+            // a thin part; the ray along m to the opposite face bounds it by half the local thickness.
+            r = std::min(r, 0.5f * rayHit(mesh, p + 1e-6f * max_radius_m * m, m));
+            glm::vec3 c = p + r * m;
+            // A centre off the model's box means the ball sits in the outside (inverted normals):
+            // fall back to a tolerance-sized ball on the sample, which always covers it.
+            if (!(glm::all(glm::greaterThanEqual(c, lo)) && glm::all(glm::lessThanEqual(c, hi)))) {
+                r = 0.0f;
+                c = p;
+            }
+            cand[i] = Sphere{c, std::max(r + bulge_m, tolerance_m)};
         }
     });
 
-    // Coverage bit sets: bit j of row i = sample j within fit tolerance of candidate i's surface.
+    // Coverage bit sets: bit j of row i = point j within fit tolerance of candidate i's surface.
     const size_t words = (n + 63) / 64;
     std::vector<uint64_t> cover(n * words, 0);
     parallelFor(n, 0, 64, [&](size_t begin, size_t end, int) {
         for (size_t i = begin; i < end; ++i) {
-            if (!cand_ok[i]) continue;
             const float reach = cand[i].radius + fit_tolerance_m;
             const float reach2 = reach * reach;
             uint64_t* row = &cover[i * words];
@@ -105,15 +133,19 @@ FitResult fitToSamples(const std::vector<glm::vec3>& points, const std::vector<g
         for (size_t w = 0; w < words; ++w) g += size_t(std::popcount(row[w] & uncovered[w]));
         return g;
     };
+    auto take = [&](size_t i, size_t gain) {
+        spheres->push_back(cand[i]);
+        const uint64_t* row = &cover[i * words];
+        for (size_t w = 0; w < words; ++w) uncovered[w] &= ~row[w];
+        uncovered_count -= gain;
+    };
 
     // Lazy greedy: gains only shrink, so a popped entry whose fresh gain still beats the next stored
-    // (upper-bound) gain is the true maximum. Ties go to the lower sample index (determinism).
+    // (upper-bound) gain is the true maximum. Ties go to the lower index (determinism).
     using Entry = std::pair<size_t, size_t>;  // (gain, n - index): larger is better
     std::priority_queue<Entry> heap;
-    for (size_t i = 0; i < n; ++i)
-        if (cand_ok[i]) heap.push({gainOf(i), n - i});
-    FitResult result;
-    while (uncovered_count > 0 && result.spheres.size() < max_spheres && !heap.empty()) {
+    for (size_t i = 0; i < n; ++i) heap.push({gainOf(i), n - i});
+    while (uncovered_count > 0 && spheres->size() < max_spheres && !heap.empty()) {
         const Entry top = heap.top();
         heap.pop();
         const size_t i = n - top.second;
@@ -123,33 +155,33 @@ FitResult fitToSamples(const std::vector<glm::vec3>& points, const std::vector<g
             heap.push({gain, top.second});
             continue;
         }
-        result.spheres.push_back(cand[i]);
-        const uint64_t* row = &cover[i * words];
-        for (size_t w = 0; w < words; ++w) uncovered[w] &= ~row[w];
-        uncovered_count -= gain;
+        take(i, gain);
     }
+    if (uncovered_count == 0) return false;
 
-    // Bound hit: every uncovered sample grows its nearest sphere (by gap to the surface) just enough.
-    if (uncovered_count > 0) {
-        assert(!result.spheres.empty() || max_spheres == 0);
-        if (result.spheres.empty()) result.spheres.push_back(cand[0]);  // max_spheres >= 1 by contract
-        for (size_t j = 0; j < n; ++j) {
-            if (!(uncovered[j / 64] >> (j % 64) & 1)) continue;
-            size_t best = 0;
-            float best_gap = std::numeric_limits<float>::max();
-            for (size_t s = 0; s < result.spheres.size(); ++s) {
-                const float gap = glm::length(points[j] - result.spheres[s].center) - result.spheres[s].radius;
-                if (gap < best_gap) { best_gap = gap; best = s; }
-            }
-            if (best_gap > fit_tolerance_m) {
-                Sphere& s = result.spheres[best];
-                // note: the 0.999 keeps float rounding from leaving the sample a hair outside.
-                s.radius = glm::length(points[j] - s.center) - 0.999f * fit_tolerance_m;
-                result.radii_grown = true;
+    // Bound hit: every uncovered point grows its nearest sphere (by gap to the surface) just enough.
+    if (spheres->empty()) take(0, gainOf(0));  // max_spheres >= 1 by contract
+    bool grown = false;
+    for (size_t j = 0; j < n; ++j) {
+        if (!(uncovered[j / 64] >> (j % 64) & 1)) continue;
+        size_t best = 0;
+        float best_gap = std::numeric_limits<float>::max();
+        for (size_t s = 0; s < spheres->size(); ++s) {
+            const float gap = glm::length(points[j] - (*spheres)[s].center) - (*spheres)[s].radius;
+            if (gap < best_gap) {
+                best_gap = gap;
+                best = s;
             }
         }
+        if (best_gap > fit_tolerance_m) {
+            Sphere& s = (*spheres)[best];
+            // note: growing to half the fit tolerance (not to it) leaves room for the points between
+            // samples, which the grown sphere must also reach.
+            s.radius = glm::length(points[j] - s.center) - 0.5f * fit_tolerance_m;
+            grown = true;
+        }
     }
-    return result;
+    return grown;
 }
 
 float maxDistance(const std::vector<Sphere>& spheres, const std::vector<glm::vec3>& points) {
@@ -233,33 +265,66 @@ bool fitSphereSet(const TriangleMesh& mesh, const SphereFitSettings& settings, s
     if (points.empty()) return fail(error, "mesh: zero surface area");
 
     const float fit_tolerance_m = kFitToleranceFraction * tolerance_m;
-    FitResult fit;
-    std::vector<glm::vec3> repair_points, repair_normals;
-    sampleSurface(mesh, settings.surface_samples, hashWords(settings.seed, kRepairSeedSalt), &repair_points,
-                  &repair_normals);
-    for (int round = 0;; ++round) {
-        fit = fitToSamples(points, normals, box, tolerance_m, fit_tolerance_m, settings.max_spheres);
-        if (round == kRepairRounds) break;
-        size_t added = 0;
-        for (size_t j = 0; j < repair_points.size(); ++j) {
-            if (distanceToSphereUnion(fit.spheres, repair_points[j]) > kRepairToleranceFraction * tolerance_m) {
-                points.push_back(repair_points[j]);
-                normals.push_back(repair_normals[j]);
-                ++added;
-            }
+    // Balls may stand kBulgeFraction * tolerance off the surface: each then covers much more of a smooth
+    // surface, and stays within the tolerance band. If the count bound is still hit, coarser balls
+    // (doubling the allowance) are tried before radii are grown point by point.
+    std::vector<Sphere> spheres;
+    bool grown = false;
+    // Vertices join the samples: tips and corners (a grass blade's point) have too little area to be
+    // sampled reliably but are where coverage fails first. A stride keeps big meshes cheap.
+    {
+        TriangleMesh with_normals;
+        const std::vector<glm::vec3>* vertex_normals = &mesh.normals;
+        if (mesh.normals.size() != mesh.positions.size()) {
+            with_normals.positions = mesh.positions;
+            with_normals.indices = mesh.indices;
+            computeNormals(&with_normals);
+            vertex_normals = &with_normals.normals;
         }
-        if (added == 0) break;
+        const size_t stride = std::max<size_t>(1, mesh.positions.size() / settings.surface_samples);
+        for (size_t v = 0; v < mesh.positions.size(); v += stride) {
+            points.push_back(mesh.positions[v]);
+            normals.push_back((*vertex_normals)[v]);
+        }
     }
+    const std::vector<glm::vec3> base_points = points, base_normals = normals;
+    for (int attempt = 0; attempt < kCoarsenAttempts; ++attempt) {
+        const float bulge_m = kBulgeFraction * float(1 << attempt) * tolerance_m;
+        points = base_points;
+        normals = base_normals;
+        spheres.clear();
+        grown = coverPoints(mesh, points, points, normals, box, tolerance_m, fit_tolerance_m, settings.max_spheres, bulge_m, &spheres);
+        // Repair rounds: fresh independent samples that fall too far out are covered incrementally (the
+        // spheres found so far stay), then join the sample set.
+        for (int round = 0; round < kRepairRounds; ++round) {
+            std::vector<glm::vec3> fresh, fresh_normals, bad, bad_normals;
+            sampleSurface(mesh, 2 * settings.surface_samples, hashWords(settings.seed, kRepairSeedSalt, uint64_t(round)), &fresh,
+                          &fresh_normals);
+            for (size_t j = 0; j < fresh.size(); ++j)
+                if (distanceToSphereUnion(spheres, fresh[j]) > kRepairToleranceFraction * tolerance_m) {
+                    bad.push_back(fresh[j]);
+                    bad_normals.push_back(fresh_normals[j]);
+                }
+            if (bad.empty()) break;
+            points.insert(points.end(), bad.begin(), bad.end());
+            normals.insert(normals.end(), bad_normals.begin(), bad_normals.end());
+            grown |= coverPoints(mesh, points, bad, bad_normals, box, tolerance_m, fit_tolerance_m, settings.max_spheres, bulge_m, &spheres);
+        }
 
+        if (!grown) {
+            grown = attempt > 0;  // a coarser pass than the first is a radius increase too
+            break;
+        }
+    }
     std::vector<glm::vec3> check_points;
     sampleSurface(mesh, settings.surface_samples, hashWords(settings.seed, kReportSeedSalt), &check_points, nullptr);
-    *out = std::move(fit.spheres);
+    *out = std::move(spheres);
     if (report) {
         *report = SphereFitReport{};
         report->tolerance_m = tolerance_m;
         report->max_sample_distance_m = maxDistance(*out, points);
         report->sphere_count = uint32_t(out->size());
-        report->radii_grown = fit.radii_grown;
+        report->radii_grown = grown;
         report->max_check_distance_m = maxDistance(*out, check_points);
         report->check_sample_count = uint32_t(check_points.size());
     }

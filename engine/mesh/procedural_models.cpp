@@ -1,0 +1,431 @@
+// Procedural starter assets. Three shape builders cover everything:
+//   - displaced icospheres (rock, flat stone, pebble),
+//   - closed thin sheets, a two-sided surface with a little thickness that meets at the rim and at both
+//     ends (leaf blades, grass blades): thin but closed, so the sphere fitter sees a thin solid,
+//   - tubes along polylines and surfaces of revolution (twigs, stems, needles, mushroom).
+// Random choices come from hashWords(seed, part, k), never from generator state.
+#include "mesh/procedural_models.h"
+
+#include <cassert>
+#include <cmath>
+#include <filesystem>
+#include <functional>
+
+#include "core/hash.h"
+#include "io/gltf_mesh_io.h"
+
+namespace ug {
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+// Uniform in [lo, hi) from (seed, a, b).
+float rnd(uint64_t seed, uint64_t a, uint64_t b, float lo, float hi) {
+    return lo + (hi - lo) * unitFloat(hashWords(seed, a, b));
+}
+
+// Smooth value noise in [-1, 1] on the integer lattice.
+float valueNoise(const glm::vec3& p, uint64_t seed) {
+    const glm::vec3 f = glm::floor(p);
+    const glm::vec3 t = p - f;
+    const glm::vec3 w = t * t * (3.0f - 2.0f * t);
+    auto corner = [&](int dx, int dy, int dz) {
+        const uint64_t h = hashWords(seed, uint64_t(int64_t(f.x) + dx), uint64_t(int64_t(f.y) + dy),
+                                     uint64_t(int64_t(f.z) + dz));
+        return unitFloat(h) * 2.0f - 1.0f;
+    };
+    const float x00 = glm::mix(corner(0, 0, 0), corner(1, 0, 0), w.x);
+    const float x10 = glm::mix(corner(0, 1, 0), corner(1, 1, 0), w.x);
+    const float x01 = glm::mix(corner(0, 0, 1), corner(1, 0, 1), w.x);
+    const float x11 = glm::mix(corner(0, 1, 1), corner(1, 1, 1), w.x);
+    return glm::mix(glm::mix(x00, x10, w.y), glm::mix(x01, x11, w.y), w.z);
+}
+
+float fbm(const glm::vec3& p, uint64_t seed, int octaves) {
+    float sum = 0.0f, amp = 0.5f, freq = 1.0f;
+    for (int o = 0; o < octaves; ++o) {
+        sum += amp * valueNoise(p * freq, hashWords(seed, uint64_t(o)));
+        amp *= 0.5f;
+        freq *= 2.03f;
+    }
+    return sum;
+}
+
+struct Builder {
+    TriangleMesh mesh;
+    uint32_t vertex(const glm::vec3& p) {
+        mesh.positions.push_back(p);
+        return uint32_t(mesh.positions.size() - 1);
+    }
+    void tri(uint32_t a, uint32_t b, uint32_t c) { mesh.indices.insert(mesh.indices.end(), {a, b, c}); }
+};
+
+// Unit icosphere, outward (counter-clockwise seen from outside) winding.
+TriangleMesh icosphere(int subdivisions) {
+    const float t = (1.0f + std::sqrt(5.0f)) / 2.0f;
+    TriangleMesh m;
+    m.positions = {{-1, t, 0}, {1, t, 0}, {-1, -t, 0}, {1, -t, 0}, {0, -1, t}, {0, 1, t},
+                   {0, -1, -t}, {0, 1, -t}, {t, 0, -1}, {t, 0, 1}, {-t, 0, -1}, {-t, 0, 1}};
+    for (glm::vec3& p : m.positions) p = glm::normalize(p);
+    m.indices = {0, 11, 5, 0, 5,  1, 0,  1, 7, 0,  7, 10, 0, 10, 11, 1, 5, 9, 5, 11, 4,  11, 10, 2,  10, 7, 6, 7, 1, 8,
+                 3, 9,  4, 3, 4,  2, 3,  2, 6, 3,  6, 8,  3, 8,  9,  4, 9, 5, 2, 4,  11, 6,  2,  10, 8,  6, 7, 9, 8, 1};
+    for (int s = 0; s < subdivisions; ++s) {
+        std::vector<uint32_t> next;
+        std::vector<std::pair<uint64_t, uint32_t>> cache;  // (edge key, midpoint), small: linear scan per tri is fine
+        auto midpoint = [&](uint32_t a, uint32_t b) {
+            const uint64_t key = a < b ? (uint64_t(a) << 32 | b) : (uint64_t(b) << 32 | a);
+            for (const auto& [k, v] : cache)
+                if (k == key) return v;
+            m.positions.push_back(glm::normalize(m.positions[a] + m.positions[b]));
+            const uint32_t v = uint32_t(m.positions.size() - 1);
+            cache.push_back({key, v});
+            return v;
+        };
+        for (size_t i = 0; i < m.indices.size(); i += 3) {
+            const uint32_t a = m.indices[i], b = m.indices[i + 1], c = m.indices[i + 2];
+            const uint32_t ab = midpoint(a, b), bc = midpoint(b, c), ca = midpoint(c, a);
+            next.insert(next.end(), {a, ab, ca, b, bc, ab, c, ca, bc, ab, bc, ca});
+        }
+        m.indices = std::move(next);
+    }
+    return m;
+}
+
+// A closed thin sheet over (s, t) in [0,1] x [-1,1]: pos(s, t) is the mid-surface, both ends (s = 0, 1)
+// collapse to a tip and the rims (t = +-1) are where the two faces meet. half_thickness(s) is the
+// half thickness along the middle (t = 0), tapering to 0 at the rims.
+void addSheet(Builder* b, int rows, int cols, const std::function<glm::vec3(float, float)>& pos,
+              const std::function<float(float)>& half_thickness) {
+    assert(rows >= 3 && cols >= 2 && cols % 2 == 0);
+    const float e = 1e-3f;
+    std::vector<uint32_t> top((rows - 1) * (cols + 1)), bottom((rows - 1) * (cols + 1));
+    for (int i = 1; i < rows; ++i) {
+        const float s = float(i) / float(rows);
+        for (int j = 0; j <= cols; ++j) {
+            const float t = -1.0f + 2.0f * float(j) / float(cols);
+            const glm::vec3 p = pos(s, t);
+            const size_t k = size_t(i - 1) * size_t(cols + 1) + size_t(j);
+            if (j == 0 || j == cols) {
+                top[k] = bottom[k] = b->vertex(p);
+                continue;
+            }
+            const glm::vec3 ds = pos(s + e, t) - pos(s - e, t), dt = pos(s, t + e) - pos(s, t - e);
+            const glm::vec3 n = glm::normalize(glm::cross(ds, dt));
+            const float h = half_thickness(s) * std::sqrt(std::max(0.0f, 1.0f - t * t));
+            top[k] = b->vertex(p + h * n);
+            bottom[k] = b->vertex(p - h * n);
+        }
+    }
+    auto at = [&](const std::vector<uint32_t>& v, int i, int j) { return v[size_t(i - 1) * size_t(cols + 1) + size_t(j)]; };
+    for (int i = 1; i + 1 < rows; ++i)
+        for (int j = 0; j < cols; ++j) {
+            b->tri(at(top, i, j), at(top, i + 1, j), at(top, i, j + 1));
+            b->tri(at(top, i + 1, j), at(top, i + 1, j + 1), at(top, i, j + 1));
+            b->tri(at(bottom, i, j), at(bottom, i, j + 1), at(bottom, i + 1, j));
+            b->tri(at(bottom, i + 1, j), at(bottom, i, j + 1), at(bottom, i + 1, j + 1));
+        }
+    const uint32_t tip0 = b->vertex(pos(0.0f, 0.0f)), tip1 = b->vertex(pos(1.0f, 0.0f));
+    for (int j = 0; j < cols; ++j) {
+        b->tri(tip0, at(top, 1, j), at(top, 1, j + 1));
+        b->tri(tip0, at(bottom, 1, j + 1), at(bottom, 1, j));
+        b->tri(tip1, at(top, rows - 1, j + 1), at(top, rows - 1, j));
+        b->tri(tip1, at(bottom, rows - 1, j), at(bottom, rows - 1, j + 1));
+    }
+}
+
+// A closed tube along a polyline (at least 2 points) with per-point radii and flat end caps.
+void addTube(Builder* b, const std::vector<glm::vec3>& line, const std::vector<float>& radii, int sides) {
+    assert(line.size() >= 2 && radii.size() == line.size() && sides >= 3);
+    // Parallel transport keeps the rings from twisting along the line.
+    glm::vec3 t0 = glm::normalize(line[1] - line[0]);
+    glm::vec3 n1 = std::abs(t0.z) < 0.9f ? glm::normalize(glm::cross(t0, glm::vec3(0, 0, 1)))
+                                         : glm::normalize(glm::cross(t0, glm::vec3(1, 0, 0)));
+    std::vector<uint32_t> rings;
+    for (size_t k = 0; k < line.size(); ++k) {
+        const glm::vec3 t = glm::normalize(k + 1 < line.size() ? line[k + 1] - line[k] : line[k] - line[k - 1]);
+        const glm::vec3 tk = k > 0 && k + 1 < line.size() ? glm::normalize(line[k + 1] - line[k - 1]) : t;
+        n1 = glm::normalize(n1 - glm::dot(n1, tk) * tk);
+        const glm::vec3 n2 = glm::cross(tk, n1);  // (n1, n2, t) right-handed
+        for (int j = 0; j < sides; ++j) {
+            const float a = 2.0f * kPi * float(j) / float(sides);
+            rings.push_back(b->vertex(line[k] + radii[k] * (std::cos(a) * n1 + std::sin(a) * n2)));
+        }
+    }
+    auto ring = [&](size_t k, int j) { return rings[k * size_t(sides) + size_t(j % sides)]; };
+    for (size_t k = 0; k + 1 < line.size(); ++k)
+        for (int j = 0; j < sides; ++j) {
+            b->tri(ring(k, j), ring(k, j + 1), ring(k + 1, j));
+            b->tri(ring(k, j + 1), ring(k + 1, j + 1), ring(k + 1, j));
+        }
+    const uint32_t c0 = b->vertex(line.front()), c1 = b->vertex(line.back());
+    const size_t last = line.size() - 1;
+    for (int j = 0; j < sides; ++j) {
+        b->tri(c0, ring(0, j + 1), ring(0, j));
+        b->tri(c1, ring(last, j), ring(last, j + 1));
+    }
+}
+
+// A closed surface of revolution about the vertical axis through `base`. The profile (r, z) runs from
+// the top pole (r = 0) to the bottom pole (r = 0); interior points must have r > 0.
+void addRevolution(Builder* b, const glm::vec3& base, const std::vector<glm::vec2>& profile, int segments) {
+    assert(profile.size() >= 3);
+    const size_t rings = profile.size() - 2;
+    std::vector<uint32_t> v(rings * size_t(segments));
+    for (size_t i = 0; i < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            const float a = 2.0f * kPi * float(j) / float(segments);
+            const glm::vec2 rz = profile[i + 1];
+            v[i * size_t(segments) + size_t(j)] = b->vertex(base + glm::vec3(rz.x * std::cos(a), rz.x * std::sin(a), rz.y));
+        }
+    auto at = [&](size_t i, int j) { return v[i * size_t(segments) + size_t(j % segments)]; };
+    for (size_t i = 0; i + 1 < rings; ++i)
+        for (int j = 0; j < segments; ++j) {
+            b->tri(at(i, j), at(i + 1, j), at(i, j + 1));
+            b->tri(at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+        }
+    const uint32_t top = b->vertex(base + glm::vec3(0, 0, profile.front().y));
+    const uint32_t bottom = b->vertex(base + glm::vec3(0, 0, profile.back().y));
+    for (int j = 0; j < segments; ++j) {
+        b->tri(top, at(0, j), at(0, j + 1));
+        b->tri(bottom, at(rings - 1, j + 1), at(rings - 1, j));
+    }
+}
+
+TriangleMesh finish(Builder* b, const glm::vec3& color) {
+    TriangleMesh m = std::move(b->mesh);
+    const Bounds3 box = meshBounds(m);
+    const glm::vec3 centre = 0.5f * (box.min + box.max);
+    for (glm::vec3& p : m.positions) p -= centre;
+    m.base_color = color;
+    computeNormals(&m);
+    return m;
+}
+
+// A noisy ellipsoid with semi-axes `axes_m`; `roughness` scales the radial displacement.
+TriangleMesh displacedEllipsoid(uint64_t seed, const glm::vec3& axes_m, float roughness, float frequency,
+                                const glm::vec3& color) {
+    Builder b;
+    b.mesh = icosphere(3);  // 1280 triangles
+    const glm::vec3 offset(rnd(seed, 1, 0, 0, 100), rnd(seed, 1, 1, 0, 100), rnd(seed, 1, 2, 0, 100));
+    for (glm::vec3& p : b.mesh.positions) {
+        const float d = 1.0f + roughness * fbm(p * frequency + offset, seed, 4);
+        p = p * d * axes_m;
+    }
+    return finish(&b, color);
+}
+
+// A leaf blade along +X from the origin, width profile `half_width_m(s)`, with a stem behind it.
+TriangleMesh leaf(uint64_t seed, float length_m, const std::function<float(float)>& half_width_m, float max_half_width_m,
+                  int rows, const glm::vec3& color) {
+    Builder b;
+    const float cup = rnd(seed, 2, 0, 0.25f, 0.45f);    // across-blade cupping
+    const float bend = rnd(seed, 2, 1, 0.10f, 0.20f);   // lengthwise curl
+    const float twist = rnd(seed, 2, 2, -0.15f, 0.15f);
+    auto pos = [&](float s, float t) {
+        const float y = t * half_width_m(s);
+        const float z = cup * y * y / max_half_width_m + bend * length_m * (s - 0.35f) * (s - 0.35f) + twist * y * s;
+        return glm::vec3(s * length_m, y, z);
+    };
+    addSheet(&b, rows, 10, pos, [&](float s) { return 0.0006f * (1.0f - 0.6f * s); });
+    // Stem: from behind the blade into its base, bending down a little.
+    const float stem_m = 0.2f * length_m;
+    const glm::vec3 base = pos(0.0f, 0.0f);
+    std::vector<glm::vec3> line;
+    std::vector<float> radii;
+    for (int k = 0; k <= 6; ++k) {
+        const float u = float(k) / 6.0f;
+        line.push_back(base + glm::vec3(-stem_m * (1.0f - u) + 0.04f * length_m * u, 0.0f,
+                                        -0.15f * stem_m * (1.0f - u) * (1.0f - u)));
+        radii.push_back(0.0009f - 0.0003f * u);
+    }
+    addTube(&b, line, radii, 6);
+    return finish(&b, color);
+}
+
+}  // namespace
+
+TriangleMesh makeRock(uint64_t seed) {
+    return displacedEllipsoid(hashWords(seed, 101), {0.060f, 0.047f, 0.038f}, 0.32f, 1.7f, {0.42f, 0.42f, 0.40f});
+}
+
+TriangleMesh makeFlatStone(uint64_t seed) {
+    return displacedEllipsoid(hashWords(seed, 102), {0.075f, 0.055f, 0.018f}, 0.16f, 1.4f, {0.47f, 0.41f, 0.34f});
+}
+
+TriangleMesh makePebble(uint64_t seed) {
+    return displacedEllipsoid(hashWords(seed, 103), {0.020f, 0.015f, 0.011f}, 0.04f, 1.0f, {0.56f, 0.54f, 0.50f});
+}
+
+TriangleMesh makeOakLeaf(uint64_t seed) {
+    seed = hashWords(seed, 104);
+    const float length_m = rnd(seed, 3, 0, 0.085f, 0.095f), width_m = 0.032f;
+    const float lobes = 4.5f;
+    auto half_width = [=](float s) {
+        // Obovate outline (widest beyond the middle) cut into rounded lobes.
+        const float envelope = std::pow(std::max(0.0f, std::sin(kPi * s)), 0.8f) * (0.55f + 0.45f * s);
+        const float lobe = 0.55f + 0.45f * std::pow(std::abs(std::cos(kPi * lobes * s)), 0.6f);
+        return std::max(width_m * envelope * lobe, 0.0008f);
+    };
+    return leaf(seed, length_m, half_width, width_m, 48, {0.55f, 0.30f, 0.09f});
+}
+
+TriangleMesh makeBirchLeaf(uint64_t seed) {
+    seed = hashWords(seed, 105);
+    const float length_m = rnd(seed, 3, 0, 0.070f, 0.080f), width_m = 0.016f;
+    auto half_width = [=](float s) {
+        // Narrow, pointed (lanceolate), widest at about a third of the length, finely serrated.
+        const float envelope = std::pow(std::max(0.0f, std::sin(kPi * std::pow(s, 0.75f))), 1.1f);
+        const float serration = 1.0f - 0.06f * std::abs(std::sin(kPi * 14.0f * s));
+        return std::max(width_m * envelope * serration, 0.0006f);
+    };
+    return leaf(seed, length_m, half_width, width_m, 32, {0.80f, 0.62f, 0.12f});
+}
+
+TriangleMesh makeTwig(uint64_t seed) {
+    seed = hashWords(seed, 106);
+    Builder b;
+    auto branch = [&](glm::vec3 start, glm::vec3 dir, float length_m, float r0, float r1, int points, int sides, uint64_t part) {
+        std::vector<glm::vec3> line;
+        std::vector<float> radii;
+        glm::vec3 p = start;
+        dir = glm::normalize(dir);
+        for (int k = 0; k < points; ++k) {
+            line.push_back(p);
+            radii.push_back(glm::mix(r0, r1, float(k) / float(points - 1)));
+            // A gentle random walk of the heading: twigs are never straight.
+            dir = glm::normalize(dir + glm::vec3(rnd(seed, part, uint64_t(3 * k), -0.12f, 0.12f),
+                                                 rnd(seed, part, uint64_t(3 * k + 1), -0.12f, 0.12f),
+                                                 rnd(seed, part, uint64_t(3 * k + 2), -0.05f, 0.05f)));
+            p += dir * (length_m / float(points - 1));
+        }
+        addTube(&b, line, radii, sides);
+        return line;
+    };
+    const std::vector<glm::vec3> main = branch({0, 0, 0}, {1, 0, 0}, 0.30f, 0.0065f, 0.0018f, 16, 10, 1);
+    const glm::vec3 a = main[6], c = main[10];
+    const glm::vec3 da = glm::normalize(main[7] - main[6]), dc = glm::normalize(main[11] - main[10]);
+    const glm::vec3 side(0, 1, 0);
+    branch(a, da + 0.85f * side + glm::vec3(0, 0, 0.1f), 0.10f, 0.0032f, 0.0011f, 8, 7, 2);
+    branch(c, dc - 0.75f * side, 0.07f, 0.0024f, 0.0009f, 7, 6, 3);
+    return finish(&b, {0.36f, 0.25f, 0.15f});
+}
+
+TriangleMesh makeGrassTuft(uint64_t seed) {
+    seed = hashWords(seed, 107);
+    Builder b;
+    const int blades = 14;
+    for (int k = 0; k < blades; ++k) {
+        const float phi = 2.0f * kPi * (float(k) + rnd(seed, 4, uint64_t(k), 0.0f, 0.8f)) / float(blades);
+        const float ring_m = rnd(seed, 5, uint64_t(k), 0.0f, 0.010f);
+        const float height_m = rnd(seed, 6, uint64_t(k), 0.065f, 0.105f);
+        const float lean = rnd(seed, 7, uint64_t(k), 0.15f, 0.55f);
+        const float width_m = rnd(seed, 8, uint64_t(k), 0.0018f, 0.0028f);
+        const glm::vec3 out(std::cos(phi), std::sin(phi), 0.0f), across(-std::sin(phi), std::cos(phi), 0.0f);
+        const glm::vec3 base = ring_m * out;
+        auto pos = [=](float s, float t) {
+            const float w = width_m * std::min(1.0f, 0.35f + 6.0f * s) * std::pow(std::max(0.0f, 1.0f - s), 0.8f);
+            // Rising then arching outward: the lean grows with the square of the height fraction.
+            const glm::vec3 centre = base + glm::vec3(0, 0, height_m * s * (1.0f - 0.25f * lean * s)) +
+                                     out * (lean * height_m * s * s);
+            return centre + t * w * across;
+        };
+        addSheet(&b, 10, 2, pos, [](float s) { return 0.0003f * (1.0f - 0.7f * s); });
+    }
+    return finish(&b, {0.24f, 0.48f, 0.12f});
+}
+
+TriangleMesh makeMushroom(uint64_t seed) {
+    seed = hashWords(seed, 108);
+    Builder b;
+    const float stem_h = rnd(seed, 9, 0, 0.065f, 0.075f);
+    const float cap_r = rnd(seed, 9, 1, 0.040f, 0.048f), cap_h = rnd(seed, 9, 2, 0.024f, 0.030f);
+    // Stem: slightly bulbous foot, narrowing to the cap.
+    std::vector<glm::vec2> stem = {{0.0f, stem_h}};
+    for (int i = 0; i <= 10; ++i) {
+        const float u = float(i) / 10.0f;  // 0 at the top
+        const float r = 0.0085f + 0.0025f * u + 0.0030f * std::pow(u, 6.0f);
+        stem.push_back({r, stem_h * (1.0f - u)});
+    }
+    stem.push_back({0.0f, 0.0f});
+    addRevolution(&b, {0, 0, 0}, stem, 16);
+    // Cap: dome from the top pole over the rim, then the gill side back to the stem.
+    std::vector<glm::vec2> cap;
+    const float z0 = stem_h - 0.006f;
+    const int dome = 12;
+    for (int i = 0; i <= dome; ++i) {
+        const float a = (0.5f * kPi + 0.35f) * float(i) / float(dome);
+        cap.push_back({cap_r * std::sin(a), z0 + 0.004f + cap_h * std::cos(a)});
+    }
+    const glm::vec2 rim = cap.back();
+    for (int i = 1; i <= 5; ++i) {
+        const float u = float(i) / 5.0f;
+        cap.push_back({glm::mix(rim.x, 0.008f, u), glm::mix(rim.y, z0, std::sqrt(u))});
+    }
+    cap.push_back({0.0f, z0});
+    addRevolution(&b, {0, 0, 0}, cap, 28);
+    return finish(&b, {0.58f, 0.30f, 0.17f});
+}
+
+TriangleMesh makePineNeedles(uint64_t seed) {
+    seed = hashWords(seed, 109);
+    Builder b;
+    // Sheath holding the bundle together.
+    addTube(&b, {{0, 0, 0}, {0, 0, 0.004f}, {0, 0, 0.008f}}, {0.0022f, 0.0020f, 0.0016f}, 8);
+    const int needles = 18;
+    for (int k = 0; k < needles; ++k) {
+        const float phi = 2.0f * kPi * (float(k) + rnd(seed, 10, uint64_t(k), 0.0f, 0.6f)) / float(needles);
+        const float tilt = rnd(seed, 11, uint64_t(k), 0.12f, 0.45f);
+        const float length_m = rnd(seed, 12, uint64_t(k), 0.060f, 0.075f);
+        const glm::vec3 out(std::cos(phi), std::sin(phi), 0.0f);
+        std::vector<glm::vec3> line;
+        std::vector<float> radii;
+        const int points = 6;
+        for (int i = 0; i < points; ++i) {
+            const float s = float(i) / float(points - 1);
+            const float a = tilt * (1.0f + 0.6f * s);  // needles splay more towards their tips
+            line.push_back(glm::vec3(0, 0, 0.004f) + 0.0012f * out +
+                           length_m * s * (std::cos(a) * glm::vec3(0, 0, 1) + std::sin(a) * out));
+            radii.push_back(glm::mix(0.00065f, 0.00025f, s));
+        }
+        addTube(&b, line, radii, 4);
+    }
+    return finish(&b, {0.10f, 0.24f, 0.10f});
+}
+
+const std::vector<std::string>& starterAssetNames() {
+    static const std::vector<std::string> names = {"rock",      "flat_stone", "pebble",   "leaf_oak",    "leaf_birch",
+                                                   "twig",      "grass_tuft", "mushroom", "pine_needles"};
+    return names;
+}
+
+bool makeStarterAsset(const std::string& name, uint64_t seed, TriangleMesh* out) {
+    using Maker = TriangleMesh (*)(uint64_t);
+    static const std::pair<const char*, Maker> makers[] = {
+        {"rock", makeRock},         {"flat_stone", makeFlatStone}, {"pebble", makePebble},
+        {"leaf_oak", makeOakLeaf},  {"leaf_birch", makeBirchLeaf}, {"twig", makeTwig},
+        {"grass_tuft", makeGrassTuft}, {"mushroom", makeMushroom}, {"pine_needles", makePineNeedles}};
+    for (const auto& [n, make] : makers)
+        if (name == n) {
+            *out = make(seed);
+            return true;
+        }
+    return false;
+}
+
+bool writeStarterAssets(const std::string& dir, std::string* error) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) {
+        if (error) *error = dir + ": cannot create the folder: " + ec.message();
+        return false;
+    }
+    for (const std::string& name : starterAssetNames()) {
+        TriangleMesh mesh;
+        makeStarterAsset(name, kStarterAssetSeed, &mesh);
+        const std::string path = (std::filesystem::path(dir) / (name + ".glb")).string();
+        if (!writeGltfMeshes(path, {{name, &mesh}}, error)) return false;
+    }
+    return true;
+}
+
+}  // namespace ug

@@ -1,0 +1,42 @@
+// Procedural starter assets: small natural details for the Ghost Tile (rocks, leaves, twigs, grass,
+// mushrooms, pine needles), so a fresh install has something to scatter.
+//
+// Every generator is deterministic in its seed (core/hash.h, no generator state), returns a closed,
+// outward-wound TriangleMesh (several closed parts may overlap, e.g. a leaf blade and its stem) in
+// metres, Z up, centred on its bounding-box centre, with normals and a base_color, and has between 200
+// and 3000 triangles. Sizes are the largest bounding-box extent.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "mesh/triangle_mesh.h"
+
+namespace ug {
+
+TriangleMesh makeRock(uint64_t seed);          // ~12 cm, noisy displaced icosphere, grey
+TriangleMesh makeFlatStone(uint64_t seed);     // ~15 cm, flattened, grey-brown
+TriangleMesh makePebble(uint64_t seed);        // ~4 cm, smooth ellipsoid
+TriangleMesh makeOakLeaf(uint64_t seed);       // ~11 cm incl. stem, lobed, curled, two-sided, autumn brown
+TriangleMesh makeBirchLeaf(uint64_t seed);     // ~9 cm incl. stem, narrow pointed, curled, autumn yellow
+TriangleMesh makeTwig(uint64_t seed);          // ~30 cm, tapered, two side branches, brown
+TriangleMesh makeGrassTuft(uint64_t seed);     // ~10 cm tall clump of curved tapered blades, green
+TriangleMesh makeMushroom(uint64_t seed);      // ~10 cm, stem + domed cap, tan-red
+TriangleMesh makePineNeedles(uint64_t seed);   // ~8 cm bundle of thin needles from a sheath, dark green
+
+// The starter set, in a fixed order: rock, flat_stone, pebble, leaf_oak, leaf_birch, twig, grass_tuft,
+// mushroom, pine_needles.
+const std::vector<std::string>& starterAssetNames();
+
+// The generator for `name` (one of starterAssetNames()); false for an unknown name.
+bool makeStarterAsset(const std::string& name, uint64_t seed, TriangleMesh* out);
+
+// The seed the committed assets in assets/models/ were generated with.
+constexpr uint64_t kStarterAssetSeed = 2016;
+
+// Writes <dir>/<name>.glb for every starter asset (seed kStarterAssetSeed), creating `dir` if needed.
+// False with "<path>: <reason>" on the first failure.
+bool writeStarterAssets(const std::string& dir, std::string* error);
+
+}  // namespace ug
