@@ -9,6 +9,7 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
+#include "core/hash.h"
 #include "ghosttile/ghost_tile_cache.h"
 #include "io/gltf_mesh_io.h"
 #include "mesh/procedural_models.h"

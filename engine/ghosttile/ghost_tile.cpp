@@ -3,13 +3,14 @@
 // Where we differ from the paper:
 // - Random numbers are a hash of (seed, type, candidate, draw), not a generator's state, so a candidate's
 //   frame does not depend on the other types' counts or on the build order.
-// - The grid accelerates sphere-vs-sphere tests, not object-vs-object ones: every sphere of every
-//   candidate copy near the tile goes into the cells its box overlaps, and each home candidate's spheres
-//   query those cells. Leaves and branches carry tens of spheres, so this turns the paper's 93 s build
-//   (1.12k candidates, 990k pairs) into well under a second (see `undergrowth bench`).
-// - Rows are computed independently in parallel (each pair is found from both sides), then sorted, so
-//   the graph is bit-identical for any thread count and every edge has its mirror by construction of
-//   the symmetric predicate spheresCollide().
+// - Collision detection is two-level. A uniform grid over the candidates' bounding spheres (with the 26
+//   neighbour copies) finds the pairs that may touch; the narrow phase first drops the spheres of each side
+//   that cannot reach the other's bounding sphere, then tests the survivors with an early exit. Leaves
+//   and branches carry tens of spheres, so this is what turns the paper's 93 s build (1.12k candidates,
+//   990k pairs) into well under two seconds on two cores (see `undergrowth bench`).
+// - Each unordered pair is tested once and both directed edges are recorded; rows are then gathered and
+//   sorted, so the graph is bit-identical for any thread count, and the predicate spheresCollide() is
+//   symmetric in floating point, so the brute-force definition and the graph agree exactly.
 #include "ghosttile/ghost_tile.h"
 
 #include <algorithm>
@@ -248,26 +249,54 @@ void candidateSpheres(const CandidateSet& candidates, uint32_t index, const Deta
 
 namespace {
 
-// One sphere of one candidate copy, as stored in the grid.
-struct GridSphere {
-    glm::vec3 center;  // tile space of the copy's own tile (the offset is applied in the predicate)
+// A candidate copy (j, v) in the broad-phase grid: its bounding sphere, shifted into the home tile's frame.
+struct CopyEntry {
+    glm::vec3 center;
     float radius;
-    uint32_t key;      // j * 27 + offset index
+    uint32_t key;  // j * 27 + offset index
 };
 
-struct SphereGrid {
+// Uniform grid over the copies' bounding-sphere centres (one cell per copy).
+struct CopyGrid {
     glm::vec3 origin{0.0f};
     float cell_m = 1.0f;
     glm::ivec3 dims{1};
     std::vector<uint32_t> cell_begin;  // CSR over cells
-    std::vector<GridSphere> entries;
+    std::vector<CopyEntry> entries;
 
     glm::ivec3 cellOf(const glm::vec3& p) const {
-        glm::ivec3 c = glm::ivec3(glm::floor((p - origin) / cell_m));
-        return glm::clamp(c, glm::ivec3(0), dims - 1);
+        return glm::clamp(glm::ivec3(glm::floor((p - origin) / cell_m)), glm::ivec3(0), dims - 1);
     }
     size_t flat(int x, int y, int z) const { return (size_t(z) * dims.y + y) * dims.x + x; }
 };
+
+// Narrow phase between candidate A (offset 0) and candidate B at `shift`: do any two spheres satisfy
+// spheresCollide()? Spheres of one side that cannot reach the other's bounding sphere are dropped first
+// (a conservative filter with a small margin; the decision itself is always spheresCollide), then the
+// survivors are tested with an early exit. Scratch vectors are per worker.
+bool sphereSetsCollide(const Sphere* a, uint32_t na, const Sphere& bound_a, const Sphere* b, uint32_t nb,
+                       const Sphere& bound_b, const glm::vec3& shift, float delta, float margin,
+                       std::vector<uint32_t>* near_a, std::vector<uint32_t>* near_b) {
+    const float reach = std::max(0.0f, delta) + margin;
+    const glm::vec3 cb = bound_b.center + shift;
+    near_a->clear();
+    near_b->clear();
+    for (uint32_t k = 0; k < na; ++k) {
+        float r = a[k].radius + bound_b.radius + reach;
+        glm::vec3 d = a[k].center - cb;
+        if (glm::dot(d, d) <= r * r) near_a->push_back(k);
+    }
+    if (near_a->empty()) return false;
+    for (uint32_t k = 0; k < nb; ++k) {
+        float r = b[k].radius + bound_a.radius + reach;
+        glm::vec3 d = (b[k].center + shift) - bound_a.center;
+        if (glm::dot(d, d) <= r * r) near_b->push_back(k);
+    }
+    for (uint32_t ka : *near_a)
+        for (uint32_t kb : *near_b)
+            if (spheresCollide(a[ka].center, a[ka].radius, b[kb].center, b[kb].radius, shift, delta)) return true;
+    return false;
+}
 
 }  // namespace
 
@@ -279,139 +308,126 @@ bool buildGhostTile(const GhostTileInput& input, const BuildOptions& options, Gh
     const float s = input.settings.tile_size_m;
     const float delta = input.settings.delta_m;
     const float delta_pos = std::max(0.0f, delta);
+    const float margin = 1e-5f * s;  // float slack for the conservative filters only
     const int threads = resolveThreadCount(options.threads);
     auto cancelled = [&] { return options.cancel && options.cancel->load(std::memory_order_relaxed); };
     auto progress = [&](float f) {
         if (options.progress) options.progress(f);
     };
 
-    // Home spheres (offset 0), flattened: candidate i owns [sphere_begin[i], sphere_begin[i+1]).
+    // Spheres in tile space (offset 0), flattened: candidate i owns [sphere_begin[i], sphere_begin[i+1]).
     std::vector<uint32_t> sphere_begin(size_t(n) + 1, 0);
     for (uint32_t i = 0; i < n; ++i)
         sphere_begin[i + 1] = sphere_begin[i] + uint32_t(input.models[cand.type[i]]->spheres.size());
-    std::vector<Sphere> home(sphere_begin[n]);
-    std::vector<Sphere> bound(n);  // per-candidate bounding sphere
-    float max_sphere_r = 0.0f;
-    std::vector<float> radii;
-    radii.reserve(home.size());
+    std::vector<Sphere> spheres(sphere_begin[n]);
+    std::vector<Sphere> bound(n);
+    float max_bound_r = 0.0f;
     {
         std::vector<Sphere> tmp;
         for (uint32_t i = 0; i < n; ++i) {
             const DetailModel& m = *input.models[cand.type[i]];
             candidateSpheres(cand, i, m, &tmp);
-            std::copy(tmp.begin(), tmp.end(), home.begin() + sphere_begin[i]);
-            bound[i] = {cand.position[i] + cand.rotation[i] * (cand.scale[i] * m.bounds.center),
-                        cand.scale[i] * m.bounds.radius};
-            for (const Sphere& sp : tmp) {
-                max_sphere_r = std::max(max_sphere_r, sp.radius);
-                radii.push_back(sp.radius);
-            }
+            std::copy(tmp.begin(), tmp.end(), spheres.begin() + sphere_begin[i]);
+            // The model's bounds enclose its spheres; recompute the radius in tile space so that float
+            // rounding of the transform can never leave a sphere poking out.
+            glm::vec3 c = cand.position[i] + cand.rotation[i] * (cand.scale[i] * m.bounds.center);
+            float r = 0.0f;
+            for (const Sphere& sp : tmp) r = std::max(r, glm::length(sp.center - c) + sp.radius);
+            bound[i] = {c, r * (1.0f + 1e-6f) + margin};
+            max_bound_r = std::max(max_bound_r, bound[i].radius);
         }
     }
     progress(0.05f);
 
-    // Region the home spheres' query boxes reach; copies are inserted only where they overlap it.
+    // Broad phase: copies (j, v) whose bounding sphere can reach a home candidate's, binned by centre.
     glm::vec3 lo(1e30f), hi(-1e30f);
-    for (const Sphere& sp : home) {
-        lo = glm::min(lo, sp.center - (sp.radius + delta_pos));
-        hi = glm::max(hi, sp.center + (sp.radius + delta_pos));
+    for (const Sphere& b : bound) {
+        lo = glm::min(lo, b.center - b.radius);
+        hi = glm::max(hi, b.center + b.radius);
     }
-    // Cell size: about two median sphere diameters. Spheres go into every cell their box overlaps, so
-    // the large rocks' spheres cost a few extra entries rather than a coarse grid for everyone.
-    std::nth_element(radii.begin(), radii.begin() + radii.size() / 2, radii.end());
-    const float median_r = radii[radii.size() / 2];
-    SphereGrid grid;
+    const float reach = max_bound_r + delta_pos;  // how far outside a home bound a copy's centre can matter
+    lo -= glm::vec3(reach);
+    hi += glm::vec3(reach);
+    CopyGrid grid;
     grid.origin = lo;
-    const glm::vec3 extent = hi - lo;
-    grid.cell_m = std::max(4.0f * median_r + delta_pos, std::max({extent.x, extent.y, extent.z}) / 128.0f);
-    grid.dims = glm::max(glm::ivec3(1), glm::ivec3(glm::ceil(extent / grid.cell_m)));
-
-    // Count, then fill, the entries of every candidate copy (j, v) whose spheres reach the region.
-    auto forEachCopySphere = [&](auto&& visit) {
+    grid.cell_m = std::max(max_bound_r, 1e-6f);
+    grid.dims = glm::max(glm::ivec3(1), glm::min(glm::ivec3(glm::ceil((hi - lo) / grid.cell_m)), glm::ivec3(256)));
+    grid.cell_m = std::max({(hi - lo).x / float(grid.dims.x), (hi - lo).y / float(grid.dims.y),
+                            (hi - lo).z / float(grid.dims.z)});
+    {
+        const size_t cell_count = size_t(grid.dims.x) * grid.dims.y * grid.dims.z;
+        std::vector<CopyEntry> copies;
+        std::vector<uint32_t> copy_cell;
         for (uint32_t v = 0; v < kOffsetCount; ++v) {
             const glm::vec3 shift = glm::vec3(offsetVector(v)) * s;
             for (uint32_t j = 0; j < n; ++j) {
-                const Sphere& b = bound[j];
-                glm::vec3 bc = b.center + shift;
-                if (glm::any(glm::lessThan(bc + b.radius, lo)) || glm::any(glm::greaterThan(bc - b.radius, hi)))
-                    continue;
-                for (uint32_t k = sphere_begin[j]; k < sphere_begin[j + 1]; ++k) {
-                    const Sphere& sp = home[k];
-                    glm::vec3 c = sp.center + shift;
-                    if (glm::any(glm::lessThan(c + sp.radius, lo)) || glm::any(glm::greaterThan(c - sp.radius, hi)))
-                        continue;
-                    glm::ivec3 a = grid.cellOf(c - sp.radius), z = grid.cellOf(c + sp.radius);
-                    for (int cz = a.z; cz <= z.z; ++cz)
-                        for (int cy = a.y; cy <= z.y; ++cy)
-                            for (int cx = a.x; cx <= z.x; ++cx)
-                                visit(grid.flat(cx, cy, cz), GridSphere{sp.center, sp.radius, j * kOffsetCount + v});
-                }
+                glm::vec3 c = bound[j].center + shift;
+                if (glm::any(glm::lessThan(c, lo)) || glm::any(glm::greaterThan(c, hi))) continue;
+                copies.push_back({c, bound[j].radius, j * kOffsetCount + v});
+                glm::ivec3 cell = grid.cellOf(c);
+                copy_cell.push_back(uint32_t(grid.flat(cell.x, cell.y, cell.z)));
             }
         }
-    };
-    const size_t cell_count = size_t(grid.dims.x) * grid.dims.y * grid.dims.z;
-    grid.cell_begin.assign(cell_count + 1, 0);
-    forEachCopySphere([&](size_t cell, const GridSphere&) { grid.cell_begin[cell + 1]++; });
-    for (size_t c = 0; c < cell_count; ++c) grid.cell_begin[c + 1] += grid.cell_begin[c];
-    grid.entries.resize(grid.cell_begin[cell_count]);
-    {
+        grid.cell_begin.assign(cell_count + 1, 0);
+        for (uint32_t c : copy_cell) grid.cell_begin[c + 1]++;
+        for (size_t c = 0; c < cell_count; ++c) grid.cell_begin[c + 1] += grid.cell_begin[c];
+        grid.entries.resize(copies.size());
         std::vector<uint32_t> cursor(grid.cell_begin.begin(), grid.cell_begin.end() - 1);
-        forEachCopySphere([&](size_t cell, const GridSphere& e) { grid.entries[cursor[cell]++] = e; });
+        for (size_t k = 0; k < copies.size(); ++k) grid.entries[cursor[copy_cell[k]]++] = copies[k];
     }
-    progress(0.15f);
+    progress(0.1f);
     if (cancelled()) {
         *error = "ghost tile build cancelled";
         return false;
     }
 
-    // Rows in parallel. Each chunk of rows encodes into its own byte buffer; buffers are concatenated in
-    // chunk order, so the stream does not depend on the thread count.
-    const size_t chunk = 16;
-    const size_t chunk_count = (size_t(n) + chunk - 1) / chunk;
-    std::vector<std::vector<uint8_t>> chunk_bytes(chunk_count);
-    std::vector<uint32_t> row_size(n, 0);
-    std::vector<std::vector<uint32_t>> stamp(static_cast<size_t>(threads));
-    std::vector<std::vector<uint32_t>> row_keys(static_cast<size_t>(threads));
-    std::atomic<uint64_t> total_bytes{0};
+    // Narrow phase, each unordered pair once: {(i,0), (j,v)} is tested from row i when i < j, or when
+    // i == j and v is on the positive side of the centre. Both directed edges are recorded; rows are
+    // then gathered and sorted, so the result does not depend on the thread count or the chunking.
+    struct HalfEdge {
+        uint32_t row;
+        uint32_t key;
+    };
+    std::vector<std::vector<HalfEdge>> found(static_cast<size_t>(threads));
+    std::vector<std::vector<uint32_t>> scratch_a(static_cast<size_t>(threads)), scratch_b(static_cast<size_t>(threads));
+    std::atomic<uint64_t> edge_total{0};
     std::atomic<bool> too_big{false};
     std::atomic<size_t> rows_done{0};
-    parallelFor(n, threads, chunk, [&](size_t begin, size_t end, int worker) {
+    const uint64_t max_edges = kMaxGraphBytes / 2;  // at least one byte per edge, plus the gathering
+    parallelFor(n, threads, 8, [&](size_t begin, size_t end, int worker) {
         if (cancelled() || too_big.load(std::memory_order_relaxed)) return;
-        std::vector<uint32_t>& seen = stamp[size_t(worker)];
-        if (seen.empty()) seen.assign(size_t(n) * kOffsetCount, ~0u);
-        std::vector<uint32_t>& keys = row_keys[size_t(worker)];
-        std::vector<uint8_t>& bytes = chunk_bytes[begin / chunk];
-        for (size_t i = begin; i < end; ++i) {
-            keys.clear();
-            const uint32_t self_key = uint32_t(i) * kOffsetCount + kCenterOffset;
-            seen[self_key] = uint32_t(i);  // a candidate never collides with itself
-            for (uint32_t k = sphere_begin[i]; k < sphere_begin[i + 1]; ++k) {
-                const Sphere& a = home[k];
-                glm::ivec3 c0 = grid.cellOf(a.center - (a.radius + delta_pos));
-                glm::ivec3 c1 = grid.cellOf(a.center + (a.radius + delta_pos));
-                for (int cz = c0.z; cz <= c1.z; ++cz)
-                    for (int cy = c0.y; cy <= c1.y; ++cy)
-                        for (int cx = c0.x; cx <= c1.x; ++cx) {
-                            size_t cell = grid.flat(cx, cy, cz);
-                            for (uint32_t e = grid.cell_begin[cell]; e < grid.cell_begin[cell + 1]; ++e) {
-                                const GridSphere& b = grid.entries[e];
-                                if (seen[b.key] == uint32_t(i)) continue;
-                                glm::vec3 shift = glm::vec3(offsetVector(b.key % kOffsetCount)) * s;
-                                if (spheresCollide(a.center, a.radius, b.center, b.radius, shift, delta)) {
-                                    seen[b.key] = uint32_t(i);
-                                    keys.push_back(b.key);
-                                }
+        std::vector<HalfEdge>& edges = found[size_t(worker)];
+        const size_t before = edges.size();
+        for (size_t ii = begin; ii < end; ++ii) {
+            const uint32_t i = uint32_t(ii);
+            const Sphere& bi = bound[i];
+            const float query = bi.radius + max_bound_r + delta_pos;
+            glm::ivec3 c0 = grid.cellOf(bi.center - query), c1 = grid.cellOf(bi.center + query);
+            for (int cz = c0.z; cz <= c1.z; ++cz)
+                for (int cy = c0.y; cy <= c1.y; ++cy)
+                    for (int cx = c0.x; cx <= c1.x; ++cx) {
+                        const size_t cell = grid.flat(cx, cy, cz);
+                        for (uint32_t e = grid.cell_begin[cell]; e < grid.cell_begin[cell + 1]; ++e) {
+                            const CopyEntry& ce = grid.entries[e];
+                            const uint32_t j = ce.key / kOffsetCount, v = ce.key % kOffsetCount;
+                            if (j < i || (j == i && v <= kCenterOffset)) continue;
+                            const float r = bi.radius + ce.radius + delta_pos;
+                            const glm::vec3 d = ce.center - bi.center;
+                            if (glm::dot(d, d) > r * r) continue;
+                            const glm::vec3 shift = glm::vec3(offsetVector(v)) * s;
+                            if (sphereSetsCollide(&spheres[sphere_begin[i]], sphere_begin[i + 1] - sphere_begin[i], bi,
+                                                  &spheres[sphere_begin[j]], sphere_begin[j + 1] - sphere_begin[j],
+                                                  bound[j], shift, delta, margin, &scratch_a[size_t(worker)],
+                                                  &scratch_b[size_t(worker)])) {
+                                edges.push_back({i, ce.key});
+                                edges.push_back({j, i * kOffsetCount + mirrorOffset(v)});
                             }
                         }
-            }
-            std::sort(keys.begin(), keys.end());
-            const size_t before = bytes.size();
-            CollisionGraph::encodeRow(keys.data(), keys.size(), &bytes);
-            row_size[i] = uint32_t(bytes.size() - before);
-            if (total_bytes.fetch_add(bytes.size() - before) > kMaxGraphBytes) too_big = true;
+                    }
         }
+        if (edge_total.fetch_add(edges.size() - before) > max_edges) too_big = true;
         size_t done = rows_done.fetch_add(end - begin) + (end - begin);
-        if (worker == 0) progress(0.15f + 0.8f * float(done) / float(n));
+        if (worker == 0) progress(0.1f + 0.75f * float(done) / float(n));
     });
     if (cancelled()) {
         *error = "ghost tile build cancelled";
@@ -423,6 +439,32 @@ bool buildGhostTile(const GhostTileInput& input, const BuildOptions& options, Gh
         return false;
     }
 
+    // Gather rows (counting sort by row), sort each row, encode. Rows are independent: parallel again.
+    std::vector<uint32_t> row_begin(size_t(n) + 1, 0);
+    for (const auto& list : found)
+        for (const HalfEdge& h : list) row_begin[h.row + 1]++;
+    for (uint32_t i = 0; i < n; ++i) row_begin[i + 1] += row_begin[i];
+    std::vector<uint32_t> keys(row_begin[n]);
+    {
+        std::vector<uint32_t> cursor(row_begin.begin(), row_begin.end() - 1);
+        for (auto& list : found) {
+            for (const HalfEdge& h : list) keys[cursor[h.row]++] = h.key;
+            std::vector<HalfEdge>().swap(list);
+        }
+    }
+    const size_t chunk = 64;
+    std::vector<std::vector<uint8_t>> chunk_bytes((size_t(n) + chunk - 1) / chunk);
+    std::vector<uint32_t> row_size(n, 0);
+    parallelFor(n, threads, chunk, [&](size_t begin, size_t end, int) {
+        std::vector<uint8_t>& bytes = chunk_bytes[begin / chunk];
+        for (size_t i = begin; i < end; ++i) {
+            std::sort(keys.begin() + row_begin[i], keys.begin() + row_begin[i + 1]);
+            const size_t before = bytes.size();
+            CollisionGraph::encodeRow(keys.data() + row_begin[i], row_begin[i + 1] - row_begin[i], &bytes);
+            row_size[i] = uint32_t(bytes.size() - before);
+        }
+    });
+    progress(0.95f);
     std::vector<uint32_t> row_offsets(size_t(n) + 1, 0);
     for (uint32_t i = 0; i < n; ++i) row_offsets[i + 1] = row_offsets[i] + row_size[i];
     std::vector<uint8_t> stream;
