@@ -37,7 +37,8 @@ s = json.load(open(sys.argv[1]))
 g = s["ghost_tile"]
 assert g["candidates"] == sum(t["candidates"] for t in s["detail_types"]), g
 assert g["pairs"] > 0 and abs(g["rho"] - g["pairs"] / g["candidates"]) < 1e-9
-assert g["bytes_per_pair"] <= 4.0, g
+assert abs(g["bytes_per_pair"] - g["graph_bytes"] / g["pairs"]) < 1e-9, g
+assert all(t["spheres"] > 0 and t["sphere_fit_max_distance_m"] <= t["sphere_fit_tolerance_m"] for t in s["detail_types"])
 PY
 python3 - "$tmp/out/default.tile-preview.glb" <<'PY' && ok "run: preview is a GLB with one mesh per detail type" || bad "run: preview GLB"
 import json, struct, sys
