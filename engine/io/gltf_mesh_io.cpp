@@ -3,6 +3,8 @@
 // file must give an error, never an out-of-bounds read.
 #include "io/gltf_mesh_io.h"
 
+#include "core/atomic_file.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -368,27 +370,8 @@ bool writeGltfMeshes(const std::string& path,
         return fail(error, path, "tinygltf could not serialize the model");
     const std::string data = stream.str();
 
-    // Atomic replace: readers see the old file or the new one, never a half-written one.
-    fs::path tmp = target;
-    tmp += ".tmp";
-    {
-        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
-        if (!out) return fail(error, path, "cannot create temporary file " + tmp.string());
-        out.write(data.data(), std::streamsize(data.size()));
-        out.flush();
-        if (!out) {
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            return fail(error, path, "write failed (disk full?)");
-        }
-    }
-    std::error_code ec;
-    fs::rename(tmp, target, ec);
-    if (ec) {
-        fs::remove(tmp, ec);
-        return fail(error, path, "cannot rename the temporary file into place: " + ec.message());
-    }
-    return true;
+    // Atomic replace (unique temporary file, fsync, rename): readers see the old file or the new one.
+    return writeFileAtomically(path, data.data(), data.size(), error);
 }
 
 }  // namespace ug
