@@ -185,8 +185,8 @@ bool loadHeightFieldPng(const std::string& path, const HeightFieldImageDesc& d, 
     std::vector<float> heights(size_t(w) * size_t(h));
     const float range = d.max_height_m - d.min_height_m;
     int lw = 0, lh = 0, lc = 0;
-    if (sixteen) {
-        stbi_us* pixels = stbi_load_from_file_16(file, &lw, &lh, &lc, 1);
+    // One conversion for both depths: image row 0 is the largest Y, values map to [min, max] height.
+    auto convert = [&](auto* pixels, float full_scale) {
         std::fclose(file);
         if (!pixels || lw != w || lh != h) {
             if (pixels) stbi_image_free(pixels);
@@ -195,21 +195,13 @@ bool loadHeightFieldPng(const std::string& path, const HeightFieldImageDesc& d, 
         for (int j = 0; j < h; ++j)
             for (int i = 0; i < w; ++i)
                 heights[size_t(j) * size_t(w) + size_t(i)] =
-                    d.min_height_m + range * (float(pixels[size_t(h - 1 - j) * size_t(w) + size_t(i)]) / 65535.0f);
+                    d.min_height_m + range * (float(pixels[size_t(h - 1 - j) * size_t(w) + size_t(i)]) / full_scale);
         stbi_image_free(pixels);
-    } else {
-        stbi_uc* pixels = stbi_load_from_file(file, &lw, &lh, &lc, 1);
-        std::fclose(file);
-        if (!pixels || lw != w || lh != h) {
-            if (pixels) stbi_image_free(pixels);
-            return fail(error, where + "cannot decode the image (" + stbReason() + ")");
-        }
-        for (int j = 0; j < h; ++j)
-            for (int i = 0; i < w; ++i)
-                heights[size_t(j) * size_t(w) + size_t(i)] =
-                    d.min_height_m + range * (float(pixels[size_t(h - 1 - j) * size_t(w) + size_t(i)]) / 255.0f);
-        stbi_image_free(pixels);
-    }
+        return true;
+    };
+    const bool decoded = sixteen ? convert(stbi_load_from_file_16(file, &lw, &lh, &lc, 1), 65535.0f)
+                                 : convert(stbi_load_from_file(file, &lw, &lh, &lc, 1), 255.0f);
+    if (!decoded) return false;
     *out = HeightField(d.origin_m, d.cell_size_m, w, h, std::move(heights));
     return true;
 }
