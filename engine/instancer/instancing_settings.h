@@ -1,0 +1,47 @@
+// What the instantiator needs to know about one detail type besides its Ghost Tile candidates: the density
+// field f_i, the priority strategy (Ghost Tile §5.2) and the orientation and size constraints (§5.3,
+// Figures 17 and 22). The scene document (engine/scene) compiles these from the project file; the editor
+// swaps in new fields after each edit.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+
+#include "field/density_field.h"
+#include "field/direction_field.h"
+
+namespace ug {
+
+enum class PriorityStrategy : uint8_t {
+    Random,              // no priority: only the weighted random number orders candidates (scattered layers)
+    Elevation,           // lower first, in layers of layer_m (compact piles, §5.2)
+    DistanceToBoundary,  // nearer the field's boundary first, in layers of layer_m (shells, §5.2)
+};
+
+const char* priorityStrategyName(PriorityStrategy s);  // "random", "elevation", "distance_to_boundary"
+
+// §5.3 "Control": a candidate is kept when dot(z axis of its frame, u(origin)) >= min_cos.
+struct OrientationConstraint {
+    bool enabled = false;
+    DirectionField direction;  // u: constant (Fig. 17 left) or the gradient of a field (Fig. 17 right)
+    float min_cos = 0.866f;    // cos of the largest accepted angle, in [-1, 1]
+};
+
+// Figure 22: a size field prescribes the scale of the objects near the openings. A candidate is kept when
+// its scale is within `tolerance` (relative) of the field's target at its origin:
+// |scale / target - 1| <= tolerance.
+struct SizeConstraint {
+    bool enabled = false;
+    SizeField target;
+    float tolerance = 0.25f;  // >= 0
+};
+
+struct InstanceTypeSettings {
+    std::shared_ptr<const DensityField> field;  // f_i (solids already subtracted); null = nowhere
+    PriorityStrategy strategy = PriorityStrategy::Random;
+    float layer_m = 0.02f;  // Elevation / DistanceToBoundary: thickness of one priority layer, > 0
+    OrientationConstraint orientation;
+    SizeConstraint size;
+};
+
+}  // namespace ug
