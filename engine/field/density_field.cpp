@@ -399,4 +399,43 @@ Bounds positiveBounds(const DensityField& f) {
     return node_bounds[f.root];
 }
 
+Bounds positiveBoundsIn(const DensityField& f, const TileFieldList& list) {
+    if (!list.root_live) return Bounds{};
+    // Bounds of the list's live nodes, indexed like list.nodes (children come before parents).
+    std::vector<Bounds> node_bounds(list.nodes.size());
+    std::vector<uint32_t> slot_of_node;  // field node -> index in list.nodes
+    slot_of_node.assign(f.nodes.size(), kNoNode);
+    auto childBounds = [&](uint32_t ref) {
+        if (ref == kZeroChild) return Bounds{};
+        if (isPrimitiveChild(ref)) {
+            const Primitive& pr = f.primitives[childIndex(ref)];
+            return primitivePositiveBoundsIn(pr, heightFieldOf(f, pr), list.box);
+        }
+        return node_bounds[slot_of_node[ref]];
+    };
+    for (size_t k = 0; k < list.nodes.size(); ++k) {
+        const TileNode& node = list.nodes[k];
+        slot_of_node[node.node] = uint32_t(k);
+        const uint32_t* refs = list.children.data() + node.first_child;
+        Bounds b;
+        switch (node.op) {
+            case FieldOp::Blend:
+            case FieldOp::Union:
+                for (uint32_t i = 0; i < node.child_count; ++i) b = unite(b, childBounds(refs[i]));
+                break;
+            case FieldOp::Intersection:
+                if (node.child_count == 0) break;
+                b = list.box;
+                for (uint32_t i = 0; i < node.child_count; ++i) b = intersect(b, childBounds(refs[i]));
+                if (b.empty()) b = Bounds{};
+                break;
+            case FieldOp::Difference:
+                if (node.child_count > 0) b = childBounds(refs[0]);
+                break;
+        }
+        node_bounds[k] = b;
+    }
+    return node_bounds[slot_of_node[f.root]];
+}
+
 }  // namespace ug

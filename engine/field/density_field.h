@@ -154,4 +154,9 @@ void evaluateBatchWithGradient(const DensityField& field, const TileFieldList* l
 // none. Use it to know which tiles to visit (it may be infinite: intersect it with the scene's extent).
 Bounds positiveBounds(const DensityField& field);
 
+// A conservative AABB of {p in list.box : f(p) > 0}, from the list's pruned tree with the same rules as
+// positiveBounds() and primitivePositiveBoundsIn() per primitive. Empty when the field cannot be positive
+// in the box. A point outside it has f <= 0 without evaluating anything.
+Bounds positiveBoundsIn(const DensityField& field, const TileFieldList& list);
+
 }  // namespace ug

@@ -8,6 +8,7 @@
 #include "field/height_field.h"
 
 #include <algorithm>
+#include <limits>
 #include <cassert>
 #include <cmath>
 #include <cstdio>
@@ -73,6 +74,32 @@ glm::vec3 HeightField::sampleWithGradient(float x_m, float y_m) const {
     const float dhdx = ((h10 - h00) * gy + (h11 - h01) * cy.f) / cell_size_m_ * cx.inside;
     const float dhdy = (top - bottom) / cell_size_m_ * cy.inside;
     return glm::vec3(h, dhdx, dhdy);
+}
+
+glm::vec2 HeightField::heightRange(glm::vec2 lo_m, glm::vec2 hi_m) const {
+    assert(!empty());
+    // Sample index span of the cells covering [lo, hi] per axis; infinite or far-out coordinates clamp.
+    auto span = [&](float lo, float hi, float origin, int n, int* first, int* last) {
+        const float ulo = (lo - origin) / cell_size_m_, uhi = (hi - origin) / cell_size_m_;
+        const float top = float(n - 1);
+        *first = int(std::floor(std::clamp(ulo, 0.0f, top)));
+        *last = int(std::ceil(std::clamp(uhi, 0.0f, top)));
+        if (!(ulo <= top)) *first = n - 1;  // also catches NaN
+        if (!(uhi >= 0.0f)) *last = 0;
+        if (*last < *first) std::swap(*first, *last);
+    };
+    int i0, i1, j0, j1;
+    span(lo_m.x, hi_m.x, origin_m_.x, width_, &i0, &i1);
+    span(lo_m.y, hi_m.y, origin_m_.y, height_, &j0, &j1);
+    if ((i1 - i0 + 1) * int64_t(j1 - j0 + 1) >= int64_t(width_) * height_) return {min_height_m_, max_height_m_};
+    float mn = std::numeric_limits<float>::infinity(), mx = -mn;
+    for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+            const float h = at(i, j);
+            mn = std::min(mn, h);
+            mx = std::max(mx, h);
+        }
+    return {mn, mx};
 }
 
 float HeightField::sample(float x_m, float y_m) const { return sampleWithGradient(x_m, y_m).x; }

@@ -49,6 +49,10 @@ public:
     glm::vec2 gradient(float x_m, float y_m) const;
     // Both at once: (h, dh/dx, dh/dy), exactly the values sample() and gradient() return.
     glm::vec3 sampleWithGradient(float x_m, float y_m) const;
+    // (min, max) of every sample of the cells that cover the XY rectangle [lo, hi] (clamped to the field):
+    // bilinear heights inside the rectangle lie within it, up to float rounding (pad by a few ulps).
+    // Tiles use it to bound a terrain layer's support tightly (instead of the whole field's range).
+    glm::vec2 heightRange(glm::vec2 lo_m, glm::vec2 hi_m) const;
 
 private:
     glm::vec2 origin_m_{0.0f};

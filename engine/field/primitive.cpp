@@ -231,6 +231,24 @@ Bounds primitiveBounds(const Primitive& pr, const HeightField* hf) {
     return Bounds::everything();
 }
 
+Bounds primitivePositiveBoundsIn(const Primitive& pr, const HeightField* hf, const Bounds& box) {
+    if (!(pr.weight > 0.0f) || box.empty()) return Bounds{};
+    Bounds b = intersect(primitiveBounds(pr, hf), box);
+    if (b.empty()) return Bounds{};
+    if (pr.kind == PrimitiveKind::TerrainLayer || pr.kind == PrimitiveKind::TerrainSolid) {
+        assert(hf);
+        const glm::vec2 range = hf->heightRange(glm::vec2(b.lo), glm::vec2(b.hi));
+        // Bilinear interpolation may round a few ulps past its corners: padded() covers that.
+        const float zlo = pr.kind == PrimitiveKind::TerrainLayer ? range.x - pr.radius_m
+                                                                   : -std::numeric_limits<float>::infinity();
+        const float zhi = pr.kind == PrimitiveKind::TerrainLayer ? range.y + pr.thickness_m + pr.radius_m : range.y;
+        const Bounds local = padded(Bounds{glm::vec3(b.lo.x, b.lo.y, zlo), glm::vec3(b.hi.x, b.hi.y, zhi)});
+        b = intersect(b, local);
+        if (b.empty()) return Bounds{};
+    }
+    return b;
+}
+
 float primitiveValue(const Primitive& prim, const HeightField* height_field, glm::vec3 p_m) {
     return field_detail::evalPrimitive<false>(prim, height_field, p_m);
 }

@@ -88,6 +88,11 @@ bool validatePrimitive(const Primitive& prim, size_t index, size_t height_field_
 // rectangle, so they extend forever).
 Bounds primitiveBounds(const Primitive& prim, const HeightField* height_field);
 
+// A conservative AABB of {p in box : value(p) > 0}: empty for weight <= 0, else the support clipped to box,
+// with terrain kinds bounded in Z by the heights under the box only (HeightField::heightRange), which is
+// what lets the instantiator skip most of a terrain layer's tiles and candidates without evaluating them.
+Bounds primitivePositiveBoundsIn(const Primitive& prim, const HeightField* height_field, const Bounds& box);
+
 float primitiveValue(const Primitive& prim, const HeightField* height_field, glm::vec3 p_m);
 // (gradient.xyz, value) — the value is bit-identical to primitiveValue().
 glm::vec4 primitiveValueAndGradient(const Primitive& prim, const HeightField* height_field, glm::vec3 p_m);

@@ -1,0 +1,1025 @@
+// The instantiator's machinery. Reading order: Prepared (per-candidate anchors in tile space), TileState
+// (the alive candidates of one tile with their keys and memoized statuses), computeTile (culling,
+// acceptance, constraints, keys: the hot path), Resolver (the lazy lexicographically-first independent
+// set), then the drivers: full, incremental and region.
+#include "instancer/instantiator.h"
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <mutex>
+#include <queue>
+#include <unordered_map>
+
+#include "core/hash.h"
+#include "core/parallel.h"
+#include "instancer/tile_coord.h"
+
+namespace ug {
+
+namespace {
+
+constexpr int32_t kEmptyTile = -1;    // a neighbour tile known to hold no alive candidate
+constexpr int32_t kUnknownTile = -2;  // a neighbour tile not computed yet (region mode only)
+
+constexpr uint8_t kUnknown = 0;
+constexpr uint8_t kSelected = 1;
+constexpr uint8_t kRejected = 2;
+constexpr uint8_t kQueued = 0x80;  // update(): the candidate waits in the priority queue
+constexpr uint8_t kStatusMask = 0x7f;
+
+// Tiles are grouped into blocks of kBlock^3 for the first, coarse culling pass.
+constexpr int kBlock = 8;
+// Hard limits, refused before any per-tile memory is taken.
+constexpr uint64_t kMaxBlocks = 64ull << 20;
+
+// Random-number streams of hashWords(seed, tile, j, stream).
+constexpr uint64_t kStreamAccept = 1;
+constexpr uint64_t kStreamWeight = 2;
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+// Per-candidate data derived once from the Ghost Tile and the models.
+struct Prepared {
+    float s = 0.5f;
+    uint32_t n = 0;
+    std::vector<uint32_t> anchor_begin;   // n + 1
+    std::vector<glm::vec3> anchors;       // tile space: p_j + R_j (scale_j a_k)
+    std::vector<glm::vec3> z_axis;        // R_j * +Z
+    std::vector<float> reach;             // per type: the farthest anchor from its candidate's origin
+    float max_reach = 0.0f;
+};
+
+Prepared prepare(const InstancerInput& in) {
+    Prepared p;
+    const CandidateSet& c = in.tile->candidates;
+    p.s = in.tile->settings.tile_size_m;
+    p.n = c.size();
+    p.anchor_begin.reserve(p.n + 1);
+    p.anchor_begin.push_back(0);
+    p.z_axis.resize(p.n);
+    p.reach.assign(c.typeCount(), 0.0f);
+    for (uint32_t j = 0; j < p.n; ++j) {
+        const DetailModel& m = *in.models[c.type[j]];
+        for (const glm::vec3& a : m.anchors) {
+            const glm::vec3 offset = c.rotation[j] * (c.scale[j] * a);
+            p.anchors.push_back(c.position[j] + offset);
+            p.reach[c.type[j]] = std::max(p.reach[c.type[j]], glm::length(offset));
+        }
+        p.anchor_begin.push_back(uint32_t(p.anchors.size()));
+        p.z_axis[j] = c.rotation[j] * glm::vec3(0.0f, 0.0f, 1.0f);
+    }
+    // Pad against rounding in the world-space sums: reach only decides which boxes to look at.
+    for (float& r : p.reach) r = r * 1.001f + 1e-4f;
+    for (float r : p.reach) p.max_reach = std::max(p.max_reach, r);
+    return p;
+}
+
+bool originInside(const Bounds& b, glm::vec3 p) {  // half-open [lo, hi): regions partition space
+    return b.lo.x <= p.x && p.x < b.hi.x && b.lo.y <= p.y && p.y < b.hi.y && b.lo.z <= p.z && p.z < b.hi.z;
+}
+
+Bounds expand(const Bounds& b, float r) { return Bounds{b.lo - r, b.hi + r}; }
+
+bool finiteBounds(const Bounds& b) {
+    for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(b.lo[a]) || !std::isfinite(b.hi[a])) return false;
+    return true;
+}
+
+struct TileState {
+    uint64_t key = 0;
+    glm::ivec3 coord{0};
+    std::vector<uint32_t> alive;     // candidate ids, ascending
+    std::vector<uint64_t> priority;  // per alive candidate
+    std::vector<uint32_t> order;     // alive indices by ascending key
+    std::vector<uint8_t> status;     // per alive candidate; accessed through atomic_ref while resolving
+    std::vector<uint64_t> bits;      // alive bitset over the Ghost Tile's candidates
+    std::vector<uint32_t> rank;      // alive count before each 64-bit word
+    int32_t neighbour[kOffsetCount];
+    // Counters of the computation that produced this state.
+    uint32_t tested = 0, culled = 0, density_rejected = 0, constraint_rejected = 0;
+
+    uint8_t load(uint32_t a) const {
+        return std::atomic_ref<uint8_t>(const_cast<uint8_t&>(status[a])).load(std::memory_order_relaxed);
+    }
+    void store(uint32_t a, uint8_t v) {
+        std::atomic_ref<uint8_t>(status[a]).store(v, std::memory_order_relaxed);
+    }
+    // The alive index of candidate j, or -1.
+    int64_t find(uint32_t j) const {
+        const uint64_t w = bits[j >> 6];
+        const uint64_t bit = uint64_t(1) << (j & 63);
+        if (!(w & bit)) return -1;
+        return int64_t(rank[j >> 6]) + std::popcount(w & (bit - 1));
+    }
+};
+
+struct TypeRuntime {
+    const DensityField* field = nullptr;
+    bool direction_uses_list = false;  // the direction field is the type's own field: reuse the tile list
+    bool size_uses_list = false;
+};
+
+// Scratch of one worker, reused across tiles.
+struct TileScratch {
+    TileFieldList list;
+    std::vector<uint32_t> survivors;
+    std::vector<glm::vec3> points;
+    std::vector<float> values;
+};
+
+}  // namespace
+
+class Instantiator::Engine {
+public:
+    InstancerInput input;
+    Prepared prep;
+    std::vector<TypeRuntime> runtime;
+    std::vector<TileFieldList> global_lists;  // per type, over the extent padded by the reach
+    bool complete = true;  // every tile that can hold an alive candidate is in the map (full mode)
+    Bounds region = Bounds::everything();  // region mode: candidates whose origin is here are wanted
+
+    std::vector<TileState> tiles;
+    std::unordered_map<uint64_t, int32_t> index;  // packed tile -> tiles[]
+    InstanceStore store;
+    bool instantiated = false;
+
+    bool setInput(InstancerInput in, std::string* error);
+    void refreshRuntime();
+
+    // ---- tile computation ----
+    void computeTile(TileState* ts, const std::vector<const TileFieldList*>& parents, TileScratch* scratch) const;
+    bool enumerateAndCompute(const Bounds& box, const InstanceOptions& options, std::vector<TileState>* out,
+                             std::string* error) const;
+    void install(std::vector<TileState>&& computed, std::vector<int32_t>* installed);
+    void link(int32_t t);
+    void linkAround(int32_t t);
+
+    // ---- resolution ----
+    bool resolveTiles(const std::vector<int32_t>& which, const InstanceOptions& options,
+                      std::vector<glm::ivec3>* missing, uint64_t* resolved);
+
+    void rebuildStore();
+    void fillStats(InstanceStats* stats) const;
+};
+
+// ---- input ---------------------------------------------------------------------------------------------
+
+namespace {
+
+bool validateInput(const InstancerInput& in, std::string* error) {
+    auto fail = [&](const std::string& what) {
+        if (error) *error = what;
+        return false;
+    };
+    if (!in.tile) return fail("instancer: no Ghost Tile");
+    const GhostTile& gt = *in.tile;
+    const uint32_t type_count = gt.candidates.typeCount();
+    if (in.models.size() != type_count || in.types.size() != type_count)
+        return fail("instancer: the Ghost Tile has " + std::to_string(type_count) + " detail types, got " +
+                    std::to_string(in.models.size()) + " models and " + std::to_string(in.types.size()) +
+                    " instancing settings");
+    if (!finiteBounds(in.extent) || in.extent.empty())
+        return fail("instancer: the scene extent must be finite and non-empty");
+    const float s = gt.settings.tile_size_m;
+    for (int a = 0; a < 3; ++a)
+        if (std::fabs(in.extent.lo[a]) / s >= float(kTileCoordLimit - 2) ||
+            std::fabs(in.extent.hi[a]) / s >= float(kTileCoordLimit - 2))
+            return fail("instancer: the scene extent reaches beyond ±" +
+                        std::to_string(int64_t(double(kTileCoordLimit) * s)) + " m (" +
+                        std::to_string(kTileCoordLimit) + " tiles of " + std::to_string(s) + " m)");
+    if (gt.graph.nodeCount() != gt.candidates.size()) return fail("instancer: the Ghost Tile's graph is inconsistent");
+    for (uint32_t i = 0; i < type_count; ++i) {
+        const std::string where = "detail type " + std::to_string(i) + " ('" +
+                                  (in.models[i] ? in.models[i]->name : std::string("?")) + "'): ";
+        if (!in.models[i]) return fail(where + "no model");
+        if (in.models[i]->anchors.empty()) return fail(where + "the model has no anchor points");
+        const InstanceTypeSettings& t = in.types[i];
+        std::string e;
+        if (t.field && !validate(*t.field, &e)) return fail(where + "density field: " + e);
+        if (!std::isfinite(t.layer_m) || !(t.layer_m > 0.0f))
+            return fail(where + "layer_m must be finite and > 0");
+        if (int(t.strategy) > int(PriorityStrategy::DistanceToBoundary)) return fail(where + "unknown strategy");
+        if (t.orientation.enabled) {
+            if (!std::isfinite(t.orientation.min_cos) || t.orientation.min_cos < -1.0f || t.orientation.min_cos > 1.0f)
+                return fail(where + "orientation min_cos must be in [-1, 1]");
+            if (!validate(t.orientation.direction, &e)) return fail(where + "orientation: " + e);
+        }
+        if (t.size.enabled) {
+            if (!std::isfinite(t.size.tolerance) || t.size.tolerance < 0.0f)
+                return fail(where + "size tolerance must be finite and >= 0");
+            if (!validate(t.size.target, &e)) return fail(where + "size: " + e);
+        }
+    }
+    return true;
+}
+
+}  // namespace
+
+bool Instantiator::Engine::setInput(InstancerInput in, std::string* error) {
+    if (!validateInput(in, error)) return false;
+    input = std::move(in);
+    prep = prepare(input);
+    tiles.clear();
+    index.clear();
+    store.clear();
+    instantiated = false;
+    refreshRuntime();
+    return true;
+}
+
+void Instantiator::Engine::refreshRuntime() {
+    runtime.assign(input.types.size(), TypeRuntime{});
+    global_lists.assign(input.types.size(), TileFieldList{});
+    for (size_t i = 0; i < input.types.size(); ++i) {
+        const InstanceTypeSettings& t = input.types[i];
+        TypeRuntime& r = runtime[i];
+        r.field = t.field.get();
+        r.direction_uses_list = t.orientation.direction.kind == DirectionFieldKind::Gradient &&
+                                t.orientation.direction.field.get() == r.field;
+        r.size_uses_list = t.size.target.kind == SizeFieldKind::Ramp && t.size.target.field.get() == r.field;
+        if (r.field) buildTileList(*r.field, expand(input.extent, prep.max_reach + prep.s), &global_lists[i]);
+    }
+}
+
+// ---- one tile: culling, acceptance, constraints, keys ------------------------------------------------
+
+void Instantiator::Engine::computeTile(TileState* ts, const std::vector<const TileFieldList*>& parents,
+                                       TileScratch* scratch) const {
+    const CandidateSet& c = input.tile->candidates;
+    const glm::vec3 origin = tileOrigin(ts->coord, prep.s);
+    const Bounds tile_box{origin, origin + prep.s};
+    const uint64_t tile_key = ts->key;
+    ts->alive.clear();
+    ts->priority.clear();
+
+    for (uint32_t i = 0; i < c.typeCount(); ++i) {
+        const uint32_t begin = c.type_begin[i], end = c.type_begin[i + 1];
+        const TypeRuntime& rt = runtime[i];
+        const InstanceTypeSettings& settings = input.types[i];
+        if (!rt.field || !parents[i]) continue;  // nothing of this type can live here: not even tested
+        ts->tested += end - begin;
+        TileFieldList& list = scratch->list;
+        buildTileList(*rt.field, expand(tile_box, prep.reach[i]), &list, parents[i]);
+        const Bounds positive = list.empty() ? Bounds{} : positiveBoundsIn(*rt.field, list);
+        if (positive.empty()) {
+            ts->culled += end - begin;
+            continue;
+        }
+        // Cheap culling first: every anchor must lie where the field can be positive.
+        scratch->survivors.clear();
+        scratch->points.clear();
+        for (uint32_t j = begin; j < end; ++j) {
+            const glm::vec3 o = origin + c.position[j];
+            bool keep = originInside(input.extent, o);
+            for (uint32_t k = prep.anchor_begin[j]; keep && k < prep.anchor_begin[j + 1]; ++k)
+                keep = contains(positive, origin + prep.anchors[k]);
+            if (!keep) {
+                ++ts->culled;
+                continue;
+            }
+            scratch->survivors.push_back(j);
+            for (uint32_t k = prep.anchor_begin[j]; k < prep.anchor_begin[j + 1]; ++k)
+                scratch->points.push_back(origin + prep.anchors[k]);
+        }
+        scratch->values.resize(scratch->points.size());
+        evaluateBatch(*rt.field, &list, scratch->points.data(), scratch->points.size(), scratch->values.data());
+
+        size_t v = 0;
+        for (uint32_t j : scratch->survivors) {
+            const uint32_t count = prep.anchor_begin[j + 1] - prep.anchor_begin[j];
+            const float* values = scratch->values.data() + v;
+            v += count;
+            bool positive_everywhere = true;
+            float sum = 0.0f;
+            for (uint32_t k = 0; k < count; ++k) {
+                positive_everywhere = positive_everywhere && values[k] > 0.0f;
+                sum += values[k];
+            }
+            if (!positive_everywhere) {
+                ++ts->culled;
+                continue;
+            }
+            const float mean = sum / float(count);
+            const float u = unitFloat(hashWords(input.seed, tile_key, j, kStreamAccept));
+            if (!(u < std::min(1.0f, mean))) {
+                ++ts->density_rejected;
+                continue;
+            }
+            const glm::vec3 o = origin + c.position[j];
+            if (settings.orientation.enabled) {
+                const glm::vec3 u_dir = evaluateDirection(settings.orientation.direction,
+                                                          rt.direction_uses_list ? &list : nullptr, o);
+                if (glm::dot(prep.z_axis[j], u_dir) < settings.orientation.min_cos) {
+                    ++ts->constraint_rejected;
+                    continue;
+                }
+            }
+            if (settings.size.enabled) {
+                const float target = evaluateSize(settings.size.target, rt.size_uses_list ? &list : nullptr, o);
+                if (!(std::fabs(c.scale[j] / target - 1.0f) <= settings.size.tolerance)) {
+                    ++ts->constraint_rejected;
+                    continue;
+                }
+            }
+            // Key, part 1: the strategy's layer (smaller first).
+            double layer = 0.0;
+            if (settings.strategy == PriorityStrategy::Elevation) {
+                layer = std::floor(double(o.z) / double(settings.layer_m));
+            } else if (settings.strategy == PriorityStrategy::DistanceToBoundary) {
+                glm::vec4 g;
+                evaluateBatchWithGradient(*rt.field, &list, &o, 1, &g);
+                const float grad = glm::length(glm::vec3(g));
+                // f / |∇f| estimates the distance to the boundary f = 0 (exact for linear fields).
+                const float d = grad > 1e-6f ? std::max(0.0f, g.w) / grad : 1e6f;
+                layer = std::floor(double(d) / double(settings.layer_m));
+            }
+            layer = std::clamp(layer, -2147483648.0, 2147483647.0);
+            const uint32_t layer_bits = uint32_t(int32_t(layer)) ^ 0x80000000u;
+            // Key, part 2: Efraimidis–Spirakis, ordered by -ln(u')/w (smaller first <=> larger u'^(1/w)).
+            const float u2 = (float(hashWords(input.seed, tile_key, j, kStreamWeight) >> 40) + 0.5f) * (1.0f / 16777216.0f);
+            float e = -std::log(u2) / mean;
+            if (!(e <= std::numeric_limits<float>::max())) e = std::numeric_limits<float>::max();
+            uint32_t e_bits;
+            std::memcpy(&e_bits, &e, 4);  // e >= 0: the bit pattern orders like the value
+            ts->alive.push_back(j);
+            ts->priority.push_back((uint64_t(layer_bits) << 32) | e_bits);
+        }
+    }
+
+    const uint32_t words = (prep.n + 63) / 64;
+    ts->bits.assign(words, 0);
+    ts->rank.assign(words, 0);
+    for (uint32_t j : ts->alive) ts->bits[j >> 6] |= uint64_t(1) << (j & 63);
+    uint32_t running = 0;
+    for (uint32_t w = 0; w < words; ++w) {
+        ts->rank[w] = running;
+        running += uint32_t(std::popcount(ts->bits[w]));
+    }
+    ts->status.assign(ts->alive.size(), kUnknown);
+    ts->order.resize(ts->alive.size());
+    for (uint32_t a = 0; a < ts->order.size(); ++a) ts->order[a] = a;
+    std::sort(ts->order.begin(), ts->order.end(), [&](uint32_t x, uint32_t y) {
+        return keyBefore(ts->priority[x], tile_key, ts->alive[x], ts->priority[y], tile_key, ts->alive[y]);
+    });
+    std::fill(std::begin(ts->neighbour), std::end(ts->neighbour), complete ? kEmptyTile : kUnknownTile);
+}
+
+// Computes every tile of `box` (clipped to the extent) that may hold an alive candidate. Tiles a coarse
+// block test proves empty are not produced (in complete mode, absence means empty).
+bool Instantiator::Engine::enumerateAndCompute(const Bounds& box_in, const InstanceOptions& options,
+                                               std::vector<TileState>* out, std::string* error) const {
+    const Bounds box = intersect(box_in, input.extent);
+    out->clear();
+    if (box.empty()) return true;
+    const float s = prep.s;
+    const glm::ivec3 tlo = tileOf(box.lo, s), thi = tileOf(box.hi, s);
+    const glm::ivec3 nblocks = (thi - tlo) / kBlock + 1;
+    const uint64_t block_count = uint64_t(nblocks.x) * uint64_t(nblocks.y) * uint64_t(nblocks.z);
+    if (block_count > kMaxBlocks) {
+        if (error)
+            *error = "instancer: the scene extent spans " + std::to_string(block_count * kBlock * kBlock * kBlock) +
+                     " tiles of " + std::to_string(s) + " m; refusing (more than " +
+                     std::to_string(kMaxBlocks * kBlock * kBlock * kBlock) + ")";
+        return false;
+    }
+    const int threads = resolveThreadCount(options.threads);
+    const size_t type_count = input.types.size();
+
+    // Pass 1: which tiles of each block may hold an alive candidate (cheap, bounds only).
+    struct BlockTiles {
+        std::vector<glm::ivec3> coords;
+    };
+    std::vector<BlockTiles> plan(block_count);
+    std::atomic<bool> stop{false};
+    parallelFor(block_count, threads, 16, [&](size_t b0, size_t b1, int) {
+        TileFieldList block_list;
+        std::vector<Bounds> positive(type_count);
+        for (size_t b = b0; b < b1; ++b) {
+            if (options.cancel && options.cancel->load()) return stop.store(true);
+            const glm::ivec3 bc(int(b % nblocks.x), int(b / nblocks.x % nblocks.y), int(b / nblocks.x / nblocks.y));
+            const glm::ivec3 first = tlo + bc * kBlock;
+            const glm::ivec3 last = glm::min(first + (kBlock - 1), thi);
+            const Bounds block_box{tileOrigin(first, s), tileOrigin(last + 1, s)};
+            bool any = false;
+            for (size_t i = 0; i < type_count; ++i) {
+                positive[i] = Bounds{};
+                if (!runtime[i].field) continue;
+                buildTileList(*runtime[i].field, expand(block_box, prep.reach[i]), &block_list, &global_lists[i]);
+                if (block_list.empty()) continue;
+                positive[i] = positiveBoundsIn(*runtime[i].field, block_list);
+                any = any || !positive[i].empty();
+            }
+            if (!any) continue;
+            for (int z = first.z; z <= last.z; ++z)
+                for (int y = first.y; y <= last.y; ++y)
+                    for (int x = first.x; x <= last.x; ++x) {
+                        const glm::vec3 o = tileOrigin(glm::ivec3(x, y, z), s);
+                        const Bounds tile_box{o, o + s};
+                        if (!overlaps(tile_box, input.extent)) continue;
+                        for (size_t i = 0; i < type_count; ++i)
+                            if (!positive[i].empty() && overlaps(expand(tile_box, prep.reach[i]), positive[i])) {
+                                plan[b].coords.push_back(glm::ivec3(x, y, z));
+                                break;
+                            }
+                    }
+        }
+    });
+    if (stop.load()) {
+        if (error) *error = "instancer: cancelled";
+        return false;
+    }
+    uint64_t tile_total = 0;
+    for (const BlockTiles& bt : plan) tile_total += bt.coords.size();
+    // Worst case: every candidate of every planned tile alive (13 bytes each) plus the tile's own state.
+    const uint64_t per_tile = sizeof(TileState) + 2 * ((prep.n + 63) / 64) * 8 + uint64_t(prep.n) * 13;
+    if (tile_total * per_tile > options.max_memory_bytes) {
+        if (error)
+            *error = "instancer: the scene needs up to " + std::to_string(tile_total * per_tile >> 20) + " MiB for " +
+                     std::to_string(tile_total) + " tiles of " + std::to_string(prep.n) +
+                     " candidates, more than the allowed " + std::to_string(options.max_memory_bytes >> 20) +
+                     " MiB; shrink the extent or the fields";
+        return false;
+    }
+
+    // Pass 2: compute the planned tiles, block by block (the block's lists prune the tiles' lists).
+    std::vector<std::vector<TileState>> per_block(block_count);
+    std::atomic<uint64_t> done{0};
+    parallelFor(block_count, threads, 1, [&](size_t b0, size_t b1, int) {
+        TileScratch scratch;
+        std::vector<TileFieldList> block_lists(type_count);
+        std::vector<const TileFieldList*> parents(type_count);
+        for (size_t b = b0; b < b1; ++b) {
+            if (plan[b].coords.empty()) continue;
+            if (options.cancel && options.cancel->load()) return stop.store(true);
+            const glm::ivec3 bc(int(b % nblocks.x), int(b / nblocks.x % nblocks.y), int(b / nblocks.x / nblocks.y));
+            const glm::ivec3 first = tlo + bc * kBlock;
+            const glm::ivec3 last = glm::min(first + (kBlock - 1), thi);
+            const Bounds block_box{tileOrigin(first, s), tileOrigin(last + 1, s)};
+            for (size_t i = 0; i < type_count; ++i) {
+                parents[i] = nullptr;
+                if (!runtime[i].field) continue;
+                buildTileList(*runtime[i].field, expand(block_box, prep.reach[i]), &block_lists[i], &global_lists[i]);
+                if (!block_lists[i].empty()) parents[i] = &block_lists[i];
+            }
+            per_block[b].resize(plan[b].coords.size());
+            for (size_t k = 0; k < plan[b].coords.size(); ++k) {
+                TileState& ts = per_block[b][k];
+                ts.coord = plan[b].coords[k];
+                ts.key = packTile(ts.coord);
+                computeTile(&ts, parents, &scratch);
+            }
+            done.fetch_add(plan[b].coords.size(), std::memory_order_relaxed);
+        }
+    });
+    if (stop.load()) {
+        if (error) *error = "instancer: cancelled";
+        return false;
+    }
+    out->reserve(tile_total);
+    for (auto& v : per_block)
+        for (TileState& ts : v) out->push_back(std::move(ts));
+    return true;
+}
+
+void Instantiator::Engine::link(int32_t t) {
+    TileState& ts = tiles[t];
+    for (uint32_t v = 0; v < kOffsetCount; ++v) {
+        auto it = index.find(packTile(ts.coord + offsetVector(v)));
+        ts.neighbour[v] = it != index.end() ? it->second : (complete ? kEmptyTile : kUnknownTile);
+    }
+}
+
+void Instantiator::Engine::linkAround(int32_t t) {
+    link(t);
+    for (uint32_t v = 0; v < kOffsetCount; ++v) {
+        const int32_t u = tiles[t].neighbour[v];
+        if (u >= 0) tiles[u].neighbour[mirrorOffset(v)] = t;
+    }
+}
+
+// Adds or replaces tiles, then links them and their neighbours.
+void Instantiator::Engine::install(std::vector<TileState>&& computed, std::vector<int32_t>* installed) {
+    installed->clear();
+    for (TileState& ts : computed) {
+        auto it = index.find(ts.key);
+        int32_t t;
+        if (it != index.end()) {
+            t = it->second;
+            tiles[t] = std::move(ts);
+        } else {
+            t = int32_t(tiles.size());
+            index.emplace(ts.key, t);
+            tiles.push_back(std::move(ts));
+        }
+        installed->push_back(t);
+    }
+    for (int32_t t : *installed) linkAround(t);
+}
+
+// ---- the lazy lexicographically-first independent set --------------------------------------------------
+
+namespace {
+
+struct Ref {
+    int32_t tile;
+    uint32_t alive;
+};
+
+enum class Lookup { None, Found, Missing };
+
+class Resolver {
+public:
+    Resolver(std::vector<TileState>& tiles, const CollisionGraph& graph) : tiles_(tiles), graph_(graph) {}
+
+    // Decides c (and, on the way, the higher-key candidates it depends on). Returns false when a needed
+    // neighbour tile has not been computed (its coordinates are appended to *missing).
+    bool resolve(Ref c, std::vector<glm::ivec3>* missing, uint64_t* resolved) {
+        if (tiles_[c.tile].load(c.alive) != kUnknown) return true;
+        frames_.clear();
+        arena_.clear();
+        if (!push(c, missing, resolved)) return false;
+        while (!frames_.empty()) {
+            Frame& f = frames_.back();
+            if (f.pos == f.end) {
+                finish(f, kSelected, resolved);
+                continue;
+            }
+            const Ref r = arena_[f.pos];
+            const uint8_t s = tiles_[r.tile].load(r.alive);
+            if (s == kSelected) {
+                finish(f, kRejected, resolved);
+            } else if (s == kRejected) {
+                ++f.pos;
+            } else if (!push(r, missing, resolved)) {
+                return false;
+            }
+        }
+        return true;
+    }
+
+    // Its status from its higher-key neighbours' statuses, all known (update()'s key-order pass).
+    uint8_t decide(Ref c) {
+        uint8_t result = kSelected;
+        forHigher(c, [&](Ref r) {
+            if ((tiles_[r.tile].load(r.alive) & kStatusMask) == kSelected) result = kRejected;
+        });
+        return result;
+    }
+
+    // f(Ref) for every alive neighbour of c with a smaller key. Missing tiles are skipped.
+    template <typename F>
+    void forHigher(Ref c, F&& f) {
+        forNeighbours(c, [&](Ref r, bool higher) {
+            if (higher) f(r);
+        });
+    }
+    // f(Ref, higher) for every alive neighbour of c.
+    template <typename F>
+    void forNeighbours(Ref c, F&& f) {
+        const TileState& t = tiles_[c.tile];
+        const uint32_t j = t.alive[c.alive];
+        const uint64_t pc = t.priority[c.alive];
+        graph_.forEachNeighbor(j, [&](uint32_t k, uint32_t v) {
+            const int32_t u = t.neighbour[v];
+            if (u < 0) return;
+            const TileState& ut = tiles_[u];
+            const int64_t a = ut.find(k);
+            if (a < 0) return;
+            f(Ref{u, uint32_t(a)}, keyBefore(ut.priority[a], ut.key, k, pc, t.key, j));
+        });
+    }
+
+private:
+    struct Frame {
+        Ref c;
+        uint32_t begin, end, pos;
+    };
+
+    void finish(Frame& f, uint8_t status, uint64_t* resolved) {
+        tiles_[f.c.tile].store(f.c.alive, status);
+        ++*resolved;
+        arena_.resize(f.begin);
+        frames_.pop_back();
+    }
+
+    // Opens a frame for c listing its undecided higher-key neighbours, or decides c at once.
+    bool push(Ref c, std::vector<glm::ivec3>* missing, uint64_t* resolved) {
+        const TileState& t = tiles_[c.tile];
+        const uint32_t j = t.alive[c.alive];
+        const uint64_t pc = t.priority[c.alive];
+        const uint32_t begin = uint32_t(arena_.size());
+        bool selected_above = false, any_missing = false;
+        graph_.forEachNeighbor(j, [&](uint32_t k, uint32_t v) {
+            if (selected_above) return;
+            const int32_t u = t.neighbour[v];
+            if (u == kEmptyTile) return;
+            if (u == kUnknownTile) {
+                any_missing = true;
+                missing->push_back(t.coord + offsetVector(v));
+                return;
+            }
+            const TileState& ut = tiles_[u];
+            const int64_t a = ut.find(k);
+            if (a < 0 || !keyBefore(ut.priority[a], ut.key, k, pc, t.key, j)) return;
+            const uint8_t s = ut.load(uint32_t(a));
+            if (s == kSelected) selected_above = true;
+            else if (s == kUnknown) arena_.push_back(Ref{u, uint32_t(a)});
+        });
+        if (selected_above) {
+            arena_.resize(begin);
+            tiles_[c.tile].store(c.alive, kRejected);
+            ++*resolved;
+            return true;
+        }
+        if (any_missing) {
+            arena_.resize(begin);
+            return false;
+        }
+        frames_.push_back(Frame{c, begin, uint32_t(arena_.size()), begin});
+        return true;
+    }
+
+    std::vector<TileState>& tiles_;
+    const CollisionGraph& graph_;
+    std::vector<Frame> frames_;
+    std::vector<Ref> arena_;
+};
+
+}  // namespace
+
+bool Instantiator::Engine::resolveTiles(const std::vector<int32_t>& which, const InstanceOptions& options,
+                                        std::vector<glm::ivec3>* missing, uint64_t* resolved) {
+    std::vector<int32_t> order = which;
+    if (options.tile_order_seed != 0) {
+        for (size_t k = order.size(); k > 1; --k)
+            std::swap(order[k - 1], order[hashWords(options.tile_order_seed, k) % k]);
+    }
+    const int threads = resolveThreadCount(options.threads);
+    std::vector<std::vector<glm::ivec3>> missing_per_worker;
+    missing_per_worker.resize(size_t(threads));
+    std::vector<uint64_t> resolved_per_worker(size_t(threads), 0);
+    std::atomic<bool> stop{false};
+    parallelFor(order.size(), threads, 4, [&](size_t b, size_t e, int worker) {
+        Resolver resolver(tiles, input.tile->graph);
+        for (size_t k = b; k < e; ++k) {
+            if (options.cancel && options.cancel->load()) return stop.store(true);
+            const int32_t t = order[k];
+            for (uint32_t a : tiles[t].order) {
+                // In region mode, only the wanted candidates are driven; others resolve on demand.
+                if (!complete && !originInside(region, tileOrigin(tiles[t].coord, prep.s) +
+                                                          input.tile->candidates.position[tiles[t].alive[a]]))
+                    continue;
+                resolver.resolve(Ref{t, a}, &missing_per_worker[size_t(worker)], &resolved_per_worker[size_t(worker)]);
+            }
+        }
+    });
+    for (auto& m : missing_per_worker) missing->insert(missing->end(), m.begin(), m.end());
+    for (uint64_t r : resolved_per_worker) *resolved += r;
+    return !stop.load();
+}
+
+void Instantiator::Engine::rebuildStore() {
+    std::vector<int32_t> sorted;
+    sorted.reserve(tiles.size());
+    for (int32_t t = 0; t < int32_t(tiles.size()); ++t)
+        if (!tiles[t].alive.empty()) sorted.push_back(t);
+    std::sort(sorted.begin(), sorted.end(), [&](int32_t a, int32_t b) { return tiles[a].key < tiles[b].key; });
+    store.clear();
+    std::vector<uint32_t> ids;
+    const CandidateSet& c = input.tile->candidates;
+    for (int32_t t : sorted) {
+        const TileState& ts = tiles[t];
+        ids.clear();
+        const glm::vec3 origin = tileOrigin(ts.coord, prep.s);
+        for (uint32_t a = 0; a < ts.alive.size(); ++a) {
+            if ((ts.status[a] & kStatusMask) != kSelected) continue;
+            if (!complete && !originInside(region, origin + c.position[ts.alive[a]])) continue;
+            ids.push_back(ts.alive[a]);
+        }
+        store.appendTile(ts.key, ids);
+    }
+}
+
+void Instantiator::Engine::fillStats(InstanceStats* st) const {
+    st->instances = store.instanceCount();
+    st->alive = 0;
+    for (const TileState& ts : tiles) st->alive += ts.alive.size();
+    st->instances_per_type.assign(input.types.size(), 0);
+    const CandidateSet& c = input.tile->candidates;
+    store.forEach([&](uint64_t, uint32_t j) { ++st->instances_per_type[c.type[j]]; });
+    st->store_bytes = store.byteSize();
+    st->bytes_per_instance = st->instances ? double(st->store_bytes) / double(st->instances) : 0.0;
+}
+
+// ---- public API ----------------------------------------------------------------------------------------
+
+Instantiator::Instantiator() : engine_(std::make_unique<Engine>()) {}
+Instantiator::~Instantiator() = default;
+
+bool Instantiator::setInput(InstancerInput input, std::string* error) { return engine_->setInput(std::move(input), error); }
+const InstancerInput& Instantiator::input() const { return engine_->input; }
+const InstanceStore& Instantiator::store() const { return engine_->store; }
+
+namespace {
+
+void addTileCounters(const std::vector<TileState>& computed, InstanceStats* st) {
+    for (const TileState& ts : computed) {
+        st->candidates_tested += ts.tested;
+        st->culled += ts.culled;
+        st->density_rejected += ts.density_rejected;
+        st->constraint_rejected += ts.constraint_rejected;
+    }
+    st->tiles_touched += computed.size();
+}
+
+}  // namespace
+
+bool Instantiator::instantiateAll(const InstanceOptions& options, InstanceStats* stats, std::string* error) {
+    Engine& e = *engine_;
+    if (!e.input.tile) {
+        if (error) *error = "instancer: no input";
+        return false;
+    }
+    const auto t0 = Clock::now();
+    InstanceStats st;
+    e.complete = true;
+    e.region = Bounds::everything();
+    std::vector<TileState> computed;
+    if (!e.enumerateAndCompute(e.input.extent, options, &computed, error)) return false;
+    if (options.progress) options.progress(0.5f);
+    addTileCounters(computed, &st);
+    e.tiles.clear();
+    e.index.clear();
+    e.instantiated = false;
+    std::vector<int32_t> installed;
+    e.install(std::move(computed), &installed);
+    std::vector<glm::ivec3> missing;
+    if (!e.resolveTiles(installed, options, &missing, &st.resolved)) {
+        if (error) *error = "instancer: cancelled";
+        e.tiles.clear();
+        e.index.clear();
+        return false;
+    }
+    e.rebuildStore();
+    e.instantiated = true;
+    e.fillStats(&st);
+    st.collision_rejected = st.alive - st.instances;
+    st.rejected = st.candidates_tested - st.instances;
+    st.tiles_changed = e.store.tileCount();
+    st.seconds = secondsSince(t0);
+    if (options.progress) options.progress(1.0f);
+    if (stats) *stats = st;
+    return true;
+}
+
+bool Instantiator::update(std::vector<InstanceTypeSettings> types, std::span<const Bounds> dirty,
+                          const InstanceOptions& options, InstanceStats* stats, std::vector<uint64_t>* changed_tiles,
+                          std::string* error) {
+    Engine& e = *engine_;
+    if (!e.instantiated) {
+        if (error) *error = "instancer: update() before instantiateAll()";
+        return false;
+    }
+    const auto t0 = Clock::now();
+    {
+        // Validate the new settings before touching the state.
+        InstancerInput next = e.input;
+        next.types = std::move(types);
+        if (!validateInput(next, error)) return false;
+        e.input.types = std::move(next.types);
+        e.refreshRuntime();
+    }
+    InstanceStats st;
+    const float s = e.prep.s;
+
+    // 1. The dirty tiles: every tile whose candidates' anchors can reach a dirty box.
+    std::vector<uint64_t> dirty_keys;
+    for (const Bounds& d : dirty) {
+        if (d.empty()) continue;
+        // Infinite boxes (a terrain layer changed) clip to the extent and usually start over below.
+        const Bounds b = intersect(expand(d, e.prep.max_reach), e.input.extent);
+        if (b.empty()) continue;
+        const glm::ivec3 lo = tileOf(b.lo, s), hi = tileOf(b.hi, s);
+        const uint64_t count = uint64_t(hi.x - lo.x + 1) * uint64_t(hi.y - lo.y + 1) * uint64_t(hi.z - lo.z + 1);
+        if (count > 4'000'000) return instantiateAll(options, stats, error);  // cheaper to start over
+        for (int z = lo.z; z <= hi.z; ++z)
+            for (int y = lo.y; y <= hi.y; ++y)
+                for (int x = lo.x; x <= hi.x; ++x) dirty_keys.push_back(packTile(glm::ivec3(x, y, z)));
+    }
+    std::sort(dirty_keys.begin(), dirty_keys.end());
+    dirty_keys.erase(std::unique(dirty_keys.begin(), dirty_keys.end()), dirty_keys.end());
+
+    // 2. Recompute them (with the full-field lists as parents), keeping the old states for comparison.
+    std::vector<TileState> fresh(dirty_keys.size());
+    const int threads = resolveThreadCount(options.threads);
+    parallelFor(fresh.size(), threads, 8, [&](size_t b, size_t end, int) {
+        TileScratch scratch;
+        std::vector<const TileFieldList*> parents(e.input.types.size());
+        for (size_t i = 0; i < parents.size(); ++i)
+            parents[i] = e.runtime[i].field && !e.global_lists[i].empty() ? &e.global_lists[i] : nullptr;
+        for (size_t k = b; k < end; ++k) {
+            fresh[k].key = dirty_keys[k];
+            fresh[k].coord = unpackTile(dirty_keys[k]);
+            e.computeTile(&fresh[k], parents, &scratch);
+        }
+    });
+    addTileCounters(fresh, &st);
+    std::vector<TileState> old(fresh.size());
+    std::vector<bool> existed(fresh.size(), false);
+    for (size_t k = 0; k < fresh.size(); ++k) {
+        auto it = e.index.find(fresh[k].key);
+        if (it != e.index.end()) {
+            old[k] = std::move(e.tiles[it->second]);
+            existed[k] = true;
+        }
+    }
+    // Keep empty fresh tiles only where a tile existed (so the slot stays valid and linked).
+    std::vector<TileState> to_install;
+    std::vector<size_t> fresh_of_installed;
+    for (size_t k = 0; k < fresh.size(); ++k) {
+        if (fresh[k].alive.empty() && !existed[k]) continue;
+        to_install.push_back(std::move(fresh[k]));
+        fresh_of_installed.push_back(k);
+    }
+    std::vector<int32_t> installed;
+    e.install(std::move(to_install), &installed);
+
+    // 3. Re-decide in key order. Seeds: every candidate of the dirty tiles, and the neighbours outside
+    //    them of every old selected or new alive candidate there.
+    struct Item {
+        uint64_t priority, tile_key;
+        uint32_t j;
+        Ref ref;
+        bool operator>(const Item& o) const { return keyBefore(o.priority, o.tile_key, o.j, priority, tile_key, j); }
+    };
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> queue;
+    std::unordered_map<uint64_t, bool> is_dirty;
+    is_dirty.reserve(dirty_keys.size() * 2);
+    for (uint64_t k : dirty_keys) is_dirty.emplace(k, true);
+    auto dirtyTile = [&](int32_t t) { return is_dirty.count(e.tiles[t].key) != 0; };
+    auto enqueue = [&](Ref r) {
+        TileState& ts = e.tiles[r.tile];
+        if (ts.status[r.alive] & kQueued) return;
+        ts.status[r.alive] |= kQueued;
+        queue.push(Item{ts.priority[r.alive], ts.key, ts.alive[r.alive], r});
+    };
+    Resolver resolver(e.tiles, e.input.tile->graph);
+    for (int32_t t : installed)
+        for (uint32_t a = 0; a < e.tiles[t].alive.size(); ++a) {
+            e.tiles[t].status[a] = kUnknown;
+            enqueue(Ref{t, a});
+            resolver.forNeighbours(Ref{t, a}, [&](Ref r, bool) {
+                if (!dirtyTile(r.tile)) enqueue(r);
+            });
+        }
+    // Old selected candidates influenced their neighbours; those outside the dirty tiles must look again.
+    // They are found through the new tiles' links: a neighbour offset is a neighbour offset.
+    for (size_t k = 0; k < old.size(); ++k) {
+        if (!existed[k]) continue;
+        const TileState& ot = old[k];
+        auto it = e.index.find(ot.key);
+        const int32_t t = it->second;
+        for (uint32_t a = 0; a < ot.alive.size(); ++a) {
+            if ((ot.status[a] & kStatusMask) != kSelected) continue;
+            e.input.tile->graph.forEachNeighbor(ot.alive[a], [&](uint32_t j, uint32_t v) {
+                const int32_t u = e.tiles[t].neighbour[v];
+                if (u < 0 || dirtyTile(u)) return;
+                const int64_t b = e.tiles[u].find(j);
+                if (b >= 0) enqueue(Ref{u, uint32_t(b)});
+            });
+        }
+    }
+    std::unordered_map<int32_t, bool> changed_outside;
+    while (!queue.empty()) {
+        const Item item = queue.top();
+        queue.pop();
+        TileState& ts = e.tiles[item.ref.tile];
+        const uint8_t before = ts.status[item.ref.alive] & kStatusMask;
+        const uint8_t now = resolver.decide(item.ref);
+        ts.status[item.ref.alive] = now;
+        ++st.resolved;
+        if (before == now || dirtyTile(item.ref.tile)) continue;
+        changed_outside[item.ref.tile] = true;
+        resolver.forNeighbours(item.ref, [&](Ref r, bool higher) {
+            if (!higher) enqueue(r);
+        });
+    }
+
+    // 4. What changed, for the renderer: dirty tiles whose selection differs, and tiles outside them.
+    std::vector<uint64_t> changed;
+    uint64_t selected_in_dirty = 0;
+    auto selectedIds = [&](const TileState& ts) {
+        std::vector<uint32_t> ids;
+        for (uint32_t a = 0; a < ts.alive.size(); ++a)
+            if ((ts.status[a] & kStatusMask) == kSelected) ids.push_back(ts.alive[a]);
+        return ids;
+    };
+    for (size_t k = 0; k < fresh.size(); ++k) {
+        auto it = e.index.find(dirty_keys[k]);
+        const std::vector<uint32_t> now = it != e.index.end() ? selectedIds(e.tiles[it->second]) : std::vector<uint32_t>{};
+        const std::vector<uint32_t> before = existed[k] ? selectedIds(old[k]) : std::vector<uint32_t>{};
+        selected_in_dirty += now.size();
+        if (now != before) changed.push_back(dirty_keys[k]);
+    }
+    for (const auto& [t, flag] : changed_outside) changed.push_back(e.tiles[t].key);
+    std::sort(changed.begin(), changed.end());
+    changed.erase(std::unique(changed.begin(), changed.end()), changed.end());
+
+    e.rebuildStore();
+    e.fillStats(&st);
+    st.collision_rejected = st.alive - st.instances;
+    st.rejected = st.candidates_tested - selected_in_dirty;  // of the recomputed tiles
+    st.tiles_changed = changed.size();
+    st.seconds = secondsSince(t0);
+    if (changed_tiles) *changed_tiles = std::move(changed);
+    if (stats) *stats = st;
+    return true;
+}
+
+std::vector<Instantiator::AliveCandidate> Instantiator::aliveCandidates() const {
+    std::vector<AliveCandidate> out;
+    for (const TileState& ts : engine_->tiles)
+        for (uint32_t a = 0; a < ts.alive.size(); ++a) out.push_back({ts.key, ts.alive[a], ts.priority[a]});
+    return out;
+}
+
+bool instantiateRegion(const InstancerInput& input, const Bounds& region, const InstanceOptions& options,
+                       InstanceStore* out, InstanceStats* stats, std::string* error) {
+    for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(region.lo[a]) || !std::isfinite(region.hi[a]) || !(region.lo[a] < region.hi[a])) {
+            if (error) *error = "region: min must be finite and < max on every axis";
+            return false;
+        }
+    const auto t0 = Clock::now();
+    Instantiator::Engine e;
+    if (!e.setInput(input, error)) return false;
+    e.complete = false;
+    e.region = region;
+    InstanceStats st;
+    std::vector<TileState> computed;
+    if (!e.enumerateAndCompute(region, options, &computed, error)) return false;
+    addTileCounters(computed, &st);
+    std::vector<int32_t> installed, pending;
+    e.install(std::move(computed), &installed);
+    pending = installed;
+    // Decide the wanted candidates; whenever a decision needs a tile not computed yet, compute it and
+    // try again. Each round only adds tiles, so this ends (at worst when the dependency chains do).
+    for (;;) {
+        std::vector<glm::ivec3> missing;
+        if (!e.resolveTiles(pending, options, &missing, &st.resolved)) {
+            if (error) *error = "instancer: cancelled";
+            return false;
+        }
+        if (missing.empty()) break;
+        std::vector<uint64_t> keys;
+        for (const glm::ivec3& m : missing) keys.push_back(packTile(m));
+        std::sort(keys.begin(), keys.end());
+        keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+        std::vector<TileState> extra(keys.size());
+        const int threads = resolveThreadCount(options.threads);
+        parallelFor(extra.size(), threads, 8, [&](size_t b, size_t end, int) {
+            TileScratch scratch;
+            std::vector<const TileFieldList*> parents(e.input.types.size());
+            for (size_t i = 0; i < parents.size(); ++i)
+                parents[i] = e.runtime[i].field && !e.global_lists[i].empty() ? &e.global_lists[i] : nullptr;
+            for (size_t k = b; k < end; ++k) {
+                extra[k].key = keys[k];
+                extra[k].coord = unpackTile(keys[k]);
+                e.computeTile(&extra[k], parents, &scratch);
+            }
+        });
+        addTileCounters(extra, &st);
+        std::vector<int32_t> added;
+        e.install(std::move(extra), &added);
+        // Retry every tile with an undecided wanted candidate.
+        std::vector<int32_t> retry;
+        for (int32_t t : pending) {
+            const TileState& ts = e.tiles[t];
+            for (uint32_t a = 0; a < ts.alive.size(); ++a)
+                if (ts.status[a] == kUnknown &&
+                    originInside(region, tileOrigin(ts.coord, e.prep.s) + e.input.tile->candidates.position[ts.alive[a]])) {
+                    retry.push_back(t);
+                    break;
+                }
+        }
+        pending = std::move(retry);
+    }
+    e.rebuildStore();
+    e.fillStats(&st);
+    st.collision_rejected = 0;
+    st.rejected = st.candidates_tested - st.instances;
+    st.tiles_changed = e.store.tileCount();
+    st.seconds = secondsSince(t0);
+    if (out) *out = e.store;
+    if (stats) *stats = st;
+    return true;
+}
+
+}  // namespace ug
