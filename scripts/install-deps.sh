@@ -9,10 +9,18 @@ packages=(
   libglfw3-dev libimgui-dev libgl-dev
   libgtest-dev
   xvfb xauth
+  nodejs npm
 )
 
 missing=()
 for p in "${packages[@]}"; do
+  # Node.js and npm (the independent glTF checks, tests/gltf) count as present when the commands are
+  # there: a Node.js from another source (e.g. nodesource's nodejs, which bundles npm) must not be
+  # replaced by, or conflict with, Debian's packages.
+  case "$p" in
+    nodejs) command -v node >/dev/null 2>&1 && continue ;;
+    npm) command -v npm >/dev/null 2>&1 && continue ;;
+  esac
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
 if [ ${#missing[@]} -eq 0 ]; then

@@ -16,6 +16,10 @@ std::string systemReason() { return std::strerror(errno); }
 }  // namespace
 
 bool writeFileAtomically(const std::string& path, const void* data, size_t size, std::string* error) {
+    return writeFileAtomically(path, std::vector<ByteSpan>{ByteSpan{data, size}}, error);
+}
+
+bool writeFileAtomically(const std::string& path, const std::vector<ByteSpan>& parts, std::string* error) {
     namespace fs = std::filesystem;
     fs::path target(path);
     fs::path dir = target.has_parent_path() ? target.parent_path() : fs::path(".");
@@ -27,19 +31,21 @@ bool writeFileAtomically(const std::string& path, const void* data, size_t size,
         *error = path + ": cannot create a temporary file in '" + dir.string() + "': " + systemReason();
         return false;
     }
-    const char* p = static_cast<const char*>(data);
-    size_t left = size;
-    while (left > 0) {
-        ssize_t w = ::write(fd, p, left);
-        if (w < 0) {
-            if (errno == EINTR) continue;
-            *error = path + ": write failed: " + systemReason();
-            ::close(fd);
-            ::unlink(name.data());
-            return false;
+    for (const ByteSpan& part : parts) {
+        const char* p = static_cast<const char*>(part.data);
+        size_t left = part.size;
+        while (left > 0) {
+            ssize_t w = ::write(fd, p, left);
+            if (w < 0) {
+                if (errno == EINTR) continue;
+                *error = path + ": write failed: " + systemReason();
+                ::close(fd);
+                ::unlink(name.data());
+                return false;
+            }
+            p += w;
+            left -= size_t(w);
         }
-        p += w;
-        left -= size_t(w);
     }
     // The data must be on disk before the rename makes it visible, or a crash could leave an empty file
     // where the user's previous good one was.

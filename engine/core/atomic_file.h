@@ -14,6 +14,14 @@ namespace ug {
 bool writeFileAtomically(const std::string& path, const void* data, size_t size, std::string* error);
 bool writeTextFileAtomically(const std::string& path, const std::string& text, std::string* error);
 
+// The same for a file made of several pieces written back to back (a GLB header, its JSON and its binary
+// chunk), so large outputs need not be copied into one contiguous block first.
+struct ByteSpan {
+    const void* data = nullptr;
+    size_t size = 0;
+};
+bool writeFileAtomically(const std::string& path, const std::vector<ByteSpan>& parts, std::string* error);
+
 // Reads a whole file; errors name the path and the reason. Refuses files larger than max_bytes.
 bool readWholeFile(const std::string& path, std::vector<unsigned char>* out, std::string* error,
                    size_t max_bytes = size_t(4) << 30);

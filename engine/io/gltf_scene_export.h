@@ -9,6 +9,23 @@
 // Engine space is Z up; glTF is Y up: positions, rotations and spheres are converted on the way out.
 // The file is written atomically; .glb (binary) or .gltf (JSON with the buffer embedded as a data URI)
 // by the path's extension.
+//
+// What the file holds, exactly (readers and tests rely on it):
+//   - meshes: one per detail type, named after it, in `types` order, then "terrain" when given. POSITION
+//     and NORMAL float VEC3 (POSITION with min/max), indices uint16 when the mesh has at most 65,535
+//     vertices, else uint32; material "<type>" (metallic 0, roughness 0.9, single-sided).
+//   - chunks: instance i of a type belongs to chunk (ix, iy) = (floor(x / chunk_size_m),
+//     floor(y / chunk_size_m)) of its engine-space position. Each non-empty (type, chunk) gets one node
+//     named "<type>/chunk_<ix>_<iy>" whose translation is the chunk's XY centre (engine z = 0, converted
+//     to Y up); the instance translations are relative to it, so float32 keeps millimetres far from the
+//     origin. Chunks are written in (type, ix, iy) order, instances of a chunk in input order.
+//   - with the extension, that node carries the mesh and EXT_mesh_gpu_instancing {TRANSLATION, ROTATION
+//     (unit x, y, z, w), SCALE}; the extension is listed in extensionsUsed only (not required), so a
+//     viewer without it still opens the file and shows one copy per chunk node.
+//   - without it, the chunk node has one child per instance, named "<type>/<instance index>", holding the
+//     mesh and the instance's translation, rotation and scale. Refused above kMaxPlainNodeInstances.
+//   - the terrain: node "terrain" at the origin.
+//   - the buffer: one; in a .gltf it is embedded as a base64 data URI (no sidecar file to lose).
 #pragma once
 
 #include <string>
@@ -25,9 +42,13 @@ namespace ug {
 // One instance in engine space: world = translate(position) * rotate(rotation) * scale(scale).
 struct InstanceTransform {
     glm::vec3 position{0.0f};
-    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // unit
-    float scale = 1.0f;
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // unit; | |q| - 1 | <= 1e-3 is renormalized, more is an error
+    float scale = 1.0f;                          // finite, > 0
 };
+
+// Plain-node mode writes one JSON node per instance; beyond this many instances (all types together) the
+// file would be hundreds of MB of JSON, so writeSceneGltf refuses and suggests the extension.
+constexpr size_t kMaxPlainNodeInstances = 200000;
 
 struct ExportDetailType {
     std::string name;
@@ -46,7 +67,11 @@ struct SceneExport {
 };
 
 // Returns false with *error = "<path>: <reason>" (bad input, unwritable path). Nothing is left behind on
-// failure (atomic write).
+// failure (atomic write). Bad input: a path not ending in .glb or .gltf; chunk_size_m not finite and > 0;
+// delta_m not finite and >= 0; scene_extras_json not a JSON object; a type with an empty or duplicate
+// name, a null or invalid mesh (TriangleMesh validateMesh), a non-finite or non-positive sphere; an
+// instance with a non-finite value, a non-unit rotation or a non-positive scale (the reason names the
+// type and the instance index); an invalid terrain mesh; a result over the 4 GiB glTF limit.
 bool writeSceneGltf(const std::string& path, const SceneExport& scene, std::string* error);
 
 }  // namespace ug
