@@ -1,10 +1,12 @@
 #include "scene/project.h"
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
-
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "scene/field_json.h"
 #include "scene/json_reader.h"
 
 namespace ug {
@@ -23,11 +25,192 @@ const char* anchorModeName(AnchorMode m) {
     return "sphere_centers";
 }
 
+// Fixed-size arrays of finite numbers; finite as floats too (1e300 is a finite double but not a float).
+template <int N>
+bool readFloats(JsonReader& r, const json& j, const std::string& p, float* out, const char* shape) {
+    if (!j.is_array() || j.size() != size_t(N)) return r.fail(p, std::string("expected ") + shape);
+    for (int a = 0; a < N; ++a) {
+        if (!j[a].is_number() || !std::isfinite(j[a].get<float>()))
+            return r.fail(p + "/" + std::to_string(a), "expected a finite number");
+        out[a] = j[a].get<float>();
+    }
+    return true;
+}
+
 bool readVec3(JsonReader& r, const json& j, const std::string& p, glm::vec3* out) {
-    if (!j.is_array() || j.size() != 3) return r.fail(p, "expected [x, y, z]");
-    for (int a = 0; a < 3; ++a) {
-        if (!j[a].is_number() || !std::isfinite(j[a].get<double>())) return r.fail(p + "/" + std::to_string(a), "expected a finite number");
-        (*out)[a] = j[a].get<float>();
+    return readFloats<3>(r, j, p, &out->x, "[x, y, z]");
+}
+
+bool readVec2(JsonReader& r, const json& j, const std::string& p, glm::vec2* out) {
+    return readFloats<2>(r, j, p, &out->x, "[x, y]");
+}
+
+std::string fmt(double v) {
+    char buf[48];
+    std::snprintf(buf, sizeof(buf), "%g", v);
+    return buf;
+}
+
+// An optional number > 0 (and <= hi); absent keeps *out.
+bool positiveNumber(JsonReader& r, const json& obj, const std::string& p, const char* key, float* out,
+                    double hi) {
+    if (!r.number(obj, p, key, out, 0.0, hi)) return false;
+    return *out > 0.0f || r.fail(p + "/" + key, "must be > 0");
+}
+
+// Keys of this object valid in the file's format version; a key only a newer version knows is named as
+// such, so an old file edited by hand gets told what to change rather than "unknown field".
+bool versionedKeys(JsonReader& r, const json& j, const std::string& p, int version,
+                   const std::set<std::string>& v1_keys, const std::set<std::string>& v2_keys) {
+    for (auto it = j.begin(); it != j.end(); ++it) {
+        if (v1_keys.count(it.key())) continue;
+        if (v2_keys.count(it.key())) {
+            if (version >= 2) continue;
+            return r.fail(p + "/" + it.key(),
+                          "needs format_version 2 (this file says " + std::to_string(version) + ")");
+        }
+        return r.fail(p + "/" + it.key(), "unknown field");
+    }
+    return true;
+}
+
+bool readTerrain(JsonReader& r, const json& j, const std::string& p, TerrainDesc* t) {
+    if (!r.expectObject(j, p)) return false;
+    if (j.size() != 1 || !(j.contains("procedural") || j.contains("image")))
+        return r.fail(p, "expected {\"procedural\": {...}} or {\"image\": {...}}");
+    if (auto it = j.find("procedural"); it != j.end()) {
+        const std::string pp = p + "/procedural";
+        ProceduralTerrainDesc& d = t->procedural;
+        if (!r.expectObject(*it, pp) ||
+            !r.onlyKeys(*it, pp,
+                        {"origin", "cell_size_m", "width", "height", "seed", "octaves", "base_height_m",
+                         "amplitude_m", "feature_size_m", "lacunarity", "gain"}))
+            return false;
+        if (auto o = it->find("origin"); o != it->end() && !readVec2(r, *o, pp + "/origin", &d.origin_m))
+            return false;
+        if (!positiveNumber(r, *it, pp, "cell_size_m", &d.cell_size_m, 1e4) ||
+            !r.integer(*it, pp, "width", &d.width, 1, kMaxHeightFieldSide) ||
+            !r.integer(*it, pp, "height", &d.height, 1, kMaxHeightFieldSide) ||
+            !r.integer(*it, pp, "seed", &d.seed, 0, UINT64_MAX) ||
+            !r.integer(*it, pp, "octaves", &d.octaves, 1, 16) ||
+            !r.number(*it, pp, "base_height_m", &d.base_height_m, -1e6, 1e6) ||
+            !r.number(*it, pp, "amplitude_m", &d.amplitude_m, 0.0, 1e6) ||
+            !positiveNumber(r, *it, pp, "feature_size_m", &d.feature_size_m, 1e7) ||
+            !positiveNumber(r, *it, pp, "lacunarity", &d.lacunarity, 1e3) ||
+            !positiveNumber(r, *it, pp, "gain", &d.gain, 1.0))
+            return false;
+        t->kind = TerrainKind::Procedural;
+        return true;
+    }
+    const json& im = j["image"];
+    const std::string ip = p + "/image";
+    HeightFieldImageDesc& d = t->image;
+    if (!r.expectObject(im, ip) ||
+        !r.onlyKeys(im, ip, {"path", "origin", "cell_size_m", "min_height_m", "max_height_m"}) ||
+        !r.string(im, ip, "path", &t->image_path, true))
+        return false;
+    if (t->image_path.empty()) return r.fail(ip + "/path", "must not be empty");
+    if (auto o = im.find("origin"); o != im.end() && !readVec2(r, *o, ip + "/origin", &d.origin_m))
+        return false;
+    if (!positiveNumber(r, im, ip, "cell_size_m", &d.cell_size_m, 1e4) ||
+        !r.number(im, ip, "min_height_m", &d.min_height_m, -1e6, 1e6) ||
+        !r.number(im, ip, "max_height_m", &d.max_height_m, -1e6, 1e6))
+        return false;
+    if (!(d.min_height_m <= d.max_height_m))
+        return r.fail(ip + "/max_height_m", "must be >= min_height_m (" + fmt(d.min_height_m) + ")");
+    t->kind = TerrainKind::Image;
+    return true;
+}
+
+bool readExtent(JsonReader& r, const json& j, const std::string& p, Bounds* out) {
+    if (!r.expectObject(j, p) || !r.onlyKeys(j, p, {"min", "max"}) || !r.require(j, p, "min") ||
+        !r.require(j, p, "max") || !readVec3(r, j["min"], p + "/min", &out->lo) ||
+        !readVec3(r, j["max"], p + "/max", &out->hi))
+        return false;
+    for (int a = 0; a < 3; ++a)
+        if (!(out->lo[a] < out->hi[a]))
+            return r.fail(p, std::string("min must be < max on every axis (") + "xyz"[a] + ": " +
+                                 fmt(out->lo[a]) + " >= " + fmt(out->hi[a]) + ")");
+    return true;
+}
+
+bool readInstancing(JsonReader& r, const json& j, const std::string& p, bool has_terrain, InstancingDesc* d) {
+    if (!r.expectObject(j, p) || !r.onlyKeys(j, p, {"strategy", "layer_m", "orientation", "size"}))
+        return false;
+    std::string strategy = priorityStrategyName(d->strategy);
+    if (!r.string(j, p, "strategy", &strategy)) return false;
+    if (strategy == "random")
+        d->strategy = PriorityStrategy::Random;
+    else if (strategy == "elevation")
+        d->strategy = PriorityStrategy::Elevation;
+    else if (strategy == "distance_to_boundary")
+        d->strategy = PriorityStrategy::DistanceToBoundary;
+    else
+        return r.fail(p + "/strategy",
+                      "unknown strategy '" + strategy + "' (random, elevation, distance_to_boundary)");
+    if (!positiveNumber(r, j, p, "layer_m", &d->layer_m, 1e3)) return false;
+
+    if (auto it = j.find("orientation"); it != j.end()) {
+        const std::string op = p + "/orientation";
+        OrientationDesc& o = d->orientation;
+        if (!r.expectObject(*it, op) || !r.onlyKeys(*it, op, {"direction", "max_angle_deg"})) return false;
+        o.enabled = true;
+        if (auto dir = it->find("direction"); dir != it->end()) {
+            const std::string dp = op + "/direction";
+            if (dir->is_string()) {
+                if (dir->get<std::string>() != "gradient")
+                    return r.fail(dp, "unknown direction '" + dir->get<std::string>() +
+                                          "' (expected [x, y, z] or \"gradient\")");
+                o.kind = DirectionFieldKind::Gradient;
+            } else {
+                if (!dir->is_array())
+                    return r.fail(dp,
+                                  "expected [x, y, z] or \"gradient\", got " + JsonReader::typeName(*dir));
+                glm::vec3 v;
+                if (!readVec3(r, *dir, dp, &v)) return false;
+                if (v == glm::vec3(0.0f)) return r.fail(dp, "must not be zero");
+                v = documentUnitVector(v);
+                if (!std::isfinite(v.x) || !std::isfinite(v.y) || !std::isfinite(v.z))
+                    return r.fail(dp, "too large to normalize");
+                o.kind = DirectionFieldKind::Constant;
+                o.direction = v;
+            }
+        }
+        if (!r.number(*it, op, "max_angle_deg", &o.max_angle_deg, 0.0, 180.0)) return false;
+    }
+
+    if (auto it = j.find("size"); it != j.end()) {
+        const std::string sp = p + "/size";
+        SizeDesc& s = d->size;
+        if (!r.expectObject(*it, sp) || !r.onlyKeys(*it, sp, {"target", "tolerance"}) ||
+            !r.require(*it, sp, "target"))
+            return false;
+        s.enabled = true;
+        const json& target = (*it)["target"];
+        const std::string tp = sp + "/target";
+        if (target.is_number()) {
+            s.kind = SizeFieldKind::Constant;
+            if (!positiveNumber(r, *it, sp, "target", &s.target, 100.0)) return false;
+        } else if (target.is_object()) {
+            s.kind = SizeFieldKind::Ramp;
+            if (!r.onlyKeys(target, tp, {"field", "value_lo", "value_hi", "scale_lo", "scale_hi"}) ||
+                !r.require(target, tp, "field") ||
+                !readDensityField(r, target["field"], tp + "/field", has_terrain, &s.field) ||
+                !r.number(target, tp, "value_lo", &s.value_lo, -1e30, 1e30) ||
+                !r.number(target, tp, "value_hi", &s.value_hi, -1e30, 1e30) ||
+                !positiveNumber(r, target, tp, "scale_lo", &s.scale_lo, 100.0) ||
+                !positiveNumber(r, target, tp, "scale_hi", &s.scale_hi, 100.0))
+                return false;
+            if (!(s.value_lo < s.value_hi))
+                return r.fail(tp + "/value_hi", "must be > value_lo (" + fmt(s.value_lo) + ")");
+        } else {
+            return r.fail(
+                tp,
+                "expected a scale > 0 or {\"field\": ..., \"value_lo\", \"value_hi\", \"scale_lo\", "
+                "\"scale_hi\"}, got " +
+                    JsonReader::typeName(target));
+        }
+        if (!r.number(*it, sp, "tolerance", &s.tolerance, 0.0, 100.0)) return false;
     }
     return true;
 }
@@ -145,9 +328,7 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
         return false;
     }
     JsonReader r(source_name, error);
-    if (!r.expectObject(doc, "") ||
-        !r.onlyKeys(doc, "", {"format", "format_version", "name", "ghost_tile", "detail_types"}))
-        return false;
+    if (!r.expectObject(doc, "")) return false;
     std::string format;
     if (!r.string(doc, "", "format", &format, true)) return false;
     if (format != "undergrowth-project") return r.fail("/format", "expected \"undergrowth-project\", got \"" + format + "\"");
@@ -157,13 +338,33 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
     if (version > kProjectFormatVersion)
         return r.fail("/format_version", "version " + std::to_string(version) + " is newer than this program reads (" +
                                              std::to_string(kProjectFormatVersion) + "); update Undergrowth");
+    if (!versionedKeys(r, doc, "", version,
+                       {"format", "format_version", "name", "ghost_tile", "detail_types"},
+                       {"terrain", "extent", "instantiation"}))
+        return false;
     Project p;
+    p.source = source_name;
     if (!r.string(doc, "", "name", &p.name)) return false;
     if (auto it = doc.find("ghost_tile"); it != doc.end()) {
         if (!r.expectObject(*it, "/ghost_tile") || !r.onlyKeys(*it, "/ghost_tile", {"tile_size_m", "delta_m", "seed"}) ||
             !r.number(*it, "/ghost_tile", "tile_size_m", &p.ghost_tile.tile_size_m, 1e-4, 1000.0) ||
             !r.number(*it, "/ghost_tile", "delta_m", &p.ghost_tile.delta_m, -10.0, 10.0) ||
             !r.integer(*it, "/ghost_tile", "seed", &p.ghost_tile.seed, 0, UINT64_MAX))
+            return false;
+    }
+    if (auto it = doc.find("terrain"); it != doc.end() && !readTerrain(r, *it, "/terrain", &p.terrain))
+        return false;
+    const bool has_terrain = p.terrain.kind != TerrainKind::None;
+    if (auto it = doc.find("extent"); it != doc.end()) {
+        Bounds b;
+        if (!readExtent(r, *it, "/extent", &b)) return false;
+        p.extent = b;
+    }
+    if (auto it = doc.find("instantiation"); it != doc.end()) {
+        if (!r.expectObject(*it, "/instantiation") ||
+            !r.onlyKeys(*it, "/instantiation", {"seed", "chunk_size_m"}) ||
+            !r.integer(*it, "/instantiation", "seed", &p.instantiation_seed, 0, UINT64_MAX) ||
+            !positiveNumber(r, *it, "/instantiation", "chunk_size_m", &p.chunk_size_m, 1e6))
             return false;
     }
     if (!r.require(doc, "", "detail_types")) return false;
@@ -173,7 +374,10 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
     for (size_t t = 0; t < types.size(); ++t) {
         const std::string tp = "/detail_types/" + std::to_string(t);
         const json& jt = types[t];
-        if (!r.expectObject(jt, tp) || !r.onlyKeys(jt, tp, {"name", "model", "candidates"})) return false;
+        if (!r.expectObject(jt, tp) ||
+            !versionedKeys(r, jt, tp, version, {"name", "model", "candidates"},
+                           {"density", "subtract_terrain", "terrain_falloff_m", "instancing"}))
+            return false;
         DetailTypeDesc d;
         if (!r.string(jt, tp, "name", &d.model.name, true)) return false;
         if (d.model.name.empty()) return r.fail(tp + "/name", "must not be empty");
@@ -182,6 +386,15 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
         if (!r.require(jt, tp, "model") || !readModel(r, jt["model"], tp + "/model", &d.model)) return false;
         d.ghost.name = d.model.name;
         if (auto it = jt.find("candidates"); it != jt.end() && !readCandidates(r, *it, tp + "/candidates", &d.ghost))
+            return false;
+        if (auto it = jt.find("density");
+            it != jt.end() && !readDensityField(r, *it, tp + "/density", has_terrain, &d.density))
+            return false;
+        if (!r.boolean(jt, tp, "subtract_terrain", &d.subtract_terrain) ||
+            !positiveNumber(r, jt, tp, "terrain_falloff_m", &d.terrain_falloff_m, 100.0))
+            return false;
+        if (auto it = jt.find("instancing");
+            it != jt.end() && !readInstancing(r, *it, tp + "/instancing", has_terrain, &d.instancing))
             return false;
         p.detail_types.push_back(std::move(d));
     }
@@ -197,52 +410,186 @@ bool loadProject(const std::string& path, Project* out, std::string* error) {
     return true;
 }
 
+namespace {
+
+json vec3Json(glm::vec3 v) {
+    return json::array({jsonFloat(v.x), jsonFloat(v.y), jsonFloat(v.z)});
+}
+json vec2Json(glm::vec2 v) {
+    return json::array({jsonFloat(v.x), jsonFloat(v.y)});
+}
+
+json terrainJson(const TerrainDesc& t) {
+    if (t.kind == TerrainKind::Procedural) {
+        const ProceduralTerrainDesc& d = t.procedural;
+        return {{"procedural",
+                 {{"origin", vec2Json(d.origin_m)},
+                  {"cell_size_m", jsonFloat(d.cell_size_m)},
+                  {"width", d.width},
+                  {"height", d.height},
+                  {"seed", d.seed},
+                  {"octaves", d.octaves},
+                  {"base_height_m", jsonFloat(d.base_height_m)},
+                  {"amplitude_m", jsonFloat(d.amplitude_m)},
+                  {"feature_size_m", jsonFloat(d.feature_size_m)},
+                  {"lacunarity", jsonFloat(d.lacunarity)},
+                  {"gain", jsonFloat(d.gain)}}}};
+    }
+    const HeightFieldImageDesc& d = t.image;
+    return {{"image",
+             {{"path", t.image_path},
+              {"origin", vec2Json(d.origin_m)},
+              {"cell_size_m", jsonFloat(d.cell_size_m)},
+              {"min_height_m", jsonFloat(d.min_height_m)},
+              {"max_height_m", jsonFloat(d.max_height_m)}}}};
+}
+
+json instancingJson(const InstancingDesc& d) {
+    json out = {{"strategy", priorityStrategyName(d.strategy)}, {"layer_m", jsonFloat(d.layer_m)}};
+    if (d.orientation.enabled) {
+        const OrientationDesc& o = d.orientation;
+        out["orientation"] = {
+            {"direction", o.kind == DirectionFieldKind::Gradient ? json("gradient") : vec3Json(o.direction)},
+            {"max_angle_deg", jsonFloat(o.max_angle_deg)}};
+    }
+    if (d.size.enabled) {
+        const SizeDesc& s = d.size;
+        json target;
+        if (s.kind == SizeFieldKind::Constant) {
+            target = jsonFloat(s.target);
+        } else {
+            // An empty ramp field has no tree of its own; an empty blend is the same 0 everywhere.
+            json field =
+                s.field.root == kNoNode ? json{{"blend", json::array()}} : densityFieldToJson(s.field);
+            target = {{"field", std::move(field)},
+                      {"value_lo", jsonFloat(s.value_lo)},
+                      {"value_hi", jsonFloat(s.value_hi)},
+                      {"scale_lo", jsonFloat(s.scale_lo)},
+                      {"scale_hi", jsonFloat(s.scale_hi)}};
+        }
+        out["size"] = {{"target", std::move(target)}, {"tolerance", jsonFloat(s.tolerance)}};
+    }
+    return out;
+}
+
+// nlohmann's dump(2) puts every number of every vector on its own line, which makes a density of a few
+// hundred primitives thousands of lines long. This writes any value whose one-line form fits within the
+// line width on one line ({"point": {"center": [0, 0, 0], "radius": 2, "weight": 1}}) and breaks the
+// rest one member per line, so saved projects read like the hand-written samples.
+constexpr size_t kJsonLineWidth = 110;
+
+void writeCompact(const json& j, std::string* out) {
+    if (j.is_object()) {
+        *out += '{';
+        bool first = true;
+        for (auto it = j.begin(); it != j.end(); ++it) {
+            if (!first) *out += ", ";
+            first = false;
+            *out += json(it.key()).dump() + ": ";
+            writeCompact(it.value(), out);
+        }
+        *out += '}';
+    } else if (j.is_array()) {
+        *out += '[';
+        for (size_t k = 0; k < j.size(); ++k) {
+            if (k) *out += ", ";
+            writeCompact(j[k], out);
+        }
+        *out += ']';
+    } else {
+        *out += j.dump();
+    }
+}
+
+void writePretty(const json& j, size_t indent, size_t key_width, std::string* out) {
+    std::string compact;
+    writeCompact(j, &compact);
+    if ((!j.is_structured() || j.empty()) || indent + key_width + compact.size() <= kJsonLineWidth) {
+        *out += compact;
+        return;
+    }
+    const bool object = j.is_object();
+    *out += object ? "{\n" : "[\n";
+    size_t k = 0;
+    for (auto it = j.begin(); it != j.end(); ++it, ++k) {
+        if (k) *out += ",\n";
+        out->append(indent + 2, ' ');
+        size_t width = 0;
+        if (object) {
+            const std::string key = json(it.key()).dump() + ": ";
+            *out += key;
+            width = key.size();
+        }
+        writePretty(it.value(), indent + 2, width, out);
+    }
+    *out += '\n';
+    out->append(indent, ' ');
+    *out += object ? '}' : ']';
+}
+
+}  // namespace
+
 std::string projectToJson(const Project& project) {
     json doc;
     doc["format"] = "undergrowth-project";
     doc["format_version"] = kProjectFormatVersion;
     doc["name"] = project.name;
-    doc["ghost_tile"] = {{"tile_size_m", project.ghost_tile.tile_size_m},
-                         {"delta_m", project.ghost_tile.delta_m},
+    doc["ghost_tile"] = {{"tile_size_m", jsonFloat(project.ghost_tile.tile_size_m)},
+                         {"delta_m", jsonFloat(project.ghost_tile.delta_m)},
                          {"seed", project.ghost_tile.seed}};
+    if (project.terrain.kind != TerrainKind::None) doc["terrain"] = terrainJson(project.terrain);
+    if (project.extent)
+        doc["extent"] = {{"min", vec3Json(project.extent->lo)}, {"max", vec3Json(project.extent->hi)}};
+    doc["instantiation"] = {{"seed", project.instantiation_seed},
+                            {"chunk_size_m", jsonFloat(project.chunk_size_m)}};
     json types = json::array();
     for (const DetailTypeDesc& d : project.detail_types) {
-        json model = {{"mesh", d.model.mesh_path}, {"scale", d.model.scale}, {"y_up", d.model.y_up}};
+        json model = {
+            {"mesh", d.model.mesh_path}, {"scale", jsonFloat(d.model.scale)}, {"y_up", d.model.y_up}};
         if (!d.model.authored_spheres.empty()) {
             json spheres = json::array();
             for (const Sphere& s : d.model.authored_spheres)
-                spheres.push_back({s.center.x, s.center.y, s.center.z, s.radius});
+                spheres.push_back({jsonFloat(s.center.x), jsonFloat(s.center.y), jsonFloat(s.center.z),
+                                   jsonFloat(s.radius)});
             model["spheres"] = spheres;
         } else {
             model["spheres"] = {{"max_spheres", d.model.fit.max_spheres},
-                                {"tolerance_m", d.model.fit.tolerance_m},
-                                {"tolerance_rel", d.model.fit.tolerance_rel},
+                                {"tolerance_m", jsonFloat(d.model.fit.tolerance_m)},
+                                {"tolerance_rel", jsonFloat(d.model.fit.tolerance_rel)},
                                 {"surface_samples", d.model.fit.surface_samples},
                                 {"seed", d.model.fit.seed}};
         }
         json anchors = {{"mode", anchorModeName(d.model.anchor_mode)}, {"count", d.model.anchor_count}};
         if (!d.model.authored_anchors.empty()) {
             json pts = json::array();
-            for (const glm::vec3& a : d.model.authored_anchors) pts.push_back({a.x, a.y, a.z});
+            for (const glm::vec3& a : d.model.authored_anchors) pts.push_back(vec3Json(a));
             anchors["points"] = pts;
         }
         model["anchors"] = anchors;
         json orientation = {{"mode", d.ghost.orientation.mode == OrientationMode::Tilt ? "tilt" : "uniform"}};
         if (d.ghost.orientation.mode == OrientationMode::Tilt) {
             json ranges = json::array();
-            for (const TiltRange& tr : d.ghost.orientation.tilt_ranges) ranges.push_back({tr.min_deg, tr.max_deg, tr.weight});
+            for (const TiltRange& tr : d.ghost.orientation.tilt_ranges)
+                ranges.push_back({jsonFloat(tr.min_deg), jsonFloat(tr.max_deg), jsonFloat(tr.weight)});
             orientation["tilt_ranges"] = ranges;
         }
-        types.push_back({{"name", d.model.name},
-                         {"model", model},
-                         {"candidates",
-                          {{"count", d.ghost.candidate_count},
-                           {"orientation", orientation},
-                           {"scale", {d.ghost.scale_min, d.ghost.scale_max}},
-                           {"position", d.ghost.position == PositionMode::Jittered ? "jittered" : "uniform"}}}});
+        json type = {{"name", d.model.name},
+                     {"model", model},
+                     {"candidates",
+                      {{"count", d.ghost.candidate_count},
+                       {"orientation", orientation},
+                       {"scale", {jsonFloat(d.ghost.scale_min), jsonFloat(d.ghost.scale_max)}},
+                       {"position", d.ghost.position == PositionMode::Jittered ? "jittered" : "uniform"}}},
+                     {"subtract_terrain", d.subtract_terrain},
+                     {"terrain_falloff_m", jsonFloat(d.terrain_falloff_m)},
+                     {"instancing", instancingJson(d.instancing)}};
+        if (d.density.root != kNoNode) type["density"] = densityFieldToJson(d.density);
+        types.push_back(std::move(type));
     }
     doc["detail_types"] = types;
-    return doc.dump(2) + "\n";
+    std::string text;
+    writePretty(doc, 0, 0, &text);
+    return text + "\n";
 }
 
 bool saveProject(const std::string& path, const Project& project, std::string* error) {

@@ -1,37 +1,130 @@
-// The project (scene) document: what the user edits and saves. It stores settings, models by path,
-// seeds and (from the instantiation issue on) density primitives, never instances, so a project stays
-// a few kilobytes however many objects it makes (DESIGN.md, "what users of the peers complain about").
+// The project (scene) document: what the user edits and saves. It stores the terrain's recipe, models by
+// path, seeds, density primitives and instantiation settings, never instances, so a project stays a few
+// kilobytes however many objects it makes (DESIGN.md, "what users of the peers complain about").
+// scene_compile.h turns it into what the instantiator runs on.
 //
-// File: JSON, {"format": "undergrowth-project", "format_version": 1, ...}; see assets/scenes/*.json.
-// Relative paths inside a project are relative to the project file's folder.
+// File: JSON. Relative paths inside a project are relative to the project file's folder. Reading is
+// strict: unknown keys are errors, and so are keys of a newer format version in an older file.
+//
+//   {"format": "undergrowth-project", "format_version": 2,          (1 is still read: no terrain, no
+//    "name": "meadow",                                               density, default instancing)
+//    "ghost_tile": {"tile_size_m": 0.5, "delta_m": -0.002, "seed": 7},
+//    "terrain": {"procedural": {"origin": [x, y], "cell_size_m", "width", "height", "seed", "octaves",
+//                               "base_height_m", "amplitude_m", "feature_size_m", "lacunarity", "gain"}}
+//            or {"image": {"path": "ground.png", "origin": [x, y], "cell_size_m", "min_height_m",
+//                          "max_height_m"}},                     (optional; see height_field.h for meanings)
+//    "extent": {"min": [x, y, z], "max": [x, y, z]},             (optional: derived when absent, see
+//                                                                 computeSceneExtent)
+//    "instantiation": {"seed": 1, "chunk_size_m": 8},            (optional; chunk: export chunking, > 0)
+//    "detail_types": [{
+//        "name": "grass_tuft",
+//        "model": {"mesh": "../models/grass_tuft.glb", "scale", "y_up", "spheres", "anchors"},
+//        "candidates": {"count", "orientation", "scale", "position"},       (the Ghost Tile's candidates)
+//        "density": <field node>,        (optional, default: 0 everywhere; grammar in field_json.h)
+//        "subtract_terrain": true,       (optional: remove the ground solid so details never sink; only
+//        "terrain_falloff_m": 0.05,       acts when the project has a terrain; falloff > 0)
+//        "instancing": {                 (optional)
+//            "strategy": "random" | "elevation" | "distance_to_boundary",   (default random)
+//            "layer_m": 0.02,                                                (> 0)
+//            "orientation": {"direction": [x, y, z] (non-zero) | "gradient" (default [0, 0, 1]),
+//                            "max_angle_deg": 30 (0..180)},
+//            "size": {"target": 1.2 (> 0) | {"field": <field node>, "value_lo": 0, "value_hi": 1,
+//                                              "scale_lo": 1, "scale_hi": 1},
+//                     "tolerance": 0.25 (>= 0)}}}, ...]}
+//
+// An orientation or size object switches that constraint on. "gradient" means the gradient of the
+// type's own compiled density (Ghost Tile Fig. 17 right); a size ramp maps its field's values
+// [value_lo, value_hi] (value_lo < value_hi) to scales [scale_lo, scale_hi] (both > 0, Fig. 22).
 #pragma once
 
+#include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "field/bounds.h"
+#include "field/density_field.h"
+#include "field/direction_field.h"
+#include "field/height_field.h"
 #include "ghosttile/ghost_tile.h"
+#include "instancer/instancing_settings.h"
 #include "mesh/detail_model.h"
 
 namespace ug {
 
-constexpr int kProjectFormatVersion = 1;
+// 2: terrain, extent, instantiation, and per type density, subtract_terrain, terrain_falloff_m, instancing.
+constexpr int kProjectFormatVersion = 2;
+
+// The orientation constraint as the user sets it (compiled to OrientationConstraint).
+struct OrientationDesc {
+    bool enabled = false;
+    DirectionFieldKind kind = DirectionFieldKind::Constant;  // Gradient: of the type's compiled density
+    glm::vec3 direction{0.0f, 0.0f, 1.0f};                   // Constant: unit length
+    float max_angle_deg = 30.0f;                             // in [0, 180]
+};
+
+// The size constraint as the user sets it (compiled to SizeConstraint).
+struct SizeDesc {
+    bool enabled = false;
+    SizeFieldKind kind = SizeFieldKind::Constant;
+    float target = 1.0f;    // Constant: the prescribed scale, > 0
+    DensityField field;     // Ramp: like DetailTypeDesc::density (terrain = height field 0, none attached)
+    float value_lo = 0.0f;  // Ramp: field values mapped to scale_lo / scale_hi, value_lo < value_hi
+    float value_hi = 1.0f;
+    float scale_lo = 1.0f;  // Ramp: > 0
+    float scale_hi = 1.0f;
+    float tolerance = 0.25f;  // relative, >= 0
+};
+
+struct InstancingDesc {
+    PriorityStrategy strategy = PriorityStrategy::Random;
+    float layer_m = 0.02f;  // > 0
+    OrientationDesc orientation;
+    SizeDesc size;
+};
 
 struct DetailTypeDesc {
     DetailModelSource model;    // model.name is the type's name
     DetailTypeSettings ghost;   // ghost.name == model.name
+    // f_i before the solids are subtracted. Terrain primitives refer to height field 0, the project's
+    // terrain; height_fields stays empty here (compileDetailType attaches the loaded terrain).
+    // root == kNoNode: 0 everywhere (the default).
+    DensityField density;
+    bool subtract_terrain = true;     // only acts when the project has a terrain
+    float terrain_falloff_m = 0.05f;  // depth over which the ground solid reaches full weight, > 0
+    InstancingDesc instancing;
+};
+
+enum class TerrainKind : uint8_t { None, Procedural, Image };
+
+struct TerrainDesc {
+    TerrainKind kind = TerrainKind::None;
+    ProceduralTerrainDesc procedural;  // kind == Procedural
+    HeightFieldImageDesc image;        // kind == Image
+    std::string image_path;            // kind == Image: a PNG, as written (relative to the project file)
 };
 
 struct Project {
     std::string name;
     GhostTileSettings ghost_tile;
+    TerrainDesc terrain;
+    std::optional<Bounds> extent;  // finite, lo < hi on every axis; absent: derived (computeSceneExtent)
+    uint64_t instantiation_seed = 1;
+    float chunk_size_m = 8.0f;  // export: edge of the square XY chunks instances are grouped by, > 0
     std::vector<DetailTypeDesc> detail_types;
     std::string base_dir;  // folder of the file it was loaded from (not saved)
+    std::string source;    // the file (or source name) it was parsed from, for messages (not saved)
 };
 
 // Errors: "<path>: <JSON pointer>: <reason>", e.g.
 // "meadow.json: /detail_types/1/candidates/scale: expected [min, max] with 0 < min <= max".
 bool loadProject(const std::string& path, Project* out, std::string* error);
 bool parseProject(const std::string& text, const std::string& source_name, Project* out, std::string* error);
+// Always writes the current format version, every setting explicitly. Density fields are written as
+// trees from their roots (field_json.h: unreachable nodes are dropped, a polyline comes back as the Union
+// of its segments); parseProject(projectToJson(p)) gives back p's settings and fields with the same
+// primitives, nodes and values, bit for bit. Disabled orientation / size constraints are left out (their
+// settings come back as defaults).
 std::string projectToJson(const Project& project);
 bool saveProject(const std::string& path, const Project& project, std::string* error);  // atomic
 

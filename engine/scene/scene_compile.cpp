@@ -1,0 +1,214 @@
+// Compiling the document. The document keeps fields free of loaded data (terrain primitives say "height
+// field 0" and nothing is attached) so it stays a small value that saves, compares and undoes cheaply;
+// the compiled fields carry the shared terrain and the subtracted ground solid (Ghost Tile §6.1: "density
+// fields are modified by computing the difference with the other solid objects in the scene such as the
+// tree and the terrain").
+#include "scene/scene_compile.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <utility>
+
+namespace ug {
+
+namespace {
+
+std::string sceneLabel(const Project& project) {
+    if (!project.source.empty()) return project.source;
+    if (!project.name.empty()) return "project '" + project.name + "'";
+    return "project";
+}
+
+bool fail(std::string* error, const Project& project, const std::string& pointer, const std::string& reason) {
+    if (error) *error = sceneLabel(project) + ": " + pointer + ": " + reason;
+    return false;
+}
+
+bool finiteBounds(const Bounds& b) {
+    for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(b.lo[a]) || !std::isfinite(b.hi[a])) return false;
+    return true;
+}
+
+bool terrainMatches(const Project& project, const HeightField* terrain, std::string* error) {
+    if (project.terrain.kind != TerrainKind::None && !terrain)
+        return fail(error, project, "/terrain", "the terrain is not loaded (call loadTerrain first)");
+    if (project.terrain.kind == TerrainKind::None && terrain)
+        return fail(error, project, "/terrain", "a terrain was given but the project has none");
+    if (terrain && terrain->empty()) return fail(error, project, "/terrain", "the loaded terrain is empty");
+    return true;
+}
+
+// A document field with the loaded terrain attached as height field 0 (what its terrain primitives
+// refer to).
+bool attachTerrain(const DensityField& doc, const std::shared_ptr<const HeightField>& terrain,
+                   DensityField* out, std::string* why) {
+    if (!doc.height_fields.empty()) {
+        *why =
+            "the document's field has height fields attached; terrain primitives must refer to the project's "
+            "terrain as height field 0 and leave attaching to the compiler";
+        return false;
+    }
+    *out = doc;
+    if (terrain) addHeightField(out, terrain);
+    return true;
+}
+
+// The positive bounds of one compiled field, clipped by the terrain as computeSceneExtent says.
+Bounds typeExtent(const DensityField& field, const HeightField* terrain) {
+    Bounds b = positiveBounds(field);
+    if (b.empty()) return Bounds{};
+    if (!terrain) return b;
+    const glm::vec2 lo = terrain->origin();
+    const glm::vec2 hi =
+        lo + glm::vec2(float(terrain->width() - 1), float(terrain->height() - 1)) * terrain->cellSize();
+    b.lo.x = std::max(b.lo.x, lo.x);
+    b.lo.y = std::max(b.lo.y, lo.y);
+    b.hi.x = std::min(b.hi.x, hi.x);
+    b.hi.y = std::min(b.hi.y, hi.y);
+    if (std::isinf(b.lo.z)) b.lo.z = terrain->minHeight() - kTerrainExtentPadM;
+    if (std::isinf(b.hi.z)) b.hi.z = terrain->maxHeight() + kTerrainExtentPadM;
+    return b.empty() ? Bounds{} : b;
+}
+
+}  // namespace
+
+bool loadTerrain(const Project& project, std::shared_ptr<const HeightField>* out, std::string* error) {
+    HeightField hf;
+    std::string why;
+    switch (project.terrain.kind) {
+        case TerrainKind::None:
+            out->reset();
+            return true;
+        case TerrainKind::Procedural:
+            if (!makeProceduralHeightField(project.terrain.procedural, &hf, &why))
+                return fail(error, project, "/terrain/procedural", why);
+            break;
+        case TerrainKind::Image: {
+            const std::string path = resolveProjectPath(project, project.terrain.image_path);
+            if (!loadHeightFieldPng(path, project.terrain.image, &hf, &why))
+                return fail(error, project, "/terrain/image/path", why);
+            break;
+        }
+    }
+    *out = std::make_shared<const HeightField>(std::move(hf));
+    return true;
+}
+
+bool compileDetailType(const Project& project, size_t type_index,
+                       const std::shared_ptr<const HeightField>& terrain, InstanceTypeSettings* out,
+                       std::string* error) {
+    if (type_index >= project.detail_types.size())
+        return fail(error, project, "/detail_types",
+                    "no detail type " + std::to_string(type_index) + " (there are " +
+                        std::to_string(project.detail_types.size()) + ")");
+    if (!terrainMatches(project, terrain.get(), error)) return false;
+    const DetailTypeDesc& d = project.detail_types[type_index];
+    const std::string tp = "/detail_types/" + std::to_string(type_index);
+    std::string why;
+
+    InstanceTypeSettings s;
+    auto field = std::make_shared<DensityField>();
+    if (!attachTerrain(d.density, terrain, field.get(), &why))
+        return fail(error, project, tp + "/density", why);
+    if (!validate(*field, &why)) return fail(error, project, tp + "/density", why);
+    if (terrain && d.subtract_terrain) {
+        if (!std::isfinite(d.terrain_falloff_m) || !(d.terrain_falloff_m > 0.0f))
+            return fail(error, project, tp + "/terrain_falloff_m", "must be finite and > 0");
+        subtractSolids(field.get(), {makeTerrainSolid(0, d.terrain_falloff_m)});
+    }
+    s.field = field;
+
+    const InstancingDesc& in = d.instancing;
+    const std::string ip = tp + "/instancing";
+    s.strategy = in.strategy;
+    if (!std::isfinite(in.layer_m) || !(in.layer_m > 0.0f))
+        return fail(error, project, ip + "/layer_m", "must be finite and > 0");
+    s.layer_m = in.layer_m;
+
+    if (in.orientation.enabled) {
+        const OrientationDesc& o = in.orientation;
+        if (!(o.max_angle_deg >= 0.0f && o.max_angle_deg <= 180.0f))
+            return fail(error, project, ip + "/orientation/max_angle_deg", "must be in [0, 180]");
+        s.orientation.enabled = true;
+        s.orientation.direction.kind = o.kind;
+        if (o.kind == DirectionFieldKind::Constant)
+            s.orientation.direction.direction = o.direction;
+        else
+            s.orientation.direction.field = field;  // Fig. 17 right: u = ∇f_i of this very type
+        s.orientation.min_cos =
+            float(std::clamp(std::cos(double(o.max_angle_deg) * std::numbers::pi / 180.0), -1.0, 1.0));
+        if (!validate(s.orientation.direction, &why))
+            return fail(error, project, ip + "/orientation/direction", why);
+    }
+
+    if (in.size.enabled) {
+        const SizeDesc& z = in.size;
+        if (!std::isfinite(z.tolerance) || z.tolerance < 0.0f)
+            return fail(error, project, ip + "/size/tolerance", "must be finite and >= 0");
+        s.size.enabled = true;
+        s.size.tolerance = z.tolerance;
+        s.size.target.kind = z.kind;
+        if (z.kind == SizeFieldKind::Constant) {
+            s.size.target.scale = z.target;
+        } else {
+            auto size_field = std::make_shared<DensityField>();
+            if (!attachTerrain(z.field, terrain, size_field.get(), &why))
+                return fail(error, project, ip + "/size/target/field", why);
+            s.size.target.field = std::move(size_field);
+            s.size.target.value_lo = z.value_lo;
+            s.size.target.value_hi = z.value_hi;
+            s.size.target.scale_lo = z.scale_lo;
+            s.size.target.scale_hi = z.scale_hi;
+        }
+        if (!validate(s.size.target, &why)) return fail(error, project, ip + "/size/target", why);
+    }
+    *out = std::move(s);
+    return true;
+}
+
+Bounds computeSceneExtent(const Project& project, const CompiledScene& scene) {
+    if (project.extent) return *project.extent;
+    Bounds u;
+    for (const InstanceTypeSettings& t : scene.types)
+        if (t.field) u = unite(u, typeExtent(*t.field, scene.terrain.get()));
+    return u;
+}
+
+bool compileScene(const Project& project, std::shared_ptr<const HeightField> terrain, CompiledScene* out,
+                  std::string* error) {
+    if (!terrainMatches(project, terrain.get(), error)) return false;
+    CompiledScene scene;
+    scene.terrain = std::move(terrain);
+    scene.types.resize(project.detail_types.size());
+    for (size_t t = 0; t < project.detail_types.size(); ++t)
+        if (!compileDetailType(project, t, scene.terrain, &scene.types[t], error)) return false;
+
+    if (project.extent) {
+        const Bounds& e = *project.extent;
+        if (!finiteBounds(e) || !(e.lo.x < e.hi.x && e.lo.y < e.hi.y && e.lo.z < e.hi.z))
+            return fail(error, project, "/extent", "must be finite with min < max on every axis");
+    } else {
+        // Name the type that makes the extent unbounded: that is the one whose density needs changing
+        // (or the reason to write an extent).
+        for (size_t t = 0; t < scene.types.size(); ++t) {
+            const Bounds b = typeExtent(*scene.types[t].field, scene.terrain.get());
+            if (!b.empty() && !finiteBounds(b))
+                return fail(error, project, "/extent",
+                            "required because the density of '" + project.detail_types[t].model.name +
+                                "' is unbounded");
+        }
+    }
+    scene.extent = computeSceneExtent(project, scene);
+    if (scene.extent.empty())
+        return fail(error, project, "/extent", "required because no detail type has any density");
+    for (int a = 0; a < 3; ++a)
+        if (!(scene.extent.lo[a] < scene.extent.hi[a]))
+            return fail(error, project, "/extent",
+                        std::string("required because the derived extent is flat along ") + "xyz"[a]);
+    *out = std::move(scene);
+    return true;
+}
+
+}  // namespace ug

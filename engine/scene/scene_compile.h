@@ -1,0 +1,73 @@
+// From the project document to what the instantiator runs on: the terrain as a height field, one
+// InstanceTypeSettings per detail type (density with the terrain attached and the ground solid
+// subtracted, direction and size fields) and the region to instantiate.
+//
+//   Project project;
+//   if (!loadProject("meadow.json", &project, &error)) ...
+//   std::shared_ptr<const HeightField> terrain;
+//   if (!loadTerrain(project, &terrain, &error)) ...        // once; the slow part for a big image
+//   CompiledScene scene;
+//   if (!compileScene(project, terrain, &scene, &error)) ...
+//   // after the user edits detail type 2:
+//   if (!compileDetailType(project, 2, terrain, &scene.types[2], &error)) ...
+//
+// Errors: "<scene>: <JSON pointer>: <reason>", the pointer naming the offending setting where there is
+// one ("/detail_types/2/density", "/terrain/image/path", "/extent"); <scene> is Project::source, or the
+// project's name when it was not loaded from a file.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "field/bounds.h"
+#include "field/height_field.h"
+#include "instancer/instancing_settings.h"
+#include "scene/project.h"
+
+namespace ug {
+
+// computeSceneExtent pads the terrain's height range by this much where a field is unbounded in Z.
+constexpr float kTerrainExtentPadM = 2.0f;
+
+struct CompiledScene {
+    std::shared_ptr<const HeightField> terrain;  // null when the project has none
+    std::vector<InstanceTypeSettings> types;     // one per detail type, same order
+    Bounds extent;                               // finite, lo < hi on every axis
+};
+
+// Builds the project's terrain: null for TerrainKind::None, the procedural fBm, or the PNG (its path
+// resolved against the project's folder).
+bool loadTerrain(const Project& project, std::shared_ptr<const HeightField>* out, std::string* error);
+
+// Every type's settings (compileDetailType) and the extent (computeSceneExtent). `terrain` must be what
+// loadTerrain returned for this project (null exactly when it has none). Fails when the extent is not
+// given and cannot be derived: "<scene>: /extent: required because the density of '<type>' is
+// unbounded", or "... because no detail type has any density" when every field is empty.
+bool compileScene(const Project& project, std::shared_ptr<const HeightField> terrain, CompiledScene* out,
+                  std::string* error);
+
+// One type, for the editor's per-edit recompile:
+//   field        the document's density with `terrain` attached as height field 0, then
+//                Difference(field, terrain solid(falloff)) when subtract_terrain and there is a terrain;
+//                never null (an empty density compiles to a field that is 0 everywhere);
+//   orientation  Constant: the direction; Gradient: of `field` (the same shared object);
+//                min_cos = cos(max_angle_deg);
+//   size         Constant: the target; Ramp: its own field, with the terrain attached (no subtraction).
+// *out is untouched on failure.
+bool compileDetailType(const Project& project, size_t type_index,
+                       const std::shared_ptr<const HeightField>& terrain, InstanceTypeSettings* out,
+                       std::string* error);
+
+// The project's extent when it has one. Otherwise the union over types of the positive bounds of their
+// compiled fields (positiveBounds: conservative), where, when there is a terrain,
+//   - X and Y are clipped to the terrain's rectangle (a terrain layer is unbounded in XY, and the
+//     terrain is the world),
+//   - an unbounded Z side becomes the terrain's lowest height - kTerrainExtentPadM or its highest
+//     + kTerrainExtentPadM (bounded sides are kept: a tall pile on a hilltop stays whole).
+// The result may be empty (no density anywhere) or infinite (a field unbounded without a terrain to clip
+// it): compileScene reports both.
+Bounds computeSceneExtent(const Project& project, const CompiledScene& scene);
+
+}  // namespace ug
