@@ -15,6 +15,10 @@ void printUsage() {
         "  undergrowth run [SCENE] [--out DIR] [--threads N]\n"
         "      the main job on SCENE (default: the bundled assets/scenes/default.json), headless;\n"
         "      writes statistics, a preview and the Ghost Tile cache under DIR (default: out)\n"
+        "  undergrowth instantiate SCENE -o OUT.glb|OUT.gltf [--stats FILE] [--seed N] [--threads N]\n"
+        "                          [--region xmin,ymin,zmin,xmax,ymax,zmax] [--plain-nodes] [--chunk M] [--cache DIR]\n"
+        "      instantiate the scene (or one region of it) headless and export glTF 2.0 with\n"
+        "      EXT_mesh_gpu_instancing (--plain-nodes: one node per instance); --stats writes the statistics\n"
         "  undergrowth build-tile SCENE [--cache DIR] [--stats FILE] [--threads N]\n"
         "      build (or load from the verified cache) the scene's Ghost Tile and print its statistics\n"
         "  undergrowth bench [--quick] [--json FILE] [--threads N] [--filter NAME]\n"
@@ -32,6 +36,7 @@ int main(int argc, char** argv) {
     if (argc < 2) return ug::cli::runMainJob(argc, argv);
     const std::string command = argv[1];
     if (command == "run") return ug::cli::runMainJob(argc, argv);
+    if (command == "instantiate") return ug::cli::runInstantiateCommand(argc, argv);
     if (command == "build-tile") return ug::cli::runBuildTileCommand(argc, argv);
     if (command == "bench") return ug::cli::runBenchCommand(argc, argv);
     if (command == "make-assets") return ug::cli::runMakeAssetsCommand(argc, argv);

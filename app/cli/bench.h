@@ -13,11 +13,13 @@ struct BenchContext {
     int threads = 0;           // 0 = all hardware threads
     std::string assets_dir;
     std::string filter;        // run only sections whose name contains this
+    std::string cache_dir = "out/cache";  // Ghost Tile cache for scene-based sections
     int repetitions() const { return quick ? 3 : 7; }
 };
 
 // Returns false with an error when a section cannot run at all (e.g. a missing asset).
 bool benchGhostTile(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
+bool benchInstancer(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 
 
 

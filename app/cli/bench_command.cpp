@@ -9,7 +9,7 @@ namespace ug::cli {
 int runBenchCommand(int argc, char** argv) {
     Args args;
     std::string error;
-    if (!parseArgs(argc, argv, 2, {"--json", "--threads", "--filter", "--assets"}, {"--quick"}, &args, &error)) {
+    if (!parseArgs(argc, argv, 2, {"--json", "--threads", "--filter", "--assets", "--cache"}, {"--quick"}, &args, &error)) {
         std::fprintf(stderr, "undergrowth bench: %s\n", error.c_str());
         return 2;
     }
@@ -17,6 +17,7 @@ int runBenchCommand(int argc, char** argv) {
     ctx.quick = args.has("--quick");
     ctx.assets_dir = args.get("--assets", assetsDir());
     ctx.filter = args.get("--filter");
+    ctx.cache_dir = args.get("--cache", ctx.cache_dir);
     if (args.has("--threads")) {
         long t;
         if (!parseInt("--threads", args.get("--threads"), 0, 256, &t, &error)) {
@@ -29,7 +30,7 @@ int runBenchCommand(int argc, char** argv) {
         const char* name;
         bool (*run)(const BenchContext&, std::vector<BenchRow>*, std::string*);
     };
-    const Section sections[] = {{"ghosttile", benchGhostTile}};
+    const Section sections[] = {{"ghosttile", benchGhostTile}, {"instantiate", benchInstancer}};
     std::vector<BenchRow> rows;
     for (const Section& s : sections) {
         if (!ctx.filter.empty() && std::string(s.name).find(ctx.filter) == std::string::npos) continue;

@@ -12,7 +12,9 @@ bool parseArgs(int argc, char** argv, int first, const std::set<std::string>& wi
                const std::set<std::string>& flags, Args* out, std::string* error) {
     for (int i = first; i < argc; ++i) {
         std::string a = argv[i];
-        if (a.size() > 2 && a.rfind("--", 0) == 0) {
+        // Short options ("-o") are options only when the command declares them.
+        const bool short_option = a.size() == 2 && a[0] == '-' && (with_value.count(a) || flags.count(a));
+        if ((a.size() > 2 && a.rfind("--", 0) == 0) || short_option) {
             std::string value;
             bool inline_value = false;
             if (auto eq = a.find('='); eq != std::string::npos) {

@@ -8,5 +8,6 @@ int runMainJob(int argc, char** argv);        // undergrowth run [SCENE] [--out 
 int runBuildTileCommand(int argc, char** argv);  // undergrowth build-tile SCENE [--cache DIR] [--stats FILE]
 int runMakeAssetsCommand(int argc, char** argv);  // undergrowth make-assets [--out DIR]
 int runBenchCommand(int argc, char** argv);      // undergrowth bench [--quick] [--json FILE]
+int runInstantiateCommand(int argc, char** argv);  // undergrowth instantiate SCENE -o OUT.glb [...]
 
 }  // namespace ug::cli

@@ -52,48 +52,52 @@ inline const HeightField* heightFieldOf(const DensityField& f, const Primitive& 
 }
 
 template <bool kGrad>
-inline Sample<kGrad> childSample(const DensityField& f, const Sample<kGrad>* slots, uint32_t ref, glm::vec3 p) {
+inline Sample<kGrad> childSample(const DensityField& f, const Sample<kGrad>* slots, uint32_t ref, glm::vec3 p,
+                                 field_detail::HeightCache* cache) {
     if (ref == kZeroChild) return Sample<kGrad>(0.0f);
     if (ref & kPrimitiveChildBit) {
         const Primitive& pr = f.primitives[ref & ~kPrimitiveChildBit];
-        return field_detail::evalPrimitive<kGrad>(pr, heightFieldOf(f, pr), p);
+        return field_detail::evalPrimitive<kGrad>(pr, heightFieldOf(f, pr), p, cache);
     }
     return slots[ref];
 }
 
 template <bool kGrad>
 inline Sample<kGrad> evalNode(const DensityField& f, FieldOp op, const uint32_t* refs, uint32_t count,
-                              const Sample<kGrad>* slots, glm::vec3 p) {
+                              const Sample<kGrad>* slots, glm::vec3 p, field_detail::HeightCache* cache) {
     using S = Sample<kGrad>;
     switch (op) {
         case FieldOp::Blend: {
             S acc(0.0f);
-            for (uint32_t i = 0; i < count; ++i) acc += childSample<kGrad>(f, slots, refs[i], p);
+            for (uint32_t i = 0; i < count; ++i) acc += childSample<kGrad>(f, slots, refs[i], p, cache);
             return acc;
         }
         case FieldOp::Union: {
             if (count == 0) return S(0.0f);
-            S best = childSample<kGrad>(f, slots, refs[0], p);
+            S best = childSample<kGrad>(f, slots, refs[0], p, cache);
             for (uint32_t i = 1; i < count; ++i) {
-                const S c = childSample<kGrad>(f, slots, refs[i], p);
+                const S c = childSample<kGrad>(f, slots, refs[i], p, cache);
                 if (sampleValue(c) > sampleValue(best)) best = c;
             }
             return best;
         }
         case FieldOp::Intersection: {
             if (count == 0) return S(0.0f);
-            S best = childSample<kGrad>(f, slots, refs[0], p);
+            S best = childSample<kGrad>(f, slots, refs[0], p, cache);
             for (uint32_t i = 1; i < count; ++i) {
-                const S c = childSample<kGrad>(f, slots, refs[i], p);
+                const S c = childSample<kGrad>(f, slots, refs[i], p, cache);
                 if (sampleValue(c) < sampleValue(best)) best = c;
             }
             return best;
         }
         case FieldOp::Difference: {
             if (count == 0) return S(0.0f);
-            S acc = childSample<kGrad>(f, slots, refs[0], p);
+            S acc = childSample<kGrad>(f, slots, refs[0], p, cache);
+            // Nothing to carve where a <= 0: keep a and skip the solids (most points a tile tests lie
+            // outside a thin layer, so this saves the terrain solid's evaluation there).
+            if (!(sampleValue(acc) > 0.0f)) return acc;
             for (uint32_t i = 1; i < count; ++i) {
-                const S c = childSample<kGrad>(f, slots, refs[i], p);
+                const S c = childSample<kGrad>(f, slots, refs[i], p, cache);
                 if (sampleValue(c) > 0.0f) acc -= c;
             }
             return acc;
@@ -105,18 +109,20 @@ inline Sample<kGrad> evalNode(const DensityField& f, FieldOp op, const uint32_t*
 // The single evaluation routine. slots has one entry per field node.
 template <bool kGrad>
 inline Sample<kGrad> evalPoint(const DensityField& f, const TileFieldList* list, Sample<kGrad>* slots, glm::vec3 p) {
+    field_detail::HeightCache cache;
     if (!list) {
         if (f.root == kNoNode) return Sample<kGrad>(0.0f);
         for (uint32_t n = 0; n <= f.root; ++n) {
             const FieldNode& node = f.nodes[n];
-            slots[n] = evalNode<kGrad>(f, node.op, f.children.data() + node.first_child, node.child_count, slots, p);
+            slots[n] =
+                evalNode<kGrad>(f, node.op, f.children.data() + node.first_child, node.child_count, slots, p, &cache);
         }
         return slots[f.root];
     }
     if (!list->root_live) return Sample<kGrad>(0.0f);
     for (const TileNode& node : list->nodes)
         slots[node.node] =
-            evalNode<kGrad>(f, node.op, list->children.data() + node.first_child, node.child_count, slots, p);
+            evalNode<kGrad>(f, node.op, list->children.data() + node.first_child, node.child_count, slots, p, &cache);
     return slots[f.root];
 }
 

@@ -13,8 +13,10 @@
 //   Blend         v = sum of v_i (in child order, starting from +0)     g = sum of g_i
 //   Union         v = max of v_i                                        g = g of the first child with that max
 //   Intersection  v = min of v_i                                        g = g of the first child with that min
-//   Difference    v = v_0 - sum_{i>=1} max(v_i, 0)                      g = g_0 - sum of g_i over v_i > 0
-//                 (the solid b only removes where it is positive: a - max(b, 0))
+//   Difference    v = v_0 - sum_{i>=1} max(v_i, 0) where v_0 > 0,       g = g_0 - sum of g_i over v_i > 0
+//                 v = v_0 where v_0 <= 0                                 (g = g_0 there)
+//                 (the solid b only removes where it is positive: a - max(b, 0); where a <= 0 there is
+//                 nothing to remove, so the solids are not even evaluated)
 //   An operator with no children is 0.
 //
 // Exactness (DESIGN.md, "Instantiation as a pure function"): a value does not depend on who computed it.

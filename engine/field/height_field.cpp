@@ -36,34 +36,12 @@ HeightField::HeightField(glm::vec2 origin_m, float cell_size_m, int width, int h
 
 namespace {
 
-// Where a world coordinate falls along one axis of n samples: the cell's first sample, the fraction in
-// [0, 1] across it, and whether the coordinate was inside the covered span (not clamped).
-struct AxisCell {
-    int i0;
-    int i1;
-    float f;
-    float inside;  // 1 inside, 0 when clamped: multiplies the derivative along this axis
-};
-
-AxisCell locate(float coord_m, float origin_m, float cell_m, int n) {
-    const float last = float(n - 1);
-    float u = (coord_m - origin_m) / cell_m;
-    AxisCell c;
-    c.inside = (u >= 0.0f && u <= last) ? 1.0f : 0.0f;
-    u = std::clamp(u, 0.0f, last);  // callers pass finite points (a NaN would clamp to garbage)
-    if (n == 1) return AxisCell{0, 0, 0.0f, 0.0f};
-    c.i0 = std::min(int(u), n - 2);
-    c.i1 = c.i0 + 1;
-    c.f = u - float(c.i0);
-    return c;
-}
-
 }  // namespace
 
 glm::vec3 HeightField::sampleWithGradient(float x_m, float y_m) const {
     assert(!empty());
-    const AxisCell cx = locate(x_m, origin_m_.x, cell_size_m_, width_);
-    const AxisCell cy = locate(y_m, origin_m_.y, cell_size_m_, height_);
+    const height_detail::AxisCell cx = height_detail::locate(x_m, origin_m_.x, cell_size_m_, width_);
+    const height_detail::AxisCell cy = height_detail::locate(y_m, origin_m_.y, cell_size_m_, height_);
     const float h00 = at(cx.i0, cy.i0), h10 = at(cx.i1, cy.i0);
     const float h01 = at(cx.i0, cy.i1), h11 = at(cx.i1, cy.i1);
     const float gx = 1.0f - cx.f, gy = 1.0f - cy.f;
@@ -102,7 +80,7 @@ glm::vec2 HeightField::heightRange(glm::vec2 lo_m, glm::vec2 hi_m) const {
     return {mn, mx};
 }
 
-float HeightField::sample(float x_m, float y_m) const { return sampleWithGradient(x_m, y_m).x; }
+
 
 glm::vec2 HeightField::gradient(float x_m, float y_m) const {
     const glm::vec3 s = sampleWithGradient(x_m, y_m);

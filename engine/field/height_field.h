@@ -13,6 +13,7 @@
 //   if (!loadHeightFieldPng("terrain.png", HeightFieldImageDesc{.max_height_m = 40}, &hf, &error)) ...
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -20,6 +21,32 @@
 #include <glm/glm.hpp>
 
 namespace ug {
+
+namespace height_detail {
+
+// Where a world coordinate falls along one axis of n samples: the cell's first sample, the fraction in
+// [0, 1] across it, and whether the coordinate was inside the covered span (not clamped).
+struct AxisCell {
+    int i0;
+    int i1;
+    float f;
+    float inside;  // 1 inside, 0 when clamped: multiplies the derivative along this axis
+};
+
+inline AxisCell locate(float coord_m, float origin_m, float cell_m, int n) {
+    const float last = float(n - 1);
+    float u = (coord_m - origin_m) / cell_m;
+    AxisCell c;
+    c.inside = (u >= 0.0f && u <= last) ? 1.0f : 0.0f;
+    u = std::clamp(u, 0.0f, last);  // callers pass finite points (a NaN would clamp to garbage)
+    if (n == 1) return AxisCell{0, 0, 0.0f, 0.0f};
+    c.i0 = std::min(int(u), n - 2);
+    c.i1 = c.i0 + 1;
+    c.f = u - float(c.i0);
+    return c;
+}
+
+}  // namespace height_detail
 
 // The largest accepted grid, per axis (16384² samples = 1 GiB of floats).
 constexpr int kMaxHeightFieldSide = 16384;
@@ -42,7 +69,18 @@ public:
     float maxHeight() const { return max_height_m_; }
 
     // Bilinear height at world (x, y), clamped to the rectangle. Must not be called on an empty field.
-    float sample(float x_m, float y_m) const;
+    // Inline: the hot path of every terrain primitive. The same expressions as sampleWithGradient(), so
+    // the bits agree.
+    float sample(float x_m, float y_m) const {
+        const height_detail::AxisCell cx = height_detail::locate(x_m, origin_m_.x, cell_size_m_, width_);
+        const height_detail::AxisCell cy = height_detail::locate(y_m, origin_m_.y, cell_size_m_, height_);
+        const float h00 = at(cx.i0, cy.i0), h10 = at(cx.i1, cy.i0);
+        const float h01 = at(cx.i0, cy.i1), h11 = at(cx.i1, cy.i1);
+        const float gx = 1.0f - cx.f, gy = 1.0f - cy.f;
+        const float bottom = h00 * gx + h10 * cx.f;
+        const float top = h01 * gx + h11 * cx.f;
+        return bottom * gy + top * cy.f;
+    }
     // Analytic gradient (dh/dx, dh/dy) of the same bilinear patch (dimensionless, m per m); the component
     // along an axis where (x, y) is outside the rectangle is 0. On a cell edge the cell with the larger
     // index is used (the last cell on the far border).

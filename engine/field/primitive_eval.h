@@ -40,8 +40,25 @@ inline Sample<kGrad> kernel(float weight, float d2, float r2, glm::vec3 half_gra
     }
 }
 
+// The height under one point, shared by the terrain primitives evaluated there (a layer and the ground
+// solid ask for the same h(x, y)): the same call gives the same bits, and the second one is free.
+struct HeightCache {
+    const HeightField* hf = nullptr;
+    glm::vec3 hs{0.0f};
+};
+
 template <bool kGrad>
-inline Sample<kGrad> evalPrimitive(const Primitive& pr, const HeightField* hf, glm::vec3 p) {
+inline glm::vec3 terrainHeight(const HeightField* hf, glm::vec3 p, HeightCache* cache) {
+    if (cache && cache->hf == hf) return cache->hs;
+    const glm::vec3 hs = kGrad ? hf->sampleWithGradient(p.x, p.y) : glm::vec3(hf->sample(p.x, p.y), 0.0f, 0.0f);
+    if (cache) *cache = HeightCache{hf, hs};
+    return hs;
+}
+
+// `cache` (optional) must belong to this point p and to one value of kGrad.
+template <bool kGrad>
+inline Sample<kGrad> evalPrimitive(const Primitive& pr, const HeightField* hf, glm::vec3 p,
+                                   HeightCache* cache = nullptr) {
     const float r2 = pr.radius_m * pr.radius_m;
     switch (pr.kind) {
         case PrimitiveKind::Point: {
@@ -102,7 +119,7 @@ inline Sample<kGrad> evalPrimitive(const Primitive& pr, const HeightField* hf, g
         case PrimitiveKind::TerrainLayer: {
             // Vertical distance only (the layer is "thickness above the ground" as an artist reads it);
             // d = h - z below the ground, z - (h + thickness) above the layer, with ∇d from ∇h.
-            const glm::vec3 hs = hf->sampleWithGradient(p.x, p.y);
+            const glm::vec3 hs = terrainHeight<kGrad>(hf, p, cache);
             const float below = hs.x - p.z;
             if (below > 0.0f) return kernel<kGrad>(pr.weight, below * below, r2, below * glm::vec3(hs.y, hs.z, -1.0f));
             const float above = p.z - (hs.x + pr.thickness_m);
@@ -110,7 +127,7 @@ inline Sample<kGrad> evalPrimitive(const Primitive& pr, const HeightField* hf, g
             return kernel<kGrad>(pr.weight, 0.0f, r2, glm::vec3(0.0f));
         }
         case PrimitiveKind::TerrainSolid: {
-            const glm::vec3 hs = hf->sampleWithGradient(p.x, p.y);
+            const glm::vec3 hs = terrainHeight<kGrad>(hf, p, cache);
             if (!(p.z < hs.x)) return Sample<kGrad>(0.0f);  // exactly 0 on and above the ground
             const float d = p.z - (hs.x - pr.radius_m);
             if (d <= 0.0f) return kernel<kGrad>(pr.weight, 0.0f, r2, glm::vec3(0.0f));

@@ -131,6 +131,8 @@ struct TileScratch {
     TileFieldList list;
     std::vector<uint32_t> survivors;
     std::vector<glm::vec3> points;
+    std::vector<float> first_values;
+    std::vector<uint32_t> second;  // survivors (indices) whose first anchor is positive
     std::vector<float> values;
 };
 
@@ -285,22 +287,39 @@ void Instantiator::Engine::computeTile(TileState* ts, const std::vector<const Ti
                 continue;
             }
             scratch->survivors.push_back(j);
-            for (uint32_t k = prep.anchor_begin[j]; k < prep.anchor_begin[j + 1]; ++k)
-                scratch->points.push_back(origin + prep.anchors[k]);
+            scratch->points.push_back(origin + prep.anchors[prep.anchor_begin[j]]);
+        }
+        // Two stages: the first anchor of every survivor, then the other anchors of those it did not
+        // cull (most candidates of a thin layer fall out at the first).
+        scratch->first_values.resize(scratch->points.size());
+        evaluateBatch(*rt.field, &list, scratch->points.data(), scratch->points.size(), scratch->first_values.data());
+        scratch->points.clear();
+        scratch->second.clear();
+        for (size_t k = 0; k < scratch->survivors.size(); ++k) {
+            const uint32_t j = scratch->survivors[k];
+            if (!(scratch->first_values[k] > 0.0f)) {
+                ++ts->culled;
+                continue;
+            }
+            scratch->second.push_back(uint32_t(k));
+            for (uint32_t a = prep.anchor_begin[j] + 1; a < prep.anchor_begin[j + 1]; ++a)
+                scratch->points.push_back(origin + prep.anchors[a]);
         }
         scratch->values.resize(scratch->points.size());
         evaluateBatch(*rt.field, &list, scratch->points.data(), scratch->points.size(), scratch->values.data());
 
         size_t v = 0;
-        for (uint32_t j : scratch->survivors) {
+        for (uint32_t k : scratch->second) {
+            const uint32_t j = scratch->survivors[k];
             const uint32_t count = prep.anchor_begin[j + 1] - prep.anchor_begin[j];
-            const float* values = scratch->values.data() + v;
-            v += count;
+            const float* rest = scratch->values.data() + v;
+            v += count - 1;
             bool positive_everywhere = true;
             float sum = 0.0f;
-            for (uint32_t k = 0; k < count; ++k) {
-                positive_everywhere = positive_everywhere && values[k] > 0.0f;
-                sum += values[k];
+            sum += scratch->first_values[k];  // the same order of additions as one pass over the anchors
+            for (uint32_t a = 0; a + 1 < count; ++a) {
+                positive_everywhere = positive_everywhere && rest[a] > 0.0f;
+                sum += rest[a];
             }
             if (!positive_everywhere) {
                 ++ts->culled;
@@ -454,6 +473,7 @@ bool Instantiator::Engine::enumerateAndCompute(const Bounds& box_in, const Insta
     parallelFor(block_count, threads, 1, [&](size_t b0, size_t b1, int) {
         TileScratch scratch;
         std::vector<TileFieldList> block_lists(type_count);
+        std::vector<Bounds> block_positive(type_count);
         std::vector<const TileFieldList*> parents(type_count);
         for (size_t b = b0; b < b1; ++b) {
             if (plan[b].coords.empty()) continue;
@@ -463,16 +483,21 @@ bool Instantiator::Engine::enumerateAndCompute(const Bounds& box_in, const Insta
             const glm::ivec3 last = glm::min(first + (kBlock - 1), thi);
             const Bounds block_box{tileOrigin(first, s), tileOrigin(last + 1, s)};
             for (size_t i = 0; i < type_count; ++i) {
-                parents[i] = nullptr;
+                block_positive[i] = Bounds{};
                 if (!runtime[i].field) continue;
                 buildTileList(*runtime[i].field, expand(block_box, prep.reach[i]), &block_lists[i], &global_lists[i]);
-                if (!block_lists[i].empty()) parents[i] = &block_lists[i];
+                if (!block_lists[i].empty()) block_positive[i] = positiveBoundsIn(*runtime[i].field, block_lists[i]);
             }
             per_block[b].resize(plan[b].coords.size());
             for (size_t k = 0; k < plan[b].coords.size(); ++k) {
                 TileState& ts = per_block[b][k];
                 ts.coord = plan[b].coords[k];
                 ts.key = packTile(ts.coord);
+                // A type whose positive part misses this tile's reach is not even looked at here.
+                const glm::vec3 o = tileOrigin(ts.coord, s);
+                for (size_t i = 0; i < type_count; ++i)
+                    parents[i] = overlaps(expand(Bounds{o, o + s}, prep.reach[i]), block_positive[i]) ? &block_lists[i]
+                                                                                                    : nullptr;
                 computeTile(&ts, parents, &scratch);
             }
             done.fetch_add(plan[b].coords.size(), std::memory_order_relaxed);

@@ -110,8 +110,8 @@ bool validateScene(const SceneExport& scene, std::string* why) {
         *why = "chunk_size_m must be finite and > 0 (got " + formatFloat(scene.chunk_size_m) + ")";
         return false;
     }
-    if (!(std::isfinite(scene.delta_m) && scene.delta_m >= 0.0f)) {
-        *why = "delta_m must be finite and >= 0 (got " + formatFloat(scene.delta_m) + ")";
+    if (!std::isfinite(scene.delta_m)) {  // negative is fine: objects may interpenetrate a little
+        *why = "delta_m must be finite (got " + formatFloat(scene.delta_m) + ")";
         return false;
     }
     std::unordered_set<std::string> names;

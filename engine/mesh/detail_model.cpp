@@ -4,6 +4,8 @@
 // hence AnchorMode::SphereCenters as the default.
 #include "mesh/detail_model.h"
 
+#include <limits>
+
 #include <cmath>
 
 #include "core/hash.h"
@@ -56,12 +58,12 @@ bool checkSource(const DetailModelSource& source, std::string* error) {
                     return fail(error, source, "authored_anchors[" + std::to_string(i) + "] is not finite");
             break;
         case AnchorMode::Surface:
+        case AnchorMode::SphereCenters:
             if (source.anchor_count == 0 || source.anchor_count > 4096)
                 return fail(error, source, "anchor_count = " + std::to_string(source.anchor_count) +
-                                               " is outside [1, 4096] for anchor_mode Surface");
+                                               " is outside [1, 4096]");
             break;
         case AnchorMode::Center:
-        case AnchorMode::SphereCenters:
             break;
         default:
             return fail(error, source, "anchor_mode " + std::to_string(int(source.anchor_mode)) + " is unknown");
@@ -86,9 +88,27 @@ bool buildModel(const DetailModelSource& source, TriangleMesh mesh, DetailModel*
     switch (source.anchor_mode) {
         case AnchorMode::Authored: model.anchors = source.authored_anchors; break;
         case AnchorMode::Center: model.anchors = {glm::vec3(0.0f)}; break;
-        case AnchorMode::SphereCenters:
-            for (const Sphere& s : model.spheres) model.anchors.push_back(s.center);
+        case AnchorMode::SphereCenters: {
+            // Farthest-point thinning to anchor_count centres: evaluating the density at ~90 anchors per
+            // candidate would dominate instantiation, and 8 well-spread ones bound the object as well.
+            // The first is the centre nearest the origin: the instantiator tests it first.
+            std::vector<glm::vec3> centres;
+            for (const Sphere& sp : model.spheres) centres.push_back(sp.center);
+            std::vector<float> gap(centres.size(), std::numeric_limits<float>::infinity());
+            size_t next = 0;
+            for (size_t k = 1; k < centres.size(); ++k)
+                if (glm::length(centres[k]) < glm::length(centres[next])) next = k;
+            while (model.anchors.size() < std::min<size_t>(source.anchor_count, centres.size())) {
+                model.anchors.push_back(centres[next]);
+                size_t far = 0;
+                for (size_t k = 0; k < centres.size(); ++k) {
+                    gap[k] = std::min(gap[k], glm::length(centres[k] - centres[next]));
+                    if (gap[k] > gap[far]) far = k;
+                }
+                next = far;
+            }
             break;
+        }
         case AnchorMode::Surface:
             sampleSurface(mesh, source.anchor_count, hashWords(source.fit.seed, kAnchorSeedSalt), &model.anchors, nullptr);
             model.anchors.push_back(glm::vec3(0.0f));

@@ -48,7 +48,7 @@ struct SphereFitReport {
 enum class AnchorMode : uint8_t {
     Authored,       // DetailModelSource::authored_anchors
     Center,         // one anchor at the model origin
-    SphereCenters,  // the centres of the collision spheres
+    SphereCenters,  // up to `anchor_count` centres of the collision spheres, spread by farthest-point sampling
     Surface,        // `anchor_count` points sampled on the mesh surface, plus the origin
 };
 
@@ -62,7 +62,7 @@ struct DetailModelSource {
     SphereFitSettings fit;
     AnchorMode anchor_mode = AnchorMode::SphereCenters;
     std::vector<glm::vec3> authored_anchors;  // model space, used when anchor_mode == Authored
-    uint32_t anchor_count = 8;                // for AnchorMode::Surface
+    uint32_t anchor_count = 8;                // Surface: samples; SphereCenters: at most this many centres
 };
 
 struct DetailModel {

@@ -60,7 +60,12 @@ TEST(DensityField, OperatorValuesAreExact) {
     const float b = 0.5f * std::pow(1.0f - 1.5f * 1.5f / 4.0f, 3.0f);
     EXPECT_FLOAT_EQ(evaluate(twoBalls(FieldOp::Union, 0.5f), right), b);
     EXPECT_EQ(evaluate(twoBalls(FieldOp::Intersection, 0.5f), right), 0.0f);
-    EXPECT_FLOAT_EQ(evaluate(twoBalls(FieldOp::Difference, 0.5f), right), -b);
+    // Where a <= 0 the difference keeps a (there is nothing to carve): 0 here, not -b.
+    EXPECT_EQ(evaluate(twoBalls(FieldOp::Difference, 0.5f), right), 0.0f);
+    // Where both reach, a - b (x = 1.5: A at d = 1.5, B at d = 0.5).
+    const glm::vec3 mid(1.5f, 0, 0);
+    const float a_mid = std::pow(1.0f - 1.5f * 1.5f / 4.0f, 3.0f), b_mid = 0.5f * std::pow(1.0f - 0.25f / 4.0f, 3.0f);
+    EXPECT_FLOAT_EQ(evaluate(twoBalls(FieldOp::Difference, 0.5f), mid), a_mid - b_mid);
     // Outside both supports every operator is exactly 0.
     for (FieldOp op : {FieldOp::Blend, FieldOp::Union, FieldOp::Intersection, FieldOp::Difference})
         EXPECT_EQ(evaluate(twoBalls(op, 0.5f), glm::vec3(10, 0, 0)), 0.0f) << fieldOpName(op);

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -33,7 +34,12 @@ TEST(DetailModel, LoadsGlbConvertsYUpAndScales) {
     EXPECT_NEAR(b.max.z, 2.0f * a.max.z, 1e-5f);  // still Z up, twice the size
     EXPECT_NEAR(b.min.y, 2.0f * a.min.y, 1e-5f);
     EXPECT_FALSE(model.spheres.empty());
-    EXPECT_EQ(model.anchors.size(), model.spheres.size());  // default: SphereCenters
+    // Default: SphereCenters, thinned to at most 8 centres, the first the one nearest the origin.
+    EXPECT_EQ(model.anchors.size(), std::min<size_t>(8, model.spheres.size()));
+    for (const glm::vec3& anchor : model.anchors)
+        EXPECT_TRUE(std::any_of(model.spheres.begin(), model.spheres.end(),
+                                [&](const Sphere& s) { return s.center == anchor; }));
+    for (const Sphere& s : model.spheres) EXPECT_GE(glm::length(s.center), glm::length(model.anchors[0]));
     EXPECT_EQ(model.fit_report.sphere_count, model.spheres.size());
     expectBoundsEncloseSpheres(model);
 }

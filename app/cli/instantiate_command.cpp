@@ -1,0 +1,193 @@
+// `undergrowth instantiate SCENE.json -o OUT.glb`: the headless batch job. Loads the scene, instantiates
+// it (or one region of it, for jobs cut across machines), writes glTF and the statistics.
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/cli_args.h"
+#include "cli/commands.h"
+#include "cli/scene_job.h"
+#include "core/atomic_file.h"
+#include "core/hash.h"
+#include "core/parallel.h"
+#include "io/instance_export.h"
+
+namespace ug::cli {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+int fail(const std::string& message, int code = 1) {
+    std::fprintf(stderr, "undergrowth instantiate: %s\n", message.c_str());
+    return code;
+}
+
+// "xmin,ymin,zmin,xmax,ymax,zmax": six finite numbers with min < max on every axis.
+bool parseRegion(const std::string& text, Bounds* out, std::string* error) {
+    std::vector<double> v;
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        size_t used = 0;
+        double d = 0.0;
+        try {
+            d = std::stod(item, &used);
+        } catch (...) {
+            used = 0;
+        }
+        if (used == 0 || used != item.size() || !std::isfinite(d)) {
+            *error = "--region: '" + item + "' is not a finite number";
+            return false;
+        }
+        v.push_back(d);
+    }
+    if (v.size() != 6) {
+        *error = "--region: expected xmin,ymin,zmin,xmax,ymax,zmax (6 numbers), got " + std::to_string(v.size());
+        return false;
+    }
+    for (int a = 0; a < 3; ++a)
+        if (!(v[size_t(a)] < v[size_t(a) + 3])) {
+            *error = "--region: min must be < max on every axis (" + std::string(1, "xyz"[a]) + ": " +
+                     std::to_string(v[size_t(a)]) + " >= " + std::to_string(v[size_t(a) + 3]) + ")";
+            return false;
+        }
+    *out = Bounds{glm::vec3(float(v[0]), float(v[1]), float(v[2])), glm::vec3(float(v[3]), float(v[4]), float(v[5]))};
+    return true;
+}
+
+}  // namespace
+
+nlohmann::json instanceStatsJson(const SceneJob& job, const InstanceStats& st, uint64_t seed, int threads,
+                                 const Bounds* region) {
+    nlohmann::json per_type = nlohmann::json::object();
+    nlohmann::json types = nlohmann::json::array();
+    for (size_t i = 0; i < job.models.size(); ++i) {
+        const uint64_t n = i < st.instances_per_type.size() ? st.instances_per_type[i] : 0;
+        per_type[job.models[i].name] = n;
+        types.push_back({{"name", job.models[i].name},
+                         {"instances", n},
+                         {"strategy", priorityStrategyName(job.compiled.types[i].strategy)}});
+    }
+    const Bounds& e = job.compiled.extent;
+    nlohmann::json j = {{"scene", job.project.name},
+                        {"seed", seed},
+                        {"threads", threads},
+                        {"instances", st.instances},
+                        {"candidates_tested", st.candidates_tested},
+                        {"rejected", st.rejected},
+                        {"culled", st.culled},
+                        {"density_rejected", st.density_rejected},
+                        {"constraint_rejected", st.constraint_rejected},
+                        {"collision_rejected", st.collision_rejected},
+                        {"seconds", st.seconds},
+                        {"tiles_touched", st.tiles_touched},
+                        {"tiles_with_instances", st.tiles_changed},
+                        {"store_bytes", st.store_bytes},
+                        {"bytes_per_instance", st.bytes_per_instance},
+                        {"instances_per_type", per_type},
+                        {"detail_types", types},
+                        {"extent", {{"min", {e.lo.x, e.lo.y, e.lo.z}}, {"max", {e.hi.x, e.hi.y, e.hi.z}}}},
+                        {"ghost_tile",
+                         {{"key", hex64(job.tile.key)},
+                          {"candidates", job.tile.stats.candidate_count},
+                          {"pairs", job.tile.stats.pair_count},
+                          {"tile_size_m", job.tile.settings.tile_size_m},
+                          {"delta_m", job.tile.settings.delta_m}}}};
+    if (region)
+        j["region"] = {{"min", {region->lo.x, region->lo.y, region->lo.z}},
+                       {"max", {region->hi.x, region->hi.y, region->hi.z}}};
+    return j;
+}
+
+int runInstantiateCommand(int argc, char** argv) {
+    Args args;
+    std::string error;
+    const char* usage =
+        "usage: undergrowth instantiate SCENE.json -o OUT.glb|OUT.gltf [--stats FILE] [--seed N] [--threads N]\n"
+        "       [--region xmin,ymin,zmin,xmax,ymax,zmax] [--cache DIR] [--plain-nodes] [--chunk METRES]";
+    if (!parseArgs(argc, argv, 2, {"-o", "--out", "--stats", "--seed", "--threads", "--region", "--cache", "--chunk"},
+                   {"--plain-nodes"}, &args, &error) ||
+        args.positional.size() != 1)
+        return fail(error.empty() ? usage : error + "\n" + usage, 2);
+    const std::string out = args.has("-o") ? args.get("-o") : args.get("--out");
+    if (out.empty()) return fail(std::string("missing -o OUT.glb\n") + usage, 2);
+    const std::string ext = fs::path(out).extension().string();
+    if (ext != ".glb" && ext != ".gltf") return fail(out + ": the output must end in .glb or .gltf", 2);
+    int threads = 0;
+    if (args.has("--threads")) {
+        long t;
+        if (!parseInt("--threads", args.get("--threads"), 0, 256, &t, &error)) return fail(error, 2);
+        threads = int(t);
+    }
+    Bounds region;
+    const bool has_region = args.has("--region");
+    if (has_region && !parseRegion(args.get("--region"), &region, &error)) return fail(error, 2);
+    float chunk = -1.0f;
+    if (args.has("--chunk")) {
+        try {
+            chunk = std::stof(args.get("--chunk"));
+        } catch (...) {
+            chunk = -1.0f;
+        }
+        if (!(chunk > 0.0f) || !std::isfinite(chunk)) return fail("--chunk: expected a length in metres > 0", 2);
+    }
+
+    SceneJob job;
+    const std::string scene = args.positional[0];
+    if (!loadSceneJob(scene, args.get("--cache", (fs::path(out).parent_path() / "cache").string()), threads, false,
+                      &job, &error))
+        return fail(error);
+    uint64_t seed = job.project.instantiation_seed;
+    if (args.has("--seed")) {
+        const std::string s = args.get("--seed");
+        size_t used = 0;
+        try {
+            seed = std::stoull(s, &used);
+        } catch (...) {
+            used = 0;
+        }
+        if (used == 0 || used != s.size() || s[0] == '-') return fail("--seed: '" + s + "' is not a whole number >= 0", 2);
+    }
+
+    const InstancerInput input = instancerInput(job, seed);
+    InstanceStats st;
+    InstanceStore store;
+    int last = -1;
+    InstanceOptions options{.threads = threads, .progress = [&](float f) {
+                                const int p = int(f * 100.0f);
+                                if (p / 25 != last / 25) std::fprintf(stderr, "\r  instantiating: %3d%%", p);
+                                last = p;
+                            }};
+    bool ok;
+    if (has_region) {
+        if (overlaps(region, input.extent) == false)
+            return fail(scene + ": --region does not overlap the scene extent");
+        ok = instantiateRegion(input, region, options, &store, &st, &error);
+    } else {
+        Instantiator inst;
+        ok = inst.setInput(input, &error) && inst.instantiateAll(options, &st, &error);
+        if (ok) store = inst.store();
+    }
+    if (last >= 0) std::fprintf(stderr, "\n");
+    if (!ok) return fail(scene + ": " + error);
+
+    const nlohmann::json stats = instanceStatsJson(job, st, seed, resolveThreadCount(threads), has_region ? &region : nullptr);
+    InstanceExportOptions export_options;
+    export_options.chunk_size_m = chunk > 0.0f ? chunk : job.project.chunk_size_m;
+    export_options.use_instancing_extension = !args.has("--plain-nodes");
+    if (!exportInstancedScene(out, job.tile, job.models, store, job.compiled.terrain.get(), job.compiled.extent,
+                              export_options, stats.dump(), &error))
+        return fail(error);
+    if (args.has("--stats") && !writeTextFileAtomically(args.get("--stats"), stats.dump(2) + "\n", &error))
+        return fail(error);
+    std::printf("%llu instances (%llu candidates tested, %llu rejected) in %.3f s -> %s\n",
+                static_cast<unsigned long long>(st.instances), static_cast<unsigned long long>(st.candidates_tested),
+                static_cast<unsigned long long>(st.rejected), st.seconds, out.c_str());
+    return 0;
+}
+
+}  // namespace ug::cli

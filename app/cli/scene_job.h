@@ -1,0 +1,35 @@
+// What every scene-level command needs: the project, its models, its Ghost Tile (from the verified cache
+// or built and cached) and its compiled fields, ready to instantiate.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ghosttile/ghost_tile.h"
+#include "ghosttile/ghost_tile_cache.h"
+#include "instancer/instantiator.h"
+#include "scene/project.h"
+#include "scene/scene_compile.h"
+
+namespace ug::cli {
+
+struct SceneJob {
+    std::string path;
+    Project project;
+    std::vector<DetailModel> models;
+    GhostTile tile;
+    CacheOutcome outcome = CacheOutcome::BuiltMissing;
+    double models_seconds = 0.0;
+    CompiledScene compiled;
+};
+
+// Loads the project, fits its models, loads or builds the Ghost Tile (progress on stderr unless quiet) and
+// compiles the fields. Errors name the scene file.
+bool loadSceneJob(const std::string& scene_path, const std::string& cache_dir, int threads, bool quiet,
+                  SceneJob* job, std::string* error);
+
+// The instantiator's input for the job; `seed` overrides the project's instantiation seed.
+InstancerInput instancerInput(const SceneJob& job, uint64_t seed);
+
+}  // namespace ug::cli

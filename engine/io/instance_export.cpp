@@ -1,0 +1,49 @@
+#include "io/instance_export.h"
+
+#include "instancer/tile_coord.h"
+#include "mesh/terrain_mesh.h"
+
+namespace ug {
+
+InstanceTransform instanceTransform(const GhostTile& tile, uint64_t tile_key, uint32_t j) {
+    const CandidateSet& c = tile.candidates;
+    InstanceTransform t;
+    t.position = tileOrigin(unpackTile(tile_key), tile.settings.tile_size_m) + c.position[j];
+    t.rotation = c.rotation[j];
+    t.scale = c.scale[j];
+    return t;
+}
+
+bool exportInstancedScene(const std::string& path, const GhostTile& tile, const std::vector<DetailModel>& models,
+                          const InstanceStore& store, const HeightField* terrain, const Bounds& extent,
+                          const InstanceExportOptions& options, const std::string& stats_json, std::string* error) {
+    const CandidateSet& c = tile.candidates;
+    if (models.size() != c.typeCount()) {
+        if (error) *error = path + ": " + std::to_string(models.size()) + " models for " +
+                            std::to_string(c.typeCount()) + " detail types";
+        return false;
+    }
+    SceneExport scene;
+    scene.delta_m = tile.settings.delta_m;
+    scene.chunk_size_m = options.chunk_size_m;
+    scene.use_instancing_extension = options.use_instancing_extension;
+    scene.scene_extras_json = stats_json;
+    scene.types.resize(models.size());
+    for (size_t i = 0; i < models.size(); ++i) {
+        scene.types[i].name = models[i].name;
+        scene.types[i].mesh = &models[i].mesh;
+        scene.types[i].collision_spheres = models[i].spheres;
+    }
+    store.forEach([&](uint64_t key, uint32_t j) { scene.types[c.type[j]].instances.push_back(instanceTransform(tile, key, j)); });
+    TriangleMesh terrain_mesh;
+    if (terrain) {
+        if (!heightFieldMesh(*terrain, extent, options.terrain_max_cells_per_side, &terrain_mesh, error)) {
+            if (error) *error = path + ": terrain: " + *error;
+            return false;
+        }
+        scene.terrain = &terrain_mesh;
+    }
+    return writeSceneGltf(path, scene, error);
+}
+
+}  // namespace ug

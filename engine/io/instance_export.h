@@ -1,0 +1,32 @@
+// From an instantiation result to a glTF file: rebuilds each instance's frame from its Ghost Tile
+// candidate and tile, groups instances by detail type, adds the terrain mesh and the statistics, and
+// writes through writeSceneGltf (EXT_mesh_gpu_instancing, chunked). Shared by the CLI and the editor.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "field/bounds.h"
+#include "field/height_field.h"
+#include "ghosttile/ghost_tile.h"
+#include "instancer/instance_store.h"
+#include "io/gltf_scene_export.h"
+#include "mesh/detail_model.h"
+
+namespace ug {
+
+struct InstanceExportOptions {
+    float chunk_size_m = 8.0f;
+    bool use_instancing_extension = true;
+    int terrain_max_cells_per_side = 512;  // the terrain mesh is decimated beyond this
+};
+
+// The world frame of candidate j in the tile with packed key tile_key.
+InstanceTransform instanceTransform(const GhostTile& tile, uint64_t tile_key, uint32_t j);
+
+// `terrain` may be null. `stats_json` is a JSON object stored in the scene's extras.
+bool exportInstancedScene(const std::string& path, const GhostTile& tile, const std::vector<DetailModel>& models,
+                          const InstanceStore& store, const HeightField* terrain, const Bounds& extent,
+                          const InstanceExportOptions& options, const std::string& stats_json, std::string* error);
+
+}  // namespace ug
