@@ -6,6 +6,8 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "ghosttile/ghost_tile.h"
 #include "ghosttile/ghost_tile_cache.h"
 #include "instancer/instantiator.h"
@@ -31,5 +33,10 @@ bool loadSceneJob(const std::string& scene_path, const std::string& cache_dir, i
 
 // The instantiator's input for the job; `seed` overrides the project's instantiation seed.
 InstancerInput instancerInput(const SceneJob& job, uint64_t seed);
+
+// The statistics file of an instantiation (CLI `instantiate --stats`, `run`): totals, per type, the
+// extent and the Ghost Tile. `region` is null for the whole scene.
+nlohmann::json instanceStatsJson(const SceneJob& job, const InstanceStats& stats, uint64_t seed, int threads,
+                                 const Bounds* region);
 
 }  // namespace ug::cli

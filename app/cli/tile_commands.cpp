@@ -8,6 +8,9 @@
 
 #include "cli/cli_args.h"
 #include "cli/commands.h"
+#include "cli/scene_job.h"
+#include "core/parallel.h"
+#include "io/instance_export.h"
 #include "core/atomic_file.h"
 #include "core/hash.h"
 #include "ghosttile/ghost_tile_cache.h"
@@ -21,41 +24,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-struct TileJob {
-    Project project;
-    std::vector<DetailModel> models;
-    GhostTile tile;
-    CacheOutcome outcome = CacheOutcome::BuiltMissing;
-    double models_seconds = 0.0;
-};
-
-bool prepareTile(const std::string& scene, const std::string& cache_dir, int threads, TileJob* job,
-                 std::string* error) {
-    if (!loadProject(scene, &job->project, error)) return false;
-    auto t0 = std::chrono::steady_clock::now();
-    if (!loadProjectModels(job->project, &job->models, error)) return false;
-    job->models_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    GhostTileInput input = ghostTileInput(job->project, job->models);
-    std::string note;
-    int last_percent = -1;
-    BuildOptions options{.threads = threads, .progress = [&](float f) {
-                             int percent = int(f * 100.0f);
-                             if (percent / 10 != last_percent / 10) {
-                                 std::fprintf(stderr, "\r  building Ghost Tile: %3d%%", percent);
-                                 last_percent = percent;
-                             }
-                         }};
-    bool ok = loadOrBuildGhostTile(cache_dir, input, options, &job->tile, &job->outcome, &note, error);
-    if (last_percent >= 0) std::fprintf(stderr, "\n");
-    if (!ok) {
-        *error = scene + ": " + *error;
-        return false;
-    }
-    if (!note.empty()) std::fprintf(stderr, "  note: %s\n", note.c_str());
-    return true;
-}
-
-nlohmann::json tileStatsJson(const TileJob& job, const std::string& cache_path) {
+nlohmann::json tileStatsJson(const SceneJob& job, const std::string& cache_path) {
     const GhostTileStats& st = job.tile.stats;
     nlohmann::json types = nlohmann::json::array();
     for (size_t t = 0; t < job.models.size(); ++t) {
@@ -86,7 +55,7 @@ nlohmann::json tileStatsJson(const TileJob& job, const std::string& cache_path) 
 
 // A look at the tile: every candidate's mesh placed at its frame, one merged mesh per detail type,
 // capped so the file stays small. Candidates overlap by design (paper Fig. 3).
-bool writeTilePreview(const TileJob& job, const std::string& path, std::string* error) {
+bool writeTilePreview(const SceneJob& job, const std::string& path, std::string* error) {
     const CandidateSet& c = job.tile.candidates;
     std::vector<TriangleMesh> merged(job.models.size());
     for (uint32_t t = 0; t < c.typeCount(); ++t) {
@@ -137,9 +106,9 @@ int runMainJob(int argc, char** argv) {
     if (ec) return fail("run", out_dir + ": cannot create the output folder: " + ec.message());
 
     std::fprintf(stderr, "undergrowth: running %s headless\n", scene.c_str());
-    TileJob job;
+    SceneJob job;
     const std::string cache_dir = (fs::path(out_dir) / "cache").string();
-    if (!prepareTile(scene, cache_dir, threads, &job, &error)) return fail("run", error);
+    if (!loadSceneJob(scene, cache_dir, threads, false, &job, &error)) return fail("run", error);
     const std::string stem = job.project.name.empty() ? fs::path(scene).stem().string() : job.project.name;
     const std::string stats_path = (fs::path(out_dir) / (stem + ".tile-stats.json")).string();
     const std::string preview_path = (fs::path(out_dir) / (stem + ".tile-preview.glb")).string();
@@ -151,8 +120,28 @@ int runMainJob(int argc, char** argv) {
     std::printf("Ghost Tile: %u candidates, %llu colliding pairs (rho %.1f), %.3f s, %.2f bytes/pair [%s]\n",
                 st.candidate_count, static_cast<unsigned long long>(st.pair_count), st.rho, st.build_seconds,
                 st.bytes_per_pair, cacheOutcomeName(job.outcome));
-    std::printf("wrote:\n  %s  (statistics)\n  %s  (tile preview, glTF)\n  %s  (cache)\n", stats_path.c_str(),
-                preview_path.c_str(), cache_path.c_str());
+
+    // The scene itself: instantiate everything and export it.
+    const uint64_t seed = job.project.instantiation_seed;
+    Instantiator inst;
+    InstanceStats ist;
+    if (!inst.setInput(instancerInput(job, seed), &error) || !inst.instantiateAll({.threads = threads}, &ist, &error))
+        return fail("run", scene + ": " + error);
+    const std::string scene_path = (fs::path(out_dir) / (stem + ".glb")).string();
+    const std::string scene_stats_path = (fs::path(out_dir) / (stem + ".stats.json")).string();
+    const nlohmann::json istats = instanceStatsJson(job, ist, seed, resolveThreadCount(threads), nullptr);
+    InstanceExportOptions export_options;
+    export_options.chunk_size_m = job.project.chunk_size_m;
+    if (!exportInstancedScene(scene_path, job.tile, job.models, inst.store(), job.compiled.terrain.get(),
+                              job.compiled.extent, export_options, istats.dump(), &error) ||
+        !writeTextFileAtomically(scene_stats_path, istats.dump(2) + "\n", &error))
+        return fail("run", error);
+    std::printf("Instances: %llu (%llu candidates tested) in %.3f s\n", static_cast<unsigned long long>(ist.instances),
+                static_cast<unsigned long long>(ist.candidates_tested), ist.seconds);
+    std::printf("wrote:\n  %s  (the scene, glTF with EXT_mesh_gpu_instancing)\n  %s  (instantiation statistics)\n"
+                "  %s  (Ghost Tile statistics)\n  %s  (tile preview, glTF)\n  %s  (cache)\n",
+                scene_path.c_str(), scene_stats_path.c_str(), stats_path.c_str(), preview_path.c_str(),
+                cache_path.c_str());
     return 0;
 }
 
@@ -165,8 +154,8 @@ int runBuildTileCommand(int argc, char** argv) {
     int threads = 0;
     if (!parseThreads(args, &threads, &error)) return fail("build-tile", error, 2);
     const std::string cache_dir = args.get("--cache", "out/cache");
-    TileJob job;
-    if (!prepareTile(args.positional[0], cache_dir, threads, &job, &error)) return fail("build-tile", error);
+    SceneJob job;
+    if (!loadSceneJob(args.positional[0], cache_dir, threads, false, &job, &error)) return fail("build-tile", error);
     const std::string cache_path = ghostTileCachePath(cache_dir, job.tile.key);
     const std::string json = tileStatsJson(job, cache_path).dump(2) + "\n";
     if (args.has("--stats")) {

@@ -35,7 +35,7 @@ constexpr uint8_t kStatusMask = 0x7f;
 // Tiles are grouped into blocks of kBlock^3 for the first, coarse culling pass.
 constexpr int kBlock = 8;
 // Hard limits, refused before any per-tile memory is taken.
-constexpr uint64_t kMaxBlocks = 64ull << 20;
+constexpr uint64_t kMaxBlocks = 4ull << 20;  // 2G tiles; larger worlds are cut into --region jobs
 
 // Random-number streams of hashWords(seed, tile, j, stream).
 constexpr uint64_t kStreamAccept = 1;

@@ -98,12 +98,104 @@ expect_fail "unwritable stats path" 1 "$tmp/trunc.json/s.json" -- \
   "$bin" build-tile "$root/assets/scenes/default.json" --cache "$tmp/c" --stats "$tmp/trunc.json/s.json"
 expect_fail "output folder is a file" 1 "cannot create the output folder" -- "$bin" run "$root/assets/scenes/default.json" --out "$tmp/trunc.json/x"
 
-# 4. bench --quick writes the documented JSON shape.
-if "$bin" bench --quick --json "$tmp/bench.json" >"$tmp/bench.txt" 2>&1 && python3 - "$tmp/bench.json" <<'PY'
+# 4. instantiate: every sample scene exports; the Khronos validator finds no error and glTF-Transform reads
+#    back exactly the instance count of the statistics file.
+stat() { python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); print(eval(sys.argv[2], {}, d))' "$@"; }
+if command -v node >/dev/null 2>&1 && bash "$root/tests/gltf/setup.sh" >"$tmp/npm.txt" 2>&1; then have_node=1; else
+  have_node=0; bad "gltf checkers unavailable (node or npm packages): $(tail -3 "$tmp/npm.txt" 2>/dev/null)"; fi
+mkdir -p "$tmp/inst"
+for scene in default meadow rock_pile stone_hut beaver_dam haystack_field; do
+  ext=glb; [ "$scene" = rock_pile ] && ext=gltf
+  out="$tmp/inst/$scene.$ext"
+  if "$bin" instantiate "$root/assets/scenes/$scene.json" -o "$out" --stats "$tmp/inst/$scene.json" --cache "$tmp/cache" \
+      >"$tmp/inst/$scene.txt" 2>&1; then ok "instantiate: $scene"; else bad "instantiate $scene: $(tail -3 "$tmp/inst/$scene.txt")"; continue; fi
+  if python3 - "$tmp/inst/$scene.json" <<'PY'; then ok "instantiate: $scene statistics are complete and consistent"; else bad "instantiate: $scene statistics"; fi
+import json, sys
+s = json.load(open(sys.argv[1]))
+for key in ("instances", "candidates_tested", "rejected", "seconds", "instances_per_type"):
+    assert key in s, key
+assert s["instances"] > 0 and s["instances"] == sum(s["instances_per_type"].values()), s
+assert s["rejected"] == s["candidates_tested"] - s["instances"], s
+assert s["candidates_tested"] == s["culled"] + s["density_rejected"] + s["constraint_rejected"] + s["instances"] + s["collision_rejected"], s
+PY
+  if [ "$have_node" = 1 ]; then
+    n="$(stat "$tmp/inst/$scene.json" instances)"
+    types="$(stat "$tmp/inst/$scene.json" 'len(instances_per_type)')"
+    if node "$root/tests/gltf/check_gltf.mjs" "$out" --expect-detail-instances "$n" --expect-types "$types" >"$tmp/inst/$scene.check" 2>&1; then
+      ok "instantiate: $scene.$ext valid (Khronos validator) with $n instances (glTF-Transform)"
+    else bad "instantiate: $scene.$ext check: $(tail -5 "$tmp/inst/$scene.check")"; fi
+  fi
+done
+# Plain nodes for viewers without the extension: the same count, read back.
+if "$bin" instantiate "$root/assets/scenes/rock_pile.json" -o "$tmp/inst/plain.glb" --plain-nodes --cache "$tmp/cache" >/dev/null 2>&1 &&
+   { [ "$have_node" = 0 ] || node "$root/tests/gltf/check_gltf.mjs" "$tmp/inst/plain.glb" \
+       --expect-detail-instances "$(stat "$tmp/inst/rock_pile.json" instances)" >"$tmp/inst/plain.check" 2>&1; }; then
+  ok "instantiate --plain-nodes"; else bad "instantiate --plain-nodes: $(tail -3 "$tmp/inst/plain.check" 2>/dev/null)"; fi
+# Regions that cut the scene (not on tile borders) add up to the whole; thread counts agree.
+"$bin" instantiate "$root/assets/scenes/beaver_dam.json" -o "$tmp/inst/left.glb" --stats "$tmp/inst/left.json" \
+  --region=-12,-12,-1,0.37,12,2.5 --cache "$tmp/cache" >/dev/null 2>&1
+"$bin" instantiate "$root/assets/scenes/beaver_dam.json" -o "$tmp/inst/right.glb" --stats "$tmp/inst/right.json" \
+  --region=0.37,-12,-1,12,12,2.5 --cache "$tmp/cache" >/dev/null 2>&1
+"$bin" instantiate "$root/assets/scenes/beaver_dam.json" -o "$tmp/inst/one.glb" --stats "$tmp/inst/one.json" \
+  --threads 1 --cache "$tmp/cache" >/dev/null 2>&1
+if python3 - "$tmp/inst/left.json" "$tmp/inst/right.json" "$tmp/inst/beaver_dam.json" "$tmp/inst/one.json" <<'PY'; then ok "instantiate: regions add up, 1 thread = 2 threads"; else bad "instantiate: regions / threads"; fi
+import json, sys
+l, r, whole, one = (json.load(open(p)) for p in sys.argv[1:])
+assert l["instances"] > 0 and r["instances"] > 0
+for t in whole["instances_per_type"]:
+    assert l["instances_per_type"][t] + r["instances_per_type"][t] == whole["instances_per_type"][t], t
+assert one["instances_per_type"] == whole["instances_per_type"]
+PY
+# Bad input.
+expect_fail "instantiate: truncated scene" 1 "trunc.json: invalid JSON" -- "$bin" instantiate "$tmp/trunc.json" -o "$tmp/x.glb"
+cat >"$tmp/negative.json" <<JSON
+{"format": "undergrowth-project", "format_version": 2,
+ "detail_types": [{"name": "rock", "model": {"mesh": "$root/assets/models/rock.glb"},
+                   "density": {"point": {"center": [0, 0, 0], "radius": -1}}}]}
+JSON
+expect_fail "instantiate: negative radius" 1 "negative.json: /detail_types/0/density/point/radius" -- \
+  "$bin" instantiate "$tmp/negative.json" -o "$tmp/x.glb"
+cat >"$tmp/unknown.json" <<JSON
+{"format": "undergrowth-project", "format_version": 2,
+ "detail_types": [{"name": "rock", "model": {"mesh": "$root/assets/models/rock.glb"},
+                   "density": {"point": {"center": [0, 0, 0], "radius": 1, "colour": 3}}}]}
+JSON
+expect_fail "instantiate: unknown field" 1 "unknown.json: /detail_types/0/density/point" -- "$bin" instantiate "$tmp/unknown.json" -o "$tmp/x.glb"
+cat >"$tmp/wrongtype.json" <<JSON
+{"format": "undergrowth-project", "format_version": 2,
+ "detail_types": [{"name": "rock", "model": {"mesh": "$root/assets/models/rock.glb"},
+                   "density": {"point": {"center": [0, 0, 0], "radius": "big"}}}]}
+JSON
+expect_fail "instantiate: wrong type" 1 "wrongtype.json: /detail_types/0/density/point/radius" -- "$bin" instantiate "$tmp/wrongtype.json" -o "$tmp/x.glb"
+cat >"$tmp/world.json" <<JSON
+{"format": "undergrowth-project", "format_version": 2,
+ "terrain": {"procedural": {"width": 9, "height": 9}},
+ "extent": {"min": [-20000, -20000, -5], "max": [20000, 20000, 5]},
+ "detail_types": [{"name": "rock", "model": {"mesh": "$root/assets/models/rock.glb"},
+                   "density": {"terrain_layer": {"thickness": 0.1, "radius": 0.1}}}]}
+JSON
+expect_fail "instantiate: a world too big is refused up front" 1 "refusing" -- "$bin" instantiate "$tmp/world.json" -o "$tmp/x.glb" --cache "$tmp/cache"
+expect_fail "instantiate: inverted region" 2 "min must be < max" -- \
+  "$bin" instantiate "$root/assets/scenes/rock_pile.json" -o "$tmp/x.glb" --region=1,1,1,0,2,2
+expect_fail "instantiate: empty region" 2 "min must be < max" -- \
+  "$bin" instantiate "$root/assets/scenes/rock_pile.json" -o "$tmp/x.glb" --region=0,0,0,0,1,1
+expect_fail "instantiate: region not numbers" 2 "--region: 'a' is not a finite number" -- \
+  "$bin" instantiate "$root/assets/scenes/rock_pile.json" -o "$tmp/x.glb" --region=a,0,0,1,1,1
+expect_fail "instantiate: region outside the scene" 1 "does not overlap" -- \
+  "$bin" instantiate "$root/assets/scenes/rock_pile.json" -o "$tmp/x.glb" --region=50,50,50,60,60,60 --cache "$tmp/cache"
+expect_fail "instantiate: unwritable output" 1 "$tmp/trunc.json/x.glb" -- \
+  "$bin" instantiate "$root/assets/scenes/rock_pile.json" -o "$tmp/trunc.json/x.glb" --cache "$tmp/cache"
+expect_fail "instantiate: output format" 2 "must end in .glb or .gltf" -- \
+  "$bin" instantiate "$root/assets/scenes/rock_pile.json" -o "$tmp/x.obj"
+
+# 5. bench --quick writes the documented JSON shape.
+if "$bin" bench --quick --cache "$tmp/cache" --json "$tmp/bench.json" >"$tmp/bench.txt" 2>&1 && python3 - "$tmp/bench.json" <<'PY'
 import json, sys
 rows = json.load(open(sys.argv[1]))["results"]
 names = {r["name"] for r in rows}
-for needed in ("ghosttile.dense.seconds", "ghosttile.dense.pairs", "ghosttile.bytes_per_pair"):
+for needed in ("ghosttile.dense.seconds", "ghosttile.dense.pairs", "ghosttile.bytes_per_pair",
+               "instantiate.field.seconds", "instantiate.field.instances", "instances.bytes_per_instance",
+               "edit.meadow.stamp_p50_ms", "edit.meadow.stamp_p95_ms"):
     assert needed in names, needed
 for r in rows:
     assert set(("name", "value", "unit", "target", "paper")) <= set(r), r

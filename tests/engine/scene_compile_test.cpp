@@ -433,7 +433,7 @@ TEST(SceneCompile, EveryBundledSceneLoadsAndCompiles) {
     }
     std::sort(seen.begin(), seen.end());
     EXPECT_EQ(seen,
-              (std::vector<std::string>{"default", "haystack_field", "meadow", "rock_pile", "stone_hut"}));
+              (std::vector<std::string>{"beaver_dam", "default", "haystack_field", "meadow", "rock_pile", "stone_hut"}));
 }
 
 TEST(SceneCompile, BundledScenesHaveTheirDesignedShape) {
@@ -448,11 +448,11 @@ TEST(SceneCompile, BundledScenesHaveTheirDesignedShape) {
         Project p;
         CompiledScene s;
         load("haystack_field.json", &p, &s);
-        EXPECT_EQ(s.extent.lo.x, -30.0f);
-        EXPECT_EQ(s.extent.hi.x, 30.0f);
-        EXPECT_EQ(s.extent.hi.y, 30.0f);
-        for (float x : {-29.5f, 0.0f, 29.5f})
-            for (float y : {-29.5f, 0.0f, 29.5f})
+        EXPECT_EQ(s.extent.lo.x, -40.0f);
+        EXPECT_EQ(s.extent.hi.x, 40.0f);
+        EXPECT_EQ(s.extent.hi.y, 40.0f);
+        for (float x : {-39.5f, 0.0f, 39.5f})
+            for (float y : {-39.5f, 0.0f, 39.5f})
                 EXPECT_GT(evaluate(*s.types[0].field, {x, y, s.terrain->sample(x, y) + 0.03f}), 0.5f)
                     << x << " " << y;
         EXPECT_EQ(s.types[1].orientation.direction.kind, DirectionFieldKind::Gradient);
@@ -473,15 +473,15 @@ TEST(SceneCompile, BundledScenesHaveTheirDesignedShape) {
         load("stone_hut.json", &p, &s);
         const DensityField& f = *s.types[0].field;
         EXPECT_LE(evaluate(f, {0, 0, 0.5f}), 0.0f);       // inside
-        EXPECT_GT(evaluate(f, {0, 1.75f, 0.3f}), 0.0f);   // the wall
-        EXPECT_GT(evaluate(f, {-1.2f, 0, 1.2f}), 0.0f);   // the wall, higher up
-        EXPECT_LE(evaluate(f, {1.75f, 0, 0.4f}), 0.0f);   // the door
-        EXPECT_LE(evaluate(f, {0, -1.75f, 1.2f}), 0.0f);  // the window
-        EXPECT_LE(evaluate(f, {0, 1.75f, 2.5f}), 0.0f);   // outside
+        EXPECT_GT(evaluate(f, {0, 3.25f, 0.3f}), 0.0f);   // the wall
+        EXPECT_GT(evaluate(f, {-2.3f, 0, 2.3f}), 0.0f);   // the wall, higher up
+        EXPECT_LE(evaluate(f, {3.25f, 0, 0.6f}), 0.0f);   // the door
+        EXPECT_LE(evaluate(f, {0, -3.25f, 1.9f}), 0.0f);  // the window
+        EXPECT_LE(evaluate(f, {0, 3.25f, 4.0f}), 0.0f);   // outside
         const SizeConstraint& size = s.types[0].size;
         ASSERT_TRUE(size.enabled);
-        EXPECT_LT(evaluateSize(size.target, nullptr, {1.8f, 0, 0.6f}), 0.75f);
-        EXPECT_EQ(evaluateSize(size.target, nullptr, {-1.7f, 0, 0.6f}), 1.1f);
+        EXPECT_LT(evaluateSize(size.target, nullptr, {3.2f, 0, 0.9f}), 0.75f);
+        EXPECT_EQ(evaluateSize(size.target, nullptr, {-3.2f, 0, 0.9f}), 1.1f);
     }
 }
 

@@ -2,7 +2,8 @@
 // Independent check of a glTF export (DESIGN.md: "we write the standard extension, chunked, and check it
 // with independent readers, since the Khronos validator does not check that extension").
 //
-//   node check_gltf.mjs FILE [--expect-instances N] [--expect-types K]
+//   node check_gltf.mjs FILE [--expect-instances N] [--expect-detail-instances N] [--expect-types K]
+//   (detail instances: copies of meshes that carry collision_spheres extras, i.e. without the terrain)
 //
 // 1. The Khronos glTF-Validator: any error fails the check (its messages are printed). Warnings are
 //    counted and listed in the summary, not fatal.
@@ -32,18 +33,19 @@ import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 const kUnitTolerance = 1e-4;  // float32 quaternions normalized by a writer are within ~1e-7
 
 function usage(message) {
-    console.error(`check_gltf: ${message}\nusage: node check_gltf.mjs FILE [--expect-instances N] [--expect-types K]`);
+    console.error(`check_gltf: ${message}\nusage: node check_gltf.mjs FILE [--expect-instances N] [--expect-detail-instances N] [--expect-types K]`);
     process.exit(2);
 }
 
 function parseArgs(argv) {
-    const args = { file: null, expectInstances: null, expectTypes: null };
+    const args = { file: null, expectInstances: null, expectTypes: null, expectDetailInstances: null };
     for (let i = 0; i < argv.length; ++i) {
         const a = argv[i];
-        if (a === '--expect-instances' || a === '--expect-types') {
+        if (a === '--expect-instances' || a === '--expect-types' || a === '--expect-detail-instances') {
             const value = argv[++i];
             if (value === undefined || !/^\d+$/.test(value)) usage(`${a} needs a non-negative integer`);
             if (a === '--expect-instances') args.expectInstances = Number(value);
+            else if (a === '--expect-detail-instances') args.expectDetailInstances = Number(value);
             else args.expectTypes = Number(value);
         } else if (a.startsWith('--')) {
             usage(`unknown option ${a}`);
@@ -171,6 +173,8 @@ async function main() {
 
     if (counts && args.expectInstances !== null && counts.instances !== args.expectInstances)
         problems.push(`${counts.instances} instances, expected ${args.expectInstances}`);
+    if (counts && args.expectDetailInstances !== null && counts.detail_instances !== args.expectDetailInstances)
+        problems.push(`${counts.detail_instances} detail instances, expected ${args.expectDetailInstances}`);
     if (counts && args.expectTypes !== null && counts.types !== args.expectTypes)
         problems.push(`${counts.types} detail types, expected ${args.expectTypes}`);
 
