@@ -56,18 +56,14 @@ bool benchMeadowStamps(const BenchContext& ctx, SceneJob& job, Instantiator& ins
         DensityField& doc = job.project.detail_types[type].density;
         std::vector<Bounds> dirty;
         const bool move = !brush_prims.empty() && (k % 2 == 1);
+        size_t edited = type;
         if (move) {
             const auto [t, p] = brush_prims[size_t(h >> 8) % brush_prims.size()];
             DensityField& d = job.project.detail_types[t].density;
             dirty.push_back(primitiveBounds(d.primitives[p], nullptr));
             d.primitives[p].center_m += glm::vec3(0.3f, -0.2f, 0.0f);
             dirty.push_back(primitiveBounds(d.primitives[p], nullptr));
-            std::vector<InstanceTypeSettings> types = inst.input().types;
-            if (!compileDetailType(job.project, t, job.compiled.terrain, &types[t], error)) return false;
-            std::vector<uint64_t> changed;
-            InstanceStats st;
-            if (!inst.update(std::move(types), dirty, {.threads = ctx.threads}, &st, &changed, error)) return false;
-            changed_counts.push_back(changed.size());
+            edited = t;
         } else {
             const Primitive ball = makePoint(centre, 0.6f, 1.0f);
             const uint32_t p = addPrimitive(&doc, ball);
@@ -76,13 +72,13 @@ bool benchMeadowStamps(const BenchContext& ctx, SceneJob& job, Instantiator& ins
                                            : addNode(&doc, FieldOp::Blend, refs);
             brush_prims.push_back({type, p});
             dirty.push_back(primitiveBounds(ball, nullptr));
-            std::vector<InstanceTypeSettings> types = inst.input().types;
-            if (!compileDetailType(job.project, type, job.compiled.terrain, &types[type], error)) return false;
-            std::vector<uint64_t> changed;
-            InstanceStats st;
-            if (!inst.update(std::move(types), dirty, {.threads = ctx.threads}, &st, &changed, error)) return false;
-            changed_counts.push_back(changed.size());
         }
+        std::vector<InstanceTypeSettings> types = inst.input().types;
+        if (!compileDetailType(job.project, edited, job.compiled.terrain, &types[edited], error)) return false;
+        std::vector<uint64_t> changed;
+        InstanceStats st;
+        if (!inst.update(std::move(types), dirty, {.threads = ctx.threads}, &st, &changed, error)) return false;
+        changed_counts.push_back(changed.size());
         ms.push_back(msSince(t0));
         instances_after.push_back(inst.store().instanceCount());
     }

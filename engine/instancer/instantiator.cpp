@@ -159,6 +159,8 @@ public:
     void computeTile(TileState* ts, const std::vector<const TileFieldList*>& parents, TileScratch* scratch) const;
     bool enumerateAndCompute(const Bounds& box, const InstanceOptions& options, std::vector<TileState>* out,
                              std::string* error) const;
+    // Computes the given tiles one by one (no block pass), in parallel: dirty tiles, lazily needed tiles.
+    std::vector<TileState> computeTiles(const std::vector<uint64_t>& keys, const InstanceOptions& options) const;
     void install(std::vector<TileState>&& computed, std::vector<int32_t>* installed);
     void link(int32_t t);
     void linkAround(int32_t t);
@@ -513,6 +515,23 @@ bool Instantiator::Engine::enumerateAndCompute(const Bounds& box_in, const Insta
     return true;
 }
 
+std::vector<TileState> Instantiator::Engine::computeTiles(const std::vector<uint64_t>& keys,
+                                                          const InstanceOptions& options) const {
+    std::vector<TileState> out(keys.size());
+    parallelFor(out.size(), resolveThreadCount(options.threads), 8, [&](size_t b, size_t end, int) {
+        TileScratch scratch;
+        std::vector<const TileFieldList*> parents(input.types.size());
+        for (size_t i = 0; i < parents.size(); ++i)
+            parents[i] = runtime[i].field && !global_lists[i].empty() ? &global_lists[i] : nullptr;
+        for (size_t k = b; k < end; ++k) {
+            out[k].key = keys[k];
+            out[k].coord = unpackTile(keys[k]);
+            computeTile(&out[k], parents, &scratch);
+        }
+    });
+    return out;
+}
+
 void Instantiator::Engine::link(int32_t t) {
     TileState& ts = tiles[t];
     for (uint32_t v = 0; v < kOffsetCount; ++v) {
@@ -842,19 +861,7 @@ bool Instantiator::update(std::vector<InstanceTypeSettings> types, std::span<con
     dirty_keys.erase(std::unique(dirty_keys.begin(), dirty_keys.end()), dirty_keys.end());
 
     // 2. Recompute them (with the full-field lists as parents), keeping the old states for comparison.
-    std::vector<TileState> fresh(dirty_keys.size());
-    const int threads = resolveThreadCount(options.threads);
-    parallelFor(fresh.size(), threads, 8, [&](size_t b, size_t end, int) {
-        TileScratch scratch;
-        std::vector<const TileFieldList*> parents(e.input.types.size());
-        for (size_t i = 0; i < parents.size(); ++i)
-            parents[i] = e.runtime[i].field && !e.global_lists[i].empty() ? &e.global_lists[i] : nullptr;
-        for (size_t k = b; k < end; ++k) {
-            fresh[k].key = dirty_keys[k];
-            fresh[k].coord = unpackTile(dirty_keys[k]);
-            e.computeTile(&fresh[k], parents, &scratch);
-        }
-    });
+    std::vector<TileState> fresh = e.computeTiles(dirty_keys, options);
     addTileCounters(fresh, &st);
     std::vector<TileState> old(fresh.size());
     std::vector<bool> existed(fresh.size(), false);
@@ -1007,19 +1014,7 @@ bool instantiateRegion(const InstancerInput& input, const Bounds& region, const 
         for (const glm::ivec3& m : missing) keys.push_back(packTile(m));
         std::sort(keys.begin(), keys.end());
         keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
-        std::vector<TileState> extra(keys.size());
-        const int threads = resolveThreadCount(options.threads);
-        parallelFor(extra.size(), threads, 8, [&](size_t b, size_t end, int) {
-            TileScratch scratch;
-            std::vector<const TileFieldList*> parents(e.input.types.size());
-            for (size_t i = 0; i < parents.size(); ++i)
-                parents[i] = e.runtime[i].field && !e.global_lists[i].empty() ? &e.global_lists[i] : nullptr;
-            for (size_t k = b; k < end; ++k) {
-                extra[k].key = keys[k];
-                extra[k].coord = unpackTile(keys[k]);
-                e.computeTile(&extra[k], parents, &scratch);
-            }
-        });
+        std::vector<TileState> extra = e.computeTiles(keys, options);
         addTileCounters(extra, &st);
         std::vector<int32_t> added;
         e.install(std::move(extra), &added);
