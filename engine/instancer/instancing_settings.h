@@ -12,6 +12,9 @@
 
 namespace ug {
 
+// Keys compare across detail types (the collision graph spans them), so types that meet should share a
+// strategy: a Random type has layer 0, which sorts before every Elevation layer above z = 0. The order is
+// still total and deterministic when they differ.
 enum class PriorityStrategy : uint8_t {
     Random,              // no priority: only the weighted random number orders candidates (scattered layers)
     Elevation,           // lower first, in layers of layer_m (compact piles, §5.2)
