@@ -1,4 +1,4 @@
-// undergrowth: one binary for the headless CLI (batch jobs, benchmarks) and, later, the editor.
+// undergrowth: one binary for the headless CLI (batch jobs, benchmarks) and the editor.
 #include <cstdio>
 #include <cstring>
 #include <string>
@@ -19,6 +19,10 @@ void printUsage() {
         "                          [--region xmin,ymin,zmin,xmax,ymax,zmax] [--plain-nodes] [--chunk M] [--cache DIR]\n"
         "      instantiate the scene (or one region of it) headless and export glTF 2.0 with\n"
         "      EXT_mesh_gpu_instancing (--plain-nodes: one node per instance); --stats writes the statistics\n"
+        "  undergrowth edit SCENE [--frames N] [--screenshot OUT.png] [--stats STATS.json] [--size WxH]\n"
+        "                   [--threads N] [--cache DIR]\n"
+        "      open the editor's window on SCENE (needs a display; exit 1 without one); --frames N renders N\n"
+        "      frames once the instances are in, writes the screenshot and statistics, and exits\n"
         "  undergrowth build-tile SCENE [--cache DIR] [--stats FILE] [--threads N]\n"
         "      build (or load from the verified cache) the scene's Ghost Tile and print its statistics\n"
         "  undergrowth bench [--quick] [--json FILE] [--threads N] [--filter NAME]\n"
@@ -37,6 +41,7 @@ int main(int argc, char** argv) {
     const std::string command = argv[1];
     if (command == "run") return ug::cli::runMainJob(argc, argv);
     if (command == "instantiate") return ug::cli::runInstantiateCommand(argc, argv);
+    if (command == "edit") return ug::cli::runEditCommand(argc, argv);
     if (command == "build-tile") return ug::cli::runBuildTileCommand(argc, argv);
     if (command == "bench") return ug::cli::runBenchCommand(argc, argv);
     if (command == "make-assets") return ug::cli::runMakeAssetsCommand(argc, argv);

@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake pkg-config git
   libglm-dev nlohmann-json3-dev libtinygltf-dev libopenmesh-dev libmeshoptimizer-dev libstb-dev
-  libglfw3-dev libimgui-dev libgl-dev
+  libglfw3-dev libimgui-dev libgl-dev libepoxy-dev
   libgtest-dev
   xvfb xauth
   nodejs npm

@@ -9,5 +9,6 @@ int runBuildTileCommand(int argc, char** argv);  // undergrowth build-tile SCENE
 int runMakeAssetsCommand(int argc, char** argv);  // undergrowth make-assets [--out DIR]
 int runBenchCommand(int argc, char** argv);      // undergrowth bench [--quick] [--json FILE]
 int runInstantiateCommand(int argc, char** argv);  // undergrowth instantiate SCENE -o OUT.glb [...]
+int runEditCommand(int argc, char** argv);       // undergrowth edit SCENE [--frames N] [--screenshot PNG] [...]
 
 }  // namespace ug::cli

@@ -1,0 +1,323 @@
+#include "editor/gl/renderer.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstring>
+
+#include <epoxy/gl.h>
+#include <glm/gtc/type_ptr.hpp>
+
+namespace ug::editor::gl {
+
+namespace {
+
+const glm::vec3 kSunDir = glm::normalize(glm::vec3(0.45f, -0.50f, 0.74f));
+
+// What the candidate SSBO holds per candidate (std430: two vec4).
+struct GpuCandidateFrame {
+    float position_scale[4];
+    float rotation[4];
+};
+static_assert(sizeof(GpuCandidateFrame) == 32);
+
+GLint loc(const ShaderProgram& p, const char* name) { return glGetUniformLocation(p.id, name); }
+
+void setLighting(const ShaderProgram& p, const glm::vec3& eye, float fog_density) {
+    glUniform3fv(loc(p, "u_sun_dir"), 1, glm::value_ptr(kSunDir));
+    glUniform3fv(loc(p, "u_eye"), 1, glm::value_ptr(eye));
+    glUniform1f(loc(p, "u_fog_density"), fog_density);
+}
+
+}  // namespace
+
+Renderer::~Renderer() {
+    releaseScene();
+    for (ShaderProgram* p : {&sky_, &terrain_, &detail_, &impostor_, &grid_}) destroyProgram(p);
+    if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
+}
+
+bool Renderer::init(const std::string& dir, std::string* error) {
+    const char* lighting[] = {"u_sun_dir", "u_eye", "u_fog_density"};
+    auto with = [&](std::vector<const char*> names, bool lit) {
+        if (lit) names.insert(names.end(), std::begin(lighting), std::end(lighting));
+        return names;
+    };
+    if (!loadProgram(dir, "sky.vert", "sky.frag", {"u_view_to_world", "u_tan_half_fov", "u_sun_dir"}, &sky_, error) ||
+        !loadProgram(dir, "terrain.vert", "lit_surface.frag", with({"u_view_proj", "u_color"}, true), &terrain_, error) ||
+        !loadProgram(dir, "instanced_detail.vert", "lit_surface.frag",
+                     with({"u_view_proj", "u_tile_size_m", "u_color"}, true), &detail_, error) ||
+        !loadProgram(dir, "detail_impostor.vert", "flat_color.frag",
+                     with({"u_view_proj", "u_tile_size_m", "u_color", "u_center", "u_half_size_m", "u_point_scale",
+                           "u_to_eye"},
+                          true),
+                     &impostor_, error) ||
+        !loadProgram(dir, "ground_grid.vert", "ground_grid.frag",
+                     with({"u_view_proj", "u_grid_center", "u_grid_half_m", "u_ground_z", "u_cell_m", "u_fade_m"}, true), &grid_,
+                     error))
+        return false;
+    glGenVertexArrays(1, &empty_vao_);
+    return true;
+}
+
+void Renderer::releaseScene() {
+    for (TypeBuffers& t : types_) {
+        GLuint vaos[] = {t.vao, t.impostor_vao};
+        glDeleteVertexArrays(2, vaos);
+        GLuint buffers[] = {t.vertex_buffer, t.index_buffer, t.instance_buffer};
+        glDeleteBuffers(3, buffers);
+    }
+    types_.clear();
+    if (terrain_vao_) glDeleteVertexArrays(1, &terrain_vao_);
+    GLuint buffers[] = {terrain_vertices_, terrain_indices_, candidate_buffer_};
+    glDeleteBuffers(3, buffers);
+    terrain_vao_ = terrain_vertices_ = terrain_indices_ = candidate_buffer_ = 0;
+    terrain_index_count_ = 0;
+    has_scene_ = false;
+    instances_ = nullptr;
+}
+
+void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const std::vector<DetailLodMesh>* meshes,
+                        const CandidateSet& candidates, float tile_size_m) {
+    releaseScene();
+    extent_ = extent;
+    tile_size_m_ = tile_size_m;
+    meshes_ = meshes;
+
+    // Interleaved position + normal, shared by the terrain and the detail meshes.
+    auto uploadMesh = [](const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals,
+                         const std::vector<uint32_t>& indices, GLuint* vao, GLuint* vbo, GLuint* ebo) {
+        std::vector<float> interleaved(positions.size() * 6);
+        for (size_t i = 0; i < positions.size(); ++i) {
+            std::memcpy(&interleaved[i * 6], &positions[i].x, 3 * sizeof(float));
+            const glm::vec3 n = i < normals.size() ? normals[i] : glm::vec3(0.0f, 0.0f, 1.0f);
+            std::memcpy(&interleaved[i * 6 + 3], &n.x, 3 * sizeof(float));
+        }
+        glGenVertexArrays(1, vao);
+        glBindVertexArray(*vao);
+        glGenBuffers(1, vbo);
+        glBindBuffer(GL_ARRAY_BUFFER, *vbo);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data(), GL_STATIC_DRAW);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+        glEnableVertexAttribArray(1);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+        glGenBuffers(1, ebo);
+        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, *ebo);
+        glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), GL_STATIC_DRAW);
+        glBindVertexArray(0);
+    };
+
+    if (terrain && !terrain->indices.empty()) {
+        uploadMesh(terrain->positions, terrain->normals, terrain->indices, &terrain_vao_, &terrain_vertices_,
+                   &terrain_indices_);
+        terrain_index_count_ = uint32_t(terrain->indices.size());
+    }
+
+    // The candidate frames, once: every instance of every type refers to them by index.
+    std::vector<GpuCandidateFrame> frames(candidates.size());
+    for (uint32_t j = 0; j < candidates.size(); ++j) {
+        const glm::vec3& p = candidates.position[j];
+        const glm::quat& q = candidates.rotation[j];
+        frames[j] = {{p.x, p.y, p.z, candidates.scale[j]}, {q.x, q.y, q.z, q.w}};
+    }
+    glGenBuffers(1, &candidate_buffer_);
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, candidate_buffer_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, GLsizeiptr(std::max<size_t>(frames.size(), 1) * sizeof(GpuCandidateFrame)),
+                 frames.empty() ? nullptr : frames.data(), GL_STATIC_DRAW);
+
+    types_.resize(meshes->size());
+    for (size_t i = 0; i < meshes->size(); ++i) {
+        const DetailLodMesh& m = (*meshes)[i];
+        TypeBuffers& t = types_[i];
+        uploadMesh(m.positions, m.normals, m.indices, &t.vao, &t.vertex_buffer, &t.index_buffer);
+        glGenBuffers(1, &t.instance_buffer);
+        // The instance attribute: two unsigned ints, advancing once per instance of the mesh.
+        // The impostor VAO reads the same buffer one instance per vertex (points, no mesh).
+        glGenVertexArrays(1, &t.impostor_vao);
+        for (GLuint vao : {t.vao, t.impostor_vao}) {
+            glBindVertexArray(vao);
+            glBindBuffer(GL_ARRAY_BUFFER, t.instance_buffer);
+            glEnableVertexAttribArray(2);
+            glVertexAttribIPointer(2, 2, GL_UNSIGNED_INT, sizeof(PackedInstance), nullptr);
+            glVertexAttribDivisor(2, vao == t.vao ? 1 : 0);
+        }
+        glBindVertexArray(0);
+    }
+    has_scene_ = true;
+    buckets_dirty_ = true;
+}
+
+void Renderer::setInstances(const RenderInstances* instances) {
+    instances_ = instances;
+    for (size_t i = 0; i < types_.size(); ++i) {
+        // Room for every instance of the type: the buffer is allocated once and refilled in place.
+        const uint32_t n = uint32_t(std::max<uint64_t>(
+            i < instances->instances_per_type.size() ? instances->instances_per_type[i] : 0, 1));
+        glBindBuffer(GL_ARRAY_BUFFER, types_[i].instance_buffer);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(PackedInstance)), nullptr, GL_DYNAMIC_DRAW);
+        types_[i].instance_capacity = n;
+    }
+    buckets_dirty_ = true;
+}
+
+void Renderer::render(const OrbitCamera& camera, int width, int height, const LodSettings& lod) {
+    stats_ = RenderStats{};
+    glViewport(0, 0, width, height);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    OrbitCamera cam = camera;
+    cam.aspect = float(std::max(width, 1)) / float(std::max(height, 1));
+    const glm::mat4 view = cam.view();
+    const glm::mat4 view_proj = cam.projection() * view;
+    const glm::vec3 eye = cam.eye();
+    const float radius = std::max(0.5f * glm::length(extent_.hi - extent_.lo), 0.05f);
+    const float fog_density = has_scene_ ? 0.06f / radius : 0.0f;
+
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+
+    if (!has_scene_) {
+        // Nothing loaded yet: the sky alone.
+    } else if (terrain_index_count_ > 0) {
+        glUseProgram(terrain_.id);
+        glUniformMatrix4fv(loc(terrain_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+        const glm::vec3 ground(0.20f, 0.15f, 0.09f);  // darker than kTerrainColor: bare earth under the grass
+        glUniform3fv(loc(terrain_, "u_color"), 1, glm::value_ptr(ground));
+        setLighting(terrain_, eye, fog_density);
+        glBindVertexArray(terrain_vao_);
+        glDrawElements(GL_TRIANGLES, GLsizei(terrain_index_count_), GL_UNSIGNED_INT, nullptr);
+        ++stats_.draw_calls;
+        stats_.triangles += terrain_index_count_ / 3;
+    } else {
+        // No terrain: a ground grid at z = 0 when the extent holds it, else at the extent's floor.
+        const float ground_z = (extent_.lo.z <= 0.0f && extent_.hi.z >= 0.0f) ? 0.0f : extent_.lo.z;
+        const float cell = std::pow(10.0f, std::floor(std::log10(radius / 5.0f)));
+        glUseProgram(grid_.id);
+        glUniformMatrix4fv(loc(grid_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+        const glm::vec2 c = 0.5f * glm::vec2(extent_.lo + extent_.hi);
+        glUniform2fv(loc(grid_, "u_grid_center"), 1, glm::value_ptr(c));
+        glUniform1f(loc(grid_, "u_grid_half_m"), 10.0f * radius);
+        glUniform1f(loc(grid_, "u_ground_z"), ground_z);
+        glUniform1f(loc(grid_, "u_cell_m"), cell);
+        glUniform2f(loc(grid_, "u_fade_m"), 2.5f * radius, 8.0f * radius);
+        setLighting(grid_, eye, fog_density);
+        glDisable(GL_CULL_FACE);
+        glBindVertexArray(empty_vao_);
+        glDrawArrays(GL_TRIANGLE_STRIP, 0, 4);
+        glEnable(GL_CULL_FACE);
+        ++stats_.draw_calls;
+    }
+
+    if (instances_ && meshes_) drawDetails(cam, view, view_proj, eye, height, lod, fog_density);
+
+    // The sky last, at the far plane: depth test LEQUAL keeps it to the pixels nothing covered.
+    glDisable(GL_CULL_FACE);
+    glDepthFunc(GL_LEQUAL);
+    glDepthMask(GL_FALSE);
+    glUseProgram(sky_.id);
+    const glm::mat3 view_to_world = glm::transpose(glm::mat3(view));
+    glUniformMatrix3fv(loc(sky_, "u_view_to_world"), 1, GL_FALSE, glm::value_ptr(view_to_world));
+    const float tan_half = std::tan(0.5f * cam.fov_y_rad);
+    glUniform2f(loc(sky_, "u_tan_half_fov"), tan_half * cam.aspect, tan_half);
+    glUniform3fv(loc(sky_, "u_sun_dir"), 1, glm::value_ptr(kSunDir));
+    glBindVertexArray(empty_vao_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    ++stats_.draw_calls;
+    glDepthMask(GL_TRUE);
+    glDepthFunc(GL_LESS);
+    glBindVertexArray(0);
+}
+
+void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const glm::mat4& view_proj, const glm::vec3& eye,
+                           int height, const LodSettings& lod, float fog_density) {
+    // Re-bucket (cull + LOD) and refill the instance buffers only when the view or the LOD settings moved.
+    if (buckets_dirty_ || view_proj != last_view_proj_ || lod.lod1_px != last_lod_.lod1_px ||
+        lod.lod2_px != last_lod_.lod2_px || lod.impostor_px != last_lod_.impostor_px) {
+        const auto t0 = std::chrono::steady_clock::now();
+        ViewParams params;
+        params.view_proj = view_proj;
+        params.eye = eye;
+        params.pixels_per_radian = float(height) / cam.fov_y_rad;
+        bucketInstances(*instances_, *meshes_, params, lod, &buckets_);
+        for (size_t i = 0; i < types_.size() && i < buckets_.types.size(); ++i) {
+            const auto& list = buckets_.types[i].instances;
+            if (list.empty()) continue;
+            glBindBuffer(GL_ARRAY_BUFFER, types_[i].instance_buffer);
+            glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(list.size() * sizeof(PackedInstance)), list.data());
+        }
+        last_view_proj_ = view_proj;
+        last_lod_ = lod;
+        buckets_dirty_ = false;
+        stats_.bucket_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+    }
+    stats_.tiles_visible = buckets_.tiles_visible;
+    stats_.tiles_culled = buckets_.tiles_culled;
+
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, candidate_buffer_);
+    // Mesh LODs 0..2: one instanced draw each, the LOD's index range, its instances from base_instance on.
+    glUseProgram(detail_.id);
+    glUniformMatrix4fv(loc(detail_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+    glUniform1f(loc(detail_, "u_tile_size_m"), tile_size_m_);
+    setLighting(detail_, eye, fog_density);
+    // Thin sheets (leaves, blades) are closed but ~1 mm thick: back faces are never the visible side.
+    for (size_t i = 0; i < types_.size() && i < buckets_.types.size(); ++i) {
+        const DetailLodMesh& m = (*meshes_)[i];
+        const DrawBuckets::Type& b = buckets_.types[i];
+        glUniform3fv(loc(detail_, "u_color"), 1, glm::value_ptr(m.color));
+        glBindVertexArray(types_[i].vao);
+        for (int level = 0; level < kMeshLodCount; ++level) {
+            const uint32_t count = b.lod_count[size_t(level)];
+            if (count == 0) continue;
+            glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(m.index_count[size_t(level)]), GL_UNSIGNED_INT,
+                                                reinterpret_cast<void*>(uintptr_t(m.index_first[size_t(level)]) * 4),
+                                                GLsizei(count), b.lod_first[size_t(level)]);
+            ++stats_.draw_calls;
+            stats_.triangles += uint64_t(count) * m.triangles(level);
+            stats_.lod_instances[size_t(level)] += count;
+            stats_.instances_drawn += count;
+        }
+    }
+    // Impostors: one point sprite per instance, straight from the instance buffer (no instancing: on
+    // llvmpipe an instanced draw pays a fixed cost per instance, which tiny far objects cannot afford).
+    glUseProgram(impostor_.id);
+    glUniformMatrix4fv(loc(impostor_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+    glUniform1f(loc(impostor_, "u_tile_size_m"), tile_size_m_);
+    glUniform1f(loc(impostor_, "u_point_scale"), 0.5f * float(height) / std::tan(0.5f * cam.fov_y_rad));
+    const glm::vec3 to_eye(view[0][2], view[1][2], view[2][2]);
+    glUniform3fv(loc(impostor_, "u_to_eye"), 1, glm::value_ptr(to_eye));
+    setLighting(impostor_, eye, fog_density);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    for (size_t i = 0; i < types_.size() && i < buckets_.types.size(); ++i) {
+        const DetailLodMesh& m = (*meshes_)[i];
+        const DrawBuckets::Type& b = buckets_.types[i];
+        const uint32_t count = b.lod_count[kImpostorLod];
+        if (count == 0) continue;
+        glUniform3fv(loc(impostor_, "u_color"), 1, glm::value_ptr(m.color));
+        glUniform3fv(loc(impostor_, "u_center"), 1, glm::value_ptr(m.center));
+        glUniform1f(loc(impostor_, "u_half_size_m"), m.impostor_half_size_m);
+        glBindVertexArray(types_[i].impostor_vao);
+        glDrawArrays(GL_POINTS, GLint(b.lod_first[kImpostorLod]), GLsizei(count));
+        ++stats_.draw_calls;
+        stats_.points += count;
+        stats_.lod_instances[kImpostorLod] += count;
+        stats_.instances_drawn += count;
+    }
+    glDisable(GL_PROGRAM_POINT_SIZE);
+}
+
+void Renderer::readPixels(int width, int height, std::vector<uint8_t>* rgba) const {
+    std::vector<uint8_t> bottom_up(size_t(width) * size_t(height) * 4);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadBuffer(GL_BACK);
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottom_up.data());
+    rgba->resize(bottom_up.size());
+    const size_t row = size_t(width) * 4;
+    for (int y = 0; y < height; ++y)
+        std::memcpy(rgba->data() + size_t(y) * row, bottom_up.data() + size_t(height - 1 - y) * row, row);
+}
+
+}  // namespace ug::editor::gl

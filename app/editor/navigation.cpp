@@ -1,0 +1,44 @@
+#include "editor/navigation.h"
+
+#include <GLFW/glfw3.h>  // key codes only: the ImGui 1.86 GLFW backend indexes io.KeysDown by them
+#include <imgui.h>
+
+namespace ug::editor {
+
+bool navigate(OrbitCamera* camera, const Bounds& extent, float viewport_height_px) {
+    ImGuiIO& io = ImGui::GetIO();
+    const OrbitCamera before = *camera;
+    if (!io.WantCaptureMouse) {
+        const ImVec2 d = io.MouseDelta;
+        const bool middle = ImGui::IsMouseDown(ImGuiMouseButton_Middle);
+        const bool alt_left = io.KeyAlt && ImGui::IsMouseDown(ImGuiMouseButton_Left);
+        if ((middle || alt_left) && (d.x != 0.0f || d.y != 0.0f)) {
+            if (io.KeyShift)
+                pan(camera, d.x, d.y, viewport_height_px);
+            else if (io.KeyCtrl)
+                zoom(camera, -d.y * 0.02f);
+            else
+                orbit(camera, d.x, d.y);
+        }
+        if (io.MouseWheel != 0.0f) zoom(camera, io.MouseWheel);
+    }
+    auto moved = [&] {
+        return camera->target != before.target || camera->distance_m != before.distance_m ||
+               camera->yaw_rad != before.yaw_rad || camera->pitch_rad != before.pitch_rad;
+    };
+    if (io.WantCaptureKeyboard) return moved();
+    auto pressed = [](int a, int b) { return ImGui::IsKeyPressed(a, false) || ImGui::IsKeyPressed(b, false); };
+    if (pressed(GLFW_KEY_1, GLFW_KEY_KP_1)) setPreset(camera, ViewPreset::Front);
+    if (pressed(GLFW_KEY_3, GLFW_KEY_KP_3)) setPreset(camera, ViewPreset::Side);
+    if (pressed(GLFW_KEY_7, GLFW_KEY_KP_7)) setPreset(camera, ViewPreset::Top);
+    if (pressed(GLFW_KEY_F, GLFW_KEY_HOME)) {
+        OrbitCamera framed = *camera;
+        frameBounds(extent, &framed);
+        // Keep the current direction of view; only the target and the distance change.
+        camera->target = framed.target;
+        camera->distance_m = framed.distance_m;
+    }
+    return moved();
+}
+
+}  // namespace ug::editor

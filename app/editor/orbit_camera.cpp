@@ -1,0 +1,82 @@
+#include "editor/orbit_camera.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+namespace ug::editor {
+
+namespace {
+constexpr float kPitchLimitRad = 1.5533431f;  // 89 degrees: the view matrix degenerates at the pole
+constexpr float kOrbitRadPerPx = 0.005f;
+}  // namespace
+
+glm::vec3 OrbitCamera::eye() const {
+    const float c = std::cos(pitch_rad);
+    return target + distance_m * glm::vec3(c * std::cos(yaw_rad), c * std::sin(yaw_rad), std::sin(pitch_rad));
+}
+
+glm::mat4 OrbitCamera::view() const { return glm::lookAt(eye(), target, glm::vec3(0.0f, 0.0f, 1.0f)); }
+
+glm::mat4 OrbitCamera::projection() const {
+    const float near_m = std::max(distance_m * 0.01f, 0.005f);
+    const float far_m = distance_m * 100.0f + 100.0f;
+    return glm::perspective(fov_y_rad, aspect, near_m, far_m);
+}
+
+void frameBounds(const Bounds& extent, OrbitCamera* camera) {
+    const glm::vec3 lo = extent.lo, hi = extent.hi;
+    camera->target = 0.5f * (lo + hi);
+    camera->pitch_rad = glm::radians(35.0f);
+    camera->yaw_rad = glm::radians(-105.0f);
+    // The nearest distance at which the extent's eight corners all project inside 90 % of the view
+    // (bisection: "fits" is monotonic in the distance for a box around the target). A bounding sphere
+    // would leave a flat terrain at half the width of the screen.
+    const float radius = std::max(0.5f * glm::length(hi - lo), 0.05f);
+    auto fits = [&](float distance) {
+        OrbitCamera c = *camera;
+        c.distance_m = distance;
+        const glm::mat4 m = c.viewProjection();
+        for (int k = 0; k < 8; ++k) {
+            const glm::vec3 p((k & 1) ? hi.x : lo.x, (k & 2) ? hi.y : lo.y, (k & 4) ? hi.z : lo.z);
+            const glm::vec4 q = m * glm::vec4(p, 1.0f);
+            if (q.w <= 0.0f || std::abs(q.x / q.w) > 0.9f || std::abs(q.y / q.w) > 0.9f) return false;
+        }
+        return true;
+    };
+    float near_d = 0.05f * radius, far_d = 20.0f * radius;
+    for (int i = 0; i < 40; ++i) {
+        const float mid = 0.5f * (near_d + far_d);
+        (fits(mid) ? far_d : near_d) = mid;
+    }
+    camera->distance_m = far_d;
+}
+
+void orbit(OrbitCamera* camera, float dx_px, float dy_px) {
+    camera->yaw_rad -= dx_px * kOrbitRadPerPx;
+    camera->pitch_rad = std::clamp(camera->pitch_rad + dy_px * kOrbitRadPerPx, -kPitchLimitRad, kPitchLimitRad);
+}
+
+void pan(OrbitCamera* camera, float dx_px, float dy_px, float viewport_height_px) {
+    // Metres per pixel at the target's depth.
+    const float m_per_px = 2.0f * camera->distance_m * std::tan(0.5f * camera->fov_y_rad) / std::max(viewport_height_px, 1.0f);
+    const glm::mat4 v = camera->view();
+    const glm::vec3 right(v[0][0], v[1][0], v[2][0]);
+    const glm::vec3 up(v[0][1], v[1][1], v[2][1]);
+    camera->target += (-dx_px * right + dy_px * up) * m_per_px;
+}
+
+void zoom(OrbitCamera* camera, float steps) {
+    camera->distance_m = std::clamp(camera->distance_m * std::pow(1.2f, -steps), 0.02f, 1.0e5f);
+}
+
+void setPreset(OrbitCamera* camera, ViewPreset preset) {
+    switch (preset) {
+        case ViewPreset::Front: camera->yaw_rad = glm::radians(-90.0f); camera->pitch_rad = 0.0f; break;
+        case ViewPreset::Side: camera->yaw_rad = 0.0f; camera->pitch_rad = 0.0f; break;
+        case ViewPreset::Top: camera->yaw_rad = glm::radians(-90.0f); camera->pitch_rad = kPitchLimitRad; break;
+    }
+}
+
+}  // namespace ug::editor

@@ -1,0 +1,45 @@
+#version 430 core
+// instanced_detail: one detail type at one mesh LOD, one instance per (tile, candidate).
+// Interface: a_position (0), a_normal (1) in model space; a_instance (2, per instance) = the packed
+// instance of app/editor/render_data.h: x = uint16(t.x) | uint16(t.y) << 16, y = uint16(t.z) | j << 16;
+// buffer 0 = the Ghost Tile's candidate frames (uploaded once); u_view_proj, u_tile_size_m, u_color.
+layout(location = 0) in vec3 a_position;
+layout(location = 1) in vec3 a_normal;
+layout(location = 2) in uvec2 a_instance;
+
+struct CandidateFrame {
+    vec4 position_scale;  // xyz: position in the tile (m), w: uniform scale
+    vec4 rotation;        // unit quaternion (x, y, z, w)
+};
+layout(std430, binding = 0) readonly buffer CandidateFrames { CandidateFrame u_frames[]; };
+
+uniform mat4 u_view_proj;
+uniform float u_tile_size_m;
+uniform vec3 u_color;
+out vec3 v_world;
+out vec3 v_normal;
+out vec3 v_color;
+
+vec3 rotate(vec4 q, vec3 v) {
+    vec3 t = 2.0 * cross(q.xyz, v);
+    return v + q.w * t + cross(q.xyz, t);
+}
+
+void main() {
+    // Sign-extend the 16-bit tile coordinates (arithmetic shifts of a signed int).
+    ivec3 tile = ivec3(int(a_instance.x << 16) >> 16, int(a_instance.x) >> 16, int(a_instance.y << 16) >> 16);
+    uint j = a_instance.y >> 16;
+    CandidateFrame f = u_frames[j];
+    // tileOrigin(t, s) + p_j + R_j (scale_j v): the engine's expression, so instances sit where the
+    // exporter puts them.
+    vec3 origin = vec3(tile) * u_tile_size_m;
+    v_world = origin + f.position_scale.xyz + rotate(f.rotation, f.position_scale.w * a_position);
+    v_normal = rotate(f.rotation, a_normal);
+    // +-10 % brightness per instance, hashed from (tile, candidate): neighbours of one type do not look cloned.
+    uint h = (a_instance.x * 2654435761u) ^ (a_instance.y * 2246822519u);
+    h ^= h >> 15;
+    h *= 2246822519u;
+    h ^= h >> 13;
+    v_color = u_color * (0.9 + 0.2 * float(h & 1023u) / 1023.0);
+    gl_Position = u_view_proj * vec4(v_world, 1.0);
+}
