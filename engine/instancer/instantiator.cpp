@@ -852,7 +852,16 @@ bool Instantiator::update(std::vector<InstanceTypeSettings> types, std::span<con
         if (b.empty()) continue;
         const glm::ivec3 lo = tileOf(b.lo, s), hi = tileOf(b.hi, s);
         const uint64_t count = uint64_t(hi.x - lo.x + 1) * uint64_t(hi.y - lo.y + 1) * uint64_t(hi.z - lo.z + 1);
-        if (count > 4'000'000) return instantiateAll(options, stats, error);  // cheaper to start over
+        if (count > 4'000'000) {  // cheaper to start over; every tile of the old or new store changed
+            std::vector<uint64_t> keys;
+            for (size_t t = 0; t < e.store.tileCount(); ++t) keys.push_back(e.store.tileKey(t));
+            if (!instantiateAll(options, stats, error)) return false;
+            for (size_t t = 0; t < e.store.tileCount(); ++t) keys.push_back(e.store.tileKey(t));
+            std::sort(keys.begin(), keys.end());
+            keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+            if (changed_tiles) *changed_tiles = std::move(keys);
+            return true;
+        }
         for (int z = lo.z; z <= hi.z; ++z)
             for (int y = lo.y; y <= hi.y; ++y)
                 for (int x = lo.x; x <= hi.x; ++x) dirty_keys.push_back(packTile(glm::ivec3(x, y, z)));

@@ -91,7 +91,9 @@ public:
     // and new supports of what changed). Recomputes the tiles the dirty boxes reach, then re-decides, in
     // key order, exactly the candidates whose higher-key neighbourhood changed. The result equals
     // instantiateAll() on the new settings, bit for bit. `changed_tiles` (optional) receives the packed
-    // keys of the tiles whose selected set changed, ascending. Requires a previous instantiateAll().
+    // keys of the tiles whose selected set changed, ascending (when the dirty region is so large that
+    // update starts over with instantiateAll(), every tile of the old and the new store: a superset).
+    // Requires a previous instantiateAll().
     bool update(std::vector<InstanceTypeSettings> types, std::span<const Bounds> dirty,
                 const InstanceOptions& options, InstanceStats* stats, std::vector<uint64_t>* changed_tiles,
                 std::string* error);

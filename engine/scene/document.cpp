@@ -1,0 +1,500 @@
+#include "scene/document.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <system_error>
+
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+#include "core/hash.h"
+
+namespace ug {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+std::string absolutePath(const std::string& path) {
+    std::error_code ec;
+    fs::path p = fs::absolute(path, ec);
+    if (ec) p = path;
+    return p.lexically_normal().string();
+}
+
+bool sameBounds(const Bounds& a, const Bounds& b) { return a.lo == b.lo && a.hi == b.hi; }
+
+// The extent the document instantiates: the project's, or derived from the densities as the CLI derives
+// it from the saved file. Unlike compileScene, a scene with no density yet (a new project, everything
+// erased) is fine: its extent is empty and it has no instances.
+bool documentExtent(const Project& project, const CompiledScene& scene, const std::string& name, Bounds* out,
+                    std::string* error) {
+    if (project.extent) {
+        *out = *project.extent;
+        return true;
+    }
+    const Bounds e = computeSceneExtent(project, scene);
+    bool flat = false;
+    for (int a = 0; a < 3; ++a) flat = flat || !(e.lo[a] < e.hi[a]);
+    if (e.empty() || flat) {
+        *out = Bounds{};
+        return true;
+    }
+    for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(e.lo[a]) || !std::isfinite(e.hi[a])) {
+            *error = name + ": /extent: required because a density is unbounded (give the project an extent)";
+            return false;
+        }
+    *out = e;
+    return true;
+}
+
+// A path written in the project (relative to old_dir unless absolute) as the project in new_dir must
+// write it. Absolute paths stay absolute; a path that cannot be made relative becomes absolute.
+std::string rebasePath(const std::string& path, const fs::path& old_dir, const fs::path& new_dir) {
+    if (path.empty() || fs::path(path).is_absolute()) return path;
+    const fs::path target = (old_dir / path).lexically_normal();
+    const fs::path rel = target.lexically_relative(new_dir);
+    return rel.empty() ? target.string() : rel.string();
+}
+
+int64_t unixNow() {
+    return std::chrono::duration_cast<std::chrono::seconds>(std::chrono::system_clock::now().time_since_epoch())
+        .count();
+}
+
+}  // namespace
+
+std::string defaultConfigDir() {
+    if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg && *xdg) return (fs::path(xdg) / "undergrowth").string();
+    if (const char* home = std::getenv("HOME"); home && *home)
+        return (fs::path(home) / ".config" / "undergrowth").string();
+    return "";
+}
+
+// ---- recent files ------------------------------------------------------------------------------------------
+
+std::vector<std::string> loadRecentFiles(const std::string& config_dir) {
+    std::vector<std::string> files;
+    if (config_dir.empty()) return files;
+    std::string text, error;
+    if (!readTextFile((fs::path(config_dir) / "recent.json").string(), &text, &error)) return files;
+    const json j = json::parse(text, nullptr, /*allow_exceptions=*/false);
+    if (!j.is_object() || !j.contains("files") || !j["files"].is_array()) return files;
+    for (const json& f : j["files"])
+        if (f.is_string() && files.size() < kMaxRecentFiles) files.push_back(f.get<std::string>());
+    return files;
+}
+
+bool addRecentFile(const std::string& config_dir, const std::string& path, std::string* error) {
+    if (config_dir.empty()) return true;
+    const std::string abs = absolutePath(path);
+    std::vector<std::string> files = loadRecentFiles(config_dir);
+    std::erase(files, abs);
+    files.insert(files.begin(), abs);
+    if (files.size() > kMaxRecentFiles) files.resize(kMaxRecentFiles);
+    std::error_code ec;
+    fs::create_directories(config_dir, ec);
+    const json j = {{"format", "undergrowth-recent"}, {"files", files}};
+    return writeTextFileAtomically((fs::path(config_dir) / "recent.json").string(), j.dump(2) + "\n", error);
+}
+
+// ---- recovery ----------------------------------------------------------------------------------------------
+
+namespace {
+
+std::string recoveryKey(const std::string& project_path) {
+    if (project_path.empty()) return "untitled";
+    const std::string abs = absolutePath(project_path);
+    return hex64(hashBytes(abs.data(), abs.size())).substr(2);  // without "0x"
+}
+
+std::string recoveryMetaPath(const std::string& config_dir, const std::string& project_path) {
+    return (fs::path(config_dir) / "recovery" / (recoveryKey(project_path) + ".meta.json")).string();
+}
+
+}  // namespace
+
+std::string recoveryPath(const std::string& config_dir, const std::string& project_path) {
+    return (fs::path(config_dir) / "recovery" / (recoveryKey(project_path) + ".json")).string();
+}
+
+bool findRecovery(const std::string& config_dir, const std::string& project_path, RecoveryInfo* out) {
+    if (config_dir.empty()) return false;
+    const std::string data = recoveryPath(config_dir, project_path);
+    std::string text, error;
+    if (!readTextFile(recoveryMetaPath(config_dir, project_path), &text, &error)) return false;
+    const json meta = json::parse(text, nullptr, false);
+    const std::string abs = project_path.empty() ? std::string() : absolutePath(project_path);
+    // The meta names the path it belongs to: a hash collision (or a hand-copied folder) is not a recovery.
+    if (!meta.is_object() || meta.value("format", "") != "undergrowth-recovery" || meta.value("path", "") != abs)
+        return false;
+    std::error_code ec;
+    const auto recovery_time = fs::last_write_time(data, ec);
+    if (ec) return false;
+    if (!abs.empty()) {
+        std::error_code ec2;
+        const auto file_time = fs::last_write_time(abs, ec2);
+        // Saved after the autosave (by this or another program): the file is newer, nothing to recover.
+        if (!ec2 && file_time >= recovery_time) return false;
+    }
+    if (out) {
+        out->project_path = abs;
+        out->recovery_path = data;
+        out->saved_unix_s = meta.value("saved_unix_s", int64_t(0));
+    }
+    return true;
+}
+
+void discardRecovery(const std::string& config_dir, const std::string& project_path) {
+    if (config_dir.empty()) return;
+    std::error_code ec;
+    // The meta goes first: without it the data file is never offered.
+    fs::remove(recoveryMetaPath(config_dir, project_path), ec);
+    fs::remove(recoveryPath(config_dir, project_path), ec);
+}
+
+// ---- Document: loading -------------------------------------------------------------------------------------
+
+std::unique_ptr<Document> Document::open(const std::string& path, const DocumentOptions& options,
+                                         std::string* error) {
+    Project project;
+    if (!loadProject(path, &project, error)) return nullptr;
+    std::unique_ptr<Document> doc(new Document());
+    if (!doc->load(std::move(project), path, options, error)) return nullptr;
+    std::string ignored;  // a recent list that cannot be written is not worth failing the open for
+    addRecentFile(options.config_dir, path, &ignored);
+    return doc;
+}
+
+std::unique_ptr<Document> Document::recover(const std::string& path, const DocumentOptions& options,
+                                            std::string* error) {
+    RecoveryInfo info;
+    if (!findRecovery(options.config_dir, path, &info)) {
+        *error = path + ": no recovery file newer than the project in '" +
+                 (fs::path(options.config_dir) / "recovery").string() + "'";
+        return nullptr;
+    }
+    std::string text;
+    if (!readTextFile(info.recovery_path, &text, error)) return nullptr;
+    Project project;
+    if (!parseProject(text, info.recovery_path, &project, error)) return nullptr;
+    // The autosave wrote the paths as the project has them: relative to the project's own folder.
+    project.base_dir = fs::path(path).parent_path().string();
+    project.source = path;
+    std::unique_ptr<Document> doc(new Document());
+    if (!doc->load(std::move(project), path, options, error)) return nullptr;
+    doc->saved_state_ = ~uint64_t(0);  // unsaved until the user saves it
+    return doc;
+}
+
+std::unique_ptr<Document> Document::create(Project project, const std::string& path, const DocumentOptions& options,
+                                           std::string* error) {
+    std::unique_ptr<Document> doc(new Document());
+    if (!doc->load(std::move(project), path, options, error)) return nullptr;
+    return doc;
+}
+
+bool Document::load(Project project, const std::string& path, const DocumentOptions& options, std::string* error) {
+    options_ = options;
+    path_ = path;
+    project_ = std::move(project);
+    const std::string name = path.empty() ? project_.name : path;
+    if (!loadProjectModels(project_, &models_, error)) {
+        *error = name + ": " + *error;
+        return false;
+    }
+    std::string note;
+    const GhostTileInput input = ghostTileInput(project_, models_);
+    if (!loadOrBuildGhostTile(options.cache_dir, input, BuildOptions{.threads = options.threads}, &tile_,
+                              &cache_outcome_, &note, error)) {
+        *error = name + ": " + *error;
+        return false;
+    }
+    if (!loadTerrain(project_, &terrain_, error)) return false;
+    if (!compileScene(project_, terrain_, &compiled_, error)) {
+        // The CLI refuses a scene with nothing to instantiate; the editor opens it (a new project) with an
+        // empty extent. Every other reason stands.
+        if (project_.extent) return false;
+        CompiledScene scene;
+        scene.terrain = terrain_;
+        scene.types.resize(project_.detail_types.size());
+        std::string type_error;
+        for (size_t t = 0; t < scene.types.size(); ++t)
+            if (!compileDetailType(project_, t, terrain_, &scene.types[t], &type_error)) return false;
+        if (!documentExtent(project_, scene, name, &scene.extent, &type_error) || !scene.extent.empty()) return false;
+        compiled_ = std::move(scene);
+    }
+    densities_.clear();
+    for (const DetailTypeDesc& t : project_.detail_types) densities_.push_back(editableDensityFor(t.density, &next_id_));
+    live_ = std::make_unique<LiveInstancer>(options.threads);
+    live_->reset(instancerInput());
+    return true;
+}
+
+Document::~Document() = default;
+
+InstancerInput Document::instancerInput() const {
+    InstancerInput in;
+    in.tile = &tile_;
+    for (const DetailModel& m : models_) in.models.push_back(&m);
+    in.types = compiled_.types;
+    in.extent = compiled_.extent;
+    in.seed = project_.instantiation_seed;
+    return in;
+}
+
+// ---- Document: primitives and edits ------------------------------------------------------------------------
+
+std::vector<uint64_t> Document::primitiveIds(size_t type) const {
+    std::vector<uint64_t> ids;
+    if (type >= densities_.size()) return ids;
+    for (uint64_t id : densities_[type].ids)
+        if (id != 0) ids.push_back(id);
+    return ids;
+}
+
+bool Document::findPrimitive(uint64_t id, size_t* type, Primitive* out) const {
+    for (size_t t = 0; t < densities_.size(); ++t) {
+        const int64_t k = findUserPrimitive(densities_[t], id);
+        if (k < 0) continue;
+        if (type) *type = t;
+        if (out) *out = userPrimitive(project_.detail_types[t].density, size_t(k));
+        return true;
+    }
+    return false;
+}
+
+bool Document::commit(const EditEffect& effect, std::string* error) {
+    CompiledScene next;
+    next.terrain = compiled_.terrain;
+    next.types = compiled_.types;
+    for (size_t t : effect.types)
+        if (!compileDetailType(project_, t, terrain_, &next.types[t], error)) return false;
+    if (!documentExtent(project_, next, path_.empty() ? project_.name : path_, &next.extent, error)) return false;
+    const bool extent_changed = !sameBounds(next.extent, compiled_.extent);
+    compiled_ = std::move(next);
+    if (effect.full || extent_changed)
+        live_->reset(instancerInput());
+    else if (!effect.types.empty())
+        live_->submit(compiled_.types, effect.dirty);
+    return true;
+}
+
+bool Document::execute(std::unique_ptr<Command> command, std::string* error) {
+    EditEffect effect;
+    if (!command->apply(target(), &effect, error)) return false;
+    if (!commit(effect, error)) {
+        EditEffect undone;
+        command->revert(target(), &undone);
+        return false;
+    }
+    ++edit_count_;
+    if (stroke_) {
+        stroke_->push(std::move(command));
+    } else {
+        undo_.push_back(Step{std::move(command), next_state_++});
+        if (undo_.size() > kMaxUndoSteps) undo_.erase(undo_.begin());
+    }
+    redo_.clear();
+    return true;
+}
+
+uint64_t Document::addPrimitive(size_t type, const Primitive& prim, std::string* error) {
+    const uint64_t id = next_id_;
+    if (!execute(std::make_unique<AddPrimitiveCommand>(type, prim, id), error)) return 0;
+    ++next_id_;
+    return id;
+}
+
+bool Document::setPrimitive(uint64_t id, const Primitive& prim, std::string* error) {
+    return execute(std::make_unique<SetPrimitiveCommand>(id, prim), error);
+}
+
+bool Document::removePrimitive(uint64_t id, std::string* error) {
+    return execute(std::make_unique<RemovePrimitiveCommand>(id), error);
+}
+
+uint64_t Document::duplicatePrimitive(uint64_t id, glm::vec3 offset_m, std::string* error) {
+    size_t type = 0;
+    Primitive prim;
+    if (!findPrimitive(id, &type, &prim)) {
+        *error = "no primitive with id " + std::to_string(id);
+        return 0;
+    }
+    if (prim.kind != PrimitiveKind::TerrainLayer && prim.kind != PrimitiveKind::TerrainSolid) {
+        prim.center_m += offset_m;
+        if (prim.kind == PrimitiveKind::Segment) prim.end_m += offset_m;
+    }
+    return addPrimitive(type, prim, error);
+}
+
+bool Document::setInstancing(size_t type, const InstancingDesc& desc, std::string* error) {
+    return execute(std::make_unique<SetInstancingCommand>(type, desc), error);
+}
+
+bool Document::setSeed(uint64_t seed, std::string* error) {
+    return execute(std::make_unique<SetSeedCommand>(seed), error);
+}
+
+void Document::beginStroke(const std::string& name) {
+    if (stroke_) endStroke();
+    stroke_ = std::make_unique<CompoundCommand>(name);
+}
+
+void Document::endStroke() {
+    if (!stroke_) return;
+    std::unique_ptr<CompoundCommand> stroke = std::move(stroke_);
+    if (stroke->empty()) return;
+    undo_.push_back(Step{std::move(stroke), next_state_++});
+    if (undo_.size() > kMaxUndoSteps) undo_.erase(undo_.begin());
+}
+
+std::string Document::undoName() const {
+    if (stroke_ && !stroke_->empty()) return stroke_->name();
+    return undo_.empty() ? std::string() : undo_.back().command->name();
+}
+
+std::string Document::redoName() const { return redo_.empty() ? std::string() : redo_.back().command->name(); }
+
+bool Document::undo() {
+    endStroke();
+    if (undo_.empty()) return false;
+    Step step = std::move(undo_.back());
+    undo_.pop_back();
+    EditEffect effect;
+    step.command->revert(target(), &effect);
+    std::string error;
+    // The state being restored compiled before, so this cannot fail.
+    [[maybe_unused]] const bool ok = commit(effect, &error);
+    ++edit_count_;
+    redo_.push_back(std::move(step));
+    return true;
+}
+
+bool Document::redo() {
+    endStroke();
+    if (redo_.empty()) return false;
+    Step step = std::move(redo_.back());
+    redo_.pop_back();
+    EditEffect effect;
+    std::string error;
+    // It applied and compiled before from this very state, so it does again; should it not, the state is
+    // put back and the step stays redoable.
+    if (!step.command->apply(target(), &effect, &error)) {
+        redo_.push_back(std::move(step));
+        return false;
+    }
+    if (!commit(effect, &error)) {
+        EditEffect undone;
+        step.command->revert(target(), &undone);
+        redo_.push_back(std::move(step));
+        return false;
+    }
+    ++edit_count_;
+    undo_.push_back(std::move(step));
+    return true;
+}
+
+// ---- Document: files ---------------------------------------------------------------------------------------
+
+bool Document::isDirty() const {
+    return currentState() != saved_state_ || (stroke_ && !stroke_->empty());
+}
+
+bool Document::save(std::string* error) {
+    if (path_.empty()) {
+        *error = "the document has no file yet: use Save As";
+        return false;
+    }
+    return saveAs(path_, error);
+}
+
+bool Document::saveAs(const std::string& path, std::string* error) {
+    const fs::path old_dir = fs::absolute(project_.base_dir.empty() ? fs::path(".") : fs::path(project_.base_dir));
+    const fs::path new_dir = fs::absolute(fs::path(path).has_parent_path() ? fs::path(path).parent_path() : ".");
+    const bool moved = old_dir.lexically_normal() != new_dir.lexically_normal();
+    Project saved = project_;
+    if (moved) {
+        for (DetailTypeDesc& t : saved.detail_types)
+            t.model.mesh_path = rebasePath(t.model.mesh_path, old_dir.lexically_normal(), new_dir.lexically_normal());
+        if (saved.terrain.kind == TerrainKind::Image)
+            saved.terrain.image_path =
+                rebasePath(saved.terrain.image_path, old_dir.lexically_normal(), new_dir.lexically_normal());
+    }
+    if (!saveProject(path, saved, error)) {
+        if (error->find(path) == std::string::npos) *error = path + ": " + *error;
+        return false;  // nothing in memory changed
+    }
+    // Only the paths and where it came from differ; the densities (and their ids) are the same objects'
+    // copies, so keep ours and take the rewritten paths.
+    if (moved) {
+        for (size_t t = 0; t < project_.detail_types.size(); ++t)
+            project_.detail_types[t].model.mesh_path = saved.detail_types[t].model.mesh_path;
+        project_.terrain.image_path = saved.terrain.image_path;
+        project_.base_dir = fs::path(path).parent_path().string();
+    }
+    project_.source = path;
+    const std::string old_path = path_;
+    path_ = path;
+    endStroke();
+    saved_state_ = currentState();
+    autosaved_edits_ = edit_count_;
+    change_seen_s_ = -1.0;
+    discardRecovery(options_.config_dir, old_path);
+    if (old_path != path) discardRecovery(options_.config_dir, path);
+    std::string ignored;
+    addRecentFile(options_.config_dir, path, &ignored);
+    return true;
+}
+
+bool Document::autosave(std::string* error) {
+    if (options_.config_dir.empty()) {
+        *error = "autosave: no config folder to write the recovery file to";
+        return false;
+    }
+    const std::string data = recoveryPath(options_.config_dir, path_);
+    std::error_code ec;
+    fs::create_directories(fs::path(data).parent_path(), ec);
+    if (ec) {
+        *error = fs::path(data).parent_path().string() + ": cannot create the folder: " + ec.message();
+        return false;
+    }
+    // Data first, then the meta that makes it visible to findRecovery: a crash between them leaves an
+    // older meta pointing at newer data, which is still a good recovery.
+    const json meta = {{"format", "undergrowth-recovery"},
+                       {"path", path_.empty() ? std::string() : absolutePath(path_)},
+                       {"saved_unix_s", unixNow()}};
+    if (!writeTextFileAtomically(data, projectToJson(project_), error) ||
+        !writeTextFileAtomically(recoveryMetaPath(options_.config_dir, path_), meta.dump(2) + "\n", error))
+        return false;
+    autosaved_edits_ = edit_count_;
+    change_seen_s_ = -1.0;
+    return true;
+}
+
+bool Document::maybeAutosave(double now_s, std::string* error) {
+    if (!isDirty() || autosaved_edits_ == edit_count_) {
+        change_seen_s_ = -1.0;
+        return false;
+    }
+    if (change_seen_s_ < 0.0) change_seen_s_ = now_s;
+    if (now_s - change_seen_s_ < options_.autosave_interval_s) return false;
+    return autosave(error);
+}
+
+void Document::close() {
+    endStroke();
+    if (live_) live_->waitIdle();
+    discardRecovery(options_.config_dir, path_);
+}
+
+LiveResult Document::waitForResult() {
+    live_->waitIdle();
+    return live_->latest();
+}
+
+}  // namespace ug

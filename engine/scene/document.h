@@ -1,0 +1,200 @@
+// The editor's document (issue 4, "Document"): a project being edited, everything derived from it, the
+// undo stack and the live instantiation. GL-free, so tests, scripted runs and the GUI share it.
+//
+//   DocumentOptions options{.cache_dir = "cache", .config_dir = defaultConfigDir()};
+//   RecoveryInfo info;
+//   std::unique_ptr<Document> doc = findRecovery(options.config_dir, path, &info) && user_agrees
+//                                       ? Document::recover(path, options, &error)
+//                                       : Document::open(path, options, &error);
+//   uint64_t id = doc->addPrimitive(type, makePoint(p, 0.5f), &error);     // one undo step
+//   doc->beginStroke("Paint");  ... doc->addPrimitive(...) per stamp ...  doc->endStroke();  // one step
+//   doc->undo();  doc->redo();
+//   every frame:   LiveResult r; if (doc->live().poll(&r)) upload(r);  doc->maybeAutosave(now_s, &error);
+//   doc->save(&error);  doc->saveAs(other, &error);  doc->close();
+//
+// What is kept:
+//   project       the file's content, edited in place (densities keep the file's DensityField; the ids of
+//                 the user primitives live in a side table, edit_commands.h)
+//   models, Ghost Tile, terrain   loaded once at open (Ghost Tile from the verified cache, or built)
+//   compiled      one InstanceTypeSettings per type, recompiled for the types an edit touches
+//   live          the LiveInstancer, fed after every edit, undo and redo
+// The document is used from one thread (the UI's); only the LiveInstancer's worker runs beside it.
+//
+// Files under the config folder (defaultConfigDir(): $XDG_CONFIG_HOME/undergrowth, else
+// ~/.config/undergrowth):
+//   recent.json                          {"format": "undergrowth-recent", "files": [absolute paths]},
+//                                        newest first, at most kMaxRecentFiles
+//   recovery/<16 hex digits>.json        the autosaved project (hex: hash of the absolute project path)
+//   recovery/<16 hex digits>.meta.json   {"format": "undergrowth-recovery", "path": "<absolute path>",
+//                                         "saved_unix_s": <time>}
+// Every write is atomic (core/atomic_file.h).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "ghosttile/ghost_tile.h"
+#include "ghosttile/ghost_tile_cache.h"
+#include "instancer/instantiator.h"
+#include "mesh/detail_model.h"
+#include "scene/edit_commands.h"
+#include "scene/live_instancer.h"
+#include "scene/project.h"
+#include "scene/scene_compile.h"
+
+namespace ug {
+
+constexpr size_t kMaxRecentFiles = 10;
+constexpr size_t kMaxUndoSteps = 1000;  // the oldest steps are dropped beyond this
+
+struct DocumentOptions {
+    std::string cache_dir;             // Ghost Tile cache folder
+    std::string config_dir;            // recent files and recovery; empty: neither is written
+    int threads = 0;                   // Ghost Tile build and instantiation (0 = all hardware threads)
+    double autosave_interval_s = 60.0; // maybeAutosave(): at most this long between a change and its autosave
+};
+
+// $XDG_CONFIG_HOME/undergrowth, else $HOME/.config/undergrowth, else "" (no config).
+std::string defaultConfigDir();
+
+// ---- recent files ----------------------------------------------------------------------------------------
+// A missing or unreadable list is empty (recent files are a convenience, never a reason to fail).
+std::vector<std::string> loadRecentFiles(const std::string& config_dir);
+// Puts the absolute path first (removing an older entry for it), keeps kMaxRecentFiles; atomic.
+bool addRecentFile(const std::string& config_dir, const std::string& path, std::string* error);
+
+// ---- recovery --------------------------------------------------------------------------------------------
+struct RecoveryInfo {
+    std::string project_path;   // absolute
+    std::string recovery_path;  // the autosaved project
+    int64_t saved_unix_s = 0;
+};
+// The recovery file of a project path (absolute, normalized, hashed). An empty path (an untitled
+// document) has the key "untitled".
+std::string recoveryPath(const std::string& config_dir, const std::string& project_path);
+// True when an autosave of `project_path` exists that is newer than the file (or the file is gone).
+bool findRecovery(const std::string& config_dir, const std::string& project_path, RecoveryInfo* out);
+// Removes the recovery files of a path (after a save, a close, or when the user declines to recover).
+void discardRecovery(const std::string& config_dir, const std::string& project_path);
+
+class Document {
+public:
+    // Loads the project, its models, the Ghost Tile (cache or build) and the terrain, compiles it and starts
+    // instantiating in the background. Adds the path to the recent files. Errors name the file.
+    static std::unique_ptr<Document> open(const std::string& path, const DocumentOptions& options,
+                                          std::string* error);
+    // The autosaved state of `path` (findRecovery), as a dirty document that saves to `path`.
+    static std::unique_ptr<Document> recover(const std::string& path, const DocumentOptions& options,
+                                             std::string* error);
+    // A document for a project in memory ("New"; path may be empty until saveAs). Relative paths in the
+    // project resolve against project.base_dir.
+    static std::unique_ptr<Document> create(Project project, const std::string& path,
+                                            const DocumentOptions& options, std::string* error);
+    ~Document();  // stops the worker; leaves any recovery file (close() removes it)
+    Document(const Document&) = delete;
+    Document& operator=(const Document&) = delete;
+
+    const Project& project() const { return project_; }
+    const std::string& path() const { return path_; }
+    const std::vector<DetailModel>& models() const { return models_; }
+    const GhostTile& ghostTile() const { return tile_; }
+    const std::shared_ptr<const HeightField>& terrain() const { return terrain_; }
+    const CompiledScene& compiled() const { return compiled_; }
+    CacheOutcome cacheOutcome() const { return cache_outcome_; }
+    // What the instantiator runs on now (points into this document).
+    InstancerInput instancerInput() const;
+
+    // ---- user primitives (edit_commands.h) ----
+    // The ids of `type`'s user primitives, in blend order.
+    std::vector<uint64_t> primitiveIds(size_t type) const;
+    // The primitive `id` and its type; false for an unknown id.
+    bool findPrimitive(uint64_t id, size_t* type, Primitive* out) const;
+
+    // ---- edits: one undo step each, or one more stamp of the open stroke ----
+    // Errors name the type or id and the reason; on failure nothing changed.
+    uint64_t addPrimitive(size_t type, const Primitive& prim, std::string* error);  // the new id, 0 on failure
+    bool setPrimitive(uint64_t id, const Primitive& prim, std::string* error);
+    bool removePrimitive(uint64_t id, std::string* error);
+    // A copy of `id` moved by offset_m (its skeleton; terrain kinds are not moved), in the same type.
+    uint64_t duplicatePrimitive(uint64_t id, glm::vec3 offset_m, std::string* error);
+    bool setInstancing(size_t type, const InstancingDesc& desc, std::string* error);
+    bool setSeed(uint64_t seed, std::string* error);
+    // Any command (already constructed, not applied). The edits above go through here.
+    bool execute(std::unique_ptr<Command> command, std::string* error);
+
+    // A stroke: every edit until endStroke() is one undo step (applied and instantiated as it comes).
+    void beginStroke(const std::string& name = "Stroke");
+    void endStroke();  // an empty stroke leaves no step
+    bool inStroke() const { return stroke_ != nullptr; }
+
+    bool canUndo() const { return !undo_.empty() || (stroke_ && !stroke_->empty()); }
+    bool canRedo() const { return !redo_.empty(); }
+    std::string undoName() const;  // "" when there is nothing
+    std::string redoName() const;
+    bool undo();  // ends an open stroke first; false when there is nothing to undo
+    bool redo();
+
+    // ---- files ----
+    // Unsaved changes: an edit since the last save (undoing back to the saved state makes it clean), or a
+    // recovered document not yet saved.
+    bool isDirty() const;
+    // Atomic (saveProject). On failure *error names the path and the reason, and the document (content,
+    // path, dirty flag) is unchanged. A clean save removes the recovery file.
+    bool save(std::string* error);
+    // Relative model and image paths are rewritten for the new folder. The document then saves to `path`.
+    bool saveAs(const std::string& path, std::string* error);
+    // Writes the recovery files now (atomic). Needs a config folder.
+    bool autosave(std::string* error);
+    // Autosaves when there are changes not autosaved and autosave_interval_s has passed since the first of
+    // them was seen (now_s: any monotonic clock in seconds, the same on every call). True when it wrote.
+    bool maybeAutosave(double now_s, std::string* error);
+    // The user closes the document (after saving or choosing to drop the changes): waits for the worker
+    // and removes the recovery file. The document must not be edited afterwards.
+    void close();
+
+    // ---- live instantiation ----
+    LiveInstancer& live() { return *live_; }
+    // waitIdle() and then the newest result (tests, scripted runs); changed tiles are left for poll().
+    LiveResult waitForResult();
+
+private:
+    Document() = default;
+    bool load(Project project, const std::string& path, const DocumentOptions& options, std::string* error);
+    EditTarget target() { return EditTarget{&project_, &densities_}; }
+    // Recompiles what `effect` touched and feeds the live instancer; false (nothing changed) when the new
+    // settings do not compile.
+    bool commit(const EditEffect& effect, std::string* error);
+    uint64_t currentState() const { return undo_.empty() ? 0 : undo_.back().state; }
+
+    struct Step {
+        std::unique_ptr<Command> command;
+        uint64_t state;  // unique per executed step: tells the saved state apart from any other
+    };
+
+    DocumentOptions options_;
+    std::string path_;
+    Project project_;
+    std::vector<DetailModel> models_;
+    GhostTile tile_;
+    CacheOutcome cache_outcome_ = CacheOutcome::BuiltMissing;
+    std::shared_ptr<const HeightField> terrain_;
+    CompiledScene compiled_;
+    std::vector<EditableDensity> densities_;
+    uint64_t next_id_ = 1;
+
+    std::vector<Step> undo_, redo_;
+    std::unique_ptr<CompoundCommand> stroke_;
+    uint64_t next_state_ = 1;
+    uint64_t saved_state_ = 0;        // ~0: never saved (recovered)
+    uint64_t edit_count_ = 0;         // every apply, undo and redo
+    uint64_t autosaved_edits_ = 0;    // edit_count_ at the last autosave (or load / save)
+    double change_seen_s_ = -1.0;     // maybeAutosave: when it first saw unsaved edits; < 0 none
+
+    // Last: destroyed first, since its worker reads tile_, models_ and the compiled fields.
+    std::unique_ptr<LiveInstancer> live_;
+};
+
+}  // namespace ug

@@ -1,0 +1,700 @@
+// The editor's document layer: editable densities (stable ids, no unbounded growth, wrapping a non-blend
+// root), commands with undo and redo that give back the exact instance sets, strokes as one step, the
+// live instancer (coalescing, accumulated changed tiles, cancelled resets) against fresh full runs, saving
+// (round trip, rebased paths, failures that lose nothing), autosave and recovery, recent files.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "core/atomic_file.h"
+#include "instancer/instantiator.h"
+#include "scene/document.h"
+#include "scene/edit_commands.h"
+#include "scene/live_instancer.h"
+#include "scene/project.h"
+#include "scene_test_util.h"
+
+namespace ug {
+namespace {
+
+namespace fs = std::filesystem;
+using test::samePrimitive;
+using test::sameValues;
+
+class TempDir {
+public:
+    TempDir() {
+        std::random_device rd;
+        path_ = fs::temp_directory_path() / ("ug_document_test_" + std::to_string(rd()) + std::to_string(rd()));
+        fs::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        fs::remove_all(path_, ec);
+    }
+    const fs::path& path() const { return path_; }
+
+private:
+    fs::path path_;
+};
+
+// Two types: rocks with a Blend root (one editable point) and pebbles whose root is an intersection
+// (wrapped on the first edit). `models_dir` is how the file names the models folder (absolute or relative).
+std::string projectJson(const std::string& models_dir, bool with_extent = true) {
+    std::string j = R"({"format": "undergrowth-project", "format_version": 2, "name": "doc_test",
+ "ghost_tile": {"tile_size_m": 0.5, "delta_m": -0.002, "seed": 7},
+ "terrain": {"procedural": {"origin": [-2, -2], "cell_size_m": 0.25, "width": 17, "height": 17, "seed": 3,
+                            "octaves": 2, "amplitude_m": 0.15, "feature_size_m": 2}},
+)";
+    if (with_extent) j += R"( "extent": {"min": [-2, -2, -0.5], "max": [2, 2, 0.8]},
+)";
+    j += R"( "instantiation": {"seed": 1, "chunk_size_m": 8},
+ "detail_types": [
+  {"name": "rock", "model": {"mesh": ")" +
+         models_dir + R"(/rock.glb"}, "candidates": {"count": 100, "scale": [0.8, 1.2]},
+   "density": {"blend": [{"point": {"center": [0.5, 0.5, 0], "radius": 0.8, "weight": 0.8}}]},
+   "instancing": {"strategy": "elevation"}},
+  {"name": "pebble", "model": {"mesh": ")" +
+         models_dir + R"(/pebble.glb"}, "candidates": {"count": 160, "scale": [0.8, 1.2]},
+   "density": {"intersection": [{"terrain_layer": {"thickness": 0.05, "radius": 0.1}},
+                                {"point": {"center": [-0.5, -0.5, 0], "radius": 1.0, "weight": 0.7}}]}}]})";
+    return j;
+}
+
+std::string modelsDir() { return (fs::path(UG_SOURCE_DIR) / "assets" / "models").string(); }
+
+std::string writeProject(const fs::path& path, const std::string& text) {
+    fs::create_directories(path.parent_path());
+    std::ofstream(path) << text;
+    return path.string();
+}
+
+DocumentOptions optionsFor(const TempDir& dir) {
+    return DocumentOptions{.cache_dir = (dir.path() / "cache").string(),
+                           .config_dir = (dir.path() / "config").string(),
+                           .threads = 2,
+                           .autosave_interval_s = 10.0};
+}
+
+std::unique_ptr<Document> openDoc(const std::string& path, const DocumentOptions& options) {
+    std::string error;
+    std::unique_ptr<Document> doc = Document::open(path, options, &error);
+    EXPECT_TRUE(doc) << error;
+    return doc;
+}
+
+// A fresh, independent full run of what the document holds now.
+InstanceStore fullRun(const Document& doc) {
+    InstancerInput in = doc.instancerInput();
+    if (in.extent.empty()) return InstanceStore();
+    Instantiator inst;
+    std::string error;
+    EXPECT_TRUE(inst.setInput(in, &error)) << error;
+    EXPECT_TRUE(inst.instantiateAll({.threads = 2}, nullptr, &error)) << error;
+    return inst.store();
+}
+
+InstanceStore liveStore(Document& doc) {
+    const LiveResult r = doc.waitForResult();
+    EXPECT_TRUE(r.ok) << r.error;
+    return *r.store;
+}
+
+// The live result is the same as a fresh full run, and returns it.
+InstanceStore settled(Document& doc) {
+    const InstanceStore live = liveStore(doc);
+    EXPECT_TRUE(live == fullRun(doc)) << "live result differs from a full run";
+    return live;
+}
+
+Bounds sceneBox() { return Bounds{glm::vec3(-2.0f, -2.0f, -0.5f), glm::vec3(2.0f, 2.0f, 0.8f)}; }
+
+// ---- editable density ----------------------------------------------------------------------------------------
+
+TEST(DocumentCommand, AddMoveRemoveDuplicateEditTheField) {
+    TempDir dir;
+    auto doc = openDoc(writeProject(dir.path() / "scene.json", projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    std::string error;
+    ASSERT_EQ(doc->primitiveIds(0).size(), 1u);  // the file's point is editable
+    EXPECT_TRUE(doc->primitiveIds(1).empty());   // an intersection root: nothing editable yet
+    const uint64_t file_point = doc->primitiveIds(0)[0];
+    Primitive p;
+    size_t type = 9;
+    ASSERT_TRUE(doc->findPrimitive(file_point, &type, &p));
+    EXPECT_EQ(type, 0u);
+    EXPECT_TRUE(samePrimitive(p, makePoint({0.5f, 0.5f, 0.0f}, 0.8f, 0.8f)));
+
+    const Primitive a = makePoint({-1.0f, 1.0f, 0.0f}, 0.5f, 0.9f);
+    const uint64_t id_a = doc->addPrimitive(0, a, &error);
+    ASSERT_NE(id_a, 0u) << error;
+    const Primitive b = makeSegment({1.0f, -1.0f, 0.0f}, {1.5f, -0.5f, 0.1f}, 0.3f, 0.7f);
+    const uint64_t id_b = doc->addPrimitive(0, b, &error);
+    ASSERT_NE(id_b, 0u) << error;
+    EXPECT_EQ(doc->primitiveIds(0), (std::vector<uint64_t>{file_point, id_a, id_b}));
+    EXPECT_TRUE(sameValues(doc->project().detail_types[0].density,
+                           makeBlendField({makePoint({0.5f, 0.5f, 0.0f}, 0.8f, 0.8f), a, b}), sceneBox(), 100));
+
+    // Move and resize a: same id, same place in the blend.
+    const Primitive a2 = makePoint({-0.8f, 1.2f, 0.05f}, 0.6f, 1.1f);
+    ASSERT_TRUE(doc->setPrimitive(id_a, a2, &error)) << error;
+    EXPECT_EQ(doc->primitiveIds(0), (std::vector<uint64_t>{file_point, id_a, id_b}));
+    ASSERT_TRUE(doc->findPrimitive(id_a, &type, &p));
+    EXPECT_TRUE(samePrimitive(p, a2));
+
+    // Duplicate b, moved: a new id at the end, moved skeleton.
+    const uint64_t id_c = doc->duplicatePrimitive(id_b, {0.0f, 0.5f, 0.0f}, &error);
+    ASSERT_NE(id_c, 0u) << error;
+    ASSERT_TRUE(doc->findPrimitive(id_c, &type, &p));
+    Primitive c = b;
+    c.center_m += glm::vec3(0.0f, 0.5f, 0.0f);
+    c.end_m += glm::vec3(0.0f, 0.5f, 0.0f);
+    EXPECT_TRUE(samePrimitive(p, c));
+
+    ASSERT_TRUE(doc->removePrimitive(id_b, &error)) << error;
+    EXPECT_EQ(doc->primitiveIds(0), (std::vector<uint64_t>{file_point, id_a, id_c}));
+    EXPECT_FALSE(doc->findPrimitive(id_b, nullptr, nullptr));
+    EXPECT_TRUE(sameValues(doc->project().detail_types[0].density,
+                           makeBlendField({makePoint({0.5f, 0.5f, 0.0f}, 0.8f, 0.8f), a2, c}), sceneBox(), 100));
+
+    // The intersection root is wrapped: Blend(old tree, new primitive), the old tree locked.
+    const DensityField old_pebble = doc->project().detail_types[1].density;
+    const Primitive d = makePoint({-0.5f, 0.5f, 0.0f}, 0.4f, 0.5f);
+    const uint64_t id_d = doc->addPrimitive(1, d, &error);
+    ASSERT_NE(id_d, 0u) << error;
+    EXPECT_EQ(doc->primitiveIds(1), std::vector<uint64_t>{id_d});
+    const DensityField& pebble = doc->project().detail_types[1].density;
+    ASSERT_EQ(pebble.nodes[pebble.root].op, FieldOp::Blend);
+    EXPECT_EQ(pebble.nodes[pebble.root].child_count, 2u);
+    // Terrain primitives need the terrain attached to evaluate: compare the compiled fields instead.
+    DensityField wrapped_ref = old_pebble;
+    const uint32_t old_root = wrapped_ref.root;
+    const uint32_t prim_ref = primitiveChild(addPrimitive(&wrapped_ref, d));
+    const uint32_t kids[2] = {nodeChild(old_root), prim_ref};
+    wrapped_ref.root = addNode(&wrapped_ref, FieldOp::Blend, kids);
+    Project ref_project = doc->project();
+    ref_project.detail_types[1].density = wrapped_ref;
+    InstanceTypeSettings ref_settings;
+    ASSERT_TRUE(compileDetailType(ref_project, 1, doc->terrain(), &ref_settings, &error)) << error;
+    EXPECT_TRUE(sameValues(*doc->compiled().types[1].field, *ref_settings.field, sceneBox(), 20));
+
+    // Errors name the reason and change nothing.
+    EXPECT_FALSE(doc->setPrimitive(id_b, a, &error));
+    EXPECT_NE(error.find("no primitive with id " + std::to_string(id_b)), std::string::npos) << error;
+    EXPECT_EQ(doc->addPrimitive(0, makePoint({0, 0, 0}, -1.0f), &error), 0u);
+    EXPECT_NE(error.find("detail type 'rock': primitive 0 (point): radius_m"), std::string::npos) << error;
+    EXPECT_EQ(doc->addPrimitive(5, a, &error), 0u);
+    EXPECT_NE(error.find("no detail type 5"), std::string::npos) << error;
+    EXPECT_EQ(doc->primitiveIds(0), (std::vector<uint64_t>{file_point, id_a, id_c}));
+    settled(*doc);
+}
+
+TEST(DocumentCommand, RemovingNeverGrowsTheFieldAndUndoGivesTheSameValues) {
+    TempDir dir;
+    auto doc = openDoc(writeProject(dir.path() / "scene.json", projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    std::string error;
+    std::vector<uint64_t> ids;
+    doc->beginStroke("Paint");
+    for (int k = 0; k < 150; ++k)
+        ids.push_back(doc->addPrimitive(0, makePoint({-1.5f + 0.02f * k, 0.3f * std::sin(k * 0.3f), 0.0f}, 0.2f, 0.5f),
+                                        &error));
+    doc->endStroke();
+    const DensityField full = doc->project().detail_types[0].density;
+    // Remove them in a scattered order, many more than the compaction threshold.
+    doc->beginStroke("Erase");
+    for (int k = 0; k < 150; k += 2) ASSERT_TRUE(doc->removePrimitive(ids[size_t(k)], &error)) << error;
+    for (int k = 149; k > 0; k -= 2) ASSERT_TRUE(doc->removePrimitive(ids[size_t(k)], &error)) << error;
+    doc->endStroke();
+    const DensityField& erased = doc->project().detail_types[0].density;
+    EXPECT_LE(erased.primitives.size(), 1u + kMinOrphansBeforeCompaction + 1u) << "removed primitives pile up";
+    EXPECT_EQ(doc->primitiveIds(0).size(), 1u);
+    // Undo the erase: the same values at every point, bit for bit (the order in the blend came back).
+    ASSERT_TRUE(doc->undo());
+    EXPECT_TRUE(sameValues(doc->project().detail_types[0].density, full, sceneBox(), 100));
+    for (size_t k = 0; k < ids.size(); ++k) EXPECT_EQ(doc->primitiveIds(0)[k + 1], ids[k]);
+    settled(*doc);
+}
+
+// ---- undo / redo -----------------------------------------------------------------------------------------------
+
+TEST(DocumentCommand, UndoAndRedoGiveBackTheExactInstanceSets) {
+    TempDir dir;
+    auto doc = openDoc(writeProject(dir.path() / "scene.json", projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    std::string error;
+    std::vector<InstanceStore> states{settled(*doc)};
+    EXPECT_GT(states[0].instanceCount(), 20u);
+    EXPECT_FALSE(doc->isDirty());
+    const uint64_t id = doc->addPrimitive(0, makePoint({-1.0f, -1.0f, 0.1f}, 0.6f, 1.0f), &error);
+    ASSERT_NE(id, 0u) << error;
+    states.push_back(settled(*doc));
+    ASSERT_TRUE(doc->setPrimitive(id, makePoint({-0.7f, -0.9f, 0.1f}, 0.7f, 1.2f), &error)) << error;
+    states.push_back(settled(*doc));
+    const uint64_t file_point = doc->primitiveIds(0)[0];
+    ASSERT_TRUE(doc->removePrimitive(file_point, &error)) << error;  // the file's own primitive
+    states.push_back(settled(*doc));
+    ASSERT_NE(doc->duplicatePrimitive(id, {1.5f, 1.5f, 0.0f}, &error), 0u) << error;
+    states.push_back(settled(*doc));
+    ASSERT_NE(doc->addPrimitive(1, makePoint({0.8f, -0.8f, 0.0f}, 0.7f, 0.9f), &error), 0u) << error;  // wraps
+    states.push_back(settled(*doc));
+    for (size_t k = 1; k < states.size(); ++k) EXPECT_FALSE(states[k] == states[k - 1]) << "edit " << k << " changed nothing";
+    EXPECT_TRUE(doc->isDirty());
+
+    for (size_t k = states.size() - 1; k-- > 0;) {
+        ASSERT_TRUE(doc->undo());
+        EXPECT_TRUE(settled(*doc) == states[k]) << "undo to state " << k;
+    }
+    EXPECT_FALSE(doc->canUndo());
+    EXPECT_FALSE(doc->isDirty()) << "undoing back to the opened state is clean";
+    for (size_t k = 1; k < states.size(); ++k) {
+        ASSERT_TRUE(doc->redo());
+        EXPECT_TRUE(settled(*doc) == states[k]) << "redo to state " << k;
+    }
+    EXPECT_FALSE(doc->canRedo());
+    // A new edit after an undo drops the redo steps.
+    ASSERT_TRUE(doc->undo());
+    ASSERT_TRUE(doc->setSeed(3, &error)) << error;
+    EXPECT_FALSE(doc->canRedo());
+}
+
+TEST(DocumentCommand, AStrokeOfTwentyStampsIsOneUndoStep) {
+    TempDir dir;
+    auto doc = openDoc(writeProject(dir.path() / "scene.json", projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    std::string error;
+    const InstanceStore before = settled(*doc);
+    doc->beginStroke("Paint");
+    for (int k = 0; k < 20; ++k) {
+        ASSERT_NE(doc->addPrimitive(1, makePoint({-1.6f + 0.16f * k, 1.2f, 0.0f}, 0.35f, 0.8f), &error), 0u) << error;
+        EXPECT_EQ(doc->undoName(), "Paint");
+    }
+    doc->endStroke();
+    const InstanceStore after = settled(*doc);
+    EXPECT_GT(after.instanceCount(), before.instanceCount());
+    EXPECT_EQ(doc->undoName(), "Paint");
+    ASSERT_TRUE(doc->undo());
+    EXPECT_TRUE(settled(*doc) == before);
+    EXPECT_FALSE(doc->canUndo()) << "the stroke was more than one step";
+    EXPECT_EQ(doc->primitiveIds(1).size(), 0u);
+    ASSERT_TRUE(doc->redo());
+    EXPECT_TRUE(settled(*doc) == after);
+    EXPECT_EQ(doc->primitiveIds(1).size(), 20u);
+    // Undo in the middle of a stroke ends it and undoes all of it.
+    doc->beginStroke("Sculpt");
+    for (int k = 0; k < 5; ++k) doc->addPrimitive(0, makePoint({0.2f * k, -1.0f, 0.1f}, 0.3f, 0.8f), &error);
+    ASSERT_TRUE(doc->undo());
+    EXPECT_FALSE(doc->inStroke());
+    EXPECT_TRUE(settled(*doc) == after);
+    // An empty stroke leaves no step.
+    doc->beginStroke();
+    doc->endStroke();
+    EXPECT_EQ(doc->undoName(), "Paint");
+}
+
+TEST(DocumentCommand, SettingsEditsInstantiateEverythingAgain) {
+    TempDir dir;
+    auto doc = openDoc(writeProject(dir.path() / "scene.json", projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    std::string error;
+    const InstanceStore s0 = settled(*doc);
+    ASSERT_TRUE(doc->setSeed(99, &error)) << error;
+    const InstanceStore s1 = settled(*doc);
+    EXPECT_FALSE(s1 == s0);
+    InstancingDesc desc = doc->project().detail_types[0].instancing;
+    desc.strategy = PriorityStrategy::Random;
+    ASSERT_TRUE(doc->setInstancing(0, desc, &error)) << error;
+    const InstanceStore s2 = settled(*doc);
+    EXPECT_FALSE(s2 == s1);
+    // Settings that do not compile are refused and change nothing.
+    InstancingDesc bad = desc;
+    bad.layer_m = -1.0f;
+    EXPECT_FALSE(doc->setInstancing(0, bad, &error));
+    EXPECT_NE(error.find("/detail_types/0/instancing/layer_m"), std::string::npos) << error;
+    EXPECT_EQ(doc->project().detail_types[0].instancing.layer_m, desc.layer_m);
+    EXPECT_EQ(doc->undoName(), "Instancing settings");
+    ASSERT_TRUE(doc->undo());
+    EXPECT_TRUE(settled(*doc) == s1);
+    ASSERT_TRUE(doc->undo());
+    EXPECT_TRUE(settled(*doc) == s0);
+    EXPECT_EQ(doc->project().instantiation_seed, 1u);
+}
+
+// ---- the live instancer ----------------------------------------------------------------------------------------
+
+// What a renderer keeps: per tile, its ids, refreshed only for the tiles a poll says changed.
+struct TileMirror {
+    std::map<uint64_t, std::vector<uint32_t>> tiles;
+    void apply(const LiveResult& r) {
+        for (uint64_t key : r.changed_tiles) {
+            const int64_t t = r.store->findTile(key);
+            if (t < 0) {
+                tiles.erase(key);
+            } else {
+                std::vector<uint32_t> ids;
+                r.store->tileIds(size_t(t), &ids);
+                tiles[key] = ids;
+            }
+        }
+    }
+    bool matches(const InstanceStore& store) const {
+        std::map<uint64_t, std::vector<uint32_t>> want;
+        for (size_t t = 0; t < store.tileCount(); ++t) store.tileIds(t, &want[store.tileKey(t)]);
+        return want == tiles;
+    }
+};
+
+TEST(LiveInstancer, ABurstOfCoalescedEditsEndsEqualToAFullRun) {
+    TempDir dir;
+    auto doc = openDoc(writeProject(dir.path() / "scene.json", projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    std::string error;
+    TileMirror mirror;
+    LiveResult r;
+    doc->live().waitIdle();
+    ASSERT_TRUE(doc->live().poll(&r));
+    EXPECT_TRUE(r.full);
+    mirror.apply(r);
+    EXPECT_TRUE(mirror.matches(*r.store));
+
+    // A stroke faster than the worker: stamps, moves and erasures, with a frame's poll now and then.
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> u(-1.6f, 1.6f);
+    std::vector<uint64_t> ids;
+    int polls = 0;
+    doc->beginStroke("Sculpt");
+    for (int k = 0; k < 60; ++k) {
+        const size_t type = size_t(k % 2);
+        if (k % 7 == 6 && !ids.empty()) {
+            ASSERT_TRUE(doc->removePrimitive(ids.back(), &error)) << error;
+            ids.pop_back();
+        } else if (k % 5 == 4 && !ids.empty()) {
+            ASSERT_TRUE(doc->setPrimitive(ids[0], makePoint({u(rng), u(rng), 0.1f}, 0.4f, 0.9f), &error)) << error;
+        } else {
+            ids.push_back(doc->addPrimitive(type, makePoint({u(rng), u(rng), 0.0f}, 0.3f, 0.8f), &error));
+            ASSERT_NE(ids.back(), 0u) << error;
+        }
+        if (k % 10 == 0 && doc->live().poll(&r)) {
+            ++polls;
+            mirror.apply(r);
+        }
+    }
+    doc->endStroke();
+    const uint64_t last = doc->live().generation();
+    doc->live().waitIdle();
+    EXPECT_FALSE(doc->live().pending());
+    ASSERT_TRUE(doc->live().poll(&r));
+    EXPECT_TRUE(r.ok) << r.error;
+    EXPECT_EQ(r.generation, last);
+    mirror.apply(r);
+    EXPECT_GT(r.store->instanceCount(), 50u);
+    EXPECT_TRUE(*r.store == fullRun(*doc)) << "the coalesced result is not the final document's";
+    EXPECT_TRUE(mirror.matches(*r.store)) << "a tile that changed was not reported";
+    EXPECT_FALSE(doc->live().poll(&r)) << "nothing new since the last poll";
+}
+
+TEST(LiveInstancer, ANewResetCancelsTheStaleFullRunAndTheResultIsTheNewest) {
+    TempDir dir;
+    auto doc = openDoc(writeProject(dir.path() / "scene.json", projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    doc->live().waitIdle();
+    LiveInstancer live(2);
+    InstancerInput in = doc->instancerInput();
+    uint64_t gen = 0;
+    for (uint64_t seed = 1; seed <= 8; ++seed) {
+        in.seed = seed;
+        gen = live.reset(in);
+    }
+    // An edit on top of the pending reset joins it.
+    InstancerInput edited = in;
+    edited.types[0].field = std::make_shared<const DensityField>(makeBlendField({makePoint({0, 0, 0.2f}, 0.9f)}));
+    gen = live.submit(edited.types, {Bounds::everything()});
+    live.waitIdle();
+    LiveResult r;
+    ASSERT_TRUE(live.poll(&r));
+    EXPECT_EQ(r.generation, gen);
+    EXPECT_TRUE(r.full);
+    Instantiator inst;
+    std::string error;
+    ASSERT_TRUE(inst.setInput(edited, &error)) << error;
+    ASSERT_TRUE(inst.instantiateAll({.threads = 2}, nullptr, &error)) << error;
+    EXPECT_TRUE(*r.store == inst.store());
+    // An input that cannot be instantiated reports why and keeps the last good store.
+    InstancerInput bad = edited;
+    bad.types[0].layer_m = -1.0f;
+    live.reset(bad);
+    live.waitIdle();
+    ASSERT_TRUE(live.poll(&r));
+    EXPECT_FALSE(r.ok);
+    EXPECT_FALSE(r.error.empty());
+    EXPECT_TRUE(*r.store == inst.store());
+}
+
+TEST(LiveInstancer, StopsCleanlyWhileWorking) {
+    TempDir dir;
+    auto doc = openDoc(writeProject(dir.path() / "scene.json", projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    doc->live().waitIdle();
+    const InstancerInput in = doc->instancerInput();
+    for (int k = 0; k < 10; ++k) {
+        LiveInstancer live(2);
+        live.reset(in);
+        if (k % 2) live.submit(in.types, {sceneBox()});
+        LiveResult r;
+        live.poll(&r);
+        // Destroyed with a run queued or in progress: cancels, joins, never publishes into freed memory.
+    }
+    LiveInstancer idle(1);  // never given work
+    EXPECT_FALSE(idle.pending());
+    EXPECT_EQ(idle.submit(in.types, {}), 0u) << "an edit before any input is ignored";
+    EXPECT_FALSE(idle.pending());
+    idle.waitIdle();
+    EXPECT_EQ(idle.latest().store->instanceCount(), 0u);
+}
+
+TEST(LiveInstancer, PollNeverBlocksWhileTheWorkerRuns) {
+    TempDir dir;
+    auto doc = openDoc(writeProject(dir.path() / "scene.json", projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    std::string error;
+    doc->live().waitIdle();
+    LiveResult r;
+    doc->live().poll(&r);
+    ASSERT_TRUE(doc->setSeed(7, &error));
+    // The UI's calls return at once whether or not a run is in progress.
+    const auto t0 = std::chrono::steady_clock::now();
+    for (int k = 0; k < 1000; ++k) {
+        doc->live().pending();
+        doc->live().poll(&r);
+    }
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count(), 0.5);
+    settled(*doc);
+}
+
+// ---- files -------------------------------------------------------------------------------------------------
+
+TEST(Document, SaveAsAndReopenGiveTheSameInstancesWithPathsRebased) {
+    TempDir dir;
+    // The models named relative to the project's folder, so a save elsewhere must rewrite them.
+    const fs::path a = dir.path() / "a" / "scene.json";
+    const std::string rel = fs::path(modelsDir()).lexically_relative(fs::absolute(a.parent_path())).string();
+    auto doc = openDoc(writeProject(a, projectJson(rel)), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    std::string error;
+    doc->beginStroke();
+    for (int k = 0; k < 8; ++k) doc->addPrimitive(1, makeSegment({-1.5f, -1.0f + 0.3f * k, 0}, {1.5f, -1.0f + 0.3f * k, 0.1f}, 0.2f, 0.6f), &error);
+    doc->endStroke();
+    ASSERT_TRUE(doc->setPrimitive(doc->primitiveIds(0)[0], makeCone({0, 0, 0}, 0.5f, {0.5f, 0.5f, 0.4f}, 0.2f, 1.0f), &error));
+    const InstanceStore edited = settled(*doc);
+    EXPECT_TRUE(doc->isDirty());
+    const fs::path b = dir.path() / "b" / "deeper" / "copy.json";
+    fs::create_directories(b.parent_path());
+    ASSERT_TRUE(doc->saveAs(b.string(), &error)) << error;
+    EXPECT_FALSE(doc->isDirty());
+    EXPECT_EQ(doc->path(), b.string());
+    auto reopened = openDoc(b.string(), optionsFor(dir));
+    ASSERT_TRUE(reopened);
+    EXPECT_EQ(reopened->cacheOutcome(), CacheOutcome::Loaded);
+    EXPECT_TRUE(liveStore(*reopened) == edited);
+    EXPECT_EQ(reopened->primitiveIds(1).size(), 8u);  // the 8 stamps; the wrapped tree stays locked
+    // The original file is as it was.
+    auto original = openDoc(a.string(), optionsFor(dir));
+    ASSERT_TRUE(original);
+    EXPECT_EQ(original->primitiveIds(1).size(), 0u);
+    // Save (same folder) after another edit, reopen: the same again.
+    ASSERT_TRUE(doc->addPrimitive(0, makePoint({-1, 1, 0}, 0.5f), &error));
+    EXPECT_TRUE(doc->isDirty());
+    ASSERT_TRUE(doc->save(&error)) << error;
+    EXPECT_FALSE(doc->isDirty());
+    auto again = openDoc(b.string(), optionsFor(dir));
+    ASSERT_TRUE(again);
+    EXPECT_TRUE(liveStore(*again) == settled(*doc));
+}
+
+TEST(Document, AFailedSaveKeepsTheDocumentDirtyAndTheFileUntouched) {
+    TempDir dir;
+    const std::string path = writeProject(dir.path() / "scene.json", projectJson(modelsDir()));
+    std::string before_text;
+    std::string error;
+    ASSERT_TRUE(readTextFile(path, &before_text, &error));
+    auto doc = openDoc(path, optionsFor(dir));
+    ASSERT_TRUE(doc);
+    const uint64_t id = doc->addPrimitive(0, makePoint({-1, 1, 0}, 0.5f), &error);
+    ASSERT_NE(id, 0u);
+    const InstanceStore edited = settled(*doc);
+    // A file used as a folder.
+    const fs::path blocker = dir.path() / "blocker";
+    std::ofstream(blocker) << "not a folder";
+    const std::string bad = (blocker / "scene.json").string();
+    EXPECT_FALSE(doc->saveAs(bad, &error));
+    EXPECT_NE(error.find(bad), std::string::npos) << error;
+    EXPECT_TRUE(doc->isDirty());
+    EXPECT_EQ(doc->path(), path);
+    EXPECT_TRUE(doc->findPrimitive(id, nullptr, nullptr));
+    EXPECT_TRUE(settled(*doc) == edited);
+    // A folder in the way of the file itself.
+    const fs::path folder = dir.path() / "folder.json";
+    fs::create_directories(folder / "inside");
+    EXPECT_FALSE(doc->saveAs(folder.string(), &error));
+    EXPECT_NE(error.find(folder.string()), std::string::npos) << error;
+    EXPECT_TRUE(fs::is_directory(folder / "inside"));
+    EXPECT_TRUE(doc->isDirty());
+    std::string after_text;
+    ASSERT_TRUE(readTextFile(path, &after_text, &error));
+    EXPECT_EQ(after_text, before_text);
+    for (const auto& entry : fs::directory_iterator(dir.path()))
+        EXPECT_EQ(entry.path().filename().string().find(".tmp-"), std::string::npos) << "left " << entry.path();
+    // Still savable where it belongs.
+    ASSERT_TRUE(doc->save(&error)) << error;
+    EXPECT_FALSE(doc->isDirty());
+}
+
+TEST(Document, AutosaveAndRecoveryRestoreTheEditsAfterACrash) {
+    TempDir dir;
+    const std::string path = writeProject(dir.path() / "scene.json", projectJson(modelsDir()));
+    const DocumentOptions options = optionsFor(dir);
+    std::string error;
+    std::vector<std::pair<uint64_t, Primitive>> rock_prims, pebble_prims;
+    InstanceStore autosaved;
+    {
+        auto doc = openDoc(path, options);
+        ASSERT_TRUE(doc);
+        EXPECT_FALSE(doc->maybeAutosave(0.0, &error)) << "nothing to save";
+        doc->addPrimitive(0, makePoint({-1, 1, 0}, 0.5f, 0.9f), &error);
+        EXPECT_FALSE(doc->maybeAutosave(1.0, &error)) << "the interval has not passed";
+        doc->beginStroke();
+        for (int k = 0; k < 6; ++k) doc->addPrimitive(1, makePoint({-1.5f + 0.5f * k, -1.2f, 0}, 0.3f, 0.8f), &error);
+        doc->endStroke();
+        doc->removePrimitive(doc->primitiveIds(0)[0], &error);
+        EXPECT_FALSE(doc->maybeAutosave(10.5, &error));
+        EXPECT_TRUE(doc->maybeAutosave(11.0, &error)) << error;
+        EXPECT_FALSE(doc->maybeAutosave(30.0, &error)) << "nothing new since the autosave";
+        autosaved = settled(*doc);
+        for (uint64_t id : doc->primitiveIds(0)) {
+            Primitive p;
+            doc->findPrimitive(id, nullptr, &p);
+            rock_prims.push_back({id, p});
+        }
+        for (uint64_t id : doc->primitiveIds(1)) {
+            Primitive p;
+            doc->findPrimitive(id, nullptr, &p);
+            pebble_prims.push_back({id, p});
+        }
+        // Edits after the last autosave are what a crash loses.
+        doc->addPrimitive(0, makePoint({1, -1, 0}, 0.5f), &error);
+        // The crash: the document goes away without saving or closing.
+    }
+    RecoveryInfo info;
+    ASSERT_TRUE(findRecovery(options.config_dir, path, &info));
+    EXPECT_EQ(info.project_path, fs::absolute(path).lexically_normal().string());
+    EXPECT_GT(info.saved_unix_s, 0);
+    std::unique_ptr<Document> doc = Document::recover(path, options, &error);
+    ASSERT_TRUE(doc) << error;
+    EXPECT_TRUE(doc->isDirty());
+    EXPECT_EQ(doc->path(), path);
+    ASSERT_EQ(doc->primitiveIds(0).size(), rock_prims.size());
+    ASSERT_EQ(doc->primitiveIds(1).size(), pebble_prims.size());
+    for (size_t k = 0; k < rock_prims.size(); ++k) {
+        Primitive p;
+        ASSERT_TRUE(doc->findPrimitive(doc->primitiveIds(0)[k], nullptr, &p));
+        EXPECT_TRUE(samePrimitive(p, rock_prims[k].second));
+    }
+    for (size_t k = 0; k < pebble_prims.size(); ++k) {
+        Primitive p;
+        ASSERT_TRUE(doc->findPrimitive(doc->primitiveIds(1)[k], nullptr, &p));
+        EXPECT_TRUE(samePrimitive(p, pebble_prims[k].second));
+    }
+    EXPECT_TRUE(settled(*doc) == autosaved);
+    // The recovery stays until the user saves; the save removes it.
+    EXPECT_TRUE(findRecovery(options.config_dir, path, nullptr));
+    ASSERT_TRUE(doc->save(&error)) << error;
+    EXPECT_FALSE(findRecovery(options.config_dir, path, nullptr));
+    EXPECT_FALSE(fs::exists(recoveryPath(options.config_dir, path)));
+
+    // Close removes it too; a file saved after the autosave (by anyone) makes it stale.
+    doc->addPrimitive(0, makePoint({1, 1, 0}, 0.5f), &error);
+    ASSERT_TRUE(doc->autosave(&error)) << error;
+    EXPECT_TRUE(findRecovery(options.config_dir, path, nullptr));
+    doc->close();
+    EXPECT_FALSE(findRecovery(options.config_dir, path, nullptr));
+    auto doc2 = openDoc(path, options);
+    ASSERT_TRUE(doc2);
+    doc2->addPrimitive(0, makePoint({1, 1, 0}, 0.5f), &error);
+    ASSERT_TRUE(doc2->autosave(&error)) << error;
+    fs::last_write_time(path, fs::last_write_time(recoveryPath(options.config_dir, path)) + std::chrono::seconds(5));
+    EXPECT_FALSE(findRecovery(options.config_dir, path, nullptr));
+    // No recovery: recover() says so.
+    discardRecovery(options.config_dir, path);
+    EXPECT_FALSE(Document::recover(path, options, &error));
+    EXPECT_NE(error.find(path), std::string::npos) << error;
+}
+
+TEST(Document, RecentFilesAreNewestFirstAndCapped) {
+    TempDir dir;
+    const std::string config = (dir.path() / "config").string();
+    std::string error;
+    EXPECT_TRUE(loadRecentFiles(config).empty());
+    for (int k = 0; k < 12; ++k)
+        ASSERT_TRUE(addRecentFile(config, (dir.path() / ("s" + std::to_string(k) + ".json")).string(), &error)) << error;
+    std::vector<std::string> files = loadRecentFiles(config);
+    ASSERT_EQ(files.size(), kMaxRecentFiles);
+    EXPECT_EQ(files.front(), (dir.path() / "s11.json").string());
+    EXPECT_EQ(files.back(), (dir.path() / "s2.json").string());
+    ASSERT_TRUE(addRecentFile(config, (dir.path() / "s5.json").string(), &error));
+    files = loadRecentFiles(config);
+    ASSERT_EQ(files.size(), kMaxRecentFiles);
+    EXPECT_EQ(files[0], (dir.path() / "s5.json").string());
+    EXPECT_EQ(files[1], (dir.path() / "s11.json").string());
+    EXPECT_EQ(std::count(files.begin(), files.end(), (dir.path() / "s5.json").string()), 1);
+    // Opening a document puts it first; a corrupt list reads as empty and is replaced.
+    const std::string path = writeProject(dir.path() / "scene.json", projectJson(modelsDir()));
+    DocumentOptions options = optionsFor(dir);
+    auto doc = openDoc(path, options);
+    ASSERT_TRUE(doc);
+    EXPECT_EQ(loadRecentFiles(config).front(), fs::absolute(path).lexically_normal().string());
+    std::ofstream(fs::path(config) / "recent.json") << "{not json";
+    EXPECT_TRUE(loadRecentFiles(config).empty());
+    ASSERT_TRUE(addRecentFile(config, path, &error)) << error;
+    EXPECT_EQ(loadRecentFiles(config).size(), 1u);
+}
+
+TEST(Document, ANewProjectWithNoDensityOpensEmptyAndFillsAsYouPaint) {
+    TempDir dir;
+    Project project;
+    std::string error;
+    std::string text = projectJson(modelsDir(), /*with_extent=*/false);
+    ASSERT_TRUE(parseProject(text, "new.json", &project, &error)) << error;
+    for (DetailTypeDesc& t : project.detail_types) t.density = DensityField{};
+    std::unique_ptr<Document> doc = Document::create(project, "", optionsFor(dir), &error);
+    ASSERT_TRUE(doc) << error;
+    EXPECT_EQ(liveStore(*doc).instanceCount(), 0u);
+    EXPECT_FALSE(doc->save(&error));
+    EXPECT_NE(error.find("Save As"), std::string::npos);
+    const uint64_t id = doc->addPrimitive(0, makePoint({0.2f, 0.2f, 0.0f}, 0.7f), &error);
+    ASSERT_NE(id, 0u) << error;
+    // The extent is derived from the densities, as the CLI will derive it from the saved file.
+    EXPECT_FALSE(doc->compiled().extent.empty());
+    const InstanceStore painted = settled(*doc);
+    EXPECT_GT(painted.instanceCount(), 0u);
+    // Growing the density grows the derived extent: instantiated again, still exact.
+    ASSERT_TRUE(doc->setPrimitive(id, makePoint({0.2f, 0.2f, 0.3f}, 1.2f), &error)) << error;
+    settled(*doc);
+    ASSERT_TRUE(doc->undo());
+    EXPECT_TRUE(settled(*doc) == painted);
+    ASSERT_TRUE(doc->undo());
+    EXPECT_EQ(liveStore(*doc).instanceCount(), 0u);
+    EXPECT_TRUE(doc->compiled().extent.empty());
+}
+
+}  // namespace
+}  // namespace ug
