@@ -74,6 +74,7 @@ OpenStatus Window::open(const WindowOptions& options, std::string* error) {
 
 bool Window::shouldClose() const { return glfwWindowShouldClose(window_); }
 void Window::requestClose() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
+void Window::cancelClose() { glfwSetWindowShouldClose(window_, GLFW_FALSE); }
 void Window::pollEvents() { glfwPollEvents(); }
 
 void Window::beginUiFrame() {

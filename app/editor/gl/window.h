@@ -31,6 +31,7 @@ public:
 
     bool shouldClose() const;
     void requestClose();
+    void cancelClose();  // the user chose to keep editing (the unsaved-changes prompt)
     void pollEvents();
     void beginUiFrame();  // the backends' NewFrame, then ImGui::NewFrame
     void renderUi();      // ImGui::Render and the OpenGL3 backend's draw
