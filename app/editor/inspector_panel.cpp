@@ -7,7 +7,9 @@ namespace ug::editor {
 void drawInspector(Document* doc, const std::vector<std::string>& type_names, ToolState* s,
                    UiRequests* requests, std::string* message, bool* open) {
     if (!*open) return;
-    ImGui::SetNextWindowPos(ImVec2(-10, 30), ImGuiCond_FirstUseEver, ImVec2(0, 0));
+    // Top right, clear of the Statistics window on the left.
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - 10, vp->Pos.y + 30), ImGuiCond_FirstUseEver, ImVec2(1, 0));
     ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Inspector", open)) {
         ImGui::End();

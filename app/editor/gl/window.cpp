@@ -48,7 +48,6 @@ OpenStatus Window::open(const WindowOptions& options, std::string* error) {
                  " (set DISPLAY, or run under xvfb-run)";
         return OpenStatus::NoDisplay;
     }
-    glfw_ready_ = true;
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);

@@ -43,7 +43,6 @@ public:
 
 private:
     GLFWwindow* window_ = nullptr;
-    bool glfw_ready_ = false;
     bool imgui_ready_ = false;
     std::string gl_version_;
     std::string renderer_;
