@@ -5,6 +5,7 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "core/atomic_file.h"
+#include "scene/document.h"
 #include "editor/viewer.h"
 
 namespace ug::cli {
@@ -35,10 +36,12 @@ bool parseSize(const std::string& text, int* width, int* height, std::string* er
 int runEditCommand(int argc, char** argv) {
     const char* usage =
         "usage: undergrowth edit SCENE.json [--frames N] [--screenshot OUT.png] [--stats STATS.json] [--size WxH]\n"
-        "       [--threads N] [--cache DIR]";
+        "       [--threads N] [--cache DIR] [--config DIR] [--replay SCRIPT.json] [--recover yes|no]\n"
+        "       [--autosave-interval SECONDS]";
     Args args;
     std::string error;
-    if (!parseArgs(argc, argv, 2, {"--frames", "--screenshot", "--stats", "--size", "--threads", "--cache"}, {}, &args,
+    if (!parseArgs(argc, argv, 2, {"--frames", "--screenshot", "--stats", "--size", "--threads", "--cache", "--config", "--replay",
+                    "--recover", "--autosave-interval"}, {}, &args,
                    &error) ||
         args.positional.size() != 1)
         return fail(error.empty() ? usage : error + "\n" + usage, 2);
@@ -59,8 +62,23 @@ int runEditCommand(int argc, char** argv) {
     }
     if (args.has("--size") && !parseSize(args.get("--size"), &options.width, &options.height, &error))
         return fail(error, 2);
-    if (args.has("--stats") && options.frames == 0)
-        return fail("--stats needs --frames N (the statistics of a scripted run)", 2);
+    options.config_dir = args.has("--config") ? args.get("--config") : defaultConfigDir();
+    if (args.has("--recover")) {
+        const std::string r = args.get("--recover");
+        if (r != "yes" && r != "no") return fail("--recover: expected yes or no, got '" + r + "'", 2);
+        options.recover = r == "yes" ? editor::RecoverChoice::Yes : editor::RecoverChoice::No;
+    }
+    if (args.has("--autosave-interval")) {
+        if (!parseInt("--autosave-interval", args.get("--autosave-interval"), 1, 86400, &value, &error))
+            return fail(error, 2);
+        options.autosave_interval_s = double(value);
+    }
+    if (args.has("--replay") && !editor::loadReplayScript(args.get("--replay"), &options.replay, &error))
+        return fail(error);
+    if (args.has("--stats") && options.frames == 0 && !args.has("--replay"))
+        return fail("--stats needs --frames N or --replay SCRIPT (the statistics of a scripted run)", 2);
+    // Interactive runs with a replay write the statistics themselves when the script is done.
+    if (args.has("--stats") && options.frames == 0) options.stats_path = args.get("--stats");
 
     editor::ViewerResult result;
     switch (editor::runViewer(options, &result, &error)) {
@@ -73,7 +91,8 @@ int runEditCommand(int argc, char** argv) {
                      (unsigned long long)result.instances, result.frames_measured, result.frame_ms,
                      (unsigned long long)result.triangles, (unsigned long long)result.draw_calls, result.renderer.c_str());
     if (!result.screenshot.empty()) std::fprintf(stderr, "edit: wrote %s\n", result.screenshot.c_str());
-    if (args.has("--stats")) {
+    for (const std::string& m : result.messages) std::fprintf(stderr, "edit: message: %s\n", m.c_str());
+    if (args.has("--stats") && options.frames > 0) {
         const std::string path = args.get("--stats");
         if (!writeTextFileAtomically(path, editor::viewerStatsJson(result, options.lod).dump(2) + "\n", &error)) return fail(error);
         std::fprintf(stderr, "edit: wrote %s\n", path.c_str());

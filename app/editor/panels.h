@@ -1,5 +1,6 @@
 // The editor's Dear ImGui panels. Panels are functions over plain state (STYLE.md "Panels are functions"):
-// they read numbers the renderer and the loader expose and set request flags; they never call GL.
+// they read numbers the renderer and the document expose, edit plain settings, and raise requests the
+// main loop acts on at the right point of the frame; they never call GL.
 #pragma once
 
 #include <array>
@@ -8,39 +9,92 @@
 #include <vector>
 
 #include "editor/render_data.h"
+#include "editor/tools.h"
+#include "scene/document.h"
 
 namespace ug::editor {
 
-// Requests the panels raise; the main loop acts on them at the right point of the frame.
+// Requests the panels and shortcuts raise; the main loop acts on them.
 struct UiRequests {
-    bool screenshot = false;  // File > Screenshot: the next frame's viewport is saved
-    bool quit = false;        // File > Quit
+    bool screenshot = false;    // File > Screenshot: the next frame's viewport is saved
+    bool quit = false;          // File > Quit (asks first when there are unsaved changes)
+    bool save = false;          // File > Save
+    bool open_save_as = false;  // File > Save As: show the path dialog
+    std::string save_as_path;   // the dialog confirmed this path
+    std::string open_path;  // File > Open Recent: open this file (asks first when there are unsaved changes)
+    bool undo = false;
+    bool redo = false;
+    bool delete_selected = false;
+    bool duplicate_selected = false;
 };
 
 // What the Statistics window shows.
 struct StatisticsView {
     std::string scene;
-    std::string status;            // "loading scene…", "instantiating… 42 %", "ready", or the error
-    bool pending = false;          // background work running
+    std::string status;    // "loading scene…", "pending…", "ready", or the error
+    bool pending = false;  // background work running
     float progress = 0.0f;
     std::vector<std::string> type_names;
     std::vector<uint64_t> instances_per_type;
     uint64_t instances = 0;
-    double instantiate_seconds = 0.0;
-    double frame_ms = 0.0;          // the last frame
-    double frame_ms_avg = 0.0;      // over the last second or so
+    double instantiate_seconds = 0.0;  // the latest live run
+    double frame_ms = 0.0;             // the last frame
+    double frame_ms_avg = 0.0;         // over the last second or so
     uint64_t triangles = 0;
     uint64_t points = 0;
     uint64_t draw_calls = 0;
     std::array<uint64_t, kLodCount> lod_instances{};
     uint64_t tiles_visible = 0;
     uint64_t tiles_culled = 0;
+    uint64_t changed_tiles = 0;      // in the latest live result
+    double stamp_to_frame_ms = 0.0;  // the latest stamp's
     std::string gl_version;
     std::string renderer;
-    std::string last_message;       // e.g. "saved screenshot.png"
+    std::string last_message;  // e.g. "saved screenshot.png"
 };
 
-void drawMainMenu(UiRequests* requests, bool* show_statistics);
+// The tool bar's state: the active tool, the brush, overlays.
+struct ToolState {
+    ToolKind tool = ToolKind::Select;
+    BrushSettings brush;
+    bool show_markers = true;
+    uint64_t selected = 0;  // a user primitive's id, 0 = none
+};
+
+// What the File and Edit menus show.
+struct MenuView {
+    bool has_document = false;
+    bool dirty = false;
+    std::string undo_name, redo_name;  // "" = nothing to undo / redo
+    std::vector<std::string> recent_files;
+};
+
+struct WindowToggles {
+    bool statistics = true;
+    bool tools = true;
+    bool inspector = true;
+};
+
+// The main menu bar and the global shortcuts (Ctrl+S, Ctrl+Z, Ctrl+Shift+Z, Ctrl+Q, F12, Delete, Ctrl+D,
+// and the tool keys Q / B / S / E), ignored while ImGui has the keyboard.
+void drawMainMenu(const MenuView& view, UiRequests* requests, ToolState* tools, WindowToggles* windows);
 void drawStatisticsPanel(const StatisticsView& view, bool* open);
+// Tool bar and brush settings; type names index the brush's per-type mix.
+void drawToolsPanel(const std::vector<std::string>& type_names, ToolState* state, bool* open);
+// The selected primitive's centre, radius and weight; every finished edit is one SetPrimitive (one undo
+// step). Errors go to *message.
+void drawInspector(Document* doc, const std::vector<std::string>& type_names, ToolState* state,
+                   UiRequests* requests, std::string* message, bool* open);
+
+// Modal dialogs. Each returns its answer once (then closes), else Pending.
+enum class DialogAnswer { Pending, Yes, No, Cancel };
+// "An autosave of PATH is newer than the file. Recover it?" Yes: recover; No: open the file, drop it.
+DialogAnswer drawRecoveryDialog(const std::string& path, const std::string& saved_when);
+// "Save changes to PATH?" Yes: save; No: discard; Cancel: keep editing.
+DialogAnswer drawUnsavedDialog(const std::string& path, const std::string& what);
+// The Save As path field; *open turns false when closed; Yes puts the path in *path.
+DialogAnswer drawSaveAsDialog(bool* open, std::string* path);
+// Errors: a window listing them with a Dismiss button (clears the list).
+void drawMessages(std::vector<std::string>* messages);
 
 }  // namespace ug::editor

@@ -1,27 +1,56 @@
-// The flat main loop of STYLE.md: poll -> new UI frame -> navigation and panels -> apply finished
-// background work -> render -> (screenshot) -> UI on top -> swap.
+// The flat main loop of STYLE.md: poll -> apply finished background work (an opened document, a live
+// instancing result) -> new UI frame -> navigation, tools, panels, dialogs -> replay step -> render ->
+// (screenshot) -> UI on top -> swap -> stamp timings, replay bookkeeping, autosave.
+//
+// Live results reach the GPU by re-packing: the renderer's instance buffers hold the *visible* instances
+// bucketed by LOD (refilled whenever the view changes, render_data.h), so there is no per-tile range to
+// patch in them; a result rebuilds RenderInstances from the store (O(instances), about 1-2 ms for the
+// meadow's 49k) and the next frame re-buckets. The changed tiles are only counted (Statistics).
+//
+// Statistics of a replay, per action (ViewerResult::actions): "action", "frame" (when it started),
+// "stamps", "instances_before"/"_after", "per_type_before"/"_after", "instance_store_hash_before"/"_after",
+// and for strokes "box" {min, max} (the added primitives' supports grown by twice the largest object reach,
+// so collisions at the rim count as inside), "inside_before"/"_after" and "outside_before"/"_after" per
+// type (instance origins, instance_query.h), "stamp_to_frame_ms" (per stamp, wall clock from the edit to
+// the end of the first frame that shows its result). "before" is the settled state the action started
+// from, "after" the settled state once the live instancer is idle and its result is on screen.
 #include "editor/viewer.h"
-
-#include <algorithm>
-#include <chrono>
-#include <cstdio>
-#include <filesystem>
 
 #include <imgui.h>
 #include <stb_image_write.h>
 
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <memory>
+#include <thread>
+
+#include "core/atomic_file.h"
+#include "core/hash.h"
+#include "editor/document_loader.h"
 #include "editor/gl/renderer.h"
 #include "editor/gl/window.h"
+#include "editor/markers.h"
 #include "editor/navigation.h"
 #include "editor/orbit_camera.h"
 #include "editor/panels.h"
-#include "editor/scene_loader.h"
+#include "editor/tools.h"
+#include "instancer/instance_query.h"
 
 namespace ug::editor {
 
 namespace {
 
-bool writeScreenshot(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba, std::string* error) {
+using Clock = std::chrono::steady_clock;
+
+// How long a frame that made a stamp may wait for its incremental update before rendering.
+constexpr double kStampWaitBudgetMs = 15.0;
+using nlohmann::json;
+
+bool writeScreenshot(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba,
+                     std::string* error) {
     // RGB: the default framebuffer of a 24-bit visual has no meaningful alpha.
     std::vector<uint8_t> rgb(size_t(width) * size_t(height) * 3);
     for (size_t i = 0, n = size_t(width) * size_t(height); i < n; ++i) {
@@ -40,22 +69,75 @@ bool writeScreenshot(const std::string& path, int width, int height, const std::
 }
 
 // What "frame all" frames: the cells that hold instances once they are in (a scene's extent is often a
-// conservative bound much larger than what fills), else the terrain's surface when there is one (the
-// extent pads it by metres above and below), else the extent.
-Bounds framingBounds(const SceneData& d, bool instances_ready) {
-    if (instances_ready && !d.instances.tile_coord.empty()) {
-        const float s = d.instances.tile_size_m;
+// conservative bound much larger than what fills), else the terrain's surface when there is one, else
+// the extent.
+Bounds framingBounds(const EditorScene& s, const RenderInstances* instances) {
+    if (instances && !instances->tile_coord.empty()) {
+        const float size = instances->tile_size_m;
         Bounds b{glm::vec3(1e30f), glm::vec3(-1e30f)};
-        for (const glm::ivec3& t : d.instances.tile_coord) {
-            b.lo = glm::min(b.lo, glm::vec3(t) * s);
-            b.hi = glm::max(b.hi, glm::vec3(t + 1) * s);
+        for (const glm::ivec3& t : instances->tile_coord) {
+            b.lo = glm::min(b.lo, glm::vec3(t) * size);
+            b.hi = glm::max(b.hi, glm::vec3(t + 1) * size);
         }
         return b;
     }
-    if (!d.has_terrain) return d.job.compiled.extent;
-    const Bounds3 b = meshBounds(d.terrain);
+    if (!s.has_terrain) return s.doc->compiled().extent;
+    const Bounds3 b = meshBounds(s.terrain);
     return Bounds{b.min, b.max};
 }
+
+json perTypeJson(const std::vector<std::string>& names, const std::vector<uint64_t>& counts) {
+    json j = json::object();
+    for (size_t i = 0; i < names.size(); ++i) j[names[i]] = i < counts.size() ? counts[i] : 0;
+    return j;
+}
+
+std::vector<uint64_t> perTypeCounts(const InstanceStore& store, const CandidateSet& candidates) {
+    std::vector<uint64_t> counts(candidates.typeCount(), 0);
+    store.forEach([&](uint64_t, uint32_t id) { ++counts[candidates.type[id]]; });
+    return counts;
+}
+
+// How far an instance's collision spheres reach from its origin, at most, over all types.
+float largestReach(const Document& doc) {
+    const CandidateSet& c = doc.ghostTile().candidates;
+    float reach = 0.0f;
+    for (size_t i = 0; i < doc.models().size() && i < c.typeCount(); ++i) {
+        float scale = 1.0f;
+        for (uint32_t k = c.type_begin[i]; k < c.type_begin[i + 1]; ++k) scale = std::max(scale, c.scale[k]);
+        const DetailModel& m = doc.models()[i];
+        reach = std::max(reach, scale * (glm::length(m.bounds.center) + m.bounds.radius));
+    }
+    return reach;
+}
+
+std::string timeText(int64_t unix_s) {
+    const std::time_t t = std::time_t(unix_s);
+    char buffer[64] = "";
+    std::strftime(buffer, sizeof(buffer), "%Y-%m-%d %H:%M:%S", std::localtime(&t));
+    return buffer;
+}
+
+// A stamp waiting for the frame that shows it.
+struct PendingStamp {
+    uint64_t generation = 0;
+    Clock::time_point time;
+    int action = -1;  // replay action index, -1 for the mouse
+};
+
+// The replay's progress (replay.h).
+struct ReplayState {
+    size_t index = 0;
+    bool started = false;
+    bool finishing = false;  // the action's edits are all made; waiting for the settled result
+    std::vector<glm::vec2> path;
+    size_t step = 0;
+    json record;
+    std::shared_ptr<const InstanceStore> before;
+    std::vector<double> stamp_ms;
+};
+
+}  // namespace
 
 double percentile(std::vector<double> v, double q) {
     if (v.empty()) return 0.0;
@@ -63,8 +145,6 @@ double percentile(std::vector<double> v, double q) {
     const size_t i = std::min(v.size() - 1, size_t(q * double(v.size() - 1) + 0.5));
     return v[i];
 }
-
-}  // namespace
 
 ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::string* error) {
     const bool scripted = options.frames > 0;
@@ -74,28 +154,15 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
     window_options.height = options.height;
     window_options.vsync = !scripted;
     switch (window.open(window_options, error)) {
-        case gl::OpenStatus::Ok: break;
-        case gl::OpenStatus::NoDisplay: return ViewerStatus::NoDisplay;
-        case gl::OpenStatus::Failed: return ViewerStatus::Failed;
+        case gl::OpenStatus::Ok:
+            break;
+        case gl::OpenStatus::NoDisplay:
+            return ViewerStatus::NoDisplay;
+        case gl::OpenStatus::Failed:
+            return ViewerStatus::Failed;
     }
     gl::Renderer renderer;
     if (!renderer.init(gl::shadersDir(), error)) return ViewerStatus::Failed;
-
-    SceneLoader loader({.scene_path = options.scene_path, .cache_dir = options.cache_dir, .threads = options.threads,
-                        .quiet = options.quiet});
-    OrbitCamera camera;
-    camera.aspect = float(options.width) / float(options.height);
-    UiRequests requests;
-    bool show_statistics = true;
-    bool scene_uploaded = false, instances_uploaded = false, camera_moved = false;
-    StatisticsView view;
-    view.scene = options.scene_path;
-    view.gl_version = window.glVersion();
-    view.renderer = window.rendererName();
-    std::vector<double> frame_ms;
-    std::vector<uint8_t> pixels;
-    int screenshot_count = 0;
-    auto last_frame_end = std::chrono::steady_clock::now();
 
     *result = ViewerResult{};
     result->scene = options.scene_path;
@@ -104,52 +171,463 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
     result->window_width = options.width;
     result->window_height = options.height;
 
-    while (!window.shouldClose()) {
-        const auto frame_start = std::chrono::steady_clock::now();
+    DocumentOptions doc_options;
+    doc_options.cache_dir = options.cache_dir;
+    doc_options.config_dir = options.config_dir;
+    doc_options.threads = options.threads;
+    doc_options.autosave_interval_s = options.autosave_interval_s;
+
+    // ---- the document: opened (or recovered) in the background ----
+    std::unique_ptr<DocumentLoader> loader;
+    std::unique_ptr<EditorScene> scene;
+    RenderInstances instances;
+    std::shared_ptr<const InstanceStore> store;  // the result on screen
+    uint64_t shown_generation = 0;
+    bool have_result = false;
+    std::string asking_recovery;  // a path whose recovery dialog is open
+    RecoveryInfo recovery_info;
+    auto startLoad = [&](const std::string& path, bool recover) {
+        renderer.clearScene();
+        scene.reset();
+        store.reset();
+        have_result = false;
+        shown_generation = 0;
+        loader = std::make_unique<DocumentLoader>(LoadRequest{path, doc_options, recover});
+    };
+    // Opens `path`, asking first (interactive) when an autosave of it is newer than the file.
+    auto requestOpen = [&](const std::string& path, RecoverChoice choice) -> bool {
+        const bool has_recovery = findRecovery(options.config_dir, path, &recovery_info);
+        if (choice == RecoverChoice::Yes && !has_recovery) {
+            *error =
+                path + ": --recover yes: no autosave newer than the file under '" + options.config_dir + "'";
+            return false;
+        }
+        if (has_recovery && choice == RecoverChoice::Ask && !scripted) {
+            asking_recovery = path;
+            return true;
+        }
+        if (has_recovery && choice == RecoverChoice::No) discardRecovery(options.config_dir, path);
+        startLoad(path, has_recovery && choice == RecoverChoice::Yes);
+        return true;
+    };
+    if (!requestOpen(options.scene_path, options.recover)) return ViewerStatus::Failed;
+
+    OrbitCamera camera;
+    camera.aspect = float(options.width) / float(options.height);
+    bool camera_moved = false;
+    UiRequests requests;
+    WindowToggles windows;
+    ToolState tools;
+    BrushStroke stroke;
+    MarkerGeometry markers;
+    StatisticsView view;
+    view.scene = options.scene_path;
+    view.gl_version = window.glVersion();
+    view.renderer = window.rendererName();
+    std::vector<std::string> recent_files = loadRecentFiles(options.config_dir);
+    std::vector<std::string>& messages = result->messages;
+    std::string last_autosave_error;
+    bool save_as_open = false;
+    std::string save_as_path;
+    enum class Prompt { None, Quit, Open } prompt = Prompt::None;
+    std::string prompt_open_path;
+    bool quitting = false;
+
+    std::vector<double> frame_ms;
+    std::vector<uint8_t> pixels;
+    int screenshot_count = 0;
+    std::string screenshot_request_path;
+    bool screenshot_overlays = true;
+    std::vector<PendingStamp> pending_stamps;
+    ReplayState replay;
+    float reach_m = 0.0f;
+    int frame_index = 0;        // frames since the first result was on screen
+    int frames_after_done = 0;  // scripted: frames since the script finished and the result settled
+    bool stats_written = false;
+    const auto start_time = Clock::now();
+    auto last_frame_end = start_time;
+
+    auto fillDocumentResult = [&] {
+        if (!scene) return;
+        Document& doc = *scene->doc;
+        result->document_path = doc.path();
+        result->dirty = doc.isDirty();
+        result->user_primitives = 0;
+        for (size_t t = 0; t < doc.project().detail_types.size(); ++t)
+            result->user_primitives += doc.primitiveIds(t).size();
+        result->type_names.clear();
+        for (const DetailLodMesh& m : scene->meshes) result->type_names.push_back(m.name);
+        if (store) {
+            result->instances = store->instanceCount();
+            result->instances_per_type = perTypeCounts(*store, doc.ghostTile().candidates);
+            result->instance_store_hash = instanceStoreHash(*store);
+        }
+    };
+    auto writeInteractiveStats = [&] {
+        if (options.stats_path.empty()) return;
+        fillDocumentResult();
+        std::string write_error;
+        if (!writeTextFileAtomically(options.stats_path, viewerStatsJson(*result, options.lod).dump(2) + "\n",
+                                     &write_error))
+            messages.push_back(write_error);
+    };
+
+    // Takes a finished live result, if any, and re-packs it for the GPU (see the top of this file).
+    auto takeLiveResult = [&]() -> bool {
+        if (!scene) return true;
+        Document& doc = *scene->doc;
+        LiveResult live;
+        if (doc.live().poll(&live)) {
+            if (!live.ok) messages.push_back(live.error);
+            const auto t0 = Clock::now();
+            std::string pack_error;
+            if (!buildRenderInstances(*live.store, doc.ghostTile().candidates,
+                                      doc.ghostTile().settings.tile_size_m, &instances, &pack_error)) {
+                if (scripted) {
+                    *error = pack_error;
+                    return false;
+                }
+                messages.push_back(pack_error);
+            } else {
+                renderer.setInstances(&instances);
+                result->repack_ms_max =
+                    std::max(result->repack_ms_max,
+                             std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+                store = live.store;
+                shown_generation = live.generation;
+                view.instances = instances.instanceCount();
+                view.instances_per_type = instances.instances_per_type;
+                view.instantiate_seconds = live.stats.seconds;
+                view.changed_tiles = live.changed_tiles.size();
+                if (!have_result && !camera_moved) frameBounds(framingBounds(*scene, &instances), &camera);
+                have_result = true;
+            }
+        }
+        return true;
+    };
+
+    while (true) {
+        const auto frame_start = Clock::now();
         window.pollEvents();
         int fb_w = 0, fb_h = 0;
         window.framebufferSize(&fb_w, &fb_h);
         if (fb_w <= 0 || fb_h <= 0) continue;  // minimised
         camera.aspect = float(fb_w) / float(fb_h);
+        const double now_s = std::chrono::duration<double>(frame_start - start_time).count();
 
-        // Apply finished background work at the frame boundary.
-        const LoadPhase phase = loader.phase();
-        if (!scene_uploaded && (phase == LoadPhase::Instantiating || phase == LoadPhase::Ready)) {
-            const SceneData& d = loader.data();
-            renderer.setScene(d.job.compiled.extent, d.has_terrain ? &d.terrain : nullptr, &d.meshes,
-                              d.job.tile.candidates, d.job.tile.settings.tile_size_m);
-            frameBounds(framingBounds(d, false), &camera);
-            for (const DetailLodMesh& m : d.meshes) view.type_names.push_back(m.name);
-            view.instances_per_type.assign(d.meshes.size(), 0);
-            scene_uploaded = true;
+        // ---- apply finished background work at the frame boundary ----
+        if (loader && loader->phase() == LoadPhase::Failed) {
+            if (scripted) {
+                *error = loader->error();
+                return ViewerStatus::Failed;
+            }
+            messages.push_back(loader->error());
+            loader.reset();
         }
-        if (!instances_uploaded && phase == LoadPhase::Ready) {
-            const SceneData& d = loader.data();
-            renderer.setInstances(&d.instances);
-            view.instances = d.instances.instanceCount();
-            view.instances_per_type = d.instances.instances_per_type;
-            view.instantiate_seconds = d.stats.seconds;
-            instances_uploaded = true;
-            // Frame what was instantiated, unless the user already moved the camera.
-            if (!camera_moved) frameBounds(framingBounds(d, true), &camera);
+        if (loader && loader->phase() == LoadPhase::Ready) {
+            scene = std::make_unique<EditorScene>(std::move(loader->scene()));
+            result->recovered = loader->request().recover;
+            loader.reset();
+            Document& doc = *scene->doc;
+            renderer.setScene(doc.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr,
+                              &scene->meshes, doc.ghostTile().candidates,
+                              doc.ghostTile().settings.tile_size_m);
+            if (!camera_moved) frameBounds(framingBounds(*scene, nullptr), &camera);
+            view.scene = doc.path();
+            view.type_names.clear();
+            for (const DetailLodMesh& m : scene->meshes) view.type_names.push_back(m.name);
+            view.instances_per_type.assign(scene->meshes.size(), 0);
+            tools.brush = defaultBrush(doc);
+            tools.selected = 0;
+            reach_m = largestReach(doc);
+            recent_files = loadRecentFiles(options.config_dir);
         }
-        if (phase == LoadPhase::Failed && scripted) {
-            *error = loader.error();
-            return ViewerStatus::Failed;
-        }
-        view.pending = phase == LoadPhase::Loading || phase == LoadPhase::Instantiating;
-        view.progress = loader.progress();
-        view.status = phase == LoadPhase::Loading         ? "loading scene\xE2\x80\xA6"
-                      : phase == LoadPhase::Instantiating ? "instantiating\xE2\x80\xA6"
-                      : phase == LoadPhase::Ready         ? "ready"
-                                                          : "error: " + loader.error();
+        if (!takeLiveResult()) return ViewerStatus::Failed;
+        const bool settled = scene && have_result && !scene->doc->live().pending() &&
+                             shown_generation == scene->doc->live().generation();
+        view.pending = loader != nullptr || (scene && (!settled || !have_result));
+        view.progress = settled ? 1.0f : 0.0f;
+        view.status = loader         ? "loading scene\xE2\x80\xA6"
+                      : !scene       ? "no document"
+                      : view.pending ? "pending\xE2\x80\xA6"
+                                     : "ready";
 
+        // ---- UI: navigation, tools, panels, dialogs ----
+        const size_t stamps_before_frame = pending_stamps.size();
         window.beginUiFrame();
-        if (scene_uploaded && !scripted)
-            camera_moved |= navigate(&camera, framingBounds(loader.data(), instances_uploaded), float(fb_h));
-        drawMainMenu(&requests, &show_statistics);
-        drawStatisticsPanel(view, &show_statistics);
+        Document* doc = scene ? scene->doc.get() : nullptr;
+        const ImGuiIO& io = ImGui::GetIO();
+        const glm::mat4 view_proj = camera.viewProjection();
+        if (scene && !scripted)
+            camera_moved |=
+                navigate(&camera, framingBounds(*scene, have_result ? &instances : nullptr), float(fb_h));
+        MenuView menu;
+        menu.has_document = doc != nullptr;
+        menu.dirty = doc && doc->isDirty();
+        menu.undo_name = doc && doc->canUndo() ? doc->undoName() : "";
+        menu.redo_name = doc && doc->canRedo() ? doc->redoName() : "";
+        menu.recent_files = recent_files;
+        drawMainMenu(menu, &requests, &tools, &windows);
+        drawStatisticsPanel(view, &windows.statistics);
+        drawToolsPanel(view.type_names, &tools, &windows.tools);
+        std::string inspector_message;
+        drawInspector(doc, view.type_names, &tools, &requests, &inspector_message, &windows.inspector);
+        if (!inspector_message.empty()) messages.push_back(inspector_message);
 
+        markers.clear();
+        // Mouse tools: not while a panel has the mouse, Alt is held (Alt + left drag orbits) or a replay
+        // stroke is running.
+        const bool replay_stroke = replay.started && !replay.finishing;
+        if (doc && have_result && !scripted && !replay_stroke && asking_recovery.empty() &&
+            prompt == Prompt::None) {
+            const glm::vec2 cursor(io.MousePos.x * io.DisplayFramebufferScale.x,
+                                   io.MousePos.y * io.DisplayFramebufferScale.y);
+            const Ray ray = rayThroughPixel(view_proj, float(fb_w), float(fb_h), cursor);
+            const bool mouse_free = !io.WantCaptureMouse && !io.KeyAlt;
+            if (tools.tool == ToolKind::Select) {
+                if (mouse_free && ImGui::IsMouseClicked(ImGuiMouseButton_Left))
+                    tools.selected = pickPrimitive(*doc, view_proj, float(fb_w), float(fb_h), cursor, 20.0f);
+            } else {
+                const SurfaceHit hit = tools.tool == ToolKind::Sculpt
+                                           ? pickPile(*doc, tools.brush.sculpt_type, ray)
+                                           : pickGround(*doc, ray);
+                if (hit.hit && mouse_free) addBrushMarker(*doc, hit.point_m, tools.brush.radius_m, &markers);
+                const int before = stroke.stamps();
+                std::string stroke_error;
+                bool ok = true;
+                if (mouse_free && ImGui::IsMouseClicked(ImGuiMouseButton_Left))
+                    ok = stroke.begin(doc, tools.tool, tools.brush, ray, now_s, &stroke_error);
+                else if (stroke.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left))
+                    ok = stroke.drag(ray, now_s, &stroke_error);
+                if (!ok) messages.push_back(stroke_error);
+                if (stroke.stamps() > before)
+                    pending_stamps.push_back({doc->live().generation(), Clock::now(), -1});
+            }
+            if (stroke.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) stroke.end();
+        }
+
+        // Requests from menus and shortcuts.
+        if (doc) {
+            std::string op_error;
+            if (requests.undo || requests.redo) stroke.end();
+            if (requests.undo) doc->undo();
+            if (requests.redo) doc->redo();
+            if (requests.save && !doc->save(&op_error)) messages.push_back("Save failed: " + op_error);
+            if (requests.open_save_as) {
+                save_as_open = true;
+                save_as_path = doc->path();
+            }
+            if (requests.delete_selected && tools.selected != 0) {
+                if (doc->removePrimitive(tools.selected, &op_error))
+                    tools.selected = 0;
+                else
+                    messages.push_back(op_error);
+            }
+            if (requests.duplicate_selected && tools.selected != 0) {
+                Primitive p;
+                if (doc->findPrimitive(tools.selected, nullptr, &p)) {
+                    const float offset = std::max(p.radius_m, p.disc_radius_m);
+                    const uint64_t id =
+                        doc->duplicatePrimitive(tools.selected, glm::vec3(offset, 0.0f, 0.0f), &op_error);
+                    if (id)
+                        tools.selected = id;
+                    else
+                        messages.push_back(op_error);
+                }
+            }
+            if (drawSaveAsDialog(&save_as_open, &save_as_path) == DialogAnswer::Yes) {
+                if (!doc->saveAs(save_as_path, &op_error))
+                    messages.push_back("Save As failed: " + op_error);
+                else
+                    recent_files = loadRecentFiles(options.config_dir);
+            }
+        }
+        if (!requests.open_path.empty()) {
+            if (doc && doc->isDirty() && !scripted) {
+                prompt = Prompt::Open;
+                prompt_open_path = requests.open_path;
+            } else {
+                if (doc) doc->close();
+                requestOpen(requests.open_path, RecoverChoice::Ask);
+            }
+        }
+        if (requests.quit) window.requestClose();
+        if (requests.screenshot) {
+            screenshot_request_path = options.screenshot_path;
+            screenshot_overlays = true;
+        }
+        const bool screenshot_requested = requests.screenshot;
+        requests = UiRequests{};
+        // Closing the window with unsaved work asks first (scripted runs never ask).
+        if (window.shouldClose() && !quitting) {
+            if (doc && doc->isDirty() && !scripted) {
+                window.cancelClose();
+                prompt = Prompt::Quit;
+            } else {
+                quitting = true;
+            }
+        }
+        if (prompt != Prompt::None) {
+            const DialogAnswer a = drawUnsavedDialog(doc ? doc->path() : "the document",
+                                                     prompt == Prompt::Quit ? "quit" : "open another file");
+            bool proceed = false;
+            if (a == DialogAnswer::Yes) {
+                std::string save_error;
+                if (doc && !doc->save(&save_error))
+                    messages.push_back("Save failed: " + save_error);
+                else
+                    proceed = true;
+            } else if (a == DialogAnswer::No) {
+                proceed = true;
+            }
+            if (a != DialogAnswer::Pending) {
+                if (proceed) {
+                    if (doc) doc->close();  // removes the autosave: the user chose
+                    if (prompt == Prompt::Quit) {
+                        quitting = true;
+                    } else {
+                        requestOpen(prompt_open_path, RecoverChoice::Ask);
+                        doc = nullptr;
+                    }
+                }
+                prompt = Prompt::None;
+            }
+        }
+        if (!asking_recovery.empty()) {
+            const DialogAnswer a = drawRecoveryDialog(asking_recovery, timeText(recovery_info.saved_unix_s));
+            if (a == DialogAnswer::Yes || a == DialogAnswer::No) {
+                const std::string path = asking_recovery;
+                asking_recovery.clear();
+                requestOpen(path, a == DialogAnswer::Yes ? RecoverChoice::Yes : RecoverChoice::No);
+                doc = nullptr;
+            }
+        }
+        drawMessages(&messages);
+        if (doc != (scene ? scene->doc.get() : nullptr)) doc = nullptr;  // replaced this frame
+
+        // ---- replay: start or advance the current action ----
+        if (doc && have_result && replay.index < options.replay.size() && !replay.finishing) {
+            const ReplayAction& a = options.replay[replay.index];
+            std::string op_error;
+            if (!replay.started && frame_index >= a.frame && settled) {
+                replay.started = true;
+                replay.record = json{{"action", replayKindName(a.kind)}, {"frame", frame_index}};
+                replay.before = store;
+                replay.stamp_ms.clear();
+                const bool is_stroke = a.kind == ReplayKind::PaintStroke ||
+                                       a.kind == ReplayKind::SculptStroke ||
+                                       a.kind == ReplayKind::EraseStroke;
+                if (is_stroke) {
+                    BrushSettings brush = tools.brush;
+                    brush.radius_m = a.radius_m;
+                    brush.strength = a.strength;
+                    brush.falloff_m = a.falloff_m;
+                    brush.subtract = a.subtract;
+                    brush.type_mix.assign(view.type_names.size(), 0.0f);
+                    json types = json::object();
+                    for (const auto& [name, weight] : a.types) {
+                        const auto it = std::find(view.type_names.begin(), view.type_names.end(), name);
+                        if (it == view.type_names.end()) {
+                            *error = "replay: action " + std::to_string(replay.index) + ": no detail type '" +
+                                     name + "'";
+                            return ViewerStatus::Failed;
+                        }
+                        const size_t t = size_t(it - view.type_names.begin());
+                        brush.type_mix[t] = weight;
+                        brush.sculpt_type = t;
+                        types[name] = weight;
+                    }
+                    replay.record["types"] = types;
+                    replay.record["radius"] = a.radius_m;
+                    const ToolKind tool = a.kind == ReplayKind::PaintStroke    ? ToolKind::Paint
+                                          : a.kind == ReplayKind::SculptStroke ? ToolKind::Sculpt
+                                                                               : ToolKind::Erase;
+                    replay.path = strokePath(a);
+                    replay.step = 0;
+                    if (!stroke.begin(doc, tool, brush, rayDownOnto(*doc, replay.path[0]), 0.0, &op_error))
+                        messages.push_back(op_error);
+                    if (stroke.stamps() > 0)
+                        pending_stamps.push_back({doc->live().generation(), Clock::now(), int(replay.index)});
+                    replay.step = 1;
+                } else {
+                    switch (a.kind) {
+                        case ReplayKind::Undo:
+                            replay.record["ok"] = doc->undo();
+                            break;
+                        case ReplayKind::Redo:
+                            replay.record["ok"] = doc->redo();
+                            break;
+                        case ReplayKind::Save:
+                        case ReplayKind::SaveAs: {
+                            const bool ok = a.kind == ReplayKind::Save ? doc->save(&op_error)
+                                                                       : doc->saveAs(a.path, &op_error);
+                            replay.record["ok"] = ok;
+                            if (!ok) {
+                                replay.record["error"] = op_error;
+                                messages.push_back("Save failed: " + op_error);
+                            }
+                            replay.record["path"] = a.kind == ReplayKind::Save ? doc->path() : a.path;
+                            break;
+                        }
+                        case ReplayKind::Screenshot:
+                            screenshot_request_path = a.path;
+                            screenshot_overlays = a.overlays;
+                            replay.record["path"] = a.path;
+                            break;
+                        case ReplayKind::View:
+                            if (a.has_target) camera.target = a.target;
+                            if (a.distance_m > 0.0f) camera.distance_m = a.distance_m;
+                            if (!std::isnan(a.yaw_deg)) camera.yaw_rad = glm::radians(a.yaw_deg);
+                            if (!std::isnan(a.pitch_deg)) camera.pitch_rad = glm::radians(a.pitch_deg);
+                            camera_moved = true;
+                            break;
+                        default:
+                            break;
+                    }
+                    replay.finishing = true;
+                }
+            } else if (replay.started && stroke.active()) {
+                // One brush position per frame; the virtual clock advances one hold interval per step so a
+                // sculpt stroke stamps at every step, whatever the frame rate.
+                const int before = stroke.stamps();
+                if (replay.step < replay.path.size() &&
+                    !stroke.drag(rayDownOnto(*doc, replay.path[replay.step]),
+                                 double(replay.step) * kSculptHoldInterval_s, &op_error))
+                    messages.push_back(op_error);
+                if (stroke.stamps() > before)
+                    pending_stamps.push_back({doc->live().generation(), Clock::now(), int(replay.index)});
+                if (++replay.step >= replay.path.size()) {
+                    replay.record["stamps"] = stroke.stamps();
+                    Bounds box = stroke.changedBounds();
+                    const float grow = 2.0f * reach_m + std::max(0.0f, doc->ghostTile().settings.delta_m);
+                    box.lo -= grow;
+                    box.hi += grow;
+                    replay.record["box"] = {{"min", {box.lo.x, box.lo.y, box.lo.z}},
+                                            {"max", {box.hi.x, box.hi.y, box.hi.z}}};
+                    replay.record["box_lo"] = {box.lo.x, box.lo.y, box.lo.z};
+                    replay.record["box_hi"] = {box.hi.x, box.hi.y, box.hi.z};
+                    stroke.end();
+                    replay.finishing = true;
+                }
+            }
+        }
+
+        // ---- render ----
+        // A stamp made this frame: wait a little for its update (an incremental update takes a few ms) so
+        // this frame already shows it, instead of the next one a whole frame later (on llvmpipe a frame is
+        // 30-40 ms; the stamp-to-frame target is 50 ms). Bounded, so a slow update never stalls the UI.
+        if (scene && pending_stamps.size() > stamps_before_frame) {
+            const auto wait_start = Clock::now();
+            while (scene->doc->live().pending() &&
+                   std::chrono::duration<double, std::milli>(Clock::now() - wait_start).count() <
+                       kStampWaitBudgetMs)
+                std::this_thread::sleep_for(std::chrono::microseconds(250));
+        }
+        if (!takeLiveResult()) return ViewerStatus::Failed;
+        if (tools.show_markers && doc && (screenshot_request_path.empty() || screenshot_overlays))
+            addPrimitiveMarkers(*doc, scene->meshes, tools.selected, &markers);
+        if (!screenshot_request_path.empty() && !screenshot_overlays) markers.clear();
+        renderer.setMarkers(markers);
         renderer.render(camera, fb_w, fb_h, options.lod);
         const gl::RenderStats& rs = renderer.stats();
         view.triangles = rs.triangles;
@@ -160,10 +638,13 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         view.tiles_culled = rs.tiles_culled;
 
         // The screenshot is the viewport alone, read before the UI is drawn over it.
-        const bool last_scripted_frame = scripted && instances_uploaded && int(frame_ms.size()) + 1 >= options.frames;
-        if (requests.screenshot || (last_scripted_frame && !options.screenshot_path.empty())) {
-            std::string path = options.screenshot_path;
-            if (path.empty() || (!scripted && screenshot_count > 0))
+        const bool last_scripted_frame = scripted && replay.index >= options.replay.size() && settled &&
+                                         frames_after_done + 1 >= options.frames;
+        if (screenshot_requested || !screenshot_request_path.empty() ||
+            (last_scripted_frame && !options.screenshot_path.empty())) {
+            std::string path =
+                screenshot_request_path.empty() ? options.screenshot_path : screenshot_request_path;
+            if (path.empty() || (screenshot_requested && !scripted && screenshot_count > 0))
                 path = std::filesystem::path(options.scene_path).stem().string() + "-screenshot-" +
                        std::to_string(++screenshot_count) + ".png";
             else
@@ -174,24 +655,89 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 view.last_message = "saved " + path;
                 result->screenshot = path;
             } else {
-                view.last_message = write_error;
+                messages.push_back(write_error);
                 if (scripted) {
                     *error = write_error;
                     return ViewerStatus::Failed;
                 }
             }
-            requests.screenshot = false;
+            screenshot_request_path.clear();
         }
         window.renderUi();
         if (options.finish_each_frame) window.finish();
         window.swapBuffers();
 
-        const auto frame_end = std::chrono::steady_clock::now();
+        // ---- after the frame: stamp timings, replay bookkeeping, autosave ----
+        const auto frame_end = Clock::now();
+        for (size_t i = 0; i < pending_stamps.size();) {
+            if (have_result && pending_stamps[i].generation <= shown_generation) {
+                const double ms =
+                    std::chrono::duration<double, std::milli>(frame_end - pending_stamps[i].time).count();
+                result->stamp_to_frame_ms.push_back(ms);
+                view.stamp_to_frame_ms = ms;
+                if (pending_stamps[i].action == int(replay.index)) replay.stamp_ms.push_back(ms);
+                pending_stamps.erase(pending_stamps.begin() + long(i));
+            } else {
+                ++i;
+            }
+        }
+        const bool settled_now = scene && have_result && !scene->doc->live().pending() &&
+                                 shown_generation == scene->doc->live().generation();
+        if (replay.finishing && settled_now && scene) {
+            Document& d = *scene->doc;
+            const CandidateSet& c = d.ghostTile().candidates;
+            const std::vector<std::string>& names = view.type_names;
+            json& r = replay.record;
+            const InstanceStore empty;
+            const InstanceStore& before = replay.before ? *replay.before : empty;
+            r["instances_before"] = before.instanceCount();
+            r["instances_after"] = store->instanceCount();
+            r["per_type_before"] = perTypeJson(names, perTypeCounts(before, c));
+            r["per_type_after"] = perTypeJson(names, perTypeCounts(*store, c));
+            r["instance_store_hash_before"] = hex64(instanceStoreHash(before));
+            r["instance_store_hash_after"] = hex64(instanceStoreHash(*store));
+            if (r.contains("box_lo")) {
+                const Bounds box{glm::vec3(r["box_lo"][0].get<float>(), r["box_lo"][1].get<float>(),
+                                           r["box_lo"][2].get<float>()),
+                                 glm::vec3(r["box_hi"][0].get<float>(), r["box_hi"][1].get<float>(),
+                                           r["box_hi"][2].get<float>())};
+                r.erase("box_lo");
+                r.erase("box_hi");
+                const float s = d.ghostTile().settings.tile_size_m;
+                const BoxCounts b = countInstancesInBox(before, c, s, box),
+                                a = countInstancesInBox(*store, c, s, box);
+                r["inside_before"] = perTypeJson(names, b.inside);
+                r["inside_after"] = perTypeJson(names, a.inside);
+                r["outside_before"] = perTypeJson(names, b.outside);
+                r["outside_after"] = perTypeJson(names, a.outside);
+                r["stamp_to_frame_ms"] = replay.stamp_ms;
+            }
+            r["dirty"] = d.isDirty();
+            result->actions.push_back(r);
+            replay = ReplayState{replay.index + 1};
+            if (replay.index >= options.replay.size() && !scripted && !stats_written) {
+                writeInteractiveStats();
+                stats_written = true;
+            }
+        }
+        if (scene) {
+            std::string autosave_error;
+            if (scene->doc->maybeAutosave(now_s, &autosave_error)) {
+                ++result->autosaves;
+                last_autosave_error.clear();
+            } else if (!autosave_error.empty() && autosave_error != last_autosave_error) {
+                messages.push_back("Autosave failed: " + autosave_error);
+                last_autosave_error = autosave_error;
+            }
+        }
+
         const double ms = std::chrono::duration<double, std::milli>(frame_end - frame_start).count();
         view.frame_ms = std::chrono::duration<double, std::milli>(frame_end - last_frame_end).count();
-        view.frame_ms_avg = view.frame_ms_avg == 0.0 ? view.frame_ms : 0.95 * view.frame_ms_avg + 0.05 * view.frame_ms;
+        view.frame_ms_avg =
+            view.frame_ms_avg == 0.0 ? view.frame_ms : 0.95 * view.frame_ms_avg + 0.05 * view.frame_ms;
         last_frame_end = frame_end;
-        if (instances_uploaded) {
+        if (have_result) {
+            ++frame_index;
             frame_ms.push_back(ms);
             result->triangles = rs.triangles;
             result->points = rs.points;
@@ -201,47 +747,62 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             result->tiles_culled = rs.tiles_culled;
             result->framebuffer_width = fb_w;
             result->framebuffer_height = fb_h;
-            if (scripted && int(frame_ms.size()) >= options.frames) break;
+            result->instantiate_seconds = view.instantiate_seconds;
+            if (scripted && replay.index >= options.replay.size() && settled_now &&
+                ++frames_after_done >= options.frames)
+                break;
         }
-        if (requests.quit) window.requestClose();
+        if (quitting) break;
     }
     result->frames_measured = int(frame_ms.size());
     result->frame_ms = percentile(frame_ms, 0.5);
     result->frame_ms_p95 = percentile(frame_ms, 0.95);
-    if (loader.phase() == LoadPhase::Ready) {
-        const SceneData& d = loader.data();
-        result->instances = d.instances.instanceCount();
-        result->instances_per_type = d.instances.instances_per_type;
-        result->instantiate_seconds = d.stats.seconds;
-        for (const DetailLodMesh& m : d.meshes) result->type_names.push_back(m.name);
-    }
+    fillDocumentResult();
+    if (!scripted) writeInteractiveStats();
     return ViewerStatus::Ok;
 }
 
-nlohmann::json viewerStatsJson(const ViewerResult& r, const LodSettings& lod) {
-    nlohmann::json per_type = nlohmann::json::object();
+json viewerStatsJson(const ViewerResult& r, const LodSettings& lod) {
+    json per_type = json::object();
     for (size_t i = 0; i < r.type_names.size(); ++i)
         per_type[r.type_names[i]] = i < r.instances_per_type.size() ? r.instances_per_type[i] : 0;
-    return {{"scene", r.scene},
-            {"instances", r.instances},
-            {"instances_per_type", per_type},
-            {"instantiate_seconds", r.instantiate_seconds},
-            {"frames_measured", r.frames_measured},
-            {"frame_ms", r.frame_ms},
-            {"frame_ms_p95", r.frame_ms_p95},
-            {"triangles", r.triangles},
-            {"impostor_points", r.points},
-            {"draw_calls", r.draw_calls},
-            {"lod_instances", {{"lod0", r.lod_instances[0]}, {"lod1", r.lod_instances[1]}, {"lod2", r.lod_instances[2]},
-                               {"impostor", r.lod_instances[3]}}},
-            {"lod_settings_px", {{"lod1", lod.lod1_px}, {"lod2", lod.lod2_px}, {"impostor", lod.impostor_px}}},
-            {"tiles_visible", r.tiles_visible},
-            {"tiles_culled", r.tiles_culled},
-            {"gl_version", r.gl_version},
-            {"renderer", r.renderer},
-            {"window", {r.window_width, r.window_height}},
-            {"framebuffer", {r.framebuffer_width, r.framebuffer_height}},
-            {"screenshot", r.screenshot}};
+    return {
+        {"scene", r.scene},
+        {"instances", r.instances},
+        {"instances_per_type", per_type},
+        {"instance_store_hash", hex64(r.instance_store_hash)},
+        {"instantiate_seconds", r.instantiate_seconds},
+        {"frames_measured", r.frames_measured},
+        {"frame_ms", r.frame_ms},
+        {"frame_ms_p95", r.frame_ms_p95},
+        {"triangles", r.triangles},
+        {"impostor_points", r.points},
+        {"draw_calls", r.draw_calls},
+        {"lod_instances",
+         {{"lod0", r.lod_instances[0]},
+          {"lod1", r.lod_instances[1]},
+          {"lod2", r.lod_instances[2]},
+          {"impostor", r.lod_instances[3]}}},
+        {"lod_settings_px", {{"lod1", lod.lod1_px}, {"lod2", lod.lod2_px}, {"impostor", lod.impostor_px}}},
+        {"tiles_visible", r.tiles_visible},
+        {"tiles_culled", r.tiles_culled},
+        {"gl_version", r.gl_version},
+        {"renderer", r.renderer},
+        {"window", {r.window_width, r.window_height}},
+        {"framebuffer", {r.framebuffer_width, r.framebuffer_height}},
+        {"screenshot", r.screenshot},
+        {"document",
+         {{"path", r.document_path},
+          {"recovered", r.recovered},
+          {"dirty", r.dirty},
+          {"user_primitives", r.user_primitives},
+          {"autosaves", r.autosaves}}},
+        {"stamps", r.stamp_to_frame_ms.size()},
+        {"stamp_to_frame_ms_p50", percentile(r.stamp_to_frame_ms, 0.5)},
+        {"stamp_to_frame_ms_p95", percentile(r.stamp_to_frame_ms, 0.95)},
+        {"repack_ms_max", r.repack_ms_max},
+        {"actions", r.actions},
+        {"messages", r.messages}};
 }
 
 }  // namespace ug::editor

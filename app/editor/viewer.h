@@ -1,6 +1,7 @@
-// The editor's viewport session: a window showing a scene, loaded and instantiated in the background.
-// `undergrowth edit` runs it interactively or scripted (a fixed number of frames, a screenshot and the
-// statistics), and `undergrowth bench` runs it scripted to time the renderer.
+// The editor's session: a window on a Document (document.h), opened in the background, edited with the
+// tools (tools.h), instantiated live, saved and autosaved. `undergrowth edit` runs it interactively or
+// scripted (a replay script of tool actions, a number of frames, a screenshot and the statistics), and
+// `undergrowth bench` runs it scripted to time the renderer and the live loop.
 //
 //   ViewerOptions options{.scene_path = "assets/scenes/meadow.json", .frames = 30};
 //   ViewerResult result;
@@ -15,22 +16,35 @@
 #include <nlohmann/json.hpp>
 
 #include "editor/render_data.h"
+#include "editor/replay.h"
 
 namespace ug::editor {
+
+enum class RecoverChoice { Ask, Yes, No };
 
 struct ViewerOptions {
     std::string scene_path;
     std::string cache_dir = "out/cache";
+    std::string config_dir;  // recent files and recovery ("" = neither; the CLI passes defaultConfigDir())
     int threads = 0;
     int width = 1280;
     int height = 720;
-    // 0: interactive until the window closes. N > 0: scripted; waits for the instances, renders N frames
-    // of the default view with them, writes the screenshot (when a path is given) and returns.
+    // 0: interactive until the window closes. N > 0: scripted; runs the replay (if any), waits until the
+    // live instancer is idle and its result on screen, renders N more frames, writes the screenshot (when
+    // a path is given) and returns. Scripted runs never show a modal dialog.
     int frames = 0;
     std::string screenshot_path;  // scripted: written after the last frame; interactive: File > Screenshot
     bool finish_each_frame = false;  // glFinish every frame (frame times then include the GPU's work)
     bool quiet = false;
     LodSettings lod;
+    std::vector<ReplayAction> replay;  // run in order (replay.h)
+    // An autosave newer than the file: Ask shows a dialog (interactive; a scripted run opens the file and
+    // leaves the autosave alone), Yes recovers it, No opens the file and removes the autosave.
+    RecoverChoice recover = RecoverChoice::Ask;
+    double autosave_interval_s = 60.0;
+    // Interactive runs with a replay write their statistics here when the script is done (and at exit);
+    // scripted runs leave writing them to the caller.
+    std::string stats_path;
 };
 
 struct ViewerResult {
@@ -38,6 +52,7 @@ struct ViewerResult {
     uint64_t instances = 0;
     std::vector<std::string> type_names;
     std::vector<uint64_t> instances_per_type;
+    uint64_t instance_store_hash = 0;
     double instantiate_seconds = 0.0;
     int frames_measured = 0;    // frames rendered with the instances on screen
     double frame_ms = 0.0;      // median over those frames (whole loop: events, UI, render, swap)
@@ -53,15 +68,27 @@ struct ViewerResult {
     int window_width = 0, window_height = 0;
     int framebuffer_width = 0, framebuffer_height = 0;
     std::string screenshot;     // the path written, if any
+    // The document and the live loop.
+    std::string document_path;
+    bool recovered = false;
+    bool dirty = false;
+    uint64_t user_primitives = 0;
+    int autosaves = 0;
+    std::vector<double> stamp_to_frame_ms;  // every stamp: from the edit to the end of the frame showing it
+    double repack_ms_max = 0.0;             // the slowest CPU re-pack of a live result for the GPU
+    nlohmann::json actions = nlohmann::json::array();  // per replay action (viewer.cpp, "Statistics")
+    std::vector<std::string> messages;      // errors shown in the UI
 };
 
 enum class ViewerStatus { Ok, NoDisplay, Failed };
 
-// NoDisplay: no window could be opened (no X server / DISPLAY); Failed: the scene failed to load, a
-// shader failed, or the screenshot could not be written — *error says which.
+// NoDisplay: no window could be opened (no X server / DISPLAY); Failed: the scene failed to load in a
+// scripted run, a shader failed, or a scripted screenshot could not be written — *error says which.
 ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::string* error);
 
 // The --stats file of `undergrowth edit`.
 nlohmann::json viewerStatsJson(const ViewerResult& result, const LodSettings& lod);
+
+double percentile(std::vector<double> values, double q);  // nearest rank; 0 for none
 
 }  // namespace ug::editor

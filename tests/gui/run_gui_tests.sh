@@ -58,6 +58,81 @@ PY
 run_scene meadow "$root/assets/scenes/meadow.json" 1280x720 meadow
 run_scene rock_pile "$root/assets/scenes/rock_pile.json" 640x360 pile
 
+# ---- the live editing loop: replayed strokes on the meadow (tools.h, replay.h) ----
+meadow="$root/assets/scenes/meadow.json"
+config="$tmp/config"
+mkdir -p "$tmp/saved"
+touch "$tmp/not_a_folder"
+# A rock stroke where the meadow has no rock (its rock density is 0 around (0.5, -9)), a sculpted rock pile,
+# undo and redo of each, a save that must fail (a file where the folder should be: the tests may run as
+# root, who may write into a read-only folder) and one that succeeds.
+cat >"$tmp/strokes.json" <<EOF
+[{"frame": 1, "action": "view", "target": [0.5, -9, 0], "distance": 10},
+ {"action": "screenshot", "path": "$tmp/before.png", "overlays": false},
+ {"action": "paint_stroke", "type": "rock", "points": [[-1, -9], [2, -9]], "radius": 1.0, "strength": 1.0, "falloff": 0.5},
+ {"action": "screenshot", "path": "$tmp/after.png", "overlays": false},
+ {"action": "undo"}, {"action": "redo"},
+ {"action": "sculpt_stroke", "type": "rock", "points": [[-6, -10], [-5.5, -10]], "radius": 0.6, "steps": 10},
+ {"action": "view", "target": [-5.75, -10, 0.5], "distance": 4},
+ {"action": "screenshot", "path": "$tmp/pile.png", "overlays": true},
+ {"action": "undo"}, {"action": "redo"},
+ {"action": "save_as", "path": "$tmp/not_a_folder/meadow_edit.json"},
+ {"action": "save_as", "path": "$tmp/saved/meadow_edit.json"},
+ {"action": "wait_idle"}]
+EOF
+if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$meadow" --frames 3 --size 640x360 --cache "$cache" \
+    --config "$config" --replay "$tmp/strokes.json" --stats "$tmp/strokes.stats.json" >"$tmp/strokes.log" 2>&1; then
+  ok "edit meadow: replayed paint and sculpt strokes, undo, redo, save as"
+  if "$bin" instantiate "$tmp/saved/meadow_edit.json" -o "$tmp/saved.glb" --stats "$tmp/saved.cli.json" \
+       --cache "$cache" >/dev/null 2>&1 &&
+     out="$(python3 "$root/tests/gui/check_edit.py" strokes "$tmp/strokes.stats.json" "$tmp/saved.cli.json" 2>&1)"; then
+    ok "edit meadow: strokes ($out)"
+  else
+    bad "edit meadow: strokes: $out"
+  fi
+  if out="$(python3 "$root/tests/gui/check_edit.py" diff "$tmp/before.png" "$tmp/after.png" 2>&1)"; then
+    ok "edit meadow: the screenshot changes where the stroke went ($out)"
+  else
+    bad "edit meadow: screenshot before/after: $out"
+  fi
+else
+  bad "edit meadow strokes: $(tail -5 "$tmp/strokes.log")"
+fi
+
+# kill -9 while editing: an interactive session paints, autosaves every second, and is killed; the next
+# start recovers the autosave with the painted primitives and the same instances.
+kconfig="$tmp/kill-config"
+cat >"$tmp/kill.json" <<EOF
+[{"frame": 1, "action": "paint_stroke", "type": "rock", "points": [[-1, -9], [2, -9]], "radius": 1.0},
+ {"action": "wait_idle"}]
+EOF
+xvfb-run -a -s "-screen 0 1280x720x24" sh -c 'echo $$ >"$0"; exec "$@"' "$tmp/kill.pid" "$bin" edit "$meadow" \
+  --size 640x360 --cache "$cache" --config "$kconfig" --replay "$tmp/kill.json" --stats "$tmp/kill.stats.json" \
+  --autosave-interval 1 >"$tmp/kill.log" 2>&1 &
+runner=$!
+for _ in $(seq 1 120); do [ -s "$tmp/kill.stats.json" ] && break; sleep 0.5; done
+sleep 2.5  # more than the autosave interval after the stroke's last edit
+if [ -s "$tmp/kill.stats.json" ] && ls "$kconfig"/recovery/*.meta.json >/dev/null 2>&1; then
+  kill -9 "$(cat "$tmp/kill.pid")"
+  wait "$runner" 2>/dev/null
+  if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$meadow" --recover yes --frames 5 --size 640x360 \
+       --cache "$cache" --config "$kconfig" --stats "$tmp/recovered.stats.json" >"$tmp/recovered.log" 2>&1 &&
+     out="$(python3 "$root/tests/gui/check_edit.py" recovered "$tmp/kill.stats.json" "$tmp/recovered.stats.json" 2>&1)"; then
+    ok "edit: kill -9 while editing, then --recover yes ($out)"
+  else
+    bad "edit: recovery after kill -9: ${out:-$(tail -5 "$tmp/recovered.log")}"
+  fi
+else
+  [ -f "$tmp/kill.pid" ] && kill -9 "$(cat "$tmp/kill.pid")" 2>/dev/null
+  wait "$runner" 2>/dev/null
+  bad "edit: the interactive session wrote no statistics or no autosave: $(tail -5 "$tmp/kill.log")"
+fi
+# --recover yes without an autosave: exit 1, says so.
+out="$(xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$meadow" --recover yes --frames 1 --cache "$cache" \
+       --config "$tmp/empty-config" 2>&1)"; rc=$?
+if [ "$rc" -eq 1 ] && grep -q "no autosave" <<<"$out"; then ok "edit: --recover yes without an autosave fails clearly"; else
+  bad "edit --recover yes without an autosave (exit $rc): $out"; fi
+
 # No display: a clear message and exit 1.
 out="$(env -u DISPLAY -u WAYLAND_DISPLAY "$bin" edit "$root/assets/scenes/rock_pile.json" --frames 1 2>&1)"
 rc=$?
@@ -67,6 +142,6 @@ if [ "$rc" -eq 1 ] && grep -q "cannot open a display" <<<"$out"; then ok "edit: 
 out="$("$bin" edit "$root/assets/scenes/rock_pile.json" --size 12 2>&1)"; rc=$?
 if [ "$rc" -eq 2 ] && grep -q -- "--size" <<<"$out"; then ok "edit: bad --size is a usage error"; else bad "edit --size 12 (exit $rc): $out"; fi
 
-if [ -n "${UG_GUI_KEEP:-}" ]; then mkdir -p "$UG_GUI_KEEP" && cp "$tmp"/*.png "$tmp"/*.json "$UG_GUI_KEEP"/; fi
+if [ -n "${UG_GUI_KEEP:-}" ]; then mkdir -p "$UG_GUI_KEEP" && cp "$tmp"/*.png "$tmp"/*.json "$UG_GUI_KEEP"/ 2>/dev/null; fi
 echo "gui tests: $passed passed, $failed failed"
 [ "$failed" -eq 0 ]

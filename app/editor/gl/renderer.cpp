@@ -33,8 +33,10 @@ void setLighting(const ShaderProgram& p, const glm::vec3& eye, float fog_density
 
 Renderer::~Renderer() {
     releaseScene();
-    for (ShaderProgram* p : {&sky_, &terrain_, &detail_, &impostor_, &grid_}) destroyProgram(p);
+    for (ShaderProgram* p : {&sky_, &terrain_, &detail_, &impostor_, &grid_, &marker_}) destroyProgram(p);
     if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
+    if (marker_vao_) glDeleteVertexArrays(1, &marker_vao_);
+    if (marker_buffer_) glDeleteBuffers(1, &marker_buffer_);
 }
 
 bool Renderer::init(const std::string& dir, std::string* error) {
@@ -54,9 +56,19 @@ bool Renderer::init(const std::string& dir, std::string* error) {
                      &impostor_, error) ||
         !loadProgram(dir, "ground_grid.vert", "ground_grid.frag",
                      with({"u_view_proj", "u_grid_center", "u_grid_half_m", "u_ground_z", "u_cell_m", "u_fade_m"}, true), &grid_,
-                     error))
+                     error) ||
+        !loadProgram(dir, "skeleton_marker.vert", "flat_color.frag", {"u_view_proj", "u_point_size"}, &marker_, error))
         return false;
     glGenVertexArrays(1, &empty_vao_);
+    glGenVertexArrays(1, &marker_vao_);
+    glGenBuffers(1, &marker_buffer_);
+    glBindVertexArray(marker_vao_);
+    glBindBuffer(GL_ARRAY_BUFFER, marker_buffer_);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(MarkerVertex), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(MarkerVertex), reinterpret_cast<void*>(3 * sizeof(float)));
+    glBindVertexArray(0);
     return true;
 }
 
@@ -150,15 +162,32 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
 
 void Renderer::setInstances(const RenderInstances* instances) {
     instances_ = instances;
-    for (size_t i = 0; i < types_.size(); ++i) {
-        // Room for every instance of the type: the buffer is allocated once and refilled in place.
-        const uint32_t n = uint32_t(std::max<uint64_t>(
-            i < instances->instances_per_type.size() ? instances->instances_per_type[i] : 0, 1));
-        glBindBuffer(GL_ARRAY_BUFFER, types_[i].instance_buffer);
-        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(n * sizeof(PackedInstance)), nullptr, GL_DYNAMIC_DRAW);
-        types_[i].instance_capacity = n;
-    }
     buckets_dirty_ = true;
+    if (!instances) return;
+    for (size_t i = 0; i < types_.size(); ++i) {
+        // Room for every instance of the type: the buffer is refilled in place and reallocated only when
+        // the type outgrows it (then with half again as much room, for the strokes to come).
+        const uint64_t n = std::max<uint64_t>(
+            i < instances->instances_per_type.size() ? instances->instances_per_type[i] : 0, 1);
+        if (n <= types_[i].instance_capacity) continue;
+        const uint32_t capacity = uint32_t(types_[i].instance_capacity == 0 ? n : n + n / 2);
+        glBindBuffer(GL_ARRAY_BUFFER, types_[i].instance_buffer);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(uint64_t(capacity) * sizeof(PackedInstance)), nullptr, GL_DYNAMIC_DRAW);
+        types_[i].instance_capacity = capacity;
+    }
+}
+
+void Renderer::setMarkers(const MarkerGeometry& m) {
+    marker_line_vertices_ = uint32_t(m.lines.size());
+    marker_points_ = uint32_t(m.points.size());
+    glBindBuffer(GL_ARRAY_BUFFER, marker_buffer_);
+    const size_t n = m.lines.size() + m.points.size();
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(std::max<size_t>(n, 1) * sizeof(MarkerVertex)), nullptr, GL_STREAM_DRAW);
+    if (!m.lines.empty())
+        glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(m.lines.size() * sizeof(MarkerVertex)), m.lines.data());
+    if (!m.points.empty())
+        glBufferSubData(GL_ARRAY_BUFFER, GLintptr(m.lines.size() * sizeof(MarkerVertex)),
+                        GLsizeiptr(m.points.size() * sizeof(MarkerVertex)), m.points.data());
 }
 
 void Renderer::render(const OrbitCamera& camera, int width, int height, const LodSettings& lod) {
@@ -229,6 +258,20 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
     ++stats_.draw_calls;
     glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
+
+    // Overlays last, without depth: a skeleton inside the pile it makes must stay visible.
+    if (marker_line_vertices_ + marker_points_ > 0) {
+        glDisable(GL_DEPTH_TEST);
+        glUseProgram(marker_.id);
+        glUniformMatrix4fv(loc(marker_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+        glUniform1f(loc(marker_, "u_point_size"), 6.0f);
+        glEnable(GL_PROGRAM_POINT_SIZE);
+        glBindVertexArray(marker_vao_);
+        if (marker_line_vertices_) glDrawArrays(GL_LINES, 0, GLsizei(marker_line_vertices_));
+        if (marker_points_) glDrawArrays(GL_POINTS, GLint(marker_line_vertices_), GLsizei(marker_points_));
+        glDisable(GL_PROGRAM_POINT_SIZE);
+        glEnable(GL_DEPTH_TEST);
+    }
     glBindVertexArray(0);
 }
 

@@ -14,6 +14,7 @@
 #include <glm/glm.hpp>
 
 #include "editor/gl/shader_program.h"
+#include "editor/markers.h"
 #include "editor/orbit_camera.h"
 #include "editor/render_data.h"
 #include "field/bounds.h"
@@ -46,8 +47,14 @@ public:
     // detail meshes and the candidate frames. The pointed-to meshes must outlive the renderer's use.
     void setScene(const Bounds& extent, const TriangleMesh* terrain, const std::vector<DetailLodMesh>* meshes,
                   const CandidateSet& candidates, float tile_size_m);
-    // The instances (kept by pointer: the owner keeps them alive). Allocates each type's instance buffer.
+    // The instances (kept by pointer: the owner keeps them alive; null: none). Call again whenever their
+    // content changed (a live update): the view-dependent buckets are rebuilt on the next frame. A type's
+    // instance buffer only grows (by half again when it must), so a stroke does not reallocate per stamp.
     void setInstances(const RenderInstances* instances);
+    // Forgets the scene and the instances (before the document they point into goes away).
+    void clearScene() { releaseScene(); }
+    // Overlay lines and points (skeletons, brush), drawn over everything; uploaded now (small).
+    void setMarkers(const MarkerGeometry& markers);
 
     void render(const OrbitCamera& camera, int width_px, int height_px, const LodSettings& lod);
     const RenderStats& stats() const { return stats_; }
@@ -65,7 +72,9 @@ private:
     void drawDetails(const OrbitCamera& cam, const glm::mat4& view, const glm::mat4& view_proj, const glm::vec3& eye,
                      int height, const LodSettings& lod, float fog_density);
 
-    ShaderProgram sky_, terrain_, detail_, impostor_, grid_;
+    ShaderProgram sky_, terrain_, detail_, impostor_, grid_, marker_;
+    unsigned marker_vao_ = 0, marker_buffer_ = 0;
+    uint32_t marker_line_vertices_ = 0, marker_points_ = 0;
     unsigned empty_vao_ = 0;
     unsigned terrain_vao_ = 0, terrain_vertices_ = 0, terrain_indices_ = 0;
     uint32_t terrain_index_count_ = 0;

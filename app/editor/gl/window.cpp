@@ -4,6 +4,8 @@
 // epoxy must come first: GLFW would otherwise pull in the system GL header.
 #include <GLFW/glfw3.h>
 
+#include <cstdlib>
+
 #include <imgui.h>
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
@@ -27,18 +29,25 @@ Window::~Window() {
         ImGui::DestroyContext();
     }
     if (window_) glfwDestroyWindow(window_);
-    if (glfw_ready_) glfwTerminate();
+    // GLFW itself stays initialised until the process exits (see open()).
 }
 
 OpenStatus Window::open(const WindowOptions& options, std::string* error) {
     glfwSetErrorCallback(onGlfwError);
     g_last_glfw_error.clear();
-    if (!glfwInit()) {
+    // Once per process, terminated at exit: closing the X connection between two windows of one process
+    // (the bench opens several) lets Xvfb reset when its last client leaves, and under xvfb-run the next
+    // connection is then refused.
+    static bool glfw_initialised = false;
+    if (!glfw_initialised && glfwInit()) {
+        glfw_initialised = true;
+        std::atexit(glfwTerminate);
+    }
+    if (!glfw_initialised) {
         *error = "cannot open a display: " + (g_last_glfw_error.empty() ? std::string("glfwInit failed") : g_last_glfw_error) +
                  " (set DISPLAY, or run under xvfb-run)";
         return OpenStatus::NoDisplay;
     }
-    glfw_ready_ = true;
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
@@ -74,6 +83,7 @@ OpenStatus Window::open(const WindowOptions& options, std::string* error) {
 
 bool Window::shouldClose() const { return glfwWindowShouldClose(window_); }
 void Window::requestClose() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
+void Window::cancelClose() { glfwSetWindowShouldClose(window_, GLFW_FALSE); }
 void Window::pollEvents() { glfwPollEvents(); }
 
 void Window::beginUiFrame() {

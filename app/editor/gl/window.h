@@ -31,6 +31,7 @@ public:
 
     bool shouldClose() const;
     void requestClose();
+    void cancelClose();  // the user chose to keep editing (the unsaved-changes prompt)
     void pollEvents();
     void beginUiFrame();  // the backends' NewFrame, then ImGui::NewFrame
     void renderUi();      // ImGui::Render and the OpenGL3 backend's draw
@@ -42,7 +43,6 @@ public:
 
 private:
     GLFWwindow* window_ = nullptr;
-    bool glfw_ready_ = false;
     bool imgui_ready_ = false;
     std::string gl_version_;
     std::string renderer_;

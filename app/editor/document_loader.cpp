@@ -1,0 +1,54 @@
+#include "editor/document_loader.h"
+
+#include <algorithm>
+
+#include "mesh/terrain_mesh.h"
+
+namespace ug::editor {
+
+DocumentLoader::DocumentLoader(LoadRequest request)
+    : request_(std::move(request)), scene_(std::make_unique<EditorScene>()) {
+    thread_ = std::thread([this] { work(); });
+}
+
+DocumentLoader::~DocumentLoader() {
+    if (thread_.joinable()) thread_.join();
+}
+
+void DocumentLoader::work() {
+    EditorScene& s = *scene_;
+    std::string error;
+    auto failWith = [&](const std::string& message) {
+        error_ = message;
+        phase_.store(LoadPhase::Failed, std::memory_order_release);
+    };
+    s.doc = request_.recover ? Document::recover(request_.scene_path, request_.options, &error)
+                             : Document::open(request_.scene_path, request_.options, &error);
+    if (!s.doc) return failWith(error);
+    const Document& doc = *s.doc;
+    if (doc.terrain()) {
+        // 512 cells a side at most: the meadow's 80 x 80 samples stay exact, a large image is decimated.
+        // The mesh covers the terrain's whole rectangle, not only the extent: a brush may paint anywhere on
+        // it.
+        const HeightField& hf = *doc.terrain();
+        Bounds rect = doc.compiled().extent;
+        const glm::vec2 lo = hf.origin(),
+                        hi = lo + hf.cellSize() * glm::vec2(hf.width() - 1, hf.height() - 1);
+        if (rect.empty())
+            rect = Bounds{glm::vec3(lo, hf.minHeight() - 1.0f), glm::vec3(hi, hf.maxHeight() + 1.0f)};
+        if (!heightFieldMesh(hf, rect, 512, &s.terrain, &error))
+            return failWith(request_.scene_path + ": terrain mesh: " + error);
+        s.has_terrain = true;
+    }
+    const CandidateSet& candidates = doc.ghostTile().candidates;
+    for (size_t i = 0; i < doc.models().size(); ++i) {
+        float scale_max = 1.0f;
+        if (i < candidates.typeCount())
+            for (uint32_t c = candidates.type_begin[i]; c < candidates.type_begin[i + 1]; ++c)
+                scale_max = std::max(scale_max, candidates.scale[c]);
+        s.meshes.push_back(buildDetailLods(doc.models()[i], scale_max));
+    }
+    phase_.store(LoadPhase::Ready, std::memory_order_release);
+}
+
+}  // namespace ug::editor

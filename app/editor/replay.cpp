@@ -1,0 +1,134 @@
+#include "editor/replay.h"
+
+#include <cmath>
+#include <nlohmann/json.hpp>
+
+#include "core/atomic_file.h"
+
+namespace ug::editor {
+
+using nlohmann::json;
+
+const char* replayKindName(ReplayKind kind) {
+    switch (kind) {
+        case ReplayKind::PaintStroke:
+            return "paint_stroke";
+        case ReplayKind::SculptStroke:
+            return "sculpt_stroke";
+        case ReplayKind::EraseStroke:
+            return "erase_stroke";
+        case ReplayKind::Undo:
+            return "undo";
+        case ReplayKind::Redo:
+            return "redo";
+        case ReplayKind::Save:
+            return "save";
+        case ReplayKind::SaveAs:
+            return "save_as";
+        case ReplayKind::Screenshot:
+            return "screenshot";
+        case ReplayKind::View:
+            return "view";
+        case ReplayKind::WaitIdle:
+            return "wait_idle";
+    }
+    return "?";
+}
+
+bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, std::string* error) {
+    std::string text;
+    if (!readTextFile(path, &text, error)) return false;
+    const json j = json::parse(text, nullptr, false);
+    if (!j.is_array()) {
+        *error = path + ": expected a JSON list of actions";
+        return false;
+    }
+    std::vector<ReplayAction> actions;
+    for (size_t i = 0; i < j.size(); ++i) {
+        const json& a = j[i];
+        const std::string where = path + ": action " + std::to_string(i) + ": ";
+        auto fail = [&](const std::string& why) {
+            *error = where + why;
+            return false;
+        };
+        if (!a.is_object() || !a.contains("action") || !a["action"].is_string())
+            return fail("needs \"action\"");
+        ReplayAction r;
+        const std::string name = a["action"].get<std::string>();
+        bool known = false;
+        for (int k = 0; k <= int(ReplayKind::WaitIdle); ++k)
+            if (name == replayKindName(ReplayKind(k))) {
+                r.kind = ReplayKind(k);
+                known = true;
+            }
+        if (!known) return fail("unknown action '" + name + "'");
+        try {
+            r.frame = a.value("frame", -1);
+            r.radius_m = a.value("radius", r.radius_m);
+            r.strength = a.value("strength", r.strength);
+            r.falloff_m = a.value("falloff", r.falloff_m);
+            r.subtract = a.value("subtract", false);
+            r.steps = a.value("steps", r.steps);
+            r.path = a.value("path", std::string());
+            r.overlays = a.value("overlays", true);
+            if (a.contains("type")) r.types[a["type"].get<std::string>()] = 1.0f;
+            if (a.contains("types"))
+                for (const auto& [k, v] : a["types"].items()) r.types[k] = v.get<float>();
+            if (a.contains("points"))
+                for (const json& p : a["points"])
+                    r.points.push_back(glm::vec2(p.at(0).get<float>(), p.at(1).get<float>()));
+            if (a.contains("target")) {
+                const json& t = a["target"];
+                r.has_target = true;
+                r.target = glm::vec3(t.at(0).get<float>(), t.at(1).get<float>(),
+                                     t.size() > 2 ? t.at(2).get<float>() : 0.0f);
+            }
+            r.distance_m = a.value("distance", -1.0f);
+            if (a.contains("yaw_deg")) r.yaw_deg = a["yaw_deg"].get<float>();
+            if (a.contains("pitch_deg")) r.pitch_deg = a["pitch_deg"].get<float>();
+        } catch (const json::exception& e) {
+            return fail(std::string("bad value: ") + e.what());
+        }
+        const bool stroke = r.kind == ReplayKind::PaintStroke || r.kind == ReplayKind::SculptStroke ||
+                            r.kind == ReplayKind::EraseStroke;
+        if (stroke) {
+            if (r.points.empty()) return fail("a stroke needs \"points\" [[x, y], ...]");
+            if (r.types.empty()) return fail("a stroke needs \"type\" or \"types\"");
+            if (!(r.radius_m > 0.0f) || !(r.strength > 0.0f) || !(r.falloff_m > 0.0f))
+                return fail("radius, strength and falloff must be > 0");
+            if (r.steps < 1 || r.steps > 100000) return fail("steps must be in [1, 100000]");
+        }
+        if ((r.kind == ReplayKind::SaveAs || r.kind == ReplayKind::Screenshot) && r.path.empty())
+            return fail("needs \"path\"");
+        actions.push_back(std::move(r));
+    }
+    *out = std::move(actions);
+    return true;
+}
+
+std::vector<glm::vec2> strokePath(const ReplayAction& a) {
+    std::vector<glm::vec2> out;
+    if (a.points.empty()) return out;
+    float length = 0.0f;
+    for (size_t i = 1; i < a.points.size(); ++i) length += glm::length(a.points[i] - a.points[i - 1]);
+    auto at = [&](float s) {
+        for (size_t i = 1; i < a.points.size(); ++i) {
+            const float l = glm::length(a.points[i] - a.points[i - 1]);
+            if (s <= l && l > 0.0f) return glm::mix(a.points[i - 1], a.points[i], s / l);
+            s -= l;
+        }
+        return a.points.back();
+    };
+    if (a.kind == ReplayKind::SculptStroke) {
+        for (int k = 0; k < a.steps; ++k)
+            out.push_back(at(a.steps == 1 ? 0.0f : length * float(k) / float(a.steps - 1)));
+        return out;
+    }
+    // A little more than the stamp spacing, so rounding never skips a stamp.
+    const float step = 1.001f * a.radius_m / 3.0f;
+    for (float s = 0.0f; s < length; s += step) out.push_back(at(s));
+    out.push_back(a.points.back());
+    return out;
+}
+
+}  // namespace ug::editor

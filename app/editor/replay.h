@@ -1,0 +1,71 @@
+// Scripted editor runs (`undergrowth edit SCENE --replay SCRIPT.json`): a JSON list of tool actions, run
+// in order through the same code as the mouse (tools.h: BrushStroke on rays straight down onto world XY).
+//
+//   [{"frame": 5, "action": "paint_stroke", "type": "rock", "points": [[x, y], ...], "radius": 1.5,
+//     "strength": 1.0, "falloff": 0.5, "subtract": false},
+//    {"action": "paint_stroke", "types": {"rock": 1.0, "pebble": 0.5}, "points": [...]},   a mix
+//    {"action": "sculpt_stroke", "type": "rock", "points": [[x, y], ...], "radius": 0.6, "steps": 10,
+//     "strength": 1.0},
+//    {"action": "erase_stroke", "type": "rock", "points": [...], "radius": 1.0, "strength": 1.0},
+//    {"action": "undo"}, {"action": "redo"}, {"action": "save"}, {"action": "save_as", "path": "out.json"},
+//    {"action": "screenshot", "path": "shot.png", "overlays": false},
+//    {"action": "view", "target": [x, y, z], "distance": 8, "yaw_deg": -90, "pitch_deg": 35},
+//    {"action": "wait_idle"}]
+//
+// "frame" (optional) is the earliest frame, counted from the first frame that shows the document's
+// instances, at which the action may start. Every action also waits until the previous one is finished and
+// the live instancer's result for it is on screen (so per-action statistics compare settled states).
+// Strokes run one step per frame: a paint or erase stroke moves the brush along the polyline by a little
+// more than radius / 3 per frame (one stamp each), a sculpt stroke takes `steps` frames spread evenly along
+// the polyline (one point at the same place is a pile growing while the brush is held).
+#pragma once
+
+#include <cmath>
+#include <glm/glm.hpp>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace ug::editor {
+
+enum class ReplayKind {
+    PaintStroke,
+    SculptStroke,
+    EraseStroke,
+    Undo,
+    Redo,
+    Save,
+    SaveAs,
+    Screenshot,
+    View,
+    WaitIdle
+};
+const char* replayKindName(ReplayKind kind);  // the "action" string
+
+struct ReplayAction {
+    ReplayKind kind = ReplayKind::WaitIdle;
+    int frame = -1;                      // earliest frame; -1: as soon as the previous action is done
+    std::map<std::string, float> types;  // strokes: type name -> mix weight ("type": name gives weight 1)
+    std::vector<glm::vec2> points;       // strokes: world XY, at least one
+    float radius_m = 1.0f;
+    float strength = 1.0f;
+    float falloff_m = 0.5f;
+    bool subtract = false;
+    int steps = 10;        // sculpt
+    std::string path;      // save_as, screenshot
+    bool overlays = true;  // screenshot: draw the skeleton overlays
+    // view
+    bool has_target = false;
+    glm::vec3 target{0.0f};
+    float distance_m = -1.0f;  // < 0: keep
+    float yaw_deg = NAN, pitch_deg = NAN;
+};
+
+// Reads a script; errors name the file, the action's index and the reason.
+bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, std::string* error);
+
+// The brush positions (world XY) a stroke visits, one per frame: paint and erase every 1.001 * radius / 3
+// along the polyline (and its last point); sculpt `steps` positions evenly spaced along it.
+std::vector<glm::vec2> strokePath(const ReplayAction& action);
+
+}  // namespace ug::editor

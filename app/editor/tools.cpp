@@ -1,0 +1,207 @@
+#include "editor/tools.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "scene/edit_commands.h"
+
+namespace ug::editor {
+
+const char* toolName(ToolKind tool) {
+    switch (tool) {
+        case ToolKind::Select:
+            return "select";
+        case ToolKind::Paint:
+            return "paint";
+        case ToolKind::Sculpt:
+            return "sculpt";
+        case ToolKind::Erase:
+            return "erase";
+    }
+    return "?";
+}
+
+BrushSettings defaultBrush(const Document& doc) {
+    BrushSettings b;
+    const size_t n = doc.project().detail_types.size();
+    b.type_mix.assign(n, 0.0f);
+    if (n > 0) b.type_mix[0] = 1.0f;
+    for (size_t i = 0; i < n; ++i)
+        if (doc.project().detail_types[i].instancing.strategy == PriorityStrategy::Elevation) {
+            b.sculpt_type = i;
+            break;
+        }
+    return b;
+}
+
+namespace {
+
+constexpr float kMaxRay_m = 1.0e5f;
+
+// The plane the renderer draws as the ground grid when there is no terrain.
+float groundPlaneZ(const Bounds& extent) {
+    if (extent.empty()) return 0.0f;
+    return (extent.lo.z <= 0.0f && extent.hi.z >= 0.0f) ? 0.0f : extent.lo.z;
+}
+
+}  // namespace
+
+SurfaceHit pickGround(const Document& doc, const Ray& ray) {
+    SurfaceHit out;
+    float t = 0.0f;
+    if (doc.terrain()) {
+        if (!rayHeightField(*doc.terrain(), ray, kMaxRay_m, &t)) return out;
+        out.hit = true;
+        out.point_m = ray.at(t);
+        const glm::vec2 g = doc.terrain()->gradient(out.point_m.x, out.point_m.y);
+        out.normal = glm::normalize(glm::vec3(-g.x, -g.y, 1.0f));
+        return out;
+    }
+    const float z = groundPlaneZ(doc.compiled().extent);
+    if (std::abs(ray.direction.z) < 1e-6f) return out;
+    t = (z - ray.origin_m.z) / ray.direction.z;
+    if (!(t >= 0.0f && t < kMaxRay_m)) return out;
+    out.hit = true;
+    out.point_m = ray.at(t);
+    return out;
+}
+
+SurfaceHit pickPile(const Document& doc, size_t type, const Ray& ray) {
+    SurfaceHit ground = pickGround(doc, ray);
+    if (type >= doc.compiled().types.size() || !doc.compiled().types[type].field) return ground;
+    const DensityField& field = *doc.compiled().types[type].field;
+    const float max_t = ground.hit ? glm::length(ground.point_m - ray.origin_m) + 1e-3f : kMaxRay_m;
+    // 2 cm steps: thinner than the smallest ball the sculpt brush makes (its radius slider starts at 0.1 m).
+    float t = 0.0f;
+    if (!rayDensityIsosurface(field, ray, kSculptIso, max_t, 0.02f, &t)) return ground;
+    SurfaceHit out;
+    out.hit = true;
+    out.on_pile = true;
+    out.point_m = ray.at(t);
+    const glm::vec4 g = evaluateWithGradient(field, out.point_m);
+    const float len = glm::length(glm::vec3(g));
+    out.normal = len > 0.0f ? -glm::vec3(g) / len : glm::vec3(0.0f, 0.0f, 1.0f);
+    return out;
+}
+
+Ray rayDownOnto(const Document& doc, glm::vec2 xy) {
+    float top = 100.0f;
+    const Bounds& e = doc.compiled().extent;
+    if (!e.empty() && std::isfinite(e.hi.z)) top = std::max(top, e.hi.z + 100.0f);
+    if (doc.terrain()) top = std::max(top, doc.terrain()->maxHeight() + 100.0f);
+    return Ray{glm::vec3(xy, top), glm::vec3(0.0f, 0.0f, -1.0f)};
+}
+
+SurfaceHit BrushStroke::pick(const Ray& ray) const {
+    return tool_ == ToolKind::Sculpt ? pickPile(*doc_, brush_.sculpt_type, ray) : pickGround(*doc_, ray);
+}
+
+bool BrushStroke::begin(Document* doc, ToolKind tool, const BrushSettings& brush, const Ray& ray,
+                        double now_s, std::string* error) {
+    if (active()) end();
+    doc_ = doc;
+    tool_ = tool;
+    brush_ = brush;
+    stamps_ = 0;
+    changed_ = Bounds{};
+    records_.clear();
+    const char* names[] = {"Select", "Paint", "Sculpt", "Erase"};
+    doc_->beginStroke(names[int(tool)]);
+    const SurfaceHit hit = pick(ray);
+    if (!hit.hit) return true;  // off the ground: nothing yet, the drag may come onto it
+    return stamp(hit, now_s, error);
+}
+
+bool BrushStroke::drag(const Ray& ray, double now_s, std::string* error) {
+    if (!active()) return true;
+    const SurfaceHit hit = pick(ray);
+    if (!hit.hit) return true;
+    if (stamps_ == 0) return stamp(hit, now_s, error);
+    const float spacing = brush_.radius_m / 3.0f;
+    // Travel over the ground, in XY: growing a pile moves the hit point up without the brush moving.
+    const float travel = glm::length(glm::vec2(hit.point_m - last_point_));
+    const bool held = tool_ == ToolKind::Sculpt && now_s - last_time_s_ >= kSculptHoldInterval_s - 1e-9;
+    if (travel < spacing && !held) return true;
+    return stamp(hit, now_s, error);
+}
+
+void BrushStroke::end() {
+    if (!active()) return;
+    doc_->endStroke();
+    doc_ = nullptr;
+}
+
+bool BrushStroke::stamp(const SurfaceHit& hit, double now_s, std::string* error) {
+    std::vector<std::pair<size_t, Primitive>> prims;
+    const size_t types = doc_->project().detail_types.size();
+    const float r = std::max(brush_.radius_m, 1e-3f);
+    switch (tool_) {
+        case ToolKind::Select:
+            return true;
+        case ToolKind::Paint:
+            for (size_t i = 0; i < types && i < brush_.type_mix.size(); ++i) {
+                if (!(brush_.type_mix[i] > 0.0f)) continue;
+                const float w = brush_.strength * brush_.type_mix[i] * (brush_.subtract ? -1.0f : 1.0f);
+                prims.emplace_back(
+                    i, makeDisc(hit.point_m, hit.normal, r, std::max(brush_.falloff_m, 1e-3f), w));
+            }
+            break;
+        case ToolKind::Sculpt:
+            if (brush_.sculpt_type < types)
+                prims.emplace_back(brush_.sculpt_type,
+                                   makePoint(hit.point_m, r, std::max(1.0f, brush_.strength)));
+            break;
+        case ToolKind::Erase:
+            for (size_t i = 0; i < types && i < brush_.type_mix.size(); ++i) {
+                if (!(brush_.type_mix[i] > 0.0f)) continue;
+                prims.emplace_back(
+                    i, makePoint(hit.point_m, r, -kEraseWeight * brush_.strength * brush_.type_mix[i]));
+            }
+            break;
+    }
+    for (const auto& [type, prim] : prims) {
+        if (doc_->addPrimitive(type, prim, error) == 0) return false;
+        changed_ = unite(changed_, editBounds(prim));
+    }
+    last_point_ = hit.point_m;
+    last_time_s_ = now_s;
+    ++stamps_;
+    if (!prims.empty()) records_.push_back({doc_->live().generation(), now_s});
+    return true;
+}
+
+Ray rayThroughPixel(const glm::mat4& view_proj, float width, float height, glm::vec2 cursor) {
+    const glm::mat4 inv = glm::inverse(view_proj);
+    const float x = 2.0f * cursor.x / width - 1.0f;
+    const float y = 1.0f - 2.0f * cursor.y / height;
+    glm::vec4 a = inv * glm::vec4(x, y, -1.0f, 1.0f);
+    glm::vec4 b = inv * glm::vec4(x, y, 1.0f, 1.0f);
+    a /= a.w;
+    b /= b.w;
+    return Ray{glm::vec3(a), glm::normalize(glm::vec3(b - a))};
+}
+
+uint64_t pickPrimitive(const Document& doc, const glm::mat4& view_proj, float width, float height,
+                       glm::vec2 cursor, float max_px) {
+    uint64_t best = 0;
+    float best_d = max_px;
+    for (size_t type = 0; type < doc.project().detail_types.size(); ++type)
+        for (uint64_t id : doc.primitiveIds(type)) {
+            Primitive prim;
+            if (!doc.findPrimitive(id, nullptr, &prim)) continue;
+            if (prim.kind == PrimitiveKind::TerrainLayer || prim.kind == PrimitiveKind::TerrainSolid)
+                continue;
+            const glm::vec4 c = view_proj * glm::vec4(prim.center_m, 1.0f);
+            if (c.w <= 0.0f) continue;  // behind the eye
+            const glm::vec2 px((c.x / c.w * 0.5f + 0.5f) * width, (0.5f - c.y / c.w * 0.5f) * height);
+            const float d = glm::length(px - cursor);
+            if (d <= best_d) {
+                best_d = d;
+                best = id;
+            }
+        }
+    return best;
+}
+
+}  // namespace ug::editor

@@ -1,0 +1,119 @@
+// The editor's tools (issue 4, "Tools"), GL-free: they turn rays (from the mouse through the camera, or
+// straight down onto a world XY in scripted runs, replay.h) into document edits. The mouse and the replay
+// call the same functions, so a script exercises exactly what a user's drag does.
+//
+//   BrushStroke stroke;
+//   on press:   stroke.begin(doc, ToolKind::Paint, brush, ray, now_s, &error);   // beginStroke + first stamp
+//   each frame: stroke.drag(ray, now_s, &error);                                  // stamps as the brush
+//   travels on release: stroke.end();                                                     // endStroke: one
+//   undo step
+//
+// What a stamp adds (each one a user primitive, editable afterwards with Select, and saved in the project):
+//   Paint   per painted type i (mix weight m_i > 0): a disc at the ground under the brush, normal = the
+//           terrain normal, disc_radius = brush radius, radius = falloff, weight = strength * m_i
+//           (negative in subtract mode). A stamp every radius / 3 of travel over the ground.
+//   Sculpt  a point (ball) for the sculpt type on the pile's own surface (the f = 0.5 isosurface of the
+//           type's compiled field along the ray) or, where the ray meets none, the ground; radius = brush
+//           radius, weight = max(1, strength) so the ball's core is full (f >= 1). A stamp every radius / 3
+//           of travel, and while the brush is held still every kSculptHoldInterval_s (the pile grows).
+//   Erase   per painted type: a point at the ground with weight -kEraseWeight * strength * m_i, radius =
+//           brush radius: it cancels painted and sculpted density (and the file's) under the brush. We chose
+//           negative points over deleting the primitives whose centres are under the brush because it
+//           erases any density, also the file's own, and keeps every stroke one exact undo step.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <glm/glm.hpp>
+#include <string>
+#include <vector>
+
+#include "field/bounds.h"
+#include "field/ray_cast.h"
+#include "scene/document.h"
+
+namespace ug::editor {
+
+enum class ToolKind : int { Select, Paint, Sculpt, Erase };
+const char* toolName(ToolKind tool);  // "select", "paint", "sculpt", "erase"
+
+constexpr double kSculptHoldInterval_s = 0.05;
+constexpr float kEraseWeight = 4.0f;
+constexpr float kSculptIso = 0.5f;
+
+struct BrushSettings {
+    float radius_m = 1.5f;        // > 0
+    float strength = 1.0f;        // > 0
+    float falloff_m = 0.5f;       // paint: the disc's falloff radius, > 0
+    bool subtract = false;        // paint: negative weights
+    std::vector<float> type_mix;  // per detail type: 0 = not painted or erased, else the weight factor (>= 0)
+    size_t sculpt_type = 0;
+};
+
+// The brush settings a scene opens with: paint and erase the first type, sculpt the first type with the
+// elevation strategy (a pile fills from the bottom), else the first.
+BrushSettings defaultBrush(const Document& doc);
+
+struct SurfaceHit {
+    bool hit = false;
+    glm::vec3 point_m{0.0f};
+    glm::vec3 normal{0.0f, 0.0f, 1.0f};
+    bool on_pile = false;  // the sculpt type's isosurface, not the ground
+};
+
+// The ground under a ray: the terrain, or without one the plane z = 0 when the extent holds it, else the
+// extent's floor (what the renderer draws as the ground grid).
+SurfaceHit pickGround(const Document& doc, const Ray& ray);
+// The sculpt type's f = kSculptIso isosurface when the ray meets it before the ground, else the ground.
+SurfaceHit pickPile(const Document& doc, size_t type, const Ray& ray);
+
+// A ray straight down onto world (x, y), from above everything (scripted strokes).
+Ray rayDownOnto(const Document& doc, glm::vec2 xy_m);
+
+class BrushStroke {
+  public:
+    bool active() const { return doc_ != nullptr; }
+    ToolKind tool() const { return tool_; }
+    // Begins a stroke (Document::beginStroke) and stamps where the ray meets the surface. False with
+    // *error when a stamp fails (the stroke stays open; end() closes it).
+    bool begin(Document* doc, ToolKind tool, const BrushSettings& brush, const Ray& ray, double now_s,
+               std::string* error);
+    // Stamps when the brush has travelled radius / 3 since the last stamp (sculpt: or was held long enough).
+    bool drag(const Ray& ray, double now_s, std::string* error);
+    // Closes the stroke: one undo step (none if nothing was stamped).
+    void end();
+
+    int stamps() const { return stamps_; }
+    // The union of the added primitives' supports (where the fields changed).
+    const Bounds& changedBounds() const { return changed_; }
+    // Every stamp's Document generation (LiveInstancer::generation after it) and its time, for timing
+    // stamp -> frame.
+    struct StampRecord {
+        uint64_t generation = 0;
+        double time_s = 0.0;
+    };
+    std::vector<StampRecord> takeStampRecords() { return std::move(records_); }
+
+  private:
+    bool stamp(const SurfaceHit& hit, double now_s, std::string* error);
+    SurfaceHit pick(const Ray& ray) const;
+
+    Document* doc_ = nullptr;
+    ToolKind tool_ = ToolKind::Paint;
+    BrushSettings brush_;
+    glm::vec3 last_point_{0.0f};
+    double last_time_s_ = 0.0;
+    int stamps_ = 0;
+    Bounds changed_;
+    std::vector<StampRecord> records_;
+};
+
+// Select: the user primitive whose centre is nearest the cursor on screen, within max_px; 0 for none.
+// view_proj maps world to clip space of a width x height viewport (pixels, y down from the top).
+uint64_t pickPrimitive(const Document& doc, const glm::mat4& view_proj, float width_px, float height_px,
+                       glm::vec2 cursor_px, float max_px);
+
+// The world ray through a pixel (y down from the top) of a width x height viewport.
+Ray rayThroughPixel(const glm::mat4& view_proj, float width_px, float height_px, glm::vec2 cursor_px);
+
+}  // namespace ug::editor

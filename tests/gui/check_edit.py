@@ -1,0 +1,101 @@
+#!/usr/bin/env python3
+"""Checks of scripted editor runs (tests/gui/run_gui_tests.sh): the per-action statistics of `undergrowth
+edit --replay --stats` (viewer.cpp, "Statistics") and screenshots taken before and after a stroke.
+
+usage: check_edit.py strokes STATS.json CLI_STATS.json     paint, sculpt, undo/redo, save_as, failed save
+       check_edit.py diff BEFORE.png AFTER.png                the stroke shows in the centre, nowhere far off
+       check_edit.py recovered PRE_KILL_STATS.json RECOVERED_STATS.json
+"""
+import json
+import os
+import sys
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from check_screenshot import decode_png  # noqa: E402
+
+
+def actions(stats, name):
+    return [a for a in stats["actions"] if a["action"] == name]
+
+
+def check_stroke(a, kind, typ):
+    assert a["stamps"] > 0, (kind, a["stamps"])
+    assert a["inside_before"][typ] == 0 or kind == "sculpt", (kind, "the area had %s already" % typ, a["inside_before"])
+    assert a["inside_after"][typ] > a["inside_before"][typ], (kind, "no new %s inside the stroke's box" % typ,
+                                                             a["inside_before"], a["inside_after"])
+    # Nothing changed outside the box, for any type.
+    assert a["outside_before"] == a["outside_after"], (kind, "instances changed outside the box",
+                                                       a["outside_before"], a["outside_after"])
+    assert len(a["stamp_to_frame_ms"]) == a["stamps"], (kind, a["stamp_to_frame_ms"], a["stamps"])
+    return "%s: %d stamps, %s %d -> %d inside, outside unchanged; stamp->frame max %.0f ms" % (
+        kind, a["stamps"], typ, a["inside_before"][typ], a["inside_after"][typ], max(a["stamp_to_frame_ms"]))
+
+
+def strokes(stats_path, cli_path):
+    s = json.load(open(stats_path))
+    out = []
+    paint, sculpt = actions(s, "paint_stroke")[0], actions(s, "sculpt_stroke")[0]
+    out.append(check_stroke(paint, "paint", "rock"))
+    out.append(check_stroke(sculpt, "sculpt", "rock"))
+    undos, redos = actions(s, "undo"), actions(s, "redo")
+    assert len(undos) == 2 and len(redos) == 2, s["actions"]
+    # Undo gives back exactly the instance set before the stroke (hash and counts per type), redo the after.
+    for stroke, undo, redo in ((paint, undos[0], redos[0]), (sculpt, undos[1], redos[1])):
+        assert undo["ok"] and redo["ok"]
+        assert undo["instance_store_hash_after"] == stroke["instance_store_hash_before"], (undo, stroke)
+        assert undo["per_type_after"] == stroke["per_type_before"], (undo["per_type_after"], stroke["per_type_before"])
+        assert redo["instance_store_hash_after"] == stroke["instance_store_hash_after"], (redo, stroke)
+        assert redo["per_type_after"] == stroke["per_type_after"]
+    out.append("undo restores the exact set (hash), redo the stroke's")
+    saves = actions(s, "save_as")
+    # The failed save changes nothing (still dirty, same instances) and the editor goes on: the good save
+    # and the actions after it ran.
+    failed, saved = saves
+    assert not failed["ok"] and failed["dirty"] and failed["error"], failed
+    assert failed["instance_store_hash_after"] == failed["instance_store_hash_before"]
+    assert any("Save failed" in m for m in s["messages"]), s["messages"]
+    assert saved["ok"] and not saved["dirty"], saved
+    assert s["actions"][-1]["action"] == "wait_idle", s["actions"][-1]
+    cli = json.load(open(cli_path))
+    assert cli["instances"] == s["instances"] == saved["instances_after"], (cli["instances"], s["instances"])
+    assert cli["instances_per_type"] == s["instances_per_type"], (cli["instances_per_type"], s["instances_per_type"])
+    out.append("saved file re-instantiated by the CLI: %d instances, same per type" % cli["instances"])
+    out.append("failed save reported, document still dirty")
+    print("; ".join(out))
+
+
+def mean_abs_diff(a, b, x0, x1, y0, y1):
+    n, total = 0, 0
+    for y in range(y0, y1):
+        ra, rb = a[y], b[y]
+        for x in range(x0, x1):
+            pa, pb = ra[x], rb[x]
+            total += abs(pa[0] - pb[0]) + abs(pa[1] - pb[1]) + abs(pa[2] - pb[2])
+            n += 3
+    return total / n
+
+
+def diff(before_path, after_path):
+    w, h, a = decode_png(before_path)
+    w2, h2, b = decode_png(after_path)
+    assert (w, h) == (w2, h2)
+    centre = mean_abs_diff(a, b, int(0.4 * w), int(0.6 * w), int(0.4 * h), int(0.6 * h))
+    corner = mean_abs_diff(a, b, 0, int(0.15 * w), int(0.85 * h), h)
+    assert centre > 8.0, "the stroke area barely changed: mean |diff| %.1f" % centre
+    assert corner < 2.0, "far from the stroke the picture changed: mean |diff| %.1f" % corner
+    print("stroke area mean |diff| %.1f, far corner %.2f" % (centre, corner))
+
+
+def recovered(pre_path, rec_path):
+    pre, rec = json.load(open(pre_path)), json.load(open(rec_path))
+    assert rec["document"]["recovered"] and rec["document"]["dirty"], rec["document"]
+    assert rec["document"]["user_primitives"] == pre["document"]["user_primitives"] > 1, (
+        rec["document"], pre["document"])
+    assert rec["instances"] == pre["instances"], (rec["instances"], pre["instances"])
+    assert rec["instance_store_hash"] == pre["instance_store_hash"]
+    print("recovered %d user primitives, %d instances as before the kill" % (
+        rec["document"]["user_primitives"], rec["instances"]))
+
+
+if __name__ == "__main__":
+    {"strokes": strokes, "diff": diff, "recovered": recovered}[sys.argv[1]](*sys.argv[2:])
