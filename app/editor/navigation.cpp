@@ -5,7 +5,7 @@
 
 namespace ug::editor {
 
-bool navigate(OrbitCamera* camera, const Bounds& extent, float viewport_height_px) {
+bool navigate(OrbitCamera* camera, const Bounds& extent, float viewport_height_px, const Bounds* selection) {
     ImGuiIO& io = ImGui::GetIO();
     const OrbitCamera before = *camera;
     if (!io.WantCaptureMouse) {
@@ -31,9 +31,12 @@ bool navigate(OrbitCamera* camera, const Bounds& extent, float viewport_height_p
     if (pressed(GLFW_KEY_1, GLFW_KEY_KP_1)) setPreset(camera, ViewPreset::Front);
     if (pressed(GLFW_KEY_3, GLFW_KEY_KP_3)) setPreset(camera, ViewPreset::Side);
     if (pressed(GLFW_KEY_7, GLFW_KEY_KP_7)) setPreset(camera, ViewPreset::Top);
-    if (pressed(GLFW_KEY_F, GLFW_KEY_HOME)) {
+    const bool frame_all = ImGui::IsKeyPressed(GLFW_KEY_HOME, false);
+    const bool frame_selected = pressed(GLFW_KEY_F, GLFW_KEY_PERIOD) || ImGui::IsKeyPressed(GLFW_KEY_KP_DECIMAL, false);
+    if (frame_all || frame_selected) {
         OrbitCamera framed = *camera;
-        frameBounds(extent, &framed);
+        const bool has_selection = selection && !selection->empty();
+        frameBounds(frame_selected && has_selection ? *selection : extent, &framed);
         // Keep the current direction of view; only the target and the distance change.
         camera->target = framed.target;
         camera->distance_m = framed.distance_m;

@@ -29,6 +29,8 @@ const char* replayKindName(ReplayKind kind) {
             return "screenshot";
         case ReplayKind::View:
             return "view";
+        case ReplayKind::Move:
+            return "move";
         case ReplayKind::WaitIdle:
             return "wait_idle";
     }
@@ -77,6 +79,10 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             if (a.contains("points"))
                 for (const json& p : a["points"])
                     r.points.push_back(glm::vec2(p.at(0).get<float>(), p.at(1).get<float>()));
+            if (a.contains("from") && a.contains("to")) {
+                for (const char* key : {"from", "to"})
+                    r.points.push_back(glm::vec2(a[key].at(0).get<float>(), a[key].at(1).get<float>()));
+            }
             if (a.contains("target")) {
                 const json& t = a["target"];
                 r.has_target = true;
@@ -96,6 +102,10 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             if (r.types.empty()) return fail("a stroke needs \"type\" or \"types\"");
             if (!(r.radius_m > 0.0f) || !(r.strength > 0.0f) || !(r.falloff_m > 0.0f))
                 return fail("radius, strength and falloff must be > 0");
+            if (r.steps < 1 || r.steps > 100000) return fail("steps must be in [1, 100000]");
+        }
+        if (r.kind == ReplayKind::Move) {
+            if (r.points.size() != 2) return fail("a move needs \"from\" [x, y] and \"to\" [x, y]");
             if (r.steps < 1 || r.steps > 100000) return fail("steps must be in [1, 100000]");
         }
         if ((r.kind == ReplayKind::SaveAs || r.kind == ReplayKind::Screenshot) && r.path.empty())
@@ -119,6 +129,11 @@ std::vector<glm::vec2> strokePath(const ReplayAction& a) {
         }
         return a.points.back();
     };
+    if (a.kind == ReplayKind::Move) {
+        for (int k = 1; k <= a.steps; ++k)
+            out.push_back(glm::mix(a.points.front(), a.points.back(), float(k) / float(a.steps)));
+        return out;
+    }
     if (a.kind == ReplayKind::SculptStroke) {
         for (int k = 0; k < a.steps; ++k)
             out.push_back(at(a.steps == 1 ? 0.0f : length * float(k) / float(a.steps - 1)));

@@ -10,6 +10,8 @@
 //    {"action": "undo"}, {"action": "redo"}, {"action": "save"}, {"action": "save_as", "path": "out.json"},
 //    {"action": "screenshot", "path": "shot.png", "overlays": false},
 //    {"action": "view", "target": [x, y, z], "distance": 8, "yaw_deg": -90, "pitch_deg": 35},
+//    {"action": "move", "from": [x, y], "to": [x, y], "steps": 10},   Select-drag the user primitive whose
+//                                                                     centre is nearest `from` (in XY) by to - from
 //    {"action": "wait_idle"}]
 //
 // "frame" (optional) is the earliest frame, counted from the first frame that shows the document's
@@ -38,6 +40,7 @@ enum class ReplayKind {
     SaveAs,
     Screenshot,
     View,
+    Move,
     WaitIdle
 };
 const char* replayKindName(ReplayKind kind);  // the "action" string
@@ -46,12 +49,12 @@ struct ReplayAction {
     ReplayKind kind = ReplayKind::WaitIdle;
     int frame = -1;                      // earliest frame; -1: as soon as the previous action is done
     std::map<std::string, float> types;  // strokes: type name -> mix weight ("type": name gives weight 1)
-    std::vector<glm::vec2> points;       // strokes: world XY, at least one
+    std::vector<glm::vec2> points;       // strokes: world XY, at least one; move: from, to
     float radius_m = 1.0f;
     float strength = 1.0f;
     float falloff_m = 0.5f;
     bool subtract = false;
-    int steps = 10;        // sculpt
+    int steps = 10;        // sculpt, move: frames
     std::string path;      // save_as, screenshot
     bool overlays = true;  // screenshot: draw the skeleton overlays
     // view
@@ -65,7 +68,8 @@ struct ReplayAction {
 bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, std::string* error);
 
 // The brush positions (world XY) a stroke visits, one per frame: paint and erase every 1.001 * radius / 3
-// along the polyline (and its last point); sculpt `steps` positions evenly spaced along it.
+// along the polyline (and its last point); sculpt `steps` positions evenly spaced along it; move `steps`
+// positions from just after `from` to `to`.
 std::vector<glm::vec2> strokePath(const ReplayAction& action);
 
 }  // namespace ug::editor

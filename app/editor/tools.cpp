@@ -123,7 +123,37 @@ bool BrushStroke::drag(const Ray& ray, double now_s, std::string* error) {
     const float travel = glm::length(glm::vec2(hit.point_m - last_point_));
     const bool held = tool_ == ToolKind::Sculpt && now_s - last_time_s_ >= kSculptHoldInterval_s - 1e-9;
     if (travel < spacing && !held) return true;
-    return stamp(hit, now_s, error);
+    if (travel >= spacing) return stamp(hit, now_s, error);
+    // Held: the stamp settles away from the brush, but the brush has not moved; travel keeps counting
+    // from where it is.
+    const bool ok = stamp(settle(hit), now_s, error);
+    last_point_ = hit.point_m;
+    return ok;
+}
+
+SurfaceHit BrushStroke::settle(const SurfaceHit& held) const {
+    // Gravel poured at one spot runs down the sides until the slope is no steeper than its angle of
+    // repose, so a held brush builds a cone instead of a column. Each held stamp lands at the point of a
+    // disc twice the brush radius that minimises height + slope * distance from the brush (the brush
+    // point itself included): the top while the sides are steep enough, else lower down the side.
+    // Points on a golden-angle spiral, turned further every stamp so stamps do not keep choosing the same
+    // few spots; vertical rays from above the brush point.
+    const float r = 2.0f * brush_.radius_m;
+    SurfaceHit best = held;
+    float best_score = held.point_m.z;
+    for (int k = 0; k < kSculptSettleSamples; ++k) {
+        const float a = 2.39996323f * float(k + stamps_ * kSculptSettleSamples);
+        const float d = r * std::sqrt((float(k) + 0.5f) / float(kSculptSettleSamples));
+        const glm::vec2 xy = glm::vec2(held.point_m) + d * glm::vec2(std::cos(a), std::sin(a));
+        const Ray down{glm::vec3(xy, held.point_m.z + r), glm::vec3(0.0f, 0.0f, -1.0f)};
+        const SurfaceHit h = pickPile(*doc_, brush_.sculpt_type, down);
+        const float score = h.point_m.z + kSculptReposeSlope * d;
+        if (h.hit && score < best_score) {
+            best = h;
+            best_score = score;
+        }
+    }
+    return best;
 }
 
 void BrushStroke::end() {
@@ -169,6 +199,75 @@ bool BrushStroke::stamp(const SurfaceHit& hit, double now_s, std::string* error)
     ++stamps_;
     if (!prims.empty()) records_.push_back({doc_->live().generation(), now_s});
     return true;
+}
+
+Primitive translatedPrimitive(Primitive prim, glm::vec3 offset_m) {
+    if (prim.kind == PrimitiveKind::TerrainLayer || prim.kind == PrimitiveKind::TerrainSolid) return prim;
+    prim.center_m += offset_m;
+    if (prim.kind == PrimitiveKind::Segment) prim.end_m += offset_m;
+    return prim;
+}
+
+namespace {
+
+// Where the ray meets the plane through `point` with normal `n`; false when parallel or behind.
+bool rayPlane(const Ray& ray, glm::vec3 point, glm::vec3 n, glm::vec3* hit) {
+    const float denom = glm::dot(ray.direction, n);
+    if (std::abs(denom) < 1e-6f) return false;
+    const float t = glm::dot(point - ray.origin_m, n) / denom;
+    if (!(t >= 0.0f && t < kMaxRay_m)) return false;
+    *hit = ray.at(t);
+    return true;
+}
+
+}  // namespace
+
+bool MoveDrag::begin(Document* doc, uint64_t id, const Ray& ray) {
+    if (active()) end();
+    Primitive prim;
+    if (!doc->findPrimitive(id, nullptr, &prim) || prim.kind == PrimitiveKind::TerrainLayer ||
+        prim.kind == PrimitiveKind::TerrainSolid)
+        return false;
+    glm::vec3 grab;
+    if (!rayPlane(ray, prim.center_m, glm::vec3(0.0f, 0.0f, 1.0f), &grab)) grab = prim.center_m;
+    doc_ = doc;
+    id_ = id;
+    start_ = prim;
+    grab_m_ = grab;
+    applied_offset_m_ = glm::vec3(0.0f);
+    moves_ = 0;
+    doc_->beginStroke("Move");
+    return true;
+}
+
+bool MoveDrag::drag(const Ray& ray, bool vertical, std::string* error) {
+    if (!active()) return true;
+    glm::vec3 hit;
+    glm::vec3 offset;
+    if (vertical) {
+        // The upright plane through the grab point that faces the ray; only the height changes.
+        const glm::vec3 n(ray.direction.x, ray.direction.y, 0.0f);
+        if (glm::length(n) < 1e-4f || !rayPlane(ray, grab_m_, glm::normalize(n), &hit)) return true;
+        offset = glm::vec3(applied_offset_m_.x, applied_offset_m_.y, hit.z - grab_m_.z);
+    } else {
+        if (!rayPlane(ray, grab_m_ + glm::vec3(0.0f, 0.0f, applied_offset_m_.z), glm::vec3(0.0f, 0.0f, 1.0f),
+                      &hit))
+            return true;
+        offset = glm::vec3(hit.x - grab_m_.x, hit.y - grab_m_.y, applied_offset_m_.z);
+    }
+    // A millimetre of motion is below anything a density change shows; skipping it keeps a still mouse
+    // from flooding the live instancer.
+    if (glm::length(offset - applied_offset_m_) < 1e-3f) return true;
+    if (!doc_->setPrimitive(id_, translatedPrimitive(start_, offset), error)) return false;
+    applied_offset_m_ = offset;
+    ++moves_;
+    return true;
+}
+
+void MoveDrag::end() {
+    if (!active()) return;
+    doc_->endStroke();
+    doc_ = nullptr;
 }
 
 Ray rayThroughPixel(const glm::mat4& view_proj, float width, float height, glm::vec2 cursor) {

@@ -16,6 +16,8 @@
 //           type's compiled field along the ray) or, where the ray meets none, the ground; radius = brush
 //           radius, weight = max(1, strength) so the ball's core is full (f >= 1). A stamp every radius / 3
 //           of travel, and while the brush is held still every kSculptHoldInterval_s (the pile grows).
+//           A held stamp settles like poured gravel (BrushStroke::settle): it runs down the pile's sides
+//           while they are steeper than kSculptReposeSlope, so holding still grows a cone, not a column.
 //   Erase   per painted type: a point at the ground with weight -kEraseWeight * strength * m_i, radius =
 //           brush radius: it cancels painted and sculpted density (and the file's) under the brush. We chose
 //           negative points over deleting the primitives whose centres are under the brush because it
@@ -40,6 +42,8 @@ const char* toolName(ToolKind tool);  // "select", "paint", "sculpt", "erase"
 constexpr double kSculptHoldInterval_s = 0.05;
 constexpr float kEraseWeight = 4.0f;
 constexpr float kSculptIso = 0.5f;
+constexpr int kSculptSettleSamples = 12;
+constexpr float kSculptReposeSlope = 0.7f;  // tan(35 deg): gravel's angle of repose
 
 struct BrushSettings {
     float radius_m = 1.5f;        // > 0
@@ -97,6 +101,7 @@ class BrushStroke {
   private:
     bool stamp(const SurfaceHit& hit, double now_s, std::string* error);
     SurfaceHit pick(const Ray& ray) const;
+    SurfaceHit settle(const SurfaceHit& held) const;
 
     Document* doc_ = nullptr;
     ToolKind tool_ = ToolKind::Paint;
@@ -107,6 +112,32 @@ class BrushStroke {
     Bounds changed_;
     std::vector<StampRecord> records_;
 };
+
+// Select tool, dragging a user primitive: its skeleton follows the cursor on the horizontal plane through
+// its centre (vertical: along Z, on the upright plane facing the ray). Each frame's position is one
+// Document::setPrimitive inside a stroke, so the fill follows live and the whole drag is one undo step; a
+// click without motion leaves no step. Terrain kinds have no skeleton to move (begin() refuses them).
+class MoveDrag {
+  public:
+    bool active() const { return doc_ != nullptr; }
+    uint64_t id() const { return id_; }
+    bool begin(Document* doc, uint64_t id, const Ray& ray);
+    // False with *error when the document refuses the move (the drag stays open; end() closes it).
+    bool drag(const Ray& ray, bool vertical, std::string* error);
+    void end();
+    int moves() const { return moves_; }
+
+  private:
+    Document* doc_ = nullptr;
+    uint64_t id_ = 0;
+    Primitive start_;
+    glm::vec3 grab_m_{0.0f};
+    glm::vec3 applied_offset_m_{0.0f};
+    int moves_ = 0;
+};
+
+// A primitive's skeleton moved by offset_m (centre and segment end; terrain kinds unchanged).
+Primitive translatedPrimitive(Primitive prim, glm::vec3 offset_m);
 
 // Select: the user primitive whose centre is nearest the cursor on screen, within max_px; 0 for none.
 // view_proj maps world to clip space of a width x height viewport (pixels, y down from the top).

@@ -21,6 +21,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
@@ -135,6 +136,7 @@ struct ReplayState {
     json record;
     std::shared_ptr<const InstanceStore> before;
     std::vector<double> stamp_ms;
+    Bounds moved_from;  // move: the primitive's support before
 };
 
 }  // namespace
@@ -219,6 +221,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
     WindowToggles windows;
     ToolState tools;
     BrushStroke stroke;
+    MoveDrag move_drag;
     MarkerGeometry markers;
     StatisticsView view;
     view.scene = options.scene_path;
@@ -358,9 +361,17 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         Document* doc = scene ? scene->doc.get() : nullptr;
         const ImGuiIO& io = ImGui::GetIO();
         const glm::mat4 view_proj = camera.viewProjection();
-        if (scene && !scripted)
-            camera_moved |=
-                navigate(&camera, framingBounds(*scene, have_result ? &instances : nullptr), float(fb_h));
+        if (scene && !scripted) {
+            Bounds selection;
+            Primitive selected_prim;
+            if (tools.selected != 0 && doc && doc->findPrimitive(tools.selected, nullptr, &selected_prim))
+                selection = editBounds(selected_prim);
+            // Terrain kinds reach everywhere in XY: nothing sensible to frame.
+            for (int a = 0; a < 3; ++a)
+                if (!std::isfinite(selection.lo[a]) || !std::isfinite(selection.hi[a])) selection = Bounds{};
+            camera_moved |= navigate(&camera, framingBounds(*scene, have_result ? &instances : nullptr),
+                                     float(fb_h), &selection);
+        }
         MenuView menu;
         menu.has_document = doc != nullptr;
         menu.dirty = doc && doc->isDirty();
@@ -385,8 +396,17 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             const Ray ray = rayThroughPixel(view_proj, float(fb_w), float(fb_h), cursor);
             const bool mouse_free = !io.WantCaptureMouse && !io.KeyAlt;
             if (tools.tool == ToolKind::Select) {
-                if (mouse_free && ImGui::IsMouseClicked(ImGuiMouseButton_Left))
+                // Click picks; dragging the picked primitive moves it (Shift: up and down).
+                if (mouse_free && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
                     tools.selected = pickPrimitive(*doc, view_proj, float(fb_w), float(fb_h), cursor, 20.0f);
+                    if (tools.selected != 0) move_drag.begin(doc, tools.selected, ray);
+                } else if (move_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+                    const uint64_t generation = doc->live().generation();
+                    std::string move_error;
+                    if (!move_drag.drag(ray, io.KeyShift, &move_error)) messages.push_back(move_error);
+                    if (doc->live().generation() != generation)
+                        pending_stamps.push_back({doc->live().generation(), Clock::now(), -1});
+                }
             } else {
                 const SurfaceHit hit = tools.tool == ToolKind::Sculpt
                                            ? pickPile(*doc, tools.brush.sculpt_type, ray)
@@ -404,12 +424,16 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                     pending_stamps.push_back({doc->live().generation(), Clock::now(), -1});
             }
             if (stroke.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) stroke.end();
+            if (move_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) move_drag.end();
         }
 
         // Requests from menus and shortcuts.
         if (doc) {
             std::string op_error;
-            if (requests.undo || requests.redo) stroke.end();
+            if (requests.undo || requests.redo) {
+                stroke.end();
+                move_drag.end();
+            }
             if (requests.undo) doc->undo();
             if (requests.redo) doc->redo();
             if (requests.save && !doc->save(&op_error)) messages.push_back("Save failed: " + op_error);
@@ -418,6 +442,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 save_as_path = doc->path();
             }
             if (requests.delete_selected && tools.selected != 0) {
+                move_drag.end();
                 if (doc->removePrimitive(tools.selected, &op_error))
                     tools.selected = 0;
                 else
@@ -447,6 +472,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 prompt = Prompt::Open;
                 prompt_open_path = requests.open_path;
             } else {
+                stroke.end();
+                move_drag.end();
                 if (doc) doc->close();
                 requestOpen(requests.open_path, RecoverChoice::Ask);
             }
@@ -482,6 +509,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             }
             if (a != DialogAnswer::Pending) {
                 if (proceed) {
+                    stroke.end();
+                    move_drag.end();
                     if (doc) doc->close();  // removes the autosave: the user chose
                     if (prompt == Prompt::Quit) {
                         quitting = true;
@@ -509,6 +538,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         if (doc && have_result && replay.index < options.replay.size() && !replay.finishing) {
             const ReplayAction& a = options.replay[replay.index];
             std::string op_error;
+            bool continue_move = false;  // a move runs over the next frames
             if (!replay.started && frame_index >= a.frame && settled) {
                 replay.started = true;
                 replay.record = json{{"action", replayKindName(a.kind)}, {"frame", frame_index}};
@@ -574,6 +604,37 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                             screenshot_overlays = a.overlays;
                             replay.record["path"] = a.path;
                             break;
+                        case ReplayKind::Move: {
+                            // The user primitive whose centre is nearest `from` in XY, dragged by the
+                            // Select tool's MoveDrag on rays straight down (one position per frame).
+                            uint64_t nearest = 0;
+                            float nearest_d = 1e30f;
+                            for (size_t t = 0; t < view.type_names.size(); ++t)
+                                for (uint64_t id : doc->primitiveIds(t)) {
+                                    Primitive p;
+                                    if (!doc->findPrimitive(id, nullptr, &p)) continue;
+                                    const float d = glm::length(glm::vec2(p.center_m) - a.points.front());
+                                    if (d < nearest_d) {
+                                        nearest_d = d;
+                                        nearest = id;
+                                    }
+                                }
+                            Primitive p;
+                            if (nearest != 0 && doc->findPrimitive(nearest, nullptr, &p) &&
+                                move_drag.begin(doc, nearest, rayDownOnto(*doc, a.points.front()))) {
+                                tools.selected = nearest;
+                                replay.record["id"] = nearest;
+                                replay.record["from_center"] = {p.center_m.x, p.center_m.y, p.center_m.z};
+                                replay.moved_from = editBounds(p);
+                                replay.path = strokePath(a);
+                                replay.step = 0;
+                                continue_move = true;
+                            } else {
+                                replay.record["ok"] = false;
+                                messages.push_back("replay: move: no movable user primitive");
+                            }
+                            break;
+                        }
                         case ReplayKind::View:
                             if (a.has_target) camera.target = a.target;
                             if (a.distance_m > 0.0f) camera.distance_m = a.distance_m;
@@ -584,6 +645,30 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                         default:
                             break;
                     }
+                    if (!continue_move) replay.finishing = true;
+                }
+            } else if (replay.started && move_drag.active()) {
+                const uint64_t generation = doc->live().generation();
+                if (replay.step < replay.path.size() &&
+                    !move_drag.drag(rayDownOnto(*doc, replay.path[replay.step]), false, &op_error))
+                    messages.push_back(op_error);
+                if (doc->live().generation() != generation)
+                    pending_stamps.push_back({doc->live().generation(), Clock::now(), int(replay.index)});
+                if (++replay.step >= replay.path.size()) {
+                    Primitive p;
+                    doc->findPrimitive(move_drag.id(), nullptr, &p);
+                    replay.record["moves"] = move_drag.moves();
+                    replay.record["to_center"] = {p.center_m.x, p.center_m.y, p.center_m.z};
+                    // Old and new supports: where the move can change instances.
+                    Bounds box = unite(replay.moved_from, editBounds(p));
+                    const float grow = 2.0f * reach_m + std::max(0.0f, doc->ghostTile().settings.delta_m);
+                    box.lo -= grow;
+                    box.hi += grow;
+                    replay.record["box"] = {{"min", {box.lo.x, box.lo.y, box.lo.z}},
+                                            {"max", {box.hi.x, box.hi.y, box.hi.z}}};
+                    replay.record["box_lo"] = {box.lo.x, box.lo.y, box.lo.z};
+                    replay.record["box_hi"] = {box.hi.x, box.hi.y, box.hi.z};
+                    move_drag.end();
                     replay.finishing = true;
                 }
             } else if (replay.started && stroke.active()) {

@@ -5,6 +5,7 @@ edit --replay --stats` (viewer.cpp, "Statistics") and screenshots taken before a
 usage: check_edit.py strokes STATS.json CLI_STATS.json     paint, sculpt, undo/redo, save_as, failed save
        check_edit.py diff BEFORE.png AFTER.png                the stroke shows in the centre, nowhere far off
        check_edit.py recovered PRE_KILL_STATS.json RECOVERED_STATS.json
+       check_edit.py move STATS.json CLI_STATS.json           a painted disc dragged with the Select tool
 """
 import json
 import os
@@ -97,5 +98,28 @@ def recovered(pre_path, rec_path):
         rec["document"]["user_primitives"], rec["instances"]))
 
 
+def move(stats_path, cli_path):
+    s = json.load(open(stats_path))
+    paint, mv, saved, undo = (actions(s, n)[0] for n in ("paint_stroke", "move", "save_as", "undo"))
+    assert paint["stamps"] == 1 and paint["inside_after"]["rock"] > 0, paint
+    dx = [b - a for a, b in zip(mv["from_center"], mv["to_center"])]
+    assert abs(dx[0] - 4.0) < 1e-3 and abs(dx[1]) < 1e-3 and abs(dx[2]) < 1e-3, ("moved by", dx)
+    assert mv["moves"] >= 1, mv
+    # The rocks went with the disc: the set changed, only inside the old and new supports, and about as
+    # many rocks stand at the new place as the disc made at the old one (same disc, similar ground).
+    assert mv["instance_store_hash_after"] != mv["instance_store_hash_before"], mv
+    assert mv["outside_before"] == mv["outside_after"], ("changed outside", mv["outside_before"], mv["outside_after"])
+    base, before, after = (paint["per_type_before"]["rock"], mv["per_type_before"]["rock"],
+                           mv["per_type_after"]["rock"])
+    assert 0.5 * (before - base) <= after - base <= 2.0 * (before - base), (base, before, after)
+    assert len(mv["stamp_to_frame_ms"]) >= 1, mv
+    # The whole drag is one undo step: undo gives back exactly the set before the drag.
+    assert undo["ok"] and undo["instance_store_hash_after"] == mv["instance_store_hash_before"], (undo, mv)
+    cli = json.load(open(cli_path))
+    assert cli["instances_per_type"] == saved["per_type_after"], (cli["instances_per_type"], saved["per_type_after"])
+    print("disc moved by (4, 0, 0) in %d drag steps: rock %d -> %d, outside unchanged; one undo step gives the set "
+          "back; saved file = CLI" % (mv["moves"], before, after))
+
+
 if __name__ == "__main__":
-    {"strokes": strokes, "diff": diff, "recovered": recovered}[sys.argv[1]](*sys.argv[2:])
+    {"strokes": strokes, "diff": diff, "recovered": recovered, "move": move}[sys.argv[1]](*sys.argv[2:])

@@ -99,6 +99,24 @@ else
   bad "edit meadow strokes: $(tail -5 "$tmp/strokes.log")"
 fi
 
+# Select and drag: a one-stamp rock disc painted where the meadow has no rock, dragged 4 m with the Select
+# tool (one undo step), saved (the CLI re-instantiates the saved file), then undone.
+cat >"$tmp/move.json" <<EOF
+[{"frame": 1, "action": "paint_stroke", "type": "rock", "points": [[0.5, -9]], "radius": 1.0},
+ {"action": "move", "from": [0.5, -9], "to": [4.5, -9], "steps": 8},
+ {"action": "save_as", "path": "$tmp/saved/meadow_move.json"},
+ {"action": "undo"}, {"action": "wait_idle"}]
+EOF
+if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$meadow" --frames 2 --size 640x360 --cache "$cache" \
+     --config "$config" --replay "$tmp/move.json" --stats "$tmp/move.stats.json" >"$tmp/move.log" 2>&1 &&
+   "$bin" instantiate "$tmp/saved/meadow_move.json" -o "$tmp/move.glb" --stats "$tmp/move.cli.json" \
+     --cache "$cache" >/dev/null 2>&1 &&
+   out="$(python3 "$root/tests/gui/check_edit.py" move "$tmp/move.stats.json" "$tmp/move.cli.json" 2>&1)"; then
+  ok "edit meadow: select and drag a painted disc ($out)"
+else
+  bad "edit meadow: select and drag: ${out:-$(tail -5 "$tmp/move.log")}"
+fi
+
 # kill -9 while editing: an interactive session paints, autosaves every second, and is killed; the next
 # start recovers the autosave with the painted primitives and the same instances.
 kconfig="$tmp/kill-config"
