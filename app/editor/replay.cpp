@@ -72,6 +72,7 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             r.subtract = a.value("subtract", false);
             r.steps = a.value("steps", r.steps);
             r.path = a.value("path", std::string());
+            r.surface = a.value("surface", std::string());
             r.overlays = a.value("overlays", true);
             if (a.contains("type")) r.types[a["type"].get<std::string>()] = 1.0f;
             if (a.contains("types"))

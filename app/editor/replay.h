@@ -7,6 +7,7 @@
 //    {"action": "sculpt_stroke", "type": "rock", "points": [[x, y], ...], "radius": 0.6, "steps": 10,
 //     "strength": 1.0},
 //    {"action": "erase_stroke", "type": "rock", "points": [...], "radius": 1.0, "strength": 1.0},
+//    {"action": "paint_stroke", "type": "leaf_oak", "surface": "rock", ...}   paint onto the rock pile
 //    {"action": "undo"}, {"action": "redo"}, {"action": "save"}, {"action": "save_as", "path": "out.json"},
 //    {"action": "screenshot", "path": "shot.png", "overlays": false},
 //    {"action": "view", "target": [x, y, z], "distance": 8, "yaw_deg": -90, "pitch_deg": 35},
@@ -55,6 +56,7 @@ struct ReplayAction {
     float falloff_m = 0.5f;
     bool subtract = false;
     int steps = 10;        // sculpt, move: frames
+    std::string surface;   // strokes: the type whose pile the brush works on ("": the stroke's last type)
     std::string path;      // save_as, screenshot
     bool overlays = true;  // screenshot: draw the skeleton overlays
     // view

@@ -85,6 +85,10 @@ SurfaceHit pickPile(const Document& doc, size_t type, const Ray& ray) {
     return out;
 }
 
+SurfaceHit pickBrushSurface(const Document& doc, const BrushSettings& brush, const Ray& ray) {
+    return pickPile(doc, brush.sculpt_type, ray);
+}
+
 Ray rayDownOnto(const Document& doc, glm::vec2 xy) {
     float top = 100.0f;
     const Bounds& e = doc.compiled().extent;
@@ -94,7 +98,7 @@ Ray rayDownOnto(const Document& doc, glm::vec2 xy) {
 }
 
 SurfaceHit BrushStroke::pick(const Ray& ray) const {
-    return tool_ == ToolKind::Sculpt ? pickPile(*doc_, brush_.sculpt_type, ray) : pickGround(*doc_, ray);
+    return pickBrushSurface(*doc_, brush_, ray);
 }
 
 bool BrushStroke::begin(Document* doc, ToolKind tool, const BrushSettings& brush, const Ray& ray,
@@ -105,7 +109,7 @@ bool BrushStroke::begin(Document* doc, ToolKind tool, const BrushSettings& brush
     brush_ = brush;
     stamps_ = 0;
     changed_ = Bounds{};
-    records_.clear();
+    points_.clear();
     const char* names[] = {"Select", "Paint", "Sculpt", "Erase"};
     doc_->beginStroke(names[int(tool)]);
     const SurfaceHit hit = pick(ray);
@@ -197,7 +201,7 @@ bool BrushStroke::stamp(const SurfaceHit& hit, double now_s, std::string* error)
     last_point_ = hit.point_m;
     last_time_s_ = now_s;
     ++stamps_;
-    if (!prims.empty()) records_.push_back({doc_->live().generation(), now_s});
+    if (!prims.empty()) points_.push_back(hit.point_m);
     return true;
 }
 

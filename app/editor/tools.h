@@ -9,8 +9,8 @@
 //   undo step
 //
 // What a stamp adds (each one a user primitive, editable afterwards with Select, and saved in the project):
-//   Paint   per painted type i (mix weight m_i > 0): a disc at the ground under the brush, normal = the
-//           terrain normal, disc_radius = brush radius, radius = falloff, weight = strength * m_i
+//   Paint   per painted type i (mix weight m_i > 0): a disc at the surface under the brush (the ground, or
+//           a sculpted pile: pickBrushSurface), normal = the surface normal, disc_radius = brush radius, radius = falloff, weight = strength * m_i
 //           (negative in subtract mode). A stamp every radius / 3 of travel over the ground.
 //   Sculpt  a point (ball) for the sculpt type on the pile's own surface (the f = 0.5 isosurface of the
 //           type's compiled field along the ray) or, where the ray meets none, the ground; radius = brush
@@ -18,8 +18,8 @@
 //           of travel, and while the brush is held still every kSculptHoldInterval_s (the pile grows).
 //           A held stamp settles like poured gravel (BrushStroke::settle): it runs down the pile's sides
 //           while they are steeper than kSculptReposeSlope, so holding still grows a cone, not a column.
-//   Erase   per painted type: a point at the ground with weight -kEraseWeight * strength * m_i, radius =
-//           brush radius: it cancels painted and sculpted density (and the file's) under the brush. We chose
+//   Erase   per painted type: a point at the surface under the brush with weight
+//           -kEraseWeight * strength * m_i, radius = brush radius: it cancels painted and sculpted density (and the file's) under the brush. We chose
 //           negative points over deleting the primitives whose centres are under the brush because it
 //           erases any density, also the file's own, and keeps every stroke one exact undo step.
 #pragma once
@@ -51,7 +51,8 @@ struct BrushSettings {
     float falloff_m = 0.5f;       // paint: the disc's falloff radius, > 0
     bool subtract = false;        // paint: negative weights
     std::vector<float> type_mix;  // per detail type: 0 = not painted or erased, else the weight factor (>= 0)
-    size_t sculpt_type = 0;
+    size_t sculpt_type = 0;  // the pile type: sculpt grows it; paint and erase work on its surface too
+                             // (an index past the types: on the ground only)
 };
 
 // The brush settings a scene opens with: paint and erase the first type, sculpt the first type with the
@@ -70,6 +71,10 @@ struct SurfaceHit {
 SurfaceHit pickGround(const Document& doc, const Ray& ray);
 // The sculpt type's f = kSculptIso isosurface when the ray meets it before the ground, else the ground.
 SurfaceHit pickPile(const Document& doc, size_t type, const Ray& ray);
+
+// What a brush works on: the pile type's isosurface (BrushSettings::sculpt_type) where the ray meets it
+// before the ground, else the ground; so paint and erase work on sculpted piles too (leaves on a rock pile).
+SurfaceHit pickBrushSurface(const Document& doc, const BrushSettings& brush, const Ray& ray);
 
 // A ray straight down onto world (x, y), from above everything (scripted strokes).
 Ray rayDownOnto(const Document& doc, glm::vec2 xy_m);
@@ -90,13 +95,8 @@ class BrushStroke {
     int stamps() const { return stamps_; }
     // The union of the added primitives' supports (where the fields changed).
     const Bounds& changedBounds() const { return changed_; }
-    // Every stamp's Document generation (LiveInstancer::generation after it) and its time, for timing
-    // stamp -> frame.
-    struct StampRecord {
-        uint64_t generation = 0;
-        double time_s = 0.0;
-    };
-    std::vector<StampRecord> takeStampRecords() { return std::move(records_); }
+    // Where each stamp landed (after settling), in order.
+    const std::vector<glm::vec3>& stampPoints() const { return points_; }
 
   private:
     bool stamp(const SurfaceHit& hit, double now_s, std::string* error);
@@ -110,7 +110,7 @@ class BrushStroke {
     double last_time_s_ = 0.0;
     int stamps_ = 0;
     Bounds changed_;
-    std::vector<StampRecord> records_;
+    std::vector<glm::vec3> points_;
 };
 
 // Select tool, dragging a user primitive: its skeleton follows the cursor on the horizontal plane through

@@ -408,9 +408,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                         pending_stamps.push_back({doc->live().generation(), Clock::now(), -1});
                 }
             } else {
-                const SurfaceHit hit = tools.tool == ToolKind::Sculpt
-                                           ? pickPile(*doc, tools.brush.sculpt_type, ray)
-                                           : pickGround(*doc, ray);
+                const SurfaceHit hit = pickBrushSurface(*doc, tools.brush, ray);
                 if (hit.hit && mouse_free) addBrushMarker(*doc, hit.point_m, tools.brush.radius_m, &markers);
                 const int before = stroke.stamps();
                 std::string stroke_error;
@@ -567,6 +565,17 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                         brush.sculpt_type = t;
                         types[name] = weight;
                     }
+                    // Paint and erase work on the ground unless the script names a pile ("surface").
+                    if (a.kind != ReplayKind::SculptStroke) brush.sculpt_type = SIZE_MAX;
+                    if (!a.surface.empty()) {
+                        const auto it = std::find(view.type_names.begin(), view.type_names.end(), a.surface);
+                        if (it == view.type_names.end()) {
+                            *error = "replay: action " + std::to_string(replay.index) + ": no detail type '" +
+                                     a.surface + "'";
+                            return ViewerStatus::Failed;
+                        }
+                        brush.sculpt_type = size_t(it - view.type_names.begin());
+                    }
                     replay.record["types"] = types;
                     replay.record["radius"] = a.radius_m;
                     const ToolKind tool = a.kind == ReplayKind::PaintStroke    ? ToolKind::Paint
@@ -683,6 +692,9 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                     pending_stamps.push_back({doc->live().generation(), Clock::now(), int(replay.index)});
                 if (++replay.step >= replay.path.size()) {
                     replay.record["stamps"] = stroke.stamps();
+                    json points = json::array();
+                    for (const glm::vec3& p : stroke.stampPoints()) points.push_back({p.x, p.y, p.z});
+                    replay.record["stamp_points"] = points;
                     Bounds box = stroke.changedBounds();
                     const float grow = 2.0f * reach_m + std::max(0.0f, doc->ghostTile().settings.delta_m);
                     box.lo -= grow;

@@ -6,6 +6,7 @@ usage: check_edit.py strokes STATS.json CLI_STATS.json     paint, sculpt, undo/r
        check_edit.py diff BEFORE.png AFTER.png                the stroke shows in the centre, nowhere far off
        check_edit.py recovered PRE_KILL_STATS.json RECOVERED_STATS.json
        check_edit.py move STATS.json CLI_STATS.json           a painted disc dragged with the Select tool
+       check_edit.py pile_paint STATS.json                    a held sculpt brush, paint onto the pile
 """
 import json
 import os
@@ -121,5 +122,28 @@ def move(stats_path, cli_path):
           "back; saved file = CLI" % (mv["moves"], before, after))
 
 
+def pile_paint(stats_path):
+    s = json.load(open(stats_path))
+    sculpt = actions(s, "sculpt_stroke")[0]
+    on_pile, on_ground = actions(s, "paint_stroke")[1:3]
+    pts = sculpt["stamp_points"]
+    assert len(pts) == sculpt["stamps"] == 20, (len(pts), sculpt["stamps"])
+    ground_z = pts[0][2]
+    # Held still, the brush builds a cone: stamps spread sideways (up to twice the radius) as well as up,
+    # and the top stays below what a column of 20 half-radius steps would reach.
+    spread = max(((p[0] + 6) ** 2 + (p[1] + 10) ** 2) ** 0.5 for p in pts)
+    top = max(p[2] for p in pts) - ground_z
+    assert 0.3 < spread <= 1.0 + 1e-3, ("held stamps should spread over the 2r disc", spread)
+    assert 0.3 < top < 2.5, ("pile height", top)
+    # Paint with the pile as surface lands on the pile's top; without, on the ground under it.
+    zp, zg = on_pile["stamp_points"][0][2], on_ground["stamp_points"][0][2]
+    assert zp > ground_z + 0.3 and abs(zg - ground_z) < 0.05, (zp, zg, ground_z)
+    assert on_pile["inside_after"]["leaf_oak"] > on_pile["inside_before"]["leaf_oak"], on_pile
+    assert on_pile["outside_before"] == on_pile["outside_after"], on_pile
+    print("pile %.2f m high, stamps spread %.2f m; paint lands %.2f m up on the pile (ground %.2f), leaves %d -> %d" % (
+        top, spread, zp - ground_z, zg - ground_z, on_pile["inside_before"]["leaf_oak"],
+        on_pile["inside_after"]["leaf_oak"]))
+
+
 if __name__ == "__main__":
-    {"strokes": strokes, "diff": diff, "recovered": recovered, "move": move}[sys.argv[1]](*sys.argv[2:])
+    {"strokes": strokes, "diff": diff, "recovered": recovered, "move": move, "pile_paint": pile_paint}[sys.argv[1]](*sys.argv[2:])

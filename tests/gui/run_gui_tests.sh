@@ -100,12 +100,17 @@ else
 fi
 
 # Select and drag: a one-stamp rock disc painted where the meadow has no rock, dragged 4 m with the Select
-# tool (one undo step), saved (the CLI re-instantiates the saved file), then undone.
+# tool (one undo step), saved (the CLI re-instantiates the saved file), then undone. Then a rock pile from
+# a held sculpt brush, and leaves painted onto it ("surface": the pile) and, for contrast, onto the ground.
 cat >"$tmp/move.json" <<EOF
 [{"frame": 1, "action": "paint_stroke", "type": "rock", "points": [[0.5, -9]], "radius": 1.0},
  {"action": "move", "from": [0.5, -9], "to": [4.5, -9], "steps": 8},
  {"action": "save_as", "path": "$tmp/saved/meadow_move.json"},
- {"action": "undo"}, {"action": "wait_idle"}]
+ {"action": "undo"},
+ {"action": "sculpt_stroke", "type": "rock", "points": [[-6, -10]], "radius": 0.5, "steps": 20},
+ {"action": "paint_stroke", "type": "leaf_oak", "surface": "rock", "points": [[-6, -10]], "radius": 0.6},
+ {"action": "paint_stroke", "type": "leaf_oak", "points": [[-6, -10]], "radius": 0.6},
+ {"action": "wait_idle"}]
 EOF
 if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$meadow" --frames 2 --size 640x360 --cache "$cache" \
      --config "$config" --replay "$tmp/move.json" --stats "$tmp/move.stats.json" >"$tmp/move.log" 2>&1 &&
@@ -113,6 +118,11 @@ if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$meadow" --frames 2 --siz
      --cache "$cache" >/dev/null 2>&1 &&
    out="$(python3 "$root/tests/gui/check_edit.py" move "$tmp/move.stats.json" "$tmp/move.cli.json" 2>&1)"; then
   ok "edit meadow: select and drag a painted disc ($out)"
+  if out="$(python3 "$root/tests/gui/check_edit.py" pile_paint "$tmp/move.stats.json" 2>&1)"; then
+    ok "edit meadow: held sculpt builds a cone, paint lands on the pile ($out)"
+  else
+    bad "edit meadow: sculpt cone / paint on the pile: $out"
+  fi
 else
   bad "edit meadow: select and drag: ${out:-$(tail -5 "$tmp/move.log")}"
 fi
