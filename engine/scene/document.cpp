@@ -288,8 +288,10 @@ bool Document::commit(const EditEffect& effect, std::string* error) {
         live_assets_ = assets_;
         ++tile_generation_;
     }
-    if (effect.full || extent_changed)
-        live_->reset(instancerInput());
+    if (effect.full || extent_changed) {
+        const uint64_t generation = live_->reset(instancerInput());
+        if (effect.tile) tile_live_generation_ = generation;
+    }
     else if (!effect.types.empty())
         live_->submit(compiled_.types, effect.dirty);
     return true;

@@ -111,6 +111,9 @@ public:
     // Changes whenever the Ghost Tile and models are swapped (a build applied, its undo or redo): candidate
     // frames, models and meshes derived from them must be made again.
     uint64_t tileGeneration() const { return tile_generation_; }
+    // The live instancer's generation from which results are made with the current tile: an older result
+    // (finished after the swap) holds candidate ids of another tile and must not be shown.
+    uint64_t tileLiveGeneration() const { return tile_live_generation_; }
     // What the instantiator runs on now (points into this document).
     InstancerInput instancerInput() const;
 
@@ -192,6 +195,7 @@ private:
     Project project_;
     TileAssets assets_;
     uint64_t tile_generation_ = 1;
+    uint64_t tile_live_generation_ = 0;
     // What the live instancer was last reset with, and earlier assets its worker may still be reading (a
     // run in progress when the tile was swapped): freed once it is idle, since undo steps that held them
     // may be gone by then.

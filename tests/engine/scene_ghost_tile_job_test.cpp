@@ -119,6 +119,7 @@ TEST(GhostTileJob, AppliedBuildIsOneUndoStepAndUndoRedoGiveTheExactInstanceSets)
     EXPECT_EQ(doc->undoName(), "Ghost Tile");
     EXPECT_TRUE(doc->isDirty());
     EXPECT_NE(doc->tileGeneration(), generation0);
+    EXPECT_EQ(doc->tileLiveGeneration(), doc->live().generation()) << "results from here on use the new tile";
     EXPECT_EQ(doc->ghostTile().candidates.size(), 170u + 160u);
     EXPECT_TRUE(ghostTileSpec(doc->project()) == spec);
     const InstanceStore after = settled(*doc);
