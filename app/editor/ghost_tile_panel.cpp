@@ -147,7 +147,9 @@ void drawSpherePreview(const DetailModel& model) {
 void drawGhostTilePanel(const Document* doc, GhostTilePanelState* s, bool* open) {
     if (!*open) return;
     ImGui::SetNextWindowPos(ImVec2(350, 30), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(460, 640), ImGuiCond_FirstUseEver);
+    // As tall as the viewport allows: settings, statistics and the sphere views fit without scrolling.
+    ImGui::SetNextWindowSize(ImVec2(460, std::min(830.0f, ImGui::GetMainViewport()->Size.y - 40.0f)),
+                             ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Ghost Tile", open)) {
         ImGui::End();
         return;
