@@ -73,6 +73,7 @@ struct WindowToggles {
     bool statistics = true;
     bool tools = true;
     bool inspector = true;
+    bool ghost_tile = false;
 };
 
 // The main menu bar and the global shortcuts (Ctrl+S, Ctrl+Z, Ctrl+Shift+Z, Ctrl+Q, F12, Delete, Ctrl+D,
@@ -85,6 +86,29 @@ void drawToolsPanel(const std::vector<std::string>& type_names, ToolState* state
 // step). Errors go to *message.
 void drawInspector(Document* doc, const std::vector<std::string>& type_names, ToolState* state,
                    UiRequests* requests, std::string* message, bool* open);
+
+// ---- Ghost Tile panel (ghost_tile_panel.cpp) ----
+// The panel edits a pending copy of the project's Ghost Tile settings; the document keeps its tile until
+// a build started from the panel finishes and the main loop applies it (one undo step).
+struct GhostTilePanelState {
+    GhostTileSpec pending;        // the edited copy
+    GhostTileSpec synced;         // the document's settings when `pending` was last taken from it
+    const Document* synced_doc = nullptr;
+    uint64_t synced_generation = 0;  // the document's tileGeneration() then
+    int selected_type = 0;
+    // Set by the main loop: the job in flight.
+    bool running = false;
+    float progress = 0.0f;
+    std::string last_outcome;     // "built in 0.42 s", "cancelled", "failed: ..."
+    // Raised by the panel, cleared by the main loop.
+    bool build = false;           // start a job on `pending`
+    bool cancel = false;
+};
+// Fields per detail type (model file, model scale and axes, anchors, candidate count, orientation
+// distribution, scale range, positions) and the tile (size, δ, seed); Build / Cancel with a progress bar,
+// Revert; statistics of the document's tile; the selected type's collision spheres in three orthographic
+// views (ImGui draw list).
+void drawGhostTilePanel(const Document* doc, GhostTilePanelState* state, bool* open);
 
 // Modal dialogs. Each returns its answer once (then closes), else Pending.
 enum class DialogAnswer { Pending, Yes, No, Cancel };

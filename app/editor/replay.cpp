@@ -1,6 +1,8 @@
 #include "editor/replay.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
@@ -33,6 +35,8 @@ const char* replayKindName(ReplayKind kind) {
             return "move";
         case ReplayKind::WaitIdle:
             return "wait_idle";
+        case ReplayKind::GhostTile:
+            return "ghost_tile";
     }
     return "?";
 }
@@ -58,7 +62,7 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
         ReplayAction r;
         const std::string name = a["action"].get<std::string>();
         bool known = false;
-        for (int k = 0; k <= int(ReplayKind::WaitIdle); ++k)
+        for (int k = 0; k <= int(ReplayKind::GhostTile); ++k)
             if (name == replayKindName(ReplayKind(k))) {
                 r.kind = ReplayKind(k);
                 known = true;
@@ -93,6 +97,22 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             r.distance_m = a.value("distance", -1.0f);
             if (a.contains("yaw_deg")) r.yaw_deg = a["yaw_deg"].get<float>();
             if (a.contains("pitch_deg")) r.pitch_deg = a["pitch_deg"].get<float>();
+            if (r.kind == ReplayKind::GhostTile) {
+                ReplayAction::GhostTileEdit& g = r.ghost;
+                g.count = a.value("count", int64_t(-1));
+                g.delta_m = a.value("delta", NAN);
+                g.tile_size_m = a.value("tile_size", NAN);
+                g.model_scale = a.value("model_scale", NAN);
+                g.model_path = a.value("model", std::string());
+                if (a.contains("scale")) {
+                    g.scale_min = a["scale"].at(0).get<float>();
+                    g.scale_max = a["scale"].at(1).get<float>();
+                }
+                if (a.contains("seed")) {
+                    g.has_seed = true;
+                    g.seed = a["seed"].get<uint64_t>();
+                }
+            }
         } catch (const json::exception& e) {
             return fail(std::string("bad value: ") + e.what());
         }
@@ -114,6 +134,38 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
         actions.push_back(std::move(r));
     }
     *out = std::move(actions);
+    return true;
+}
+
+bool applyReplayGhostTile(const ReplayAction& a, GhostTileSpec* spec, std::string* error) {
+    const ReplayAction::GhostTileEdit& g = a.ghost;
+    if (!std::isnan(g.delta_m)) spec->settings.delta_m = g.delta_m;
+    if (!std::isnan(g.tile_size_m)) spec->settings.tile_size_m = g.tile_size_m;
+    if (g.has_seed) spec->settings.seed = g.seed;
+    const bool per_type = g.count >= 0 || !std::isnan(g.scale_min) || !std::isnan(g.model_scale) ||
+                          !g.model_path.empty();
+    if (a.types.empty()) {
+        if (!per_type) return true;
+        *error = "replay: ghost_tile: count, scale, model and model_scale need \"type\"";
+        return false;
+    }
+    for (const auto& [name, weight] : a.types) {
+        (void)weight;
+        size_t t = 0;
+        while (t < spec->types.size() && spec->types[t].name != name) ++t;
+        if (t == spec->types.size()) {
+            *error = "replay: ghost_tile: no detail type '" + name + "'";
+            return false;
+        }
+        // Clamped only to the field's range: an absurd count must reach the validation and its message.
+        if (g.count >= 0) spec->types[t].candidate_count = uint32_t(std::min<int64_t>(g.count, UINT32_MAX));
+        if (!std::isnan(g.scale_min)) {
+            spec->types[t].scale_min = g.scale_min;
+            spec->types[t].scale_max = g.scale_max;
+        }
+        if (!std::isnan(g.model_scale)) spec->models[t].scale = g.model_scale;
+        if (!g.model_path.empty()) spec->models[t].mesh_path = g.model_path;
+    }
     return true;
 }
 

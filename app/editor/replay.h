@@ -13,7 +13,14 @@
 //    {"action": "view", "target": [x, y, z], "distance": 8, "yaw_deg": -90, "pitch_deg": 35},
 //    {"action": "move", "from": [x, y], "to": [x, y], "steps": 10},   Select-drag the user primitive whose
 //                                                                     centre is nearest `from` (in XY) by to - from
-//    {"action": "wait_idle"}]
+//    {"action": "wait_idle"},
+//    {"action": "ghost_tile", "type": "rock", "count": 400, "delta": -0.001, "scale": [0.8, 1.2],
+//     "model": "../models/rock.glb", "model_scale": 1.0, "tile_size": 0.5, "seed": 7}]   every key but
+//     "action" optional; "type" is needed for the per-type ones. Builds the edited Ghost Tile in the
+//     background (as the panel's Build) and applies it as one undo step; the action ends when the job has
+//     ended and the new tile's result is on screen. Its statistics add "ghost_tile": {"ok", "error" or the
+//     tile's "candidates", "pairs", "rho", "build_seconds", "graph_bytes", "bytes_per_pair", "cache",
+//     "job_seconds"}. A refused or failed build is reported there and in the messages; the run goes on.
 //
 // "frame" (optional) is the earliest frame, counted from the first frame that shows the document's
 // instances, at which the action may start. Every action also waits until the previous one is finished and
@@ -29,6 +36,8 @@
 #include <string>
 #include <vector>
 
+#include "scene/ghost_tile_job.h"
+
 namespace ug::editor {
 
 enum class ReplayKind {
@@ -42,7 +51,8 @@ enum class ReplayKind {
     Screenshot,
     View,
     Move,
-    WaitIdle
+    WaitIdle,
+    GhostTile
 };
 const char* replayKindName(ReplayKind kind);  // the "action" string
 
@@ -64,10 +74,21 @@ struct ReplayAction {
     glm::vec3 target{0.0f};
     float distance_m = -1.0f;  // < 0: keep
     float yaw_deg = NAN, pitch_deg = NAN;
+    // ghost_tile: the settings to change (absent ones keep the document's); the type is `types`' key
+    struct GhostTileEdit {
+        int64_t count = -1;  // < 0: keep
+        float delta_m = NAN, tile_size_m = NAN, scale_min = NAN, scale_max = NAN, model_scale = NAN;
+        std::string model_path;  // "": keep
+        bool has_seed = false;
+        uint64_t seed = 0;
+    } ghost;
 };
 
 // Reads a script; errors name the file, the action's index and the reason.
 bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, std::string* error);
+
+// A ghost_tile action's edits written into `spec` (ghost_tile_job.h); false when its type is unknown.
+bool applyReplayGhostTile(const ReplayAction& action, GhostTileSpec* spec, std::string* error);
 
 // The brush positions (world XY) a stroke visits, one per frame: paint and erase every 1.001 * radius / 3
 // along the polyline (and its last point); sculpt `steps` positions evenly spaced along it; move `steps`

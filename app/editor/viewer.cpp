@@ -37,6 +37,7 @@
 #include "editor/navigation.h"
 #include "editor/orbit_camera.h"
 #include "editor/panels.h"
+#include "editor/render_data.h"
 #include "editor/tools.h"
 #include "instancer/instance_query.h"
 
@@ -275,12 +276,40 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             messages.push_back(write_error);
     };
 
+    // ---- Ghost Tile panel: one background build at a time (ghost_tile_job.h), applied at the frame boundary;
+    // the renderer's scene (LOD meshes, candidate frames) follows the document's tile generation ----
+    GhostTilePanelState ghost_panel;
+    std::unique_ptr<GhostTileJob> ghost_job;
+    const Document* ghost_job_doc = nullptr;  // the document it was started on
+    int ghost_job_action = -1;                // the replay action that started it, -1: the panel
+    uint64_t scene_tile_generation = 0;       // the tile generation the renderer's scene was set for
+    auto syncTile = [&] {
+        if (!scene || scene->doc->tileGeneration() == scene_tile_generation) return;
+        Document& doc = *scene->doc;
+        scene_tile_generation = doc.tileGeneration();
+        const CandidateSet& c = doc.ghostTile().candidates;
+        scene->meshes.clear();
+        for (size_t i = 0; i < doc.models().size(); ++i) {
+            float scale_max = 1.0f;
+            for (uint32_t k = c.type_begin[i]; i < c.typeCount() && k < c.type_begin[i + 1]; ++k)
+                scale_max = std::max(scale_max, c.scale[k]);
+            scene->meshes.push_back(buildDetailLods(doc.models()[i], scale_max));
+        }
+        renderer.setScene(doc.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr, &scene->meshes, c,
+                          doc.ghostTile().settings.tile_size_m);
+        // What is on screen indexes the old tile's candidates: nothing is shown until the new result.
+        instances = RenderInstances{};
+        store = std::make_shared<const InstanceStore>();
+        reach_m = largestReach(doc);
+    };
+
     // Takes a finished live result, if any, and re-packs it for the GPU (see the top of this file).
     auto takeLiveResult = [&]() -> bool {
         if (!scene) return true;
         Document& doc = *scene->doc;
+        syncTile();
         LiveResult live;
-        if (doc.live().poll(&live)) {
+        if (doc.live().poll(&live) && live.generation >= doc.tileLiveGeneration()) {
             if (!live.ok) messages.push_back(live.error);
             const auto t0 = Clock::now();
             std::string pack_error;
@@ -344,7 +373,51 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             tools.selected = 0;
             reach_m = largestReach(doc);
             recent_files = loadRecentFiles(options.config_dir);
+            scene_tile_generation = doc.tileGeneration();
         }
+        // A finished Ghost Tile job: applied (one undo step) or reported; the old tile stayed in use until now.
+        if (ghost_job && ghost_job->finished()) {
+            std::unique_ptr<GhostTileJob> job = std::move(ghost_job);
+            const bool for_replay = ghost_job_action >= 0 && size_t(ghost_job_action) == replay.index;
+            json outcome = {{"job_seconds", 0.0}};
+            std::string apply_error;
+            if (!scene || ghost_job_doc != scene->doc.get()) {
+                ghost_panel.last_outcome = "the document changed: build dropped";
+            } else if (job->state() == GhostTileJobState::Done) {
+                GhostTileBuild build = job->take();
+                const double seconds = build.seconds;
+                const CacheOutcome cache = build.outcome;
+                if (scene->doc->applyGhostTile(std::move(build), &apply_error)) {
+                    char text[160];
+                    std::snprintf(text, sizeof(text), "applied: %s in %.2f s", cacheOutcomeName(cache), seconds);
+                    ghost_panel.last_outcome = text;
+                    const GhostTileStats& st = scene->doc->ghostTile().stats;
+                    outcome = {{"ok", true},
+                               {"job_seconds", seconds},
+                               {"cache", cacheOutcomeName(cache)},
+                               {"candidates", st.candidate_count},
+                               {"pairs", st.pair_count},
+                               {"rho", st.rho},
+                               {"build_seconds", st.build_seconds},
+                               {"graph_bytes", st.graph_bytes},
+                               {"bytes_per_pair", st.bytes_per_pair}};
+                } else {
+                    messages.push_back("Ghost Tile: " + apply_error);
+                    ghost_panel.last_outcome = "failed: " + apply_error;
+                    outcome = {{"ok", false}, {"error", apply_error}};
+                }
+            } else if (job->state() == GhostTileJobState::Failed) {
+                messages.push_back("Ghost Tile build failed: " + job->error());
+                ghost_panel.last_outcome = "failed: " + job->error();
+                outcome = {{"ok", false}, {"error", job->error()}};
+            } else {
+                ghost_panel.last_outcome = "cancelled";
+                outcome = {{"ok", false}, {"cancelled", true}};
+            }
+            if (for_replay) replay.record["ghost_tile"] = outcome;
+        }
+        ghost_panel.running = ghost_job != nullptr;
+        ghost_panel.progress = ghost_job ? ghost_job->progress() : 0.0f;
         if (!takeLiveResult()) return ViewerStatus::Failed;
         const bool settled = scene && have_result && !scene->doc->live().pending() &&
                              shown_generation == scene->doc->live().generation();
@@ -384,6 +457,19 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         std::string inspector_message;
         drawInspector(doc, view.type_names, &tools, &requests, &inspector_message, &windows.inspector);
         if (!inspector_message.empty()) messages.push_back(inspector_message);
+        drawGhostTilePanel(doc, &ghost_panel, &windows.ghost_tile);
+        if (doc && ghost_panel.build && !ghost_job) {
+            std::string job_error;
+            ghost_job = doc->startGhostTileJob(ghost_panel.pending, &job_error);
+            ghost_job_doc = doc;
+            ghost_job_action = -1;
+            if (!ghost_job) {
+                messages.push_back(job_error);
+                ghost_panel.last_outcome = "refused: " + job_error;
+            }
+        }
+        if (ghost_job && ghost_panel.cancel) ghost_job->cancel();
+        ghost_panel.build = ghost_panel.cancel = false;
 
         markers.clear();
         // Mouse tools: not while a panel has the mouse, Alt is held (Alt + left drag orbits) or a replay
@@ -542,6 +628,13 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 replay.record = json{{"action", replayKindName(a.kind)}, {"frame", frame_index}};
                 replay.before = store;
                 replay.stamp_ms.clear();
+                // Counted now, with the candidates `store` indexes: a Ghost Tile action or its undo swaps them.
+                const InstanceStore none;
+                const InstanceStore& now = store ? *store : none;
+                replay.record["instances_before"] = now.instanceCount();
+                replay.record["per_type_before"] =
+                    perTypeJson(view.type_names, perTypeCounts(now, doc->ghostTile().candidates));
+                replay.record["instance_store_hash_before"] = hex64(instanceStoreHash(now));
                 const bool is_stroke = a.kind == ReplayKind::PaintStroke ||
                                        a.kind == ReplayKind::SculptStroke ||
                                        a.kind == ReplayKind::EraseStroke;
@@ -644,6 +737,20 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                             }
                             break;
                         }
+                        case ReplayKind::GhostTile: {
+                            // Builds in the background like the panel's Build; the action ends when the job has
+                            // ended and (if it was applied) the new tile's result is on screen.
+                            GhostTileSpec spec = ghostTileSpec(doc->project());
+                            if (!applyReplayGhostTile(a, &spec, &op_error) ||
+                                !(ghost_job = doc->startGhostTileJob(std::move(spec), &op_error))) {
+                                replay.record["ghost_tile"] = {{"ok", false}, {"error", op_error}};
+                                messages.push_back(op_error);
+                            } else {
+                                ghost_job_doc = doc;
+                                ghost_job_action = int(replay.index);
+                            }
+                            break;
+                        }
                         case ReplayKind::View:
                             if (a.has_target) camera.target = a.target;
                             if (a.distance_m > 0.0f) camera.distance_m = a.distance_m;
@@ -654,7 +761,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                         default:
                             break;
                     }
-                    if (!continue_move) replay.finishing = true;
+                    if (!continue_move) replay.finishing = a.kind != ReplayKind::GhostTile || !ghost_job;
                 }
             } else if (replay.started && move_drag.active()) {
                 const uint64_t generation = doc->live().generation();
@@ -680,6 +787,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                     move_drag.end();
                     replay.finishing = true;
                 }
+            } else if (replay.started && a.kind == ReplayKind::GhostTile) {
+                replay.finishing = !ghost_job;  // the job was applied or reported at this frame's start
             } else if (replay.started && stroke.active()) {
                 // One brush position per frame; the virtual clock advances one hold interval per step so a
                 // sculpt stroke stamps at every step, whatever the frame rate.
@@ -787,11 +896,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             json& r = replay.record;
             const InstanceStore empty;
             const InstanceStore& before = replay.before ? *replay.before : empty;
-            r["instances_before"] = before.instanceCount();
             r["instances_after"] = store->instanceCount();
-            r["per_type_before"] = perTypeJson(names, perTypeCounts(before, c));
             r["per_type_after"] = perTypeJson(names, perTypeCounts(*store, c));
-            r["instance_store_hash_before"] = hex64(instanceStoreHash(before));
             r["instance_store_hash_after"] = hex64(instanceStoreHash(*store));
             if (r.contains("box_lo")) {
                 const Bounds box{glm::vec3(r["box_lo"][0].get<float>(), r["box_lo"][1].get<float>(),

@@ -203,17 +203,22 @@ bool Document::load(Project project, const std::string& path, const DocumentOpti
     path_ = path;
     project_ = std::move(project);
     const std::string name = path.empty() ? project_.name : path;
-    if (!loadProjectModels(project_, &models_, error)) {
+    auto models = std::make_shared<std::vector<DetailModel>>();
+    if (!loadProjectModels(project_, models.get(), error)) {
         *error = name + ": " + *error;
         return false;
     }
     std::string note;
-    const GhostTileInput input = ghostTileInput(project_, models_);
-    if (!loadOrBuildGhostTile(options.cache_dir, input, BuildOptions{.threads = options.threads}, &tile_,
-                              &cache_outcome_, &note, error)) {
+    const GhostTileInput input = ghostTileInput(project_, *models);
+    auto tile = std::make_shared<GhostTile>();
+    if (!loadOrBuildGhostTile(options.cache_dir, input, BuildOptions{.threads = options.threads}, tile.get(),
+                              &assets_.outcome, &note, error)) {
         *error = name + ": " + *error;
         return false;
     }
+    assets_.tile = std::move(tile);
+    assets_.models = std::move(models);
+    live_assets_ = assets_;
     if (!loadTerrain(project_, &terrain_, error)) return false;
     if (!compileScene(project_, terrain_, &compiled_, error)) {
         // The CLI refuses a scene with nothing to instantiate; the editor opens it (a new project) with an
@@ -239,8 +244,8 @@ Document::~Document() = default;
 
 InstancerInput Document::instancerInput() const {
     InstancerInput in;
-    in.tile = &tile_;
-    for (const DetailModel& m : models_) in.models.push_back(&m);
+    in.tile = assets_.tile.get();
+    for (const DetailModel& m : *assets_.models) in.models.push_back(&m);
     in.types = compiled_.types;
     in.extent = compiled_.extent;
     in.seed = project_.instantiation_seed;
@@ -277,8 +282,16 @@ bool Document::commit(const EditEffect& effect, std::string* error) {
     if (!documentExtent(project_, next, path_.empty() ? project_.name : path_, &next.extent, error)) return false;
     const bool extent_changed = !sameBounds(next.extent, compiled_.extent);
     compiled_ = std::move(next);
-    if (effect.full || extent_changed)
-        live_->reset(instancerInput());
+    if (!live_->pending()) retired_.clear();
+    if (effect.tile) {
+        retired_.push_back(live_assets_);
+        live_assets_ = assets_;
+        ++tile_generation_;
+    }
+    if (effect.full || extent_changed) {
+        const uint64_t generation = live_->reset(instancerInput());
+        if (effect.tile) tile_live_generation_ = generation;
+    }
     else if (!effect.types.empty())
         live_->submit(compiled_.types, effect.dirty);
     return true;
@@ -338,6 +351,21 @@ bool Document::setInstancing(size_t type, const InstancingDesc& desc, std::strin
 
 bool Document::setSeed(uint64_t seed, std::string* error) {
     return execute(std::make_unique<SetSeedCommand>(seed), error);
+}
+
+std::unique_ptr<GhostTileJob> Document::startGhostTileJob(GhostTileSpec spec, std::string* error) const {
+    if (!validateGhostTileSpec(spec, project_, error)) return nullptr;
+    GhostTileJobContext context;
+    context.base_dir = project_.base_dir;
+    context.cache_dir = options_.cache_dir;
+    context.threads = options_.threads;
+    for (const DetailTypeDesc& t : project_.detail_types) context.current_sources.push_back(t.model);
+    context.current_models = assets_.models;
+    return std::make_unique<GhostTileJob>(std::move(spec), std::move(context));
+}
+
+bool Document::applyGhostTile(GhostTileBuild build, std::string* error) {
+    return execute(std::make_unique<SetGhostTileCommand>(std::move(build)), error);
 }
 
 void Document::beginStroke(const std::string& name) {
@@ -494,6 +522,7 @@ void Document::close() {
 
 LiveResult Document::waitForResult() {
     live_->waitIdle();
+    retired_.clear();
     return live_->latest();
 }
 

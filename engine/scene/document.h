@@ -15,7 +15,8 @@
 // What is kept:
 //   project       the file's content, edited in place (densities keep the file's DensityField; the ids of
 //                 the user primitives live in a side table, edit_commands.h)
-//   models, Ghost Tile, terrain   loaded once at open (Ghost Tile from the verified cache, or built)
+//   models, Ghost Tile, terrain   loaded at open (Ghost Tile from the verified cache, or built); the tile and
+//                 models are replaced by a background GhostTileJob applied as one undo step (ghost_tile_job.h)
 //   compiled      one InstanceTypeSettings per type, recompiled for the types an edit touches
 //   live          the LiveInstancer, fed after every edit, undo and redo
 // The document is used from one thread (the UI's); only the LiveInstancer's worker runs beside it.
@@ -41,6 +42,8 @@
 #include "instancer/instantiator.h"
 #include "mesh/detail_model.h"
 #include "scene/edit_commands.h"
+#include "scene/ghost_tile_command.h"
+#include "scene/ghost_tile_job.h"
 #include "scene/live_instancer.h"
 #include "scene/project.h"
 #include "scene/scene_compile.h"
@@ -99,11 +102,18 @@ public:
 
     const Project& project() const { return project_; }
     const std::string& path() const { return path_; }
-    const std::vector<DetailModel>& models() const { return models_; }
-    const GhostTile& ghostTile() const { return tile_; }
+    const std::vector<DetailModel>& models() const { return *assets_.models; }
+    const GhostTile& ghostTile() const { return *assets_.tile; }
+    const TileAssets& tileAssets() const { return assets_; }
     const std::shared_ptr<const HeightField>& terrain() const { return terrain_; }
     const CompiledScene& compiled() const { return compiled_; }
-    CacheOutcome cacheOutcome() const { return cache_outcome_; }
+    CacheOutcome cacheOutcome() const { return assets_.outcome; }
+    // Changes whenever the Ghost Tile and models are swapped (a build applied, its undo or redo): candidate
+    // frames, models and meshes derived from them must be made again.
+    uint64_t tileGeneration() const { return tile_generation_; }
+    // The live instancer's generation from which results are made with the current tile: an older result
+    // (finished after the swap) holds candidate ids of another tile and must not be shown.
+    uint64_t tileLiveGeneration() const { return tile_live_generation_; }
     // What the instantiator runs on now (points into this document).
     InstancerInput instancerInput() const;
 
@@ -122,6 +132,12 @@ public:
     uint64_t duplicatePrimitive(uint64_t id, glm::vec3 offset_m, std::string* error);
     bool setInstancing(size_t type, const InstancingDesc& desc, std::string* error);
     bool setSeed(uint64_t seed, std::string* error);
+    // ---- Ghost Tile (ghost_tile_job.h) ----
+    // Checks `spec` (validateGhostTileSpec) and starts building it in the background, reusing the models
+    // whose source is unchanged; null with *error when refused. The document is not touched by the job.
+    std::unique_ptr<GhostTileJob> startGhostTileJob(GhostTileSpec spec, std::string* error) const;
+    // A finished job's result, as one undo step (SetGhostTileCommand); instantiates everything again.
+    bool applyGhostTile(GhostTileBuild build, std::string* error);
     // Any command (already constructed, not applied). The edits above go through here.
     bool execute(std::unique_ptr<Command> command, std::string* error);
 
@@ -163,7 +179,7 @@ public:
 private:
     Document() = default;
     bool load(Project project, const std::string& path, const DocumentOptions& options, std::string* error);
-    EditTarget target() { return EditTarget{&project_, &densities_}; }
+    EditTarget target() { return EditTarget{&project_, &densities_, &assets_}; }
     // Recompiles what `effect` touched and feeds the live instancer; false (nothing changed) when the new
     // settings do not compile.
     bool commit(const EditEffect& effect, std::string* error);
@@ -177,9 +193,14 @@ private:
     DocumentOptions options_;
     std::string path_;
     Project project_;
-    std::vector<DetailModel> models_;
-    GhostTile tile_;
-    CacheOutcome cache_outcome_ = CacheOutcome::BuiltMissing;
+    TileAssets assets_;
+    uint64_t tile_generation_ = 1;
+    uint64_t tile_live_generation_ = 0;
+    // What the live instancer was last reset with, and earlier assets its worker may still be reading (a
+    // run in progress when the tile was swapped): freed once it is idle, since undo steps that held them
+    // may be gone by then.
+    TileAssets live_assets_;
+    std::vector<TileAssets> retired_;
     std::shared_ptr<const HeightField> terrain_;
     CompiledScene compiled_;
     std::vector<EditableDensity> densities_;
@@ -193,7 +214,7 @@ private:
     uint64_t autosaved_edits_ = 0;    // edit_count_ at the last autosave (or load / save)
     double change_seen_s_ = -1.0;     // maybeAutosave: when it first saw unsaved edits; < 0 none
 
-    // Last: destroyed first, since its worker reads tile_, models_ and the compiled fields.
+    // Last: destroyed first, since its worker reads the assets and the compiled fields.
     std::unique_ptr<LiveInstancer> live_;
 };
 

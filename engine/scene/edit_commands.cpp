@@ -171,6 +171,7 @@ void EditEffect::merge(const EditEffect& other) {
     for (size_t t : other.types) addType(t);
     dirty.insert(dirty.end(), other.dirty.begin(), other.dirty.end());
     full = full || other.full;
+    tile = tile || other.tile;
 }
 
 // ---- commands -------------------------------------------------------------------------------------------

@@ -77,15 +77,19 @@ Bounds editBounds(const Primitive& prim);
 
 // ---- commands ------------------------------------------------------------------------------------------
 
+struct TileAssets;  // ghost_tile_command.h
+
 struct EditTarget {
     Project* project = nullptr;
     std::vector<EditableDensity>* densities = nullptr;  // one per detail type
+    TileAssets* assets = nullptr;                       // the Ghost Tile and models (ghost_tile_command.h)
 };
 
 struct EditEffect {
     std::vector<size_t> types;  // detail types whose settings changed (ascending, unique)
     std::vector<Bounds> dirty;  // where their fields changed
     bool full = false;          // instantiate everything again (strategy, constraints, seed)
+    bool tile = false;          // the Ghost Tile and models were swapped (implies full)
 
     void addType(size_t type);
     void merge(const EditEffect& other);

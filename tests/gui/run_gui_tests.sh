@@ -127,6 +127,34 @@ else
   bad "edit meadow: select and drag: ${out:-$(tail -5 "$tmp/move.log")}"
 fi
 
+# ---- Ghost Tile panel: a replayed build of the rock pile with more rocks and another delta (replay.h,
+# "ghost_tile"), saved, undone and redone; then a type pointed at a corrupt model file and a count of 0 ----
+pile="$root/assets/scenes/rock_pile.json"
+mkdir -p "$tmp/ghost"
+printf 'glTF\002\000\000\000 not a binary glTF' >"$tmp/ghost/corrupt_model.glb"
+cat >"$tmp/ghost.json" <<EOF
+[{"frame": 1, "action": "ghost_tile", "type": "rock", "count": 360, "delta": -0.001},
+ {"action": "save_as", "path": "$tmp/ghost/pile_ghost.json"},
+ {"action": "undo"}, {"action": "redo"},
+ {"action": "ghost_tile", "type": "twig", "model": "$tmp/ghost/corrupt_model.glb"},
+ {"action": "ghost_tile", "type": "rock", "count": 0},
+ {"action": "wait_idle"}]
+EOF
+if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$pile" --frames 3 --size 640x360 --cache "$cache" \
+    --config "$tmp/ghost-config" --replay "$tmp/ghost.json" --stats "$tmp/ghost.stats.json" >"$tmp/ghost.log" 2>&1; then
+  ok "edit rock pile: replayed Ghost Tile build, save as, undo, redo, corrupt model, count 0 (exit 0)"
+  if "$bin" instantiate "$tmp/ghost/pile_ghost.json" -o "$tmp/ghost.glb" --stats "$tmp/ghost.cli.json" \
+       --cache "$cache" >/dev/null 2>&1 &&
+     out="$(python3 "$root/tests/gui/check_ghost_tile.py" "$tmp/ghost.stats.json" "$tmp/ghost.cli.json" "$pile" \
+            "$tmp/ghost/pile_ghost.json" rock 360 -0.001 corrupt_model.glb 2>&1)"; then
+    ok "edit rock pile: Ghost Tile ($out)"
+  else
+    bad "edit rock pile: Ghost Tile: $out"
+  fi
+else
+  bad "edit rock pile Ghost Tile: $(tail -5 "$tmp/ghost.log")"
+fi
+
 # kill -9 while editing: an interactive session paints, autosaves every second, and is killed; the next
 # start recovers the autosave with the painted primitives and the same instances.
 kconfig="$tmp/kill-config"
