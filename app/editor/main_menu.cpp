@@ -58,6 +58,7 @@ void drawMainMenu(const MenuView& view, UiRequests* requests, ToolState* tools, 
         ImGui::MenuItem("Statistics", nullptr, &windows->statistics);
         ImGui::MenuItem("Tools", nullptr, &windows->tools);
         ImGui::MenuItem("Inspector", nullptr, &windows->inspector);
+        ImGui::MenuItem("Render", nullptr, &windows->render);
         ImGui::MenuItem("Skeleton overlays", nullptr, &tools->show_markers);
         ImGui::EndMenu();
     }
