@@ -755,6 +755,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             }
             r["uploaded_tiles"] = tiles;
             r["tiles_resident"] = instances.tileCount();
+            r["tile_size_m"] = instances.tile_size_m;
             result->actions.push_back(r);
             replay = ReplayState{replay.index + 1};
             if (replay.index >= options.replay.size() && !scripted && !stats_written) {
