@@ -305,7 +305,12 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 messages.push_back(pack_error);
             } else {
                 renderer.uploadTiles(&instances, uploads);
-                if (!uploads.full) result->upload_tiles.push_back(double(uploads.tiles_uploaded));
+                if (!uploads.full) {
+                    result->upload_tiles.push_back(double(uploads.tiles_uploaded));
+                    result->tile_update_ms_max =
+                        std::max(result->tile_update_ms_max,
+                                 std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+                }
                 if (replay.started && !replay.finishing) {
                     replay.uploads.push_back({{"tiles", uploads.tiles_uploaded},
                                               {"bytes", uploads.bytes_uploaded},
@@ -838,6 +843,7 @@ json viewerStatsJson(const ViewerResult& r, const LodSettings& lod) {
         {"tiles_uploaded", r.tiles_uploaded},
         {"bytes_uploaded", r.bytes_uploaded},
         {"upload_tiles_p50", percentile(r.upload_tiles, 0.5)},
+        {"tile_update_ms_max", r.tile_update_ms_max},
         {"gl_version", r.gl_version},
         {"renderer", r.renderer},
         {"window", {r.window_width, r.window_height}},

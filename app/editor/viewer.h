@@ -81,6 +81,7 @@ struct ViewerResult {
     int autosaves = 0;
     std::vector<double> stamp_to_frame_ms;  // every stamp: from the edit to the end of the frame showing it
     double repack_ms_max = 0.0;             // the slowest CPU re-pack of a live result's tiles for the GPU
+    double tile_update_ms_max = 0.0;  // the slowest incremental one (changed tiles re-packed and uploaded)
     nlohmann::json actions = nlohmann::json::array();  // per replay action (viewer.cpp, "Statistics")
     std::vector<std::string> messages;      // errors shown in the UI
 };
