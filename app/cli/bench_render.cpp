@@ -4,6 +4,7 @@
 // editor.stamp_to_frame_p95_ms: a replayed paint stroke of 40 stamps across the meadow (rock, 1.5 m brush,
 // a stamp every 0.5 m), each timed from the edit to the end of the first frame showing its instances
 // (viewer.cpp); the target is DESIGN.md's "brush stamp -> frame showing it, llvmpipe: p95 <= 50 ms".
+// editor.stamp_upload_tiles_p50: tiles whose resident slots a live result of that stroke re-uploaded.
 #include <cstdio>
 #include <cstdlib>
 
@@ -61,6 +62,11 @@ bool benchRender(const BenchContext& ctx, std::vector<BenchRow>* rows, std::stri
                      std::to_string(edit.stamp_to_frame_ms.size()) + " stamps, p50 " +
                          std::to_string(editor::percentile(edit.stamp_to_frame_ms, 0.5)).substr(0, 5) +
                          " ms, frame median " + std::to_string(edit.frame_ms).substr(0, 5) + " ms"});
+    // Per-tile residency: an incremental live result re-uploads only the tiles it changed.
+    rows->push_back({"editor.stamp_upload_tiles_p50", editor::percentile(edit.upload_tiles, 0.5), "tiles", "",
+                     std::nullopt,
+                     "tiles re-uploaded per incremental live result during the stroke, of " +
+                         std::to_string(edit.tiles_resident) + " resident"});
     return true;
 }
 

@@ -59,6 +59,7 @@ void drawMainMenu(const MenuView& view, UiRequests* requests, ToolState* tools, 
         ImGui::MenuItem("Tools", nullptr, &windows->tools);
         ImGui::MenuItem("Inspector", nullptr, &windows->inspector);
         ImGui::MenuItem("Ghost Tile", nullptr, &windows->ghost_tile);
+        ImGui::MenuItem("Render", nullptr, &windows->render);
         ImGui::MenuItem("Skeleton overlays", nullptr, &tools->show_markers);
         ImGui::EndMenu();
     }

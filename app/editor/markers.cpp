@@ -1,6 +1,9 @@
 #include "editor/markers.h"
 
+#include <algorithm>
 #include <cmath>
+
+#include "instancer/tile_coord.h"
 
 namespace ug::editor {
 
@@ -21,15 +24,101 @@ void addCircle(glm::vec3 c, glm::vec3 n, float r, glm::vec3 color, MarkerGeometr
     }
 }
 
+// A unit basis (a, b) of the plane orthogonal to n.
+void planeBasis(glm::vec3 n, glm::vec3* a, glm::vec3* b) {
+    *a = glm::normalize(std::abs(n.z) < 0.9f ? glm::cross(n, glm::vec3(0, 0, 1)) : glm::cross(n, glm::vec3(1, 0, 0)));
+    *b = glm::cross(n, *a);
+}
+
+void addTriangle(glm::vec3 p, glm::vec3 q, glm::vec3 r, glm::vec3 color, std::vector<MarkerVertex>* out) {
+    out->push_back({p, color});
+    out->push_back({q, color});
+    out->push_back({r, color});
+}
+
+// Hulls are coarse on purpose: a translucent shell reads as a volume with a few hundred triangles, and
+// a scene may hold dozens of primitives (every paint stamp is one).
+constexpr int kHullSlices = 16;
+constexpr int kHullStacks = 8;
+
+void addSphereHull(glm::vec3 c, float r, glm::vec3 color, std::vector<MarkerVertex>* out) {
+    auto at = [&](int i, int k) {
+        const float theta = 3.14159265f * float(k) / kHullStacks, phi = 6.2831853f * float(i) / kHullSlices;
+        return c + r * glm::vec3(std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta));
+    };
+    for (int k = 0; k < kHullStacks; ++k)
+        for (int i = 0; i < kHullSlices; ++i) {
+            if (k > 0) addTriangle(at(i, k), at(i + 1, k), at(i, k + 1), color, out);
+            if (k + 1 < kHullStacks) addTriangle(at(i + 1, k), at(i + 1, k + 1), at(i, k + 1), color, out);
+        }
+}
+
+// The side of a truncated cone from (a, ra) to (b, rb); with spheres at both ends: the segment's support.
+void addConeSide(glm::vec3 a, float ra, glm::vec3 b, float rb, glm::vec3 color, std::vector<MarkerVertex>* out) {
+    const glm::vec3 axis = b - a;
+    if (glm::length(axis) < 1e-6f) return;
+    glm::vec3 u, v;
+    planeBasis(glm::normalize(axis), &u, &v);
+    for (int i = 0; i < kHullSlices; ++i) {
+        const float t0 = 6.2831853f * float(i) / kHullSlices, t1 = 6.2831853f * float(i + 1) / kHullSlices;
+        const glm::vec3 d0 = std::cos(t0) * u + std::sin(t0) * v, d1 = std::cos(t1) * u + std::sin(t1) * v;
+        addTriangle(a + ra * d0, a + ra * d1, b + rb * d0, color, out);
+        addTriangle(a + ra * d1, b + rb * d1, b + rb * d0, color, out);
+    }
+}
+
+void addDiscHull(glm::vec3 c, glm::vec3 n, float r, glm::vec3 color, std::vector<MarkerVertex>* out) {
+    glm::vec3 u, v;
+    planeBasis(glm::normalize(n), &u, &v);
+    for (int i = 0; i < 2 * kHullSlices; ++i) {
+        const float t0 = 3.14159265f * float(i) / kHullSlices, t1 = 3.14159265f * float(i + 1) / kHullSlices;
+        addTriangle(c, c + r * (std::cos(t0) * u + std::sin(t0) * v), c + r * (std::cos(t1) * u + std::sin(t1) * v),
+                    color, out);
+    }
+}
+
+void addBoxHull(glm::vec3 lo, glm::vec3 hi, glm::vec3 color, std::vector<MarkerVertex>* out) {
+    for (int axis = 0; axis < 3; ++axis)
+        for (int side = 0; side < 2; ++side) {
+            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            glm::vec3 q[4];
+            for (int k = 0; k < 4; ++k) {
+                q[k][axis] = side ? hi[axis] : lo[axis];
+                q[k][u] = (k == 1 || k == 2) ? hi[u] : lo[u];
+                q[k][v] = (k >= 2) ? hi[v] : lo[v];
+            }
+            addTriangle(q[0], q[1], q[2], color, out);
+            addTriangle(q[0], q[2], q[3], color, out);
+        }
+}
+
+void addBoxEdges(glm::vec3 lo, glm::vec3 hi, glm::vec3 color, MarkerGeometry* out) {
+    for (int axis = 0; axis < 3; ++axis)
+        for (int k = 0; k < 4; ++k) {
+            glm::vec3 a = lo, b = lo;
+            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
+            a[u] = b[u] = (k & 1) ? hi[u] : lo[u];
+            a[v] = b[v] = (k & 2) ? hi[v] : lo[v];
+            b[axis] = hi[axis];
+            out->lines.push_back({a, color});
+            out->lines.push_back({b, color});
+        }
+}
+
+glm::vec3 typeDisplayColor(const std::vector<DetailLodMesh>& meshes, size_t type) {
+    const glm::vec3 base = type < meshes.size() ? meshes[type].color : glm::vec3(0.6f);
+    // Mesh colours are dark linear values; lighten them so the lines read against the ground.
+    return glm::mix(glm::sqrt(glm::clamp(base, 0.0f, 1.0f)), glm::vec3(1.0f), 0.35f);
+}
+
+glm::vec3 rotate(const glm::quat& q, glm::vec3 v) { return q * v; }
+
 }  // namespace
 
 void addPrimitiveMarkers(const Document& doc, const std::vector<DetailLodMesh>& meshes, uint64_t selected,
                          MarkerGeometry* out) {
     for (size_t type = 0; type < doc.project().detail_types.size(); ++type) {
-        const glm::vec3 base = type < meshes.size() ? meshes[type].color : glm::vec3(0.6f);
-        // Mesh colours are dark linear values; lighten them so the lines read against the ground.
-        const glm::vec3 type_color =
-            glm::mix(glm::sqrt(glm::clamp(base, 0.0f, 1.0f)), glm::vec3(1.0f), 0.35f);
+        const glm::vec3 type_color = typeDisplayColor(meshes, type);
         for (uint64_t id : doc.primitiveIds(type)) {
             Primitive p;
             if (!doc.findPrimitive(id, nullptr, &p)) continue;
@@ -51,21 +140,10 @@ void addPrimitiveMarkers(const Document& doc, const std::vector<DetailLodMesh>& 
                     out->points.push_back({p.center_m, color});
                     addCircle(p.center_m, p.normal, std::max(p.disc_radius_m, 0.02f), color, out);
                     break;
-                case PrimitiveKind::Box: {
-                    const glm::vec3 lo = p.center_m - p.half_extents_m, hi = p.center_m + p.half_extents_m;
-                    for (int axis = 0; axis < 3; ++axis)
-                        for (int k = 0; k < 4; ++k) {
-                            glm::vec3 a = lo, b = lo;
-                            const int u = (axis + 1) % 3, v = (axis + 2) % 3;
-                            a[u] = b[u] = (k & 1) ? hi[u] : lo[u];
-                            a[v] = b[v] = (k & 2) ? hi[v] : lo[v];
-                            b[axis] = hi[axis];
-                            out->lines.push_back({a, color});
-                            out->lines.push_back({b, color});
-                        }
+                case PrimitiveKind::Box:
+                    addBoxEdges(p.center_m - p.half_extents_m, p.center_m + p.half_extents_m, color, out);
                     out->points.push_back({p.center_m, color});
                     break;
-                }
                 case PrimitiveKind::HalfSpace:
                     out->points.push_back({p.center_m, color});
                     out->lines.push_back({p.center_m, color});
@@ -74,6 +152,121 @@ void addPrimitiveMarkers(const Document& doc, const std::vector<DetailLodMesh>& 
                 case PrimitiveKind::TerrainLayer:
                 case PrimitiveKind::TerrainSolid:
                     break;
+            }
+        }
+    }
+}
+
+void addPrimitiveHulls(const Document& doc, const std::vector<DetailLodMesh>& meshes, uint64_t selected,
+                       MarkerGeometry* out) {
+    for (size_t type = 0; type < doc.project().detail_types.size(); ++type) {
+        const glm::vec3 type_color = typeDisplayColor(meshes, type);
+        for (uint64_t id : doc.primitiveIds(type)) {
+            Primitive p;
+            if (!doc.findPrimitive(id, nullptr, &p)) continue;
+            const glm::vec3 color = id == selected    ? kSelectedColor
+                                    : p.weight < 0.0f ? glm::vec3(0.9f, 0.3f, 0.3f)
+                                                      : type_color;
+            switch (p.kind) {
+                case PrimitiveKind::Point:
+                    addSphereHull(p.center_m, p.radius_m, color, &out->hull);
+                    break;
+                case PrimitiveKind::Segment:
+                    addSphereHull(p.center_m, p.radius_m, color, &out->hull);
+                    addSphereHull(p.end_m, p.end_radius_m, color, &out->hull);
+                    addConeSide(p.center_m, p.radius_m, p.end_m, p.end_radius_m, color, &out->hull);
+                    break;
+                case PrimitiveKind::Disc:
+                    // note: the support is a flattened torus; its footprint in the disc's plane reads enough.
+                    addDiscHull(p.center_m, p.normal, p.disc_radius_m + p.radius_m, color, &out->hull);
+                    break;
+                case PrimitiveKind::Box:
+                    // note: the support is the box rounded by R; the box grown by R bounds it.
+                    addBoxHull(p.center_m - p.half_extents_m - p.radius_m, p.center_m + p.half_extents_m + p.radius_m,
+                               color, &out->hull);
+                    break;
+                case PrimitiveKind::HalfSpace:
+                case PrimitiveKind::TerrainLayer:
+                case PrimitiveKind::TerrainSolid:
+                    break;  // unbounded or following the terrain: no hull
+            }
+        }
+    }
+}
+
+void nearestTiles(const ResidentTiles& tiles, glm::vec3 target, float radius_m, size_t cap, std::vector<uint32_t>* out) {
+    out->clear();
+    const float s = tiles.tile_size_m;
+    std::vector<std::pair<float, uint32_t>> near;
+    for (size_t t = 0; t < tiles.tileCount(); ++t) {
+        const float d = glm::length(tileOrigin(tiles.tile_coord[t], s) + 0.5f * s - target);
+        if (d <= radius_m) near.push_back({d, uint32_t(t)});
+    }
+    const size_t n = std::min(cap, near.size());
+    std::partial_sort(near.begin(), near.begin() + long(n), near.end());
+    for (size_t i = 0; i < n; ++i) out->push_back(near[i].second);
+}
+
+void addTileOverlay(const ResidentTiles& tiles, glm::vec3 target, float radius_m, MarkerGeometry* out) {
+    std::vector<uint32_t> near;
+    nearestTiles(tiles, target, radius_m, kOverlayTileCap, &near);
+    const float s = tiles.tile_size_m;
+    for (uint32_t t : near) {
+        const glm::vec3 lo = tileOrigin(tiles.tile_coord[t], s);
+        addBoxEdges(lo, lo + s, glm::vec3(0.45f, 0.75f, 1.0f), out);
+    }
+}
+
+void addAnchorOverlay(const ResidentTiles& tiles, const CandidateSet& c, const std::vector<DetailLodMesh>& meshes,
+                      glm::vec3 target, float radius_m, MarkerGeometry* out) {
+    std::vector<uint32_t> near;
+    nearestTiles(tiles, target, radius_m, kOverlayAnchorTileCap, &near);
+    const float s = tiles.tile_size_m;
+    for (uint32_t t : near) {
+        const glm::vec3 origin = tileOrigin(tiles.tile_coord[t], s);
+        // Every candidate, dim: the Ghost Tile's full set at this tile.
+        for (uint32_t j = 0; j < c.size(); ++j)
+            out->dots.push_back({origin + c.position[j], 0.45f * typeDisplayColor(meshes, c.type[j])});
+        // The selected ones (the tile's instances), bright.
+        for (uint32_t type = 0; type < tiles.type_count; ++type) {
+            const TileSlot slot = tiles.slot[size_t(t) * tiles.type_count + type];
+            const uint32_t n = tiles.count[size_t(t) * tiles.type_count + type];
+            for (uint32_t i = 0; i < n; ++i) {
+                glm::ivec3 tile;
+                uint32_t j = 0;
+                unpackInstance(tiles.types[type].mirror[slot.offset + i], &tile, &j);
+                out->points.push_back({origin + c.position[j], typeDisplayColor(meshes, type)});
+            }
+        }
+    }
+}
+
+void addSphereOverlay(const ResidentTiles& tiles, const CandidateSet& c, const std::vector<DetailModel>& models,
+                      glm::vec3 target, float radius_m, MarkerGeometry* out) {
+    std::vector<uint32_t> near;
+    nearestTiles(tiles, target, radius_m, kOverlaySphereInstanceCap, &near);
+    const float s = tiles.tile_size_m;
+    size_t drawn = 0, spheres = 0;
+    const glm::vec3 color(1.0f, 0.55f, 0.85f);
+    for (uint32_t t : near) {
+        const glm::vec3 origin = tileOrigin(tiles.tile_coord[t], s);
+        for (uint32_t type = 0; type < tiles.type_count && type < models.size(); ++type) {
+            const TileSlot slot = tiles.slot[size_t(t) * tiles.type_count + type];
+            const uint32_t n = tiles.count[size_t(t) * tiles.type_count + type];
+            for (uint32_t i = 0; i < n; ++i) {
+                if (drawn++ >= kOverlaySphereInstanceCap) return;
+                if (spheres >= kOverlaySphereCap) return;
+                glm::ivec3 tile;
+                uint32_t j = 0;
+                unpackInstance(tiles.types[type].mirror[slot.offset + i], &tile, &j);
+                // The instance's frame, as the exporter and the vertex shader rebuild it.
+                for (const Sphere& sp : models[type].spheres) {
+                    const glm::vec3 centre = origin + c.position[j] + rotate(c.rotation[j], c.scale[j] * sp.center);
+                    const float r = c.scale[j] * sp.radius;
+                    // One horizontal circle per sphere: the set's footprint reads, and the cap stays cheap.
+                    addCircle(centre, glm::vec3(0, 0, 1), r, color, out);
+                    ++spheres;
+                }
             }
         }
     }

@@ -5,7 +5,12 @@
 //   segment  the segment, dots at its ends
 //   disc     the disc's rim in its own plane and a dot at the centre
 //   box      the box's 12 edges
+// and around each a translucent hull of its support (addPrimitiveHulls): a sphere of radius R for a point, a
+// capsule for a segment, a flat disc for a disc, the box for a box.
 // The selected primitive is drawn in kSelectedColor; the others in their detail type's colour, lightened.
+// Optional overlays near the view target (addTileOverlay, addAnchorOverlay, addSphereOverlay): outlines of
+// non-empty tiles, the Ghost Tile candidates' anchor points in them, and the instances' collision spheres;
+// each capped so a wide view stays cheap on llvmpipe.
 #pragma once
 
 #include <cstdint>
@@ -24,11 +29,15 @@ struct MarkerVertex {
 static_assert(sizeof(MarkerVertex) == 24);
 
 struct MarkerGeometry {
+    std::vector<MarkerVertex> hull;   // triangles, drawn translucent (depth-tested, no depth write)
     std::vector<MarkerVertex> lines;  // pairs
     std::vector<MarkerVertex> points;
+    std::vector<MarkerVertex> dots;   // small points (anchors)
     void clear() {
+        hull.clear();
         lines.clear();
         points.clear();
+        dots.clear();
     }
 };
 
@@ -38,6 +47,29 @@ constexpr glm::vec3 kBrushColor{0.95f, 0.95f, 0.95f};
 // Appends every user primitive's skeleton (terrain kinds have none and are skipped).
 void addPrimitiveMarkers(const Document& doc, const std::vector<DetailLodMesh>& meshes, uint64_t selected,
                          MarkerGeometry* out);
+// Appends every user primitive's hull (triangles).
+void addPrimitiveHulls(const Document& doc, const std::vector<DetailLodMesh>& meshes, uint64_t selected,
+                       MarkerGeometry* out);
+
+// Overlay caps: beyond them the tiles nearest the target win.
+constexpr size_t kOverlayTileCap = 400;         // tile outlines (12 edges each)
+constexpr size_t kOverlayAnchorTileCap = 64;    // tiles whose candidates' anchors are drawn
+constexpr size_t kOverlaySphereInstanceCap = 300;  // instances whose sphere sets are drawn
+constexpr size_t kOverlaySphereCap = 1500;         // spheres (one circle of 32 lines each)
+
+// The resident tiles within `radius_m` of `target` (tile centres), nearest first, at most `cap`.
+void nearestTiles(const ResidentTiles& tiles, glm::vec3 target, float radius_m, size_t cap,
+                  std::vector<uint32_t>* out);
+// Outlines (the cell's 12 edges) of the non-empty tiles near `target`.
+void addTileOverlay(const ResidentTiles& tiles, glm::vec3 target, float radius_m, MarkerGeometry* out);
+// Every Ghost Tile candidate's anchor (its position in the tile, moved to the tile) of the tiles near the
+// target, in its type's colour; the selected instances' anchors brighter than the unselected candidates'.
+void addAnchorOverlay(const ResidentTiles& tiles, const CandidateSet& candidates,
+                      const std::vector<DetailLodMesh>& meshes, glm::vec3 target, float radius_m, MarkerGeometry* out);
+// The collision spheres of the instances near the target, each as its horizontal great circle.
+void addSphereOverlay(const ResidentTiles& tiles, const CandidateSet& candidates,
+                      const std::vector<DetailModel>& models, glm::vec3 target, float radius_m, MarkerGeometry* out);
+
 // A circle of radius r on the surface around `center` (draped over the terrain when there is one).
 void addBrushMarker(const Document& doc, glm::vec3 center, float radius_m, MarkerGeometry* out);
 

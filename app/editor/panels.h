@@ -47,6 +47,11 @@ struct StatisticsView {
     uint64_t tiles_visible = 0;
     uint64_t tiles_culled = 0;
     uint64_t changed_tiles = 0;      // in the latest live result
+    // Render residency (renderer.h RenderStats): the latest live result's upload, the frame's commands.
+    uint64_t tiles_uploaded = 0;
+    uint64_t bytes_uploaded = 0;
+    uint64_t tiles_resident = 0;
+    uint64_t indirect_commands = 0;
     double stamp_to_frame_ms = 0.0;  // the latest stamp's
     std::string gl_version;
     std::string renderer;
@@ -74,6 +79,17 @@ struct WindowToggles {
     bool tools = true;
     bool inspector = true;
     bool ghost_tile = false;
+    bool render = false;
+};
+
+// The Render panel's settings: LOD switch distances and what is drawn over the scene.
+struct RenderSettings {
+    LodSettings lod;
+    bool hulls = true;            // translucent hulls of the user primitives
+    bool tile_grid = false;       // outlines of the non-empty tiles near the view target
+    bool anchors = false;         // Ghost Tile candidates' anchors in the tiles near the target
+    bool sphere_sets = false;     // collision spheres of the instances near the target
+    float overlay_radius_m = 3.0f;  // "near the target"
 };
 
 // The main menu bar and the global shortcuts (Ctrl+S, Ctrl+Z, Ctrl+Shift+Z, Ctrl+Q, F12, Delete, Ctrl+D,
@@ -109,6 +125,9 @@ struct GhostTilePanelState {
 // Revert; statistics of the document's tile; the selected type's collision spheres in three orthographic
 // views (ImGui draw list).
 void drawGhostTilePanel(const Document* doc, GhostTilePanelState* state, bool* open);
+
+// LOD thresholds (pixels), overlay toggles and the renderer's numbers (from the Statistics view).
+void drawRenderPanel(const StatisticsView& stats, RenderSettings* settings, bool* open);
 
 // Modal dialogs. Each returns its answer once (then closes), else Pending.
 enum class DialogAnswer { Pending, Yes, No, Cancel };

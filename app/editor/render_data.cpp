@@ -83,43 +83,195 @@ DetailLodMesh buildDetailLods(const DetailModel& model, float scale_max) {
     return out;
 }
 
-bool buildRenderInstances(const InstanceStore& store, const CandidateSet& candidates, float tile_size_m,
-                          RenderInstances* out, std::string* error) {
-    RenderInstances r;
-    r.type_count = candidates.typeCount();
-    r.tile_size_m = tile_size_m;
-    r.instances_per_type.assign(r.type_count, 0);
+uint64_t ResidentTiles::instanceCount() const {
+    uint64_t n = 0;
+    for (uint64_t c : instances_per_type) n += c;
+    return n;
+}
+
+void TileUploads::clear() {
+    for (Type& t : types) {
+        t.whole = false;
+        t.ranges.clear();
+    }
+    tiles.clear();
+    full = false;
+    tiles_uploaded = bytes_uploaded = 0;
+}
+
+namespace {
+
+bool checkTile(const glm::ivec3& coord, std::string* error) {
+    if (std::abs(coord.x) <= kPackedTileLimit && std::abs(coord.y) <= kPackedTileLimit &&
+        std::abs(coord.z) <= kPackedTileLimit)
+        return true;
+    *error = "tile (" + std::to_string(coord.x) + ", " + std::to_string(coord.y) + ", " + std::to_string(coord.z) +
+             ") is beyond the renderer's packed range of ±" + std::to_string(kPackedTileLimit) + " tiles";
+    return false;
+}
+
+// Splits a tile's ascending candidate ids by type: counts[type] (ids of a type are contiguous).
+void countByType(const std::vector<uint32_t>& ids, const CandidateSet& c, std::vector<uint32_t>* counts) {
+    counts->assign(c.typeCount(), 0);
+    size_t k = 0;
+    for (uint32_t type = 0; type < c.typeCount(); ++type) {
+        const size_t begin = k;
+        while (k < ids.size() && ids[k] < c.type_begin[type + 1]) ++k;
+        (*counts)[type] = uint32_t(k - begin);
+    }
+}
+
+// Writes tile `t`'s instances of every type into its slots (allocating or moving them as needed) and
+// records the uploads.
+void writeTile(ResidentTiles* r, uint32_t t, const std::vector<uint32_t>& ids, const std::vector<uint32_t>& counts,
+               SlotFit fit, TileUploads* uploads) {
+    const uint32_t types = r->type_count;
+    const glm::ivec3 coord = r->tile_coord[t];
+    size_t k = 0;
+    for (uint32_t type = 0; type < types; ++type) {
+        ResidentTiles::Type& arena = r->types[type];
+        TileSlot& slot = r->slot[size_t(t) * types + type];
+        uint32_t& count = r->count[size_t(t) * types + type];
+        const uint32_t n = counts[type];
+        r->instances_per_type[type] -= count;
+        r->instances_per_type[type] += n;
+        count = n;
+        if (n == 0) {
+            arena.slots.release(slot);
+            slot = TileSlot{};
+            continue;  // the tile's type range is gone; nothing to upload (no command points at it)
+        }
+        if (n > slot.capacity) {
+            arena.slots.release(slot);
+            slot = arena.slots.allocate(n, fit);
+            if (arena.slots.capacity() > arena.mirror.size()) {
+                arena.mirror.resize(arena.slots.capacity());
+                uploads->types[type].whole = true;
+            }
+        }
+        for (uint32_t i = 0; i < n; ++i) arena.mirror[slot.offset + i] = packInstance(coord, ids[k + i]);
+        k += n;
+        if (!uploads->types[type].whole) uploads->types[type].ranges.push_back({slot.offset, n});
+    }
+}
+
+void finishUploads(const ResidentTiles& r, TileUploads* uploads) {
+    uploads->tiles_uploaded = uploads->tiles.size();
+    uint64_t bytes = 0;
+    for (uint32_t type = 0; type < r.type_count; ++type) {
+        const TileUploads::Type& u = uploads->types[type];
+        if (u.whole) {
+            bytes += uint64_t(r.types[type].mirror.size()) * sizeof(PackedInstance);
+            continue;
+        }
+        for (const TileUploads::Range& range : u.ranges) bytes += uint64_t(range.count) * sizeof(PackedInstance);
+    }
+    uploads->bytes_uploaded = bytes;
+}
+
+void removeTile(ResidentTiles* r, uint32_t t) {
+    const uint32_t types = r->type_count;
+    for (uint32_t type = 0; type < types; ++type) {
+        r->types[type].slots.release(r->slot[size_t(t) * types + type]);
+        r->instances_per_type[type] -= r->count[size_t(t) * types + type];
+    }
+    // Swap-and-pop: the last tile takes t's place (its slots do not move, only its index).
+    const uint32_t last = uint32_t(r->tile_key.size() - 1);
+    r->tile_index.erase(r->tile_key[t]);
+    if (t != last) {
+        r->tile_key[t] = r->tile_key[last];
+        r->tile_coord[t] = r->tile_coord[last];
+        std::copy_n(r->slot.begin() + long(size_t(last) * types), types, r->slot.begin() + long(size_t(t) * types));
+        std::copy_n(r->count.begin() + long(size_t(last) * types), types, r->count.begin() + long(size_t(t) * types));
+        r->tile_index[r->tile_key[t]] = t;
+    }
+    r->tile_key.pop_back();
+    r->tile_coord.pop_back();
+    r->slot.resize(r->slot.size() - types);
+    r->count.resize(r->count.size() - types);
+}
+
+uint32_t addTile(ResidentTiles* r, uint64_t key, const glm::ivec3& coord) {
+    const uint32_t t = uint32_t(r->tile_key.size());
+    r->tile_key.push_back(key);
+    r->tile_coord.push_back(coord);
+    r->slot.resize(r->slot.size() + r->type_count);
+    r->count.resize(r->count.size() + r->type_count, 0);
+    r->tile_index[key] = t;
+    return t;
+}
+
+void startUploads(uint32_t type_count, TileUploads* uploads) {
+    uploads->clear();
+    uploads->types.resize(type_count);
+}
+
+}  // namespace
+
+bool rebuildResidentTiles(const InstanceStore& store, const CandidateSet& candidates, float tile_size_m,
+                          ResidentTiles* out, TileUploads* uploads, std::string* error) {
     if (candidates.size() > kPackedCandidateLimit) {
         *error = "the Ghost Tile has " + std::to_string(candidates.size()) + " candidates; the renderer packs at most " +
                  std::to_string(kPackedCandidateLimit);
         return false;
     }
-    r.instances.reserve(store.instanceCount());
+    for (size_t t = 0; t < store.tileCount(); ++t)
+        if (!checkTile(unpackTile(store.tileKey(t)), error)) return false;
+    ResidentTiles r;
+    r.type_count = candidates.typeCount();
+    r.tile_size_m = tile_size_m;
+    r.types.resize(r.type_count);
+    r.instances_per_type.assign(r.type_count, 0);
+    r.tile_key.reserve(store.tileCount());
     r.tile_coord.reserve(store.tileCount());
-    r.tile_type_begin.reserve(store.tileCount() * (r.type_count + 1));
-    std::vector<uint32_t> ids;
-    for (size_t t = 0; t < store.tileCount(); ++t) {
-        const glm::ivec3 coord = unpackTile(store.tileKey(t));
-        if (std::abs(coord.x) > kPackedTileLimit || std::abs(coord.y) > kPackedTileLimit ||
-            std::abs(coord.z) > kPackedTileLimit) {
-            *error = "tile (" + std::to_string(coord.x) + ", " + std::to_string(coord.y) + ", " + std::to_string(coord.z) +
-                     ") is beyond the renderer's packed range of ±" + std::to_string(kPackedTileLimit) + " tiles";
-            return false;
-        }
-        store.tileIds(t, &ids);
-        r.tile_coord.push_back(coord);
-        size_t k = 0;
-        for (uint32_t type = 0; type < r.type_count; ++type) {
-            r.tile_type_begin.push_back(uint32_t(r.instances.size()));
-            const uint32_t end = candidates.type_begin[type + 1];
-            for (; k < ids.size() && ids[k] < end; ++k) {
-                r.instances.push_back(packInstance(coord, ids[k]));
-                ++r.instances_per_type[type];
-            }
-        }
-        r.tile_type_begin.push_back(uint32_t(r.instances.size()));
+    r.tile_index.reserve(store.tileCount());
+    startUploads(r.type_count, uploads);
+    std::vector<uint32_t> ids, counts;
+    for (size_t i = 0; i < store.tileCount(); ++i) {
+        const uint64_t key = store.tileKey(i);
+        store.tileIds(i, &ids);
+        countByType(ids, candidates, &counts);
+        const uint32_t t = addTile(&r, key, unpackTile(key));
+        writeTile(&r, t, ids, counts, SlotFit::Exact, uploads);
+        uploads->tiles.push_back(r.tile_coord[t]);
     }
+    // Everything is new: each type's array goes up whole.
+    for (TileUploads::Type& u : uploads->types) {
+        u.whole = true;
+        u.ranges.clear();
+    }
+    uploads->full = true;
     *out = std::move(r);
+    finishUploads(*out, uploads);
+    return true;
+}
+
+bool updateResidentTiles(const InstanceStore& store, const CandidateSet& candidates,
+                         const std::vector<uint64_t>& changed_keys, ResidentTiles* r, TileUploads* uploads,
+                         std::string* error) {
+    assert(r->type_count == candidates.typeCount());
+    startUploads(r->type_count, uploads);
+    std::vector<uint32_t> ids, counts;
+    for (const uint64_t key : changed_keys) {
+        const glm::ivec3 coord = unpackTile(key);
+        const int64_t in_store = store.findTile(key);
+        const auto it = r->tile_index.find(key);
+        if (in_store < 0) {
+            if (it == r->tile_index.end()) continue;  // appeared and vanished again between two polls
+            removeTile(r, it->second);
+            uploads->tiles.push_back(coord);
+            continue;
+        }
+        if (!checkTile(coord, error)) return false;
+        store.tileIds(size_t(in_store), &ids);
+        countByType(ids, candidates, &counts);
+        const uint32_t t = it != r->tile_index.end() ? it->second : addTile(r, key, coord);
+        writeTile(r, t, ids, counts, SlotFit::Rounded, uploads);
+        uploads->tiles.push_back(coord);
+    }
+    for (TileUploads::Type& u : uploads->types)
+        if (u.whole) u.ranges.clear();
+    finishUploads(*r, uploads);
     return true;
 }
 
@@ -145,11 +297,13 @@ bool boxOutside(const std::array<glm::vec4, 6>& planes, const glm::vec3& lo, con
 
 }  // namespace
 
-void bucketInstances(const RenderInstances& in, const std::vector<DetailLodMesh>& meshes, const ViewParams& view,
-                     const LodSettings& lod, DrawBuckets* out) {
+void buildIndirectDraws(const ResidentTiles& in, const std::vector<DetailLodMesh>& meshes, const ViewParams& view,
+                        const LodSettings& lod, IndirectDraws* out) {
     const uint32_t types = in.type_count;
     assert(meshes.size() == types);
-    out->types.resize(types);
+    out->elements.clear();
+    out->points.clear();
+    out->groups.assign(types, {});
     out->tiles_visible = 0;
     out->tiles_culled = 0;
     const auto planes = frustumPlanes(view.view_proj);
@@ -161,9 +315,10 @@ void bucketInstances(const RenderInstances& in, const std::vector<DetailLodMesh>
     }
     const float s = in.tile_size_m;
     const float half_diagonal = 0.5f * std::sqrt(3.0f) * s;
+    const size_t tile_count = in.tileCount();
     // Pass 1: cull each cell once and keep its distance (negative: culled).
-    out->tile_distance.resize(in.tile_coord.size());
-    for (size_t t = 0; t < in.tile_coord.size(); ++t) {
+    out->tile_distance.resize(tile_count);
+    for (size_t t = 0; t < tile_count; ++t) {
         const glm::vec3 lo = tileOrigin(in.tile_coord[t], s);
         if (boxOutside(planes, lo - reach, lo + s + reach)) {
             out->tile_distance[t] = -1.0f;
@@ -173,27 +328,44 @@ void bucketInstances(const RenderInstances& in, const std::vector<DetailLodMesh>
         ++out->tiles_visible;
         out->tile_distance[t] = std::max(glm::length(lo + 0.5f * s - view.eye) - half_diagonal, 1e-3f);
     }
-    // Pass 2, per type: one LOD per visible cell, its instances appended to that LOD's list.
+    // Pass 2, per type: one LOD per visible cell, a command for the cell's slot in that LOD's group. A
+    // command that starts where the group's previous one ends extends it instead (adjacent slots).
     for (uint32_t i = 0; i < types; ++i) {
         for (auto& v : out->scratch) v.clear();
-        for (size_t t = 0; t < in.tile_coord.size(); ++t) {
+        const size_t points_first = out->points.size();
+        for (size_t t = 0; t < tile_count; ++t) {
             const float distance = out->tile_distance[t];
             if (distance < 0.0f) continue;
-            const uint32_t b = in.tile_type_begin[t * (types + 1) + i];
-            const uint32_t e = in.tile_type_begin[t * (types + 1) + i + 1];
-            if (b == e) continue;
+            const uint32_t n = in.count[t * types + i];
+            if (n == 0) continue;
+            const uint32_t offset = in.slot[t * types + i].offset;
             const float px = diameter_px_at_1m[i] / distance;
             const int level = px >= lod.lod1_px ? 0 : px >= lod.lod2_px ? 1 : px >= lod.impostor_px ? 2 : kImpostorLod;
+            out->groups[i][size_t(level)].instances += n;
+            if (level == kImpostorLod) {
+                if (out->points.size() > points_first && out->points.back().first + out->points.back().count == offset)
+                    out->points.back().count += n;
+                else
+                    out->points.push_back({n, 1, offset, 0});
+                continue;
+            }
             auto& dst = out->scratch[size_t(level)];
-            dst.insert(dst.end(), in.instances.begin() + b, in.instances.begin() + e);
+            if (!dst.empty() && dst.back().base_instance + dst.back().instance_count == offset) {
+                dst.back().instance_count += n;
+                continue;
+            }
+            const DetailLodMesh& m = meshes[i];
+            dst.push_back({m.index_count[size_t(level)], n, m.index_first[size_t(level)], 0, offset});
         }
-        DrawBuckets::Type& type = out->types[i];
-        type.instances.clear();
-        for (int level = 0; level < kLodCount; ++level) {
-            type.lod_first[size_t(level)] = uint32_t(type.instances.size());
-            type.lod_count[size_t(level)] = uint32_t(out->scratch[size_t(level)].size());
-            type.instances.insert(type.instances.end(), out->scratch[size_t(level)].begin(), out->scratch[size_t(level)].end());
+        for (int level = 0; level < kMeshLodCount; ++level) {
+            IndirectDraws::Group& g = out->groups[i][size_t(level)];
+            g.first = uint32_t(out->elements.size());
+            g.count = uint32_t(out->scratch[size_t(level)].size());
+            out->elements.insert(out->elements.end(), out->scratch[size_t(level)].begin(), out->scratch[size_t(level)].end());
         }
+        IndirectDraws::Group& g = out->groups[i][kImpostorLod];
+        g.first = uint32_t(points_first);
+        g.count = uint32_t(out->points.size() - points_first);
     }
 }
 

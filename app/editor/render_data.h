@@ -1,6 +1,8 @@
-// What the renderer draws, prepared on the CPU and free of GL: detail meshes with their levels of detail,
-// the instances packed for the GPU and grouped by Ghost Tile cell, and per frame the visible instances
-// bucketed by detail type and LOD (frustum culling and LOD choice per tile).
+// What the renderer draws, prepared on the CPU and free of GL: detail meshes with their levels of detail;
+// the instances resident per tile (each (tile, detail type) owns a slot of the type's instance buffer, so a
+// live result re-packs and re-uploads only the tiles it changed); and per view the indirect draw commands
+// (frustum culling and LOD choice per tile, one command per visible tile and type, grouped by type and LOD
+// for one multi-draw each).
 //
 // GPU instance format (8 bytes, DESIGN.md "Rendering"): an instance is (tile t, candidate j), packed as
 //   x = uint16(t.x) | uint16(t.y) << 16,   y = uint16(t.z) | j << 16
@@ -13,10 +15,12 @@
 #include <array>
 #include <cstdint>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <glm/glm.hpp>
 
+#include "editor/tile_slots.h"
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instance_store.h"
 #include "mesh/detail_model.h"
@@ -67,21 +71,57 @@ struct DetailLodMesh {
 // fails, a mesh that cannot shrink keeps its previous level.
 DetailLodMesh buildDetailLods(const DetailModel& model, float scale_max);
 
-// The instances grouped by Ghost Tile cell, and inside a cell by detail type (candidate ids of a type are
-// contiguous in the Ghost Tile, so the store's ascending ids already are grouped).
-struct RenderInstances {
+// The instances as they live on the GPU: per detail type one instance array (the CPU mirror of the
+// type's GPU buffer) in which every resident tile owns a slot (tile_slots.h). A live result rewrites only
+// the slots of the tiles it changed and records them as uploads; nothing else moves. Tiles are resident
+// when they hold instances; a tile that empties gives its slots back.
+struct ResidentTiles {
+    struct Type {
+        TileSlotAllocator slots;
+        std::vector<PackedInstance> mirror;  // allocator.capacity() elements; slot ranges hold instances
+    };
     uint32_t type_count = 0;
     float tile_size_m = 0.5f;
-    std::vector<glm::ivec3> tile_coord;           // per cell
-    std::vector<uint32_t> tile_type_begin;        // per cell, type_count + 1 offsets into `instances`
-    std::vector<PackedInstance> instances;
+    std::vector<uint64_t> tile_key;     // per resident tile (packed, tile_coord.h)
+    std::vector<glm::ivec3> tile_coord;
+    std::vector<TileSlot> slot;         // per tile x type (tile * type_count + type)
+    std::vector<uint32_t> count;        // per tile x type: instances in the slot
+    std::unordered_map<uint64_t, uint32_t> tile_index;  // key -> resident tile
+    std::vector<Type> types;
     std::vector<uint64_t> instances_per_type;
-    uint64_t instanceCount() const { return instances.size(); }
+    uint64_t instanceCount() const;
+    size_t tileCount() const { return tile_key.size(); }
 };
 
-// Fails (with the reason) when a tile or a candidate id does not fit the packed format.
-bool buildRenderInstances(const InstanceStore& store, const CandidateSet& candidates, float tile_size_m,
-                          RenderInstances* out, std::string* error);
+// What an update changed, for the renderer to upload: per type the slot ranges written (in instances),
+// or the whole mirror when the type's array was reallocated.
+struct TileUploads {
+    struct Range {
+        uint32_t offset = 0, count = 0;
+    };
+    struct Type {
+        bool whole = false;  // upload mirror[0, capacity) (the array grew or was rebuilt)
+        std::vector<Range> ranges;
+    };
+    std::vector<Type> types;
+    std::vector<glm::ivec3> tiles;  // the tiles whose slots were written or released
+    bool full = false;
+    uint64_t tiles_uploaded = 0;    // tiles.size()
+    uint64_t bytes_uploaded = 0;    // bytes the renderer will send (whole arrays counted whole)
+    void clear();
+};
+
+// Fails (with the reason) when a tile or a candidate id does not fit the packed format. Leaves *out as it
+// was on failure. Rebuilds everything: tiles in key order, packed tightly (SlotFit::Exact).
+bool rebuildResidentTiles(const InstanceStore& store, const CandidateSet& candidates, float tile_size_m,
+                          ResidentTiles* out, TileUploads* uploads, std::string* error);
+// Re-packs only the tiles in `changed_keys` (packed tile keys, any order) from `store`: a tile whose
+// instances fit its slots is rewritten in place, one that outgrew a slot moves to a new one
+// (SlotFit::Rounded), one the store no longer holds is dropped. `out` must have been rebuilt from the
+// same candidates. On failure (a tile out of the packed range) *out may be partly updated; rebuild it.
+bool updateResidentTiles(const InstanceStore& store, const CandidateSet& candidates,
+                         const std::vector<uint64_t>& changed_keys, ResidentTiles* out, TileUploads* uploads,
+                         std::string* error);
 
 // Where LODs switch: by the size an object of the type covers on screen, in pixels (the bounding
 // diameter at its largest scale). Below `impostor_px` a type is drawn as impostors.
@@ -97,24 +137,44 @@ struct ViewParams {
     float pixels_per_radian = 1.0f;  // viewport height / vertical field of view
 };
 
-// The visible instances of one frame: per type, the instances of LOD 0, 1, 2 and impostors, one after
-// the other (`lod_first`, `lod_count` index into `instances`). Vectors keep their capacity across frames.
-struct DrawBuckets {
-    struct Type {
-        std::vector<PackedInstance> instances;
-        std::array<uint32_t, kLodCount> lod_first{};
-        std::array<uint32_t, kLodCount> lod_count{};
+// The GL indirect command layouts (GL 4.3 "DrawElementsIndirectCommand", "DrawArraysIndirectCommand").
+struct DrawElementsIndirectCommand {
+    uint32_t count = 0;           // indices of the LOD
+    uint32_t instance_count = 0;  // instances of the tile (or run of tiles) at this LOD
+    uint32_t first_index = 0;     // the LOD's first index
+    int32_t base_vertex = 0;
+    uint32_t base_instance = 0;   // slot offset: where the tile's instances start in the type's buffer
+};
+struct DrawArraysIndirectCommand {
+    uint32_t count = 0;           // impostors: one point per instance
+    uint32_t instance_count = 1;
+    uint32_t first = 0;           // slot offset (the instance attribute advances per vertex here)
+    uint32_t base_instance = 0;
+};
+static_assert(sizeof(DrawElementsIndirectCommand) == 20 && sizeof(DrawArraysIndirectCommand) == 16);
+
+// One frame's indirect draws: a command per visible (tile, type) at the tile's LOD, grouped by (type, LOD)
+// so each group is one multi-draw. Commands of tiles whose slots are adjacent in the buffer merge into one
+// (a tight rebuild lays neighbouring tiles out in key order). Vectors keep their capacity across frames.
+struct IndirectDraws {
+    struct Group {
+        uint32_t first = 0;      // into `elements` (mesh LODs) or `points` (kImpostorLod)
+        uint32_t count = 0;      // commands
+        uint64_t instances = 0;  // instances the commands draw
     };
-    std::vector<Type> types;
-    std::array<std::vector<PackedInstance>, kLodCount> scratch;  // per-LOD staging, reused
-    std::vector<float> tile_distance;                            // per cell; < 0: culled
+    std::vector<DrawElementsIndirectCommand> elements;  // type 0 LOD 0..2, type 1 LOD 0..2, ...
+    std::vector<DrawArraysIndirectCommand> points;      // type 0, type 1, ...
+    std::vector<std::array<Group, kLodCount>> groups;   // per type
+    std::array<std::vector<DrawElementsIndirectCommand>, kMeshLodCount> scratch;  // per LOD, reused
+    std::vector<float> tile_distance;                   // per resident tile; < 0: culled
     uint64_t tiles_visible = 0;
     uint64_t tiles_culled = 0;
+    uint64_t commandCount() const { return elements.size() + points.size(); }
 };
 
 // Frustum culling per tile (the cell grown by the largest object's reach) and one LOD per tile and type
-// from the tile's distance to the eye.
-void bucketInstances(const RenderInstances& instances, const std::vector<DetailLodMesh>& meshes,
-                     const ViewParams& view, const LodSettings& lod, DrawBuckets* out);
+// from the tile's distance to the eye; then the commands.
+void buildIndirectDraws(const ResidentTiles& tiles, const std::vector<DetailLodMesh>& meshes,
+                        const ViewParams& view, const LodSettings& lod, IndirectDraws* out);
 
 }  // namespace ug::editor

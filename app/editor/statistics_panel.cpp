@@ -39,6 +39,8 @@ void drawStatisticsPanel(const StatisticsView& v, bool* open) {
                 (unsigned long long)v.lod_instances[1], (unsigned long long)v.lod_instances[2],
                 (unsigned long long)v.lod_instances[3]);
     ImGui::Text("tiles visible %llu, culled %llu", (unsigned long long)v.tiles_visible, (unsigned long long)v.tiles_culled);
+    ImGui::Text("indirect commands %llu; last upload %llu tiles, %.1f KiB", (unsigned long long)v.indirect_commands,
+                (unsigned long long)v.tiles_uploaded, double(v.bytes_uploaded) / 1024.0);
     ImGui::Separator();
     ImGui::TextWrapped("%s", v.renderer.c_str());
     ImGui::TextWrapped("OpenGL %s", v.gl_version.c_str());

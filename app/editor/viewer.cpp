@@ -2,12 +2,13 @@
 // instancing result) -> new UI frame -> navigation, tools, panels, dialogs -> replay step -> render ->
 // (screenshot) -> UI on top -> swap -> stamp timings, replay bookkeeping, autosave.
 //
-// Live results reach the GPU by re-packing: the renderer's instance buffers hold the *visible* instances
-// bucketed by LOD (refilled whenever the view changes, render_data.h), so there is no per-tile range to
-// patch in them; a result rebuilds RenderInstances from the store (O(instances), about 1-2 ms for the
-// meadow's 49k) and the next frame re-buckets. The changed tiles are only counted (Statistics).
+// Live results reach the GPU per tile: the renderer's instance buffers are resident (render_data.h
+// ResidentTiles: every tile owns a slot per detail type), so a result re-packs from the store only the
+// tiles it changed (LiveResult::changed_tiles) and uploads only their slots; a full result (first open,
+// LiveResult::full) rebuilds them all. The next frame rebuilds the indirect commands (cull + LOD per tile).
 //
-// Statistics of a replay, per action (ViewerResult::actions): "action", "frame" (when it started),
+// Statistics of a replay, per action (ViewerResult::actions): "uploads" ({"tiles", "bytes"} per live result
+// taken while the action ran), "uploaded_tiles" (every tile re-uploaded then, [x, y, z]), "tiles_resident", "action", "frame" (when it started),
 // "stamps", "instances_before"/"_after", "per_type_before"/"_after", "instance_store_hash_before"/"_after",
 // and for strokes "box" {min, max} (the added primitives' supports grown by twice the largest object reach,
 // so collisions at the rim count as inside), "inside_before"/"_after" and "outside_before"/"_after" per
@@ -26,6 +27,7 @@
 #include <ctime>
 #include <filesystem>
 #include <memory>
+#include <set>
 #include <thread>
 
 #include "core/atomic_file.h"
@@ -40,6 +42,7 @@
 #include "editor/render_data.h"
 #include "editor/tools.h"
 #include "instancer/instance_query.h"
+#include "instancer/tile_coord.h"
 
 namespace ug::editor {
 
@@ -73,7 +76,7 @@ bool writeScreenshot(const std::string& path, int width, int height, const std::
 // What "frame all" frames: the cells that hold instances once they are in (a scene's extent is often a
 // conservative bound much larger than what fills), else the terrain's surface when there is one, else
 // the extent.
-Bounds framingBounds(const EditorScene& s, const RenderInstances* instances) {
+Bounds framingBounds(const EditorScene& s, const ResidentTiles* instances) {
     if (instances && !instances->tile_coord.empty()) {
         const float size = instances->tile_size_m;
         Bounds b{glm::vec3(1e30f), glm::vec3(-1e30f)};
@@ -135,6 +138,8 @@ struct ReplayState {
     std::vector<glm::vec2> path;
     size_t step = 0;
     json record;
+    json uploads = json::array();           // per live result while the action ran
+    std::set<uint64_t> uploaded_tiles;      // packed keys
     std::shared_ptr<const InstanceStore> before;
     std::vector<double> stamp_ms;
     Bounds moved_from;  // move: the primitive's support before
@@ -183,7 +188,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
     // ---- the document: opened (or recovered) in the background ----
     std::unique_ptr<DocumentLoader> loader;
     std::unique_ptr<EditorScene> scene;
-    RenderInstances instances;
+    ResidentTiles instances;  // the tiles as the GPU holds them
+    TileUploads uploads;      // what the latest live result changed in them
     std::shared_ptr<const InstanceStore> store;  // the result on screen
     uint64_t shown_generation = 0;
     bool have_result = false;
@@ -193,6 +199,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         renderer.clearScene();
         scene.reset();
         store.reset();
+        instances = ResidentTiles{};
         have_result = false;
         shown_generation = 0;
         loader = std::make_unique<DocumentLoader>(LoadRequest{path, doc_options, recover});
@@ -224,6 +231,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
     BrushStroke stroke;
     MoveDrag move_drag;
     MarkerGeometry markers;
+    RenderSettings render_settings;
+    render_settings.lod = options.lod;
     StatisticsView view;
     view.scene = options.scene_path;
     view.gl_version = window.glVersion();
@@ -298,7 +307,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         renderer.setScene(doc.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr, &scene->meshes, c,
                           doc.ghostTile().settings.tile_size_m);
         // What is on screen indexes the old tile's candidates: nothing is shown until the new result.
-        instances = RenderInstances{};
+        instances = ResidentTiles{};
         store = std::make_shared<const InstanceStore>();
         reach_m = largestReach(doc);
     };
@@ -313,15 +322,33 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             if (!live.ok) messages.push_back(live.error);
             const auto t0 = Clock::now();
             std::string pack_error;
-            if (!buildRenderInstances(*live.store, doc.ghostTile().candidates,
-                                      doc.ghostTile().settings.tile_size_m, &instances, &pack_error)) {
+            const CandidateSet& candidates = doc.ghostTile().candidates;
+            const bool packed = (live.full || !have_result)
+                                    ? rebuildResidentTiles(*live.store, candidates,
+                                                           doc.ghostTile().settings.tile_size_m, &instances,
+                                                           &uploads, &pack_error)
+                                    : updateResidentTiles(*live.store, candidates, live.changed_tiles, &instances,
+                                                          &uploads, &pack_error);
+            if (!packed) {
                 if (scripted) {
                     *error = pack_error;
                     return false;
                 }
                 messages.push_back(pack_error);
             } else {
-                renderer.setInstances(&instances);
+                renderer.uploadTiles(&instances, uploads);
+                if (!uploads.full) {
+                    result->upload_tiles.push_back(double(uploads.tiles_uploaded));
+                    result->tile_update_ms_max =
+                        std::max(result->tile_update_ms_max,
+                                 std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
+                }
+                if (replay.started && !replay.finishing) {
+                    replay.uploads.push_back({{"tiles", uploads.tiles_uploaded},
+                                              {"bytes", uploads.bytes_uploaded},
+                                              {"full", uploads.full}});
+                    for (const glm::ivec3& t : uploads.tiles) replay.uploaded_tiles.insert(packTile(t));
+                }
                 result->repack_ms_max =
                     std::max(result->repack_ms_max,
                              std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
@@ -329,6 +356,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 shown_generation = live.generation;
                 view.instances = instances.instanceCount();
                 view.instances_per_type = instances.instances_per_type;
+                view.tiles_uploaded = uploads.tiles_uploaded;
+                view.bytes_uploaded = uploads.bytes_uploaded;
                 view.instantiate_seconds = live.stats.seconds;
                 view.changed_tiles = live.changed_tiles.size();
                 if (!have_result && !camera_moved) frameBounds(framingBounds(*scene, &instances), &camera);
@@ -453,6 +482,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         menu.recent_files = recent_files;
         drawMainMenu(menu, &requests, &tools, &windows);
         drawStatisticsPanel(view, &windows.statistics);
+        drawRenderPanel(view, &render_settings, &windows.render);
         drawToolsPanel(view.type_names, &tools, &windows.tools);
         std::string inspector_message;
         drawInspector(doc, view.type_names, &tools, &requests, &inspector_message, &windows.inspector);
@@ -830,11 +860,18 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 std::this_thread::sleep_for(std::chrono::microseconds(250));
         }
         if (!takeLiveResult()) return ViewerStatus::Failed;
-        if (tools.show_markers && doc && (screenshot_request_path.empty() || screenshot_overlays))
+        if (tools.show_markers && doc && have_result && (screenshot_request_path.empty() || screenshot_overlays)) {
             addPrimitiveMarkers(*doc, scene->meshes, tools.selected, &markers);
+            if (render_settings.hulls) addPrimitiveHulls(*doc, scene->meshes, tools.selected, &markers);
+            const float r = render_settings.overlay_radius_m;
+            const CandidateSet& c = doc->ghostTile().candidates;
+            if (render_settings.tile_grid) addTileOverlay(instances, camera.target, r, &markers);
+            if (render_settings.anchors) addAnchorOverlay(instances, c, scene->meshes, camera.target, r, &markers);
+            if (render_settings.sphere_sets) addSphereOverlay(instances, c, doc->models(), camera.target, r, &markers);
+        }
         if (!screenshot_request_path.empty() && !screenshot_overlays) markers.clear();
         renderer.setMarkers(markers);
-        renderer.render(camera, fb_w, fb_h, options.lod);
+        renderer.render(camera, fb_w, fb_h, render_settings.lod);
         const gl::RenderStats& rs = renderer.stats();
         view.triangles = rs.triangles;
         view.points = rs.points;
@@ -842,6 +879,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         view.lod_instances = rs.lod_instances;
         view.tiles_visible = rs.tiles_visible;
         view.tiles_culled = rs.tiles_culled;
+        view.tiles_resident = rs.tiles_resident;
+        view.indirect_commands = rs.indirect_commands;
 
         // The screenshot is the viewport alone, read before the UI is drawn over it.
         const bool last_scripted_frame = scripted && replay.index >= options.replay.size() && settled &&
@@ -916,6 +955,15 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 r["stamp_to_frame_ms"] = replay.stamp_ms;
             }
             r["dirty"] = d.isDirty();
+            r["uploads"] = replay.uploads;
+            json tiles = json::array();
+            for (uint64_t key : replay.uploaded_tiles) {
+                const glm::ivec3 t = unpackTile(key);
+                tiles.push_back({t.x, t.y, t.z});
+            }
+            r["uploaded_tiles"] = tiles;
+            r["tiles_resident"] = instances.tileCount();
+            r["tile_size_m"] = instances.tile_size_m;
             result->actions.push_back(r);
             replay = ReplayState{replay.index + 1};
             if (replay.index >= options.replay.size() && !scripted && !stats_written) {
@@ -948,6 +996,10 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             result->lod_instances = rs.lod_instances;
             result->tiles_visible = rs.tiles_visible;
             result->tiles_culled = rs.tiles_culled;
+            result->indirect_commands = rs.indirect_commands;
+            result->tiles_uploaded = rs.tiles_uploaded;
+            result->bytes_uploaded = rs.bytes_uploaded;
+            result->tiles_resident = rs.tiles_resident;
             result->framebuffer_width = fb_w;
             result->framebuffer_height = fb_h;
             result->instantiate_seconds = view.instantiate_seconds;
@@ -989,6 +1041,12 @@ json viewerStatsJson(const ViewerResult& r, const LodSettings& lod) {
         {"lod_settings_px", {{"lod1", lod.lod1_px}, {"lod2", lod.lod2_px}, {"impostor", lod.impostor_px}}},
         {"tiles_visible", r.tiles_visible},
         {"tiles_culled", r.tiles_culled},
+        {"indirect_commands", r.indirect_commands},
+        {"tiles_resident", r.tiles_resident},
+        {"tiles_uploaded", r.tiles_uploaded},
+        {"bytes_uploaded", r.bytes_uploaded},
+        {"upload_tiles_p50", percentile(r.upload_tiles, 0.5)},
+        {"tile_update_ms_max", r.tile_update_ms_max},
         {"gl_version", r.gl_version},
         {"renderer", r.renderer},
         {"window", {r.window_width, r.window_height}},

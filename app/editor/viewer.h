@@ -63,6 +63,11 @@ struct ViewerResult {
     std::array<uint64_t, kLodCount> lod_instances{};
     uint64_t tiles_visible = 0;
     uint64_t tiles_culled = 0;
+    uint64_t indirect_commands = 0;  // the last frame's commands in its multi-draws (draw_calls counts those)
+    uint64_t tiles_resident = 0;
+    uint64_t tiles_uploaded = 0;     // the latest live result's upload (tiles re-packed, bytes sent)
+    uint64_t bytes_uploaded = 0;
+    std::vector<double> upload_tiles;  // tiles uploaded by every incremental (not full) live result
     std::string gl_version;
     std::string renderer;
     int window_width = 0, window_height = 0;
@@ -75,7 +80,8 @@ struct ViewerResult {
     uint64_t user_primitives = 0;
     int autosaves = 0;
     std::vector<double> stamp_to_frame_ms;  // every stamp: from the edit to the end of the frame showing it
-    double repack_ms_max = 0.0;             // the slowest CPU re-pack of a live result for the GPU
+    double repack_ms_max = 0.0;             // the slowest CPU re-pack of a live result's tiles for the GPU
+    double tile_update_ms_max = 0.0;  // the slowest incremental one (changed tiles re-packed and uploaded)
     nlohmann::json actions = nlohmann::json::array();  // per replay action (viewer.cpp, "Statistics")
     std::vector<std::string> messages;      // errors shown in the UI
 };

@@ -33,12 +33,31 @@ def check_stroke(a, kind, typ):
         kind, a["stamps"], typ, a["inside_before"][typ], a["inside_after"][typ], max(a["stamp_to_frame_ms"]))
 
 
+def check_uploads(a, kind):
+    """Per-tile residency: a stroke's live results re-upload only tiles near the stroke."""
+    ups = a["uploads"]
+    assert ups and not any(u["full"] for u in ups), (kind, "no incremental upload, or a full one", ups)
+    total = a["tiles_resident"]
+    biggest = max(u["tiles"] for u in ups)
+    assert 0 < biggest * 20 < total, (kind, "a stamp re-uploaded %d of %d tiles" % (biggest, total))
+    s = a["tile_size_m"]
+    lo, hi = a["box"]["min"], a["box"]["max"]
+    for t in a["uploaded_tiles"]:
+        cell_lo, cell_hi = [c * s for c in t], [(c + 1) * s for c in t]
+        assert all(cell_hi[i] >= lo[i] and cell_lo[i] <= hi[i] for i in range(3)), (
+            kind, "uploaded tile %s is outside the stroke's box" % t, a["box"])
+    return "%s: at most %d of %d tiles uploaded per live result, %d tiles in all, all inside the box" % (
+        kind, biggest, total, len(a["uploaded_tiles"]))
+
+
 def strokes(stats_path, cli_path):
     s = json.load(open(stats_path))
     out = []
     paint, sculpt = actions(s, "paint_stroke")[0], actions(s, "sculpt_stroke")[0]
     out.append(check_stroke(paint, "paint", "rock"))
     out.append(check_stroke(sculpt, "sculpt", "rock"))
+    out.append(check_uploads(paint, "paint"))
+    out.append(check_uploads(sculpt, "sculpt"))
     undos, redos = actions(s, "undo"), actions(s, "redo")
     assert len(undos) == 2 and len(redos) == 2, s["actions"]
     # Undo gives back exactly the instance set before the stroke (hash and counts per type), redo the after.

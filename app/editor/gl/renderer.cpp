@@ -33,10 +33,11 @@ void setLighting(const ShaderProgram& p, const glm::vec3& eye, float fog_density
 
 Renderer::~Renderer() {
     releaseScene();
-    for (ShaderProgram* p : {&sky_, &terrain_, &detail_, &impostor_, &grid_, &marker_}) destroyProgram(p);
+    for (ShaderProgram* p : {&sky_, &terrain_, &detail_, &impostor_, &grid_, &marker_, &hull_}) destroyProgram(p);
     if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
     if (marker_vao_) glDeleteVertexArrays(1, &marker_vao_);
     if (marker_buffer_) glDeleteBuffers(1, &marker_buffer_);
+    if (indirect_buffer_) glDeleteBuffers(1, &indirect_buffer_);
 }
 
 bool Renderer::init(const std::string& dir, std::string* error) {
@@ -57,8 +58,10 @@ bool Renderer::init(const std::string& dir, std::string* error) {
         !loadProgram(dir, "ground_grid.vert", "ground_grid.frag",
                      with({"u_view_proj", "u_grid_center", "u_grid_half_m", "u_ground_z", "u_cell_m", "u_fade_m"}, true), &grid_,
                      error) ||
-        !loadProgram(dir, "skeleton_marker.vert", "flat_color.frag", {"u_view_proj", "u_point_size"}, &marker_, error))
+        !loadProgram(dir, "skeleton_marker.vert", "flat_color.frag", {"u_view_proj", "u_point_size"}, &marker_, error) ||
+        !loadProgram(dir, "skeleton_marker.vert", "primitive_hull.frag", {"u_view_proj", "u_alpha"}, &hull_, error))
         return false;
+    glGenBuffers(1, &indirect_buffer_);
     glGenVertexArrays(1, &empty_vao_);
     glGenVertexArrays(1, &marker_vao_);
     glGenBuffers(1, &marker_buffer_);
@@ -86,7 +89,7 @@ void Renderer::releaseScene() {
     terrain_vao_ = terrain_vertices_ = terrain_indices_ = candidate_buffer_ = 0;
     terrain_index_count_ = 0;
     has_scene_ = false;
-    instances_ = nullptr;
+    tiles_ = nullptr;
 }
 
 void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const std::vector<DetailLodMesh>* meshes,
@@ -144,8 +147,9 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
         TypeBuffers& t = types_[i];
         uploadMesh(m.positions, m.normals, m.indices, &t.vao, &t.vertex_buffer, &t.index_buffer);
         glGenBuffers(1, &t.instance_buffer);
-        // The instance attribute: two unsigned ints, advancing once per instance of the mesh.
-        // The impostor VAO reads the same buffer one instance per vertex (points, no mesh).
+        // The instance attribute: two unsigned ints, advancing once per instance of the mesh, from the
+        // command's baseInstance on (the tile's slot). The impostor VAO reads the same buffer one instance
+        // per vertex (points, no mesh), from the command's `first` on.
         glGenVertexArrays(1, &t.impostor_vao);
         for (GLuint vao : {t.vao, t.impostor_vao}) {
             glBindVertexArray(vao);
@@ -157,41 +161,59 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
         glBindVertexArray(0);
     }
     has_scene_ = true;
-    buckets_dirty_ = true;
+    draws_dirty_ = true;
 }
 
-void Renderer::setInstances(const RenderInstances* instances) {
-    instances_ = instances;
-    buckets_dirty_ = true;
-    if (!instances) return;
-    for (size_t i = 0; i < types_.size(); ++i) {
-        // Room for every instance of the type: the buffer is refilled in place and reallocated only when
-        // the type outgrows it (then with half again as much room, for the strokes to come).
-        const uint64_t n = std::max<uint64_t>(
-            i < instances->instances_per_type.size() ? instances->instances_per_type[i] : 0, 1);
-        if (n <= types_[i].instance_capacity) continue;
-        const uint32_t capacity = uint32_t(types_[i].instance_capacity == 0 ? n : n + n / 2);
+void Renderer::uploadTiles(const ResidentTiles* tiles, const TileUploads& uploads) {
+    tiles_ = tiles;
+    draws_dirty_ = true;
+    upload_tiles_ = uploads.tiles_uploaded;
+    upload_bytes_ = uploads.bytes_uploaded;
+    if (!tiles) return;
+    for (size_t i = 0; i < types_.size() && i < tiles->types.size() && i < uploads.types.size(); ++i) {
+        const std::vector<PackedInstance>& mirror = tiles->types[i].mirror;
+        const TileUploads::Type& u = uploads.types[i];
         glBindBuffer(GL_ARRAY_BUFFER, types_[i].instance_buffer);
-        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(uint64_t(capacity) * sizeof(PackedInstance)), nullptr, GL_DYNAMIC_DRAW);
-        types_[i].instance_capacity = capacity;
+        if (u.whole || mirror.size() > types_[i].instance_capacity) {
+            // The array grew (its allocator doubles, so this is rare) or was rebuilt: all of it, once.
+            glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(std::max<size_t>(mirror.size(), 1) * sizeof(PackedInstance)),
+                         mirror.empty() ? nullptr : mirror.data(), GL_DYNAMIC_DRAW);
+            types_[i].instance_capacity = uint32_t(mirror.size());
+            continue;
+        }
+        for (const TileUploads::Range& r : u.ranges)
+            glBufferSubData(GL_ARRAY_BUFFER, GLintptr(uint64_t(r.offset) * sizeof(PackedInstance)),
+                            GLsizeiptr(uint64_t(r.count) * sizeof(PackedInstance)), mirror.data() + r.offset);
     }
 }
 
+void Renderer::setTypeVisible(size_t type, bool visible) {
+    if (type < types_.size()) types_[type].visible = visible;
+}
+
 void Renderer::setMarkers(const MarkerGeometry& m) {
+    // One buffer: hull triangles, lines, points, dots, one after the other.
+    marker_hull_vertices_ = uint32_t(m.hull.size());
     marker_line_vertices_ = uint32_t(m.lines.size());
     marker_points_ = uint32_t(m.points.size());
+    marker_dots_ = uint32_t(m.dots.size());
     glBindBuffer(GL_ARRAY_BUFFER, marker_buffer_);
-    const size_t n = m.lines.size() + m.points.size();
+    const size_t n = m.hull.size() + m.lines.size() + m.points.size() + m.dots.size();
     glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(std::max<size_t>(n, 1) * sizeof(MarkerVertex)), nullptr, GL_STREAM_DRAW);
-    if (!m.lines.empty())
-        glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(m.lines.size() * sizeof(MarkerVertex)), m.lines.data());
-    if (!m.points.empty())
-        glBufferSubData(GL_ARRAY_BUFFER, GLintptr(m.lines.size() * sizeof(MarkerVertex)),
-                        GLsizeiptr(m.points.size() * sizeof(MarkerVertex)), m.points.data());
+    size_t at = 0;
+    for (const std::vector<MarkerVertex>* list : {&m.hull, &m.lines, &m.points, &m.dots}) {
+        if (!list->empty())
+            glBufferSubData(GL_ARRAY_BUFFER, GLintptr(at * sizeof(MarkerVertex)),
+                            GLsizeiptr(list->size() * sizeof(MarkerVertex)), list->data());
+        at += list->size();
+    }
 }
 
 void Renderer::render(const OrbitCamera& camera, int width, int height, const LodSettings& lod) {
     stats_ = RenderStats{};
+    stats_.tiles_uploaded = upload_tiles_;
+    stats_.bytes_uploaded = upload_bytes_;
+    stats_.tiles_resident = tiles_ ? tiles_->tileCount() : 0;
     glViewport(0, 0, width, height);
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -241,7 +263,7 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
         ++stats_.draw_calls;
     }
 
-    if (instances_ && meshes_) drawDetails(cam, view, view_proj, eye, height, lod, fog_density);
+    if (tiles_ && meshes_) drawDetails(cam, view, view_proj, eye, height, lod, fog_density);
 
     // The sky last, at the far plane: depth test LEQUAL keeps it to the pixels nothing covered.
     glDisable(GL_CULL_FACE);
@@ -256,19 +278,40 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
     glBindVertexArray(empty_vao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     ++stats_.draw_calls;
-    glDepthMask(GL_TRUE);
     glDepthFunc(GL_LESS);
 
+    // Hulls: translucent over the scene, depth-tested so the ground and details in front hide them, no
+    // depth write (still off from the sky) so hulls behind hulls and the skeletons inside still show.
+    // Both faces: the inside of a hull the camera is in still tints the view.
+    if (marker_hull_vertices_ > 0) {
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+        glUseProgram(hull_.id);
+        glUniformMatrix4fv(loc(hull_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+        glUniform1f(loc(hull_, "u_alpha"), 0.22f);
+        glBindVertexArray(marker_vao_);
+        glDrawArrays(GL_TRIANGLES, 0, GLsizei(marker_hull_vertices_));
+        ++stats_.draw_calls;
+        glDisable(GL_BLEND);
+    }
+    glDepthMask(GL_TRUE);
+
     // Overlays last, without depth: a skeleton inside the pile it makes must stay visible.
-    if (marker_line_vertices_ + marker_points_ > 0) {
+    if (marker_line_vertices_ + marker_points_ + marker_dots_ > 0) {
         glDisable(GL_DEPTH_TEST);
         glUseProgram(marker_.id);
         glUniformMatrix4fv(loc(marker_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
         glUniform1f(loc(marker_, "u_point_size"), 6.0f);
         glEnable(GL_PROGRAM_POINT_SIZE);
         glBindVertexArray(marker_vao_);
-        if (marker_line_vertices_) glDrawArrays(GL_LINES, 0, GLsizei(marker_line_vertices_));
-        if (marker_points_) glDrawArrays(GL_POINTS, GLint(marker_line_vertices_), GLsizei(marker_points_));
+        const GLint lines_first = GLint(marker_hull_vertices_);
+        const GLint points_first = lines_first + GLint(marker_line_vertices_);
+        if (marker_line_vertices_) glDrawArrays(GL_LINES, lines_first, GLsizei(marker_line_vertices_));
+        if (marker_points_) glDrawArrays(GL_POINTS, points_first, GLsizei(marker_points_));
+        if (marker_dots_) {
+            glUniform1f(loc(marker_, "u_point_size"), 2.0f);
+            glDrawArrays(GL_POINTS, points_first + GLint(marker_points_), GLsizei(marker_dots_));
+        }
         glDisable(GL_PROGRAM_POINT_SIZE);
         glEnable(GL_DEPTH_TEST);
     }
@@ -277,55 +320,65 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
 
 void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const glm::mat4& view_proj, const glm::vec3& eye,
                            int height, const LodSettings& lod, float fog_density) {
-    // Re-bucket (cull + LOD) and refill the instance buffers only when the view or the LOD settings moved.
-    if (buckets_dirty_ || view_proj != last_view_proj_ || lod.lod1_px != last_lod_.lod1_px ||
+    // Rebuild the commands (cull + LOD per tile) and upload them only when the view, the LOD settings or
+    // the tiles moved; a still frame replays the same indirect buffer.
+    if (draws_dirty_ || view_proj != last_view_proj_ || lod.lod1_px != last_lod_.lod1_px ||
         lod.lod2_px != last_lod_.lod2_px || lod.impostor_px != last_lod_.impostor_px) {
         const auto t0 = std::chrono::steady_clock::now();
         ViewParams params;
         params.view_proj = view_proj;
         params.eye = eye;
         params.pixels_per_radian = float(height) / cam.fov_y_rad;
-        bucketInstances(*instances_, *meshes_, params, lod, &buckets_);
-        for (size_t i = 0; i < types_.size() && i < buckets_.types.size(); ++i) {
-            const auto& list = buckets_.types[i].instances;
-            if (list.empty()) continue;
-            glBindBuffer(GL_ARRAY_BUFFER, types_[i].instance_buffer);
-            glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(list.size() * sizeof(PackedInstance)), list.data());
+        buildIndirectDraws(*tiles_, *meshes_, params, lod, &draws_);
+        const size_t element_bytes = draws_.elements.size() * sizeof(DrawElementsIndirectCommand);
+        const size_t point_bytes = draws_.points.size() * sizeof(DrawArraysIndirectCommand);
+        indirect_points_offset_ = element_bytes;
+        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect_buffer_);
+        if (element_bytes + point_bytes > indirect_capacity_bytes_) {
+            indirect_capacity_bytes_ = std::max<size_t>(2 * (element_bytes + point_bytes), 4096);
+            glBufferData(GL_DRAW_INDIRECT_BUFFER, GLsizeiptr(indirect_capacity_bytes_), nullptr, GL_DYNAMIC_DRAW);
         }
+        if (element_bytes) glBufferSubData(GL_DRAW_INDIRECT_BUFFER, 0, GLsizeiptr(element_bytes), draws_.elements.data());
+        if (point_bytes)
+            glBufferSubData(GL_DRAW_INDIRECT_BUFFER, GLintptr(element_bytes), GLsizeiptr(point_bytes), draws_.points.data());
         last_view_proj_ = view_proj;
         last_lod_ = lod;
-        buckets_dirty_ = false;
-        stats_.bucket_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        draws_dirty_ = false;
+        stats_.command_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     }
-    stats_.tiles_visible = buckets_.tiles_visible;
-    stats_.tiles_culled = buckets_.tiles_culled;
+    stats_.tiles_visible = draws_.tiles_visible;
+    stats_.tiles_culled = draws_.tiles_culled;
 
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect_buffer_);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, candidate_buffer_);
-    // Mesh LODs 0..2: one instanced draw each, the LOD's index range, its instances from base_instance on.
+    // Mesh LODs 0..2: one multi-draw per type and LOD; each command draws the LOD's index range for one
+    // run of tiles, its instances from the command's baseInstance (the tile's slot) on.
     glUseProgram(detail_.id);
     glUniformMatrix4fv(loc(detail_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
     glUniform1f(loc(detail_, "u_tile_size_m"), tile_size_m_);
     setLighting(detail_, eye, fog_density);
     // Thin sheets (leaves, blades) are closed but ~1 mm thick: back faces are never the visible side.
-    for (size_t i = 0; i < types_.size() && i < buckets_.types.size(); ++i) {
+    for (size_t i = 0; i < types_.size() && i < draws_.groups.size(); ++i) {
+        if (!types_[i].visible) continue;
         const DetailLodMesh& m = (*meshes_)[i];
-        const DrawBuckets::Type& b = buckets_.types[i];
         glUniform3fv(loc(detail_, "u_color"), 1, glm::value_ptr(m.color));
         glBindVertexArray(types_[i].vao);
         for (int level = 0; level < kMeshLodCount; ++level) {
-            const uint32_t count = b.lod_count[size_t(level)];
-            if (count == 0) continue;
-            glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(m.index_count[size_t(level)]), GL_UNSIGNED_INT,
-                                                reinterpret_cast<void*>(uintptr_t(m.index_first[size_t(level)]) * 4),
-                                                GLsizei(count), b.lod_first[size_t(level)]);
+            const IndirectDraws::Group& g = draws_.groups[i][size_t(level)];
+            if (g.count == 0) continue;
+            glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+                                        reinterpret_cast<void*>(uintptr_t(g.first) * sizeof(DrawElementsIndirectCommand)),
+                                        GLsizei(g.count), 0);
             ++stats_.draw_calls;
-            stats_.triangles += uint64_t(count) * m.triangles(level);
-            stats_.lod_instances[size_t(level)] += count;
-            stats_.instances_drawn += count;
+            stats_.indirect_commands += g.count;
+            stats_.triangles += g.instances * m.triangles(level);
+            stats_.lod_instances[size_t(level)] += g.instances;
+            stats_.instances_drawn += g.instances;
         }
     }
     // Impostors: one point sprite per instance, straight from the instance buffer (no instancing: on
-    // llvmpipe an instanced draw pays a fixed cost per instance, which tiny far objects cannot afford).
+    // llvmpipe an instanced draw pays a fixed cost per instance, which tiny far objects cannot afford);
+    // one multi-draw per type, a command per run of tiles.
     glUseProgram(impostor_.id);
     glUniformMatrix4fv(loc(impostor_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
     glUniform1f(loc(impostor_, "u_tile_size_m"), tile_size_m_);
@@ -334,22 +387,27 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
     glUniform3fv(loc(impostor_, "u_to_eye"), 1, glm::value_ptr(to_eye));
     setLighting(impostor_, eye, fog_density);
     glEnable(GL_PROGRAM_POINT_SIZE);
-    for (size_t i = 0; i < types_.size() && i < buckets_.types.size(); ++i) {
+    for (size_t i = 0; i < types_.size() && i < draws_.groups.size(); ++i) {
+        if (!types_[i].visible) continue;
         const DetailLodMesh& m = (*meshes_)[i];
-        const DrawBuckets::Type& b = buckets_.types[i];
-        const uint32_t count = b.lod_count[kImpostorLod];
-        if (count == 0) continue;
+        const IndirectDraws::Group& g = draws_.groups[i][kImpostorLod];
+        if (g.count == 0) continue;
         glUniform3fv(loc(impostor_, "u_color"), 1, glm::value_ptr(m.color));
         glUniform3fv(loc(impostor_, "u_center"), 1, glm::value_ptr(m.center));
         glUniform1f(loc(impostor_, "u_half_size_m"), m.impostor_half_size_m);
         glBindVertexArray(types_[i].impostor_vao);
-        glDrawArrays(GL_POINTS, GLint(b.lod_first[kImpostorLod]), GLsizei(count));
+        glMultiDrawArraysIndirect(
+            GL_POINTS,
+            reinterpret_cast<void*>(indirect_points_offset_ + uintptr_t(g.first) * sizeof(DrawArraysIndirectCommand)),
+            GLsizei(g.count), 0);
         ++stats_.draw_calls;
-        stats_.points += count;
-        stats_.lod_instances[kImpostorLod] += count;
-        stats_.instances_drawn += count;
+        stats_.indirect_commands += g.count;
+        stats_.points += g.instances;
+        stats_.lod_instances[kImpostorLod] += g.instances;
+        stats_.instances_drawn += g.instances;
     }
     glDisable(GL_PROGRAM_POINT_SIZE);
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
 }
 
 void Renderer::readPixels(int width, int height, std::vector<uint8_t>* rgba) const {

@@ -1,8 +1,14 @@
 // The viewport renderer (DESIGN.md "Rendering"): sky, terrain or a ground grid, and the details by
 // instancing. The Ghost Tile's candidate frames are uploaded once (an SSBO, 32 bytes a candidate); each
-// detail type has one vertex/index buffer holding its mesh LODs and one instance buffer of 8-byte packed
-// (tile, candidate) instances (render_data.h), refilled from the CPU culling and LOD buckets whenever the
-// view changes; a frame issues one draw per detail type and LOD (LOD 3: impostor point sprites).
+// detail type has one vertex/index buffer holding its mesh LODs and one resident instance buffer of 8-byte
+// packed (tile, candidate) instances (render_data.h) in which every tile owns a slot. A live result
+// re-uploads only the slots of the tiles it changed (glBufferSubData per slot; the whole buffer only when
+// the type's array had to grow). When the view moves, the CPU culls tiles, picks a LOD per tile and type
+// and writes one indirect command per visible tile and type (baseInstance = the tile's slot; the packed
+// instance is an instanced vertex attribute, which honours baseInstance on GL 4.3 where the shader has no
+// gl_BaseInstance); a frame then issues one glMultiDrawElementsIndirect per type and mesh LOD and one
+// glMultiDrawArraysIndirect per type for the impostor point sprites. After the scene: the primitives'
+// translucent hulls (blended, depth-tested, no depth write), then the overlay lines and points.
 // The renderer only draws what it is given and exposes numbers; it decides nothing about instances.
 #pragma once
 
@@ -26,12 +32,17 @@ namespace ug::editor::gl {
 struct RenderStats {
     uint64_t triangles = 0;   // terrain + detail meshes (LOD 0-2) drawn this frame; not sky, grid, UI
     uint64_t points = 0;      // impostor point sprites drawn this frame (one per far instance)
-    uint64_t draw_calls = 0;  // scene draws this frame (sky, ground, one per non-empty type x LOD); not UI
+    uint64_t draw_calls = 0;  // scene draw calls: sky, ground, one multi-draw per non-empty type x LOD; not UI
+    uint64_t indirect_commands = 0;  // commands the multi-draws ran (one per visible tile run x type)
     uint64_t instances_drawn = 0;
     std::array<uint64_t, kLodCount> lod_instances{};  // instances drawn per LOD (3 = impostors)
     uint64_t tiles_visible = 0;
     uint64_t tiles_culled = 0;
-    double bucket_ms = 0.0;  // CPU culling + LOD bucketing + upload, when the view changed (else 0)
+    double command_ms = 0.0;  // CPU culling + LOD + command building + upload, when the view changed (else 0)
+    // The latest uploadTiles() (a live result): tiles re-packed and bytes sent to the GPU.
+    uint64_t tiles_uploaded = 0;
+    uint64_t bytes_uploaded = 0;
+    uint64_t tiles_resident = 0;
 };
 
 class Renderer {
@@ -47,13 +58,16 @@ public:
     // detail meshes and the candidate frames. The pointed-to meshes must outlive the renderer's use.
     void setScene(const Bounds& extent, const TriangleMesh* terrain, const std::vector<DetailLodMesh>* meshes,
                   const CandidateSet& candidates, float tile_size_m);
-    // The instances (kept by pointer: the owner keeps them alive; null: none). Call again whenever their
-    // content changed (a live update): the view-dependent buckets are rebuilt on the next frame. A type's
-    // instance buffer only grows (by half again when it must), so a stroke does not reallocate per stamp.
-    void setInstances(const RenderInstances* instances);
+    // The resident tiles (kept by pointer: the owner keeps them alive; null: none) and what the latest
+    // update changed in them: only those slot ranges are uploaded (the whole type buffer when `uploads`
+    // says so). The indirect commands are rebuilt on the next frame.
+    void uploadTiles(const ResidentTiles* tiles, const TileUploads& uploads);
+    // Hidden types are not drawn (their commands are skipped); all types are visible after setScene().
+    void setTypeVisible(size_t type, bool visible);
     // Forgets the scene and the instances (before the document they point into goes away).
     void clearScene() { releaseScene(); }
-    // Overlay lines and points (skeletons, brush), drawn over everything; uploaded now (small).
+    // Hull triangles (translucent) and overlay lines and points (skeletons, brush, tile grid, anchors,
+    // sphere sets), drawn after the scene; uploaded now (small, capped by markers.h).
     void setMarkers(const MarkerGeometry& markers);
 
     void render(const OrbitCamera& camera, int width_px, int height_px, const LodSettings& lod);
@@ -66,30 +80,35 @@ private:
     struct TypeBuffers {
         unsigned vao = 0, impostor_vao = 0;
         unsigned vertex_buffer = 0, index_buffer = 0, instance_buffer = 0;
-        uint32_t instance_capacity = 0;
+        uint32_t instance_capacity = 0;  // elements the GPU buffer holds
+        bool visible = true;
     };
     void releaseScene();
     void drawDetails(const OrbitCamera& cam, const glm::mat4& view, const glm::mat4& view_proj, const glm::vec3& eye,
                      int height, const LodSettings& lod, float fog_density);
 
-    ShaderProgram sky_, terrain_, detail_, impostor_, grid_, marker_;
+    ShaderProgram sky_, terrain_, detail_, impostor_, grid_, marker_, hull_;
     unsigned marker_vao_ = 0, marker_buffer_ = 0;
-    uint32_t marker_line_vertices_ = 0, marker_points_ = 0;
+    uint32_t marker_hull_vertices_ = 0, marker_line_vertices_ = 0, marker_points_ = 0, marker_dots_ = 0;
+    unsigned indirect_buffer_ = 0;
+    size_t indirect_capacity_bytes_ = 0;
+    size_t indirect_points_offset_ = 0;  // bytes: the impostor commands follow the element commands
     unsigned empty_vao_ = 0;
     unsigned terrain_vao_ = 0, terrain_vertices_ = 0, terrain_indices_ = 0;
     uint32_t terrain_index_count_ = 0;
     unsigned candidate_buffer_ = 0;
     std::vector<TypeBuffers> types_;
     const std::vector<DetailLodMesh>* meshes_ = nullptr;
-    const RenderInstances* instances_ = nullptr;
+    const ResidentTiles* tiles_ = nullptr;
     Bounds extent_{};
     float tile_size_m_ = 0.5f;
     bool has_scene_ = false;
 
-    DrawBuckets buckets_;
+    IndirectDraws draws_;
     glm::mat4 last_view_proj_{0.0f};
     LodSettings last_lod_{};
-    bool buckets_dirty_ = true;
+    bool draws_dirty_ = true;
+    uint64_t upload_tiles_ = 0, upload_bytes_ = 0;  // the latest uploadTiles()
     RenderStats stats_;
 };
 

@@ -1,0 +1,341 @@
+// Resident per-tile instances and indirect draw commands (app/editor/render_data.h), without GL: the
+// mirrors are what the GPU buffers hold, the commands what the multi-draws run.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <map>
+#include <random>
+#include <set>
+#include <vector>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "editor/render_data.h"
+#include "instancer/instance_store.h"
+#include "instancer/tile_coord.h"
+
+namespace ug::editor {
+namespace {
+
+// Two types: candidates 0..2 are type 0, 3..4 type 1.
+CandidateSet twoTypeCandidates() {
+    CandidateSet c;
+    c.type_begin = {0, 3, 5};
+    c.type = {0, 0, 0, 1, 1};
+    for (uint32_t j = 0; j < 5; ++j) {
+        c.position.push_back(glm::vec3(0.1f * float(j), 0.25f, 0.0f));
+        c.rotation.push_back(glm::quat(1.0f, 0.0f, 0.0f, 0.0f));
+        c.scale.push_back(1.0f);
+    }
+    return c;
+}
+
+using TileMap = std::map<glm::ivec3, std::vector<uint32_t>, bool (*)(const glm::ivec3&, const glm::ivec3&)>;
+bool lessTile(const glm::ivec3& a, const glm::ivec3& b) { return packTile(a) < packTile(b); }
+
+InstanceStore makeStore(const TileMap& tiles) {
+    std::vector<std::pair<uint64_t, std::vector<uint32_t>>> sorted;
+    for (const auto& [t, ids] : tiles) sorted.push_back({packTile(t), ids});
+    std::sort(sorted.begin(), sorted.end());
+    InstanceStore s;
+    for (const auto& [key, ids] : sorted) s.appendTile(key, ids);
+    return s;
+}
+
+// What the GPU would hold, read back through the slots: key -> ids (ascending), checking every packed
+// instance names its own tile.
+std::map<uint64_t, std::vector<uint32_t>> residentContent(const ResidentTiles& r) {
+    std::map<uint64_t, std::vector<uint32_t>> out;
+    for (size_t t = 0; t < r.tileCount(); ++t) {
+        std::vector<uint32_t>& ids = out[r.tile_key[t]];
+        EXPECT_EQ(r.tile_index.at(r.tile_key[t]), t);
+        for (uint32_t type = 0; type < r.type_count; ++type) {
+            const TileSlot s = r.slot[t * r.type_count + type];
+            const uint32_t n = r.count[t * r.type_count + type];
+            EXPECT_LE(n, s.capacity);
+            EXPECT_LE(s.offset + s.capacity, r.types[type].mirror.size());
+            for (uint32_t i = 0; i < n; ++i) {
+                glm::ivec3 tile;
+                uint32_t j = 0;
+                unpackInstance(r.types[type].mirror[s.offset + i], &tile, &j);
+                EXPECT_EQ(tile, r.tile_coord[t]);
+                ids.push_back(j);
+            }
+        }
+    }
+    return out;
+}
+
+std::map<uint64_t, std::vector<uint32_t>> storeContent(const InstanceStore& s) {
+    std::map<uint64_t, std::vector<uint32_t>> out;
+    for (size_t t = 0; t < s.tileCount(); ++t) s.tileIds(t, &out[s.tileKey(t)]);
+    return out;
+}
+
+// Keys whose id lists differ between two stores (what LiveResult::changed_tiles lists).
+std::vector<uint64_t> changedKeys(const InstanceStore& a, const InstanceStore& b) {
+    auto ca = storeContent(a), cb = storeContent(b);
+    std::set<uint64_t> keys;
+    for (const auto& [k, ids] : ca)
+        if (!cb.count(k) || cb[k] != ids) keys.insert(k);
+    for (const auto& [k, ids] : cb)
+        if (!ca.count(k)) keys.insert(k);
+    return {keys.begin(), keys.end()};
+}
+
+TEST(ResidentTiles, RebuildHoldsEveryInstanceOfTheStore) {
+    const CandidateSet c = twoTypeCandidates();
+    TileMap m(lessTile);
+    m[{0, 0, 0}] = {0, 1, 3};
+    m[{1, 0, 0}] = {2, 4};
+    m[{-3, 2, 1}] = {0};
+    const InstanceStore store = makeStore(m);
+    ResidentTiles r;
+    TileUploads up;
+    std::string error;
+    ASSERT_TRUE(rebuildResidentTiles(store, c, 0.5f, &r, &up, &error)) << error;
+    EXPECT_EQ(residentContent(r), storeContent(store));
+    EXPECT_EQ(r.instances_per_type, (std::vector<uint64_t>{4, 2}));
+    EXPECT_TRUE(up.full);
+    EXPECT_EQ(up.tiles_uploaded, 3u);
+    EXPECT_TRUE(up.types[0].whole && up.types[1].whole);
+}
+
+// One tile changes ids without changing its counts: exactly its two slots are rewritten in place, no other
+// tile's slot moves, nothing else is uploaded.
+TEST(ResidentTiles, UpdateRewritesOnlyTheChangedTileInPlace) {
+    const CandidateSet c = twoTypeCandidates();
+    TileMap m(lessTile);
+    m[{0, 0, 0}] = {0, 1, 3};
+    m[{1, 0, 0}] = {2, 4};
+    m[{0, 1, 0}] = {1, 3, 4};
+    const InstanceStore a = makeStore(m);
+    ResidentTiles r;
+    TileUploads up;
+    std::string error;
+    ASSERT_TRUE(rebuildResidentTiles(a, c, 0.5f, &r, &up, &error)) << error;
+    const std::vector<TileSlot> slots_before = r.slot;
+    m[{1, 0, 0}] = {0, 3};
+    const InstanceStore b = makeStore(m);
+    const std::vector<uint64_t> changed = changedKeys(a, b);
+    ASSERT_EQ(changed, std::vector<uint64_t>{packTile({1, 0, 0})});
+    ASSERT_TRUE(updateResidentTiles(b, c, changed, &r, &up, &error)) << error;
+    EXPECT_EQ(residentContent(r), storeContent(b));
+    EXPECT_EQ(r.slot.size(), slots_before.size());
+    for (size_t i = 0; i < r.slot.size(); ++i) {
+        EXPECT_EQ(r.slot[i].offset, slots_before[i].offset);
+        EXPECT_EQ(r.slot[i].capacity, slots_before[i].capacity);
+    }
+    EXPECT_FALSE(up.full);
+    EXPECT_EQ(up.tiles_uploaded, 1u);
+    ASSERT_EQ(up.tiles, std::vector<glm::ivec3>{glm::ivec3(1, 0, 0)});
+    const uint32_t t = r.tile_index.at(packTile({1, 0, 0}));
+    for (uint32_t type = 0; type < 2; ++type) {
+        EXPECT_FALSE(up.types[type].whole);
+        ASSERT_EQ(up.types[type].ranges.size(), 1u);
+        EXPECT_EQ(up.types[type].ranges[0].offset, r.slot[t * 2 + type].offset);
+        EXPECT_EQ(up.types[type].ranges[0].count, 1u);
+    }
+    EXPECT_EQ(up.bytes_uploaded, 2 * sizeof(PackedInstance));
+}
+
+// Random edits: after every update the resident content equals the store, live slots never overlap, and
+// the uploads touch only the changed tiles' slots.
+TEST(ResidentTiles, RandomUpdatesEqualRebuild) {
+    const CandidateSet c = twoTypeCandidates();
+    std::mt19937 rng(3);
+    auto randomIds = [&] {
+        std::vector<uint32_t> ids;
+        for (uint32_t j = 0; j < 5; ++j)
+            if (rng() % 2) ids.push_back(j);
+        return ids;
+    };
+    TileMap m(lessTile);
+    for (int x = 0; x < 6; ++x)
+        for (int y = 0; y < 6; ++y)
+            if (auto ids = randomIds(); !ids.empty()) m[{x, y, 0}] = ids;
+    InstanceStore store = makeStore(m);
+    ResidentTiles r;
+    TileUploads up;
+    std::string error;
+    ASSERT_TRUE(rebuildResidentTiles(store, c, 0.5f, &r, &up, &error)) << error;
+    for (int step = 0; step < 60; ++step) {
+        // Edit a 2 x 2 patch: new ids, emptied tiles, new tiles outside the start area.
+        const int x0 = int(rng() % 8) - 1, y0 = int(rng() % 8) - 1;
+        for (int x = x0; x < x0 + 2; ++x)
+            for (int y = y0; y < y0 + 2; ++y) {
+                auto ids = randomIds();
+                if (ids.empty())
+                    m.erase({x, y, 0});
+                else
+                    m[{x, y, 0}] = ids;
+            }
+        const InstanceStore next = makeStore(m);
+        const std::vector<uint64_t> changed = changedKeys(store, next);
+        std::map<uint64_t, std::vector<TileSlot>> old_slots;
+        for (size_t t = 0; t < r.tileCount(); ++t)
+            old_slots[r.tile_key[t]].assign(r.slot.begin() + long(t * 2), r.slot.begin() + long(t * 2 + 2));
+        ASSERT_TRUE(updateResidentTiles(next, c, changed, &r, &up, &error)) << error;
+        store = next;
+        ASSERT_EQ(residentContent(r), storeContent(store)) << "step " << step;
+        EXPECT_EQ(up.tiles_uploaded, changed.size());
+        const std::set<uint64_t> changed_set(changed.begin(), changed.end());
+        for (size_t t = 0; t < r.tileCount(); ++t)
+            if (!changed_set.count(r.tile_key[t])) {  // unchanged tiles keep their slots
+                for (uint32_t type = 0; type < 2; ++type)
+                    EXPECT_EQ(r.slot[t * 2 + type].offset, old_slots.at(r.tile_key[t])[type].offset);
+            }
+        for (uint32_t type = 0; type < 2; ++type) {
+            // Live slots of a type never overlap.
+            std::vector<TileSlot> live;
+            for (size_t t = 0; t < r.tileCount(); ++t)
+                if (r.slot[t * 2 + type].capacity) live.push_back(r.slot[t * 2 + type]);
+            std::sort(live.begin(), live.end(), [](TileSlot x, TileSlot y) { return x.offset < y.offset; });
+            for (size_t i = 1; i < live.size(); ++i) ASSERT_LE(live[i - 1].offset + live[i - 1].capacity, live[i].offset);
+            if (up.types[type].whole) continue;
+            // Every upload range is inside a changed tile's slot.
+            for (const TileUploads::Range& range : up.types[type].ranges) {
+                bool inside = false;
+                for (uint64_t key : changed) {
+                    const auto it = r.tile_index.find(key);
+                    if (it == r.tile_index.end()) continue;
+                    const TileSlot s = r.slot[it->second * 2 + type];
+                    inside |= range.offset >= s.offset && range.offset + range.count <= s.offset + s.capacity;
+                }
+                EXPECT_TRUE(inside) << "step " << step << ": range at " << range.offset;
+            }
+        }
+    }
+}
+
+TEST(ResidentTiles, RefusesTilesOutsideThePackedRange) {
+    const CandidateSet c = twoTypeCandidates();
+    TileMap m(lessTile);
+    m[{kPackedTileLimit + 1, 0, 0}] = {0};
+    ResidentTiles r;
+    TileUploads up;
+    std::string error;
+    EXPECT_FALSE(rebuildResidentTiles(makeStore(m), c, 0.5f, &r, &up, &error));
+    EXPECT_NE(error.find("32768"), std::string::npos) << error;
+}
+
+// A mesh per type with recognisable LOD index ranges.
+std::vector<DetailLodMesh> testMeshes() {
+    std::vector<DetailLodMesh> meshes(2);
+    for (size_t i = 0; i < 2; ++i) {
+        meshes[i].index_first = {0, 300, 360};
+        meshes[i].index_count = {300, 60, 12};
+        meshes[i].radius_m = 0.1f;
+        meshes[i].scale_max = 1.0f;
+    }
+    return meshes;
+}
+
+uint32_t c_type(uint32_t candidate) { return candidate < 3 ? 0 : 1; }
+
+// What a set of commands draws, read through the mirror as the GPU would: (type, key, candidate) -> times.
+std::map<std::tuple<uint32_t, uint64_t, uint32_t>, int> drawn(const ResidentTiles& r, const IndirectDraws& d,
+                                                             const std::vector<DetailLodMesh>& meshes) {
+    std::map<std::tuple<uint32_t, uint64_t, uint32_t>, int> out;
+    for (uint32_t type = 0; type < r.type_count; ++type)
+        for (int level = 0; level < kLodCount; ++level) {
+            const IndirectDraws::Group& g = d.groups[type][size_t(level)];
+            uint64_t instances = 0;
+            for (uint32_t k = g.first; k < g.first + g.count; ++k) {
+                uint32_t first = 0, n = 0;
+                if (level == kImpostorLod) {
+                    const DrawArraysIndirectCommand& cmd = d.points[k];
+                    EXPECT_EQ(cmd.instance_count, 1u);
+                    first = cmd.first;
+                    n = cmd.count;
+                } else {
+                    const DrawElementsIndirectCommand& cmd = d.elements[k];
+                    EXPECT_EQ(cmd.count, meshes[type].index_count[size_t(level)]);
+                    EXPECT_EQ(cmd.first_index, meshes[type].index_first[size_t(level)]);
+                    first = cmd.base_instance;
+                    n = cmd.instance_count;
+                }
+                EXPECT_GT(n, 0u);
+                instances += n;
+                for (uint32_t i = first; i < first + n; ++i) {
+                    glm::ivec3 tile;
+                    uint32_t j = 0;
+                    unpackInstance(r.types[type].mirror[i], &tile, &j);
+                    EXPECT_EQ(c_type(j), type);
+                    ++out[{type, packTile(tile), j}];
+                }
+            }
+            EXPECT_EQ(instances, g.instances);
+        }
+    return out;
+}
+
+TEST(IndirectDraws, EveryVisibleInstanceOnceAndCulledTilesAbsent) {
+    const CandidateSet c = twoTypeCandidates();
+    const std::vector<DetailLodMesh> meshes = testMeshes();
+    std::mt19937 rng(9);
+    TileMap m(lessTile);
+    // A 40 x 40 tile field (20 m) around the origin; the camera stands at its south edge looking north.
+    for (int x = -20; x < 20; ++x)
+        for (int y = -20; y < 20; ++y) {
+            std::vector<uint32_t> ids;
+            for (uint32_t j = 0; j < 5; ++j)
+                if (rng() % 3 == 0) ids.push_back(j);
+            if (!ids.empty()) m[{x, y, 0}] = ids;
+        }
+    m[{0, 8, 0}] = {0, 3};  // at the look-at point
+    InstanceStore store = makeStore(m);
+    ResidentTiles r;
+    TileUploads up;
+    std::string error;
+    ASSERT_TRUE(rebuildResidentTiles(store, c, 0.5f, &r, &up, &error)) << error;
+    // Then some edits, so slots are no longer in tile order (commands must not merge across gaps).
+    for (int k = 0; k < 30; ++k) m[{int(rng() % 40) - 20, int(rng() % 40) - 20, 0}] = {0, 1, 2, 3, 4};
+    const InstanceStore edited = makeStore(m);
+    ASSERT_TRUE(updateResidentTiles(edited, c, changedKeys(store, edited), &r, &up, &error)) << error;
+
+    ViewParams view;
+    view.eye = glm::vec3(0.0f, -3.0f, 1.5f);
+    const glm::mat4 proj = glm::perspective(glm::radians(50.0f), 16.0f / 9.0f, 0.05f, 200.0f);
+    view.view_proj = proj * glm::lookAt(view.eye, glm::vec3(0.0f, 4.0f, 0.0f), glm::vec3(0, 0, 1));
+    view.pixels_per_radian = 720.0f / glm::radians(50.0f);
+    IndirectDraws d;
+    // A 0.2 m object covers 165 px at 1 m: LOD 0 within 1.8 m, impostors beyond 8.3 m.
+    buildIndirectDraws(r, meshes, view, LodSettings{.lod1_px = 90.0f, .lod2_px = 30.0f, .impostor_px = 20.0f}, &d);
+    EXPECT_EQ(d.tiles_visible + d.tiles_culled, r.tileCount());
+    ASSERT_GT(d.tiles_culled, 0u);
+    ASSERT_GT(d.tiles_visible, 0u);
+
+    const auto counts = drawn(r, d, meshes);
+    std::set<uint64_t> drawn_tiles;
+    for (const auto& [key, times] : counts) {
+        EXPECT_EQ(times, 1) << "an instance drawn " << times << " times";
+        drawn_tiles.insert(std::get<1>(key));
+    }
+    uint64_t visible_instances = 0;
+    for (size_t t = 0; t < r.tileCount(); ++t) {
+        const glm::ivec3 tile = r.tile_coord[t];
+        // Tiles well behind the eye (south of y = -4 m, i.e. tile y < -8) can never be visible.
+        if (tile.y < -8) {
+            EXPECT_LT(d.tile_distance[t], 0.0f) << tile.x << "," << tile.y;
+        }
+        if (d.tile_distance[t] < 0.0f) {
+            EXPECT_FALSE(drawn_tiles.count(r.tile_key[t])) << "a culled tile is drawn";
+            continue;
+        }
+        visible_instances += r.count[t * 2] + r.count[t * 2 + 1];
+        EXPECT_TRUE(drawn_tiles.count(r.tile_key[t])) << "a visible tile is missing";
+    }
+    EXPECT_EQ(counts.size(), visible_instances);
+    // The tile at the look-at point is in view; near tiles use the full mesh, the far rows impostors.
+    EXPECT_GE(d.tile_distance[r.tile_index.at(packTile({0, 8, 0}))], 0.0f);
+    for (uint32_t type = 0; type < 2; ++type) {
+        EXPECT_GT(d.groups[type][0].instances, 0u);
+        EXPECT_GT(d.groups[type][kImpostorLod].instances, 0u);
+    }
+    // Merging works: fewer commands than visible (tile, type) ranges.
+    EXPECT_LT(d.commandCount(), visible_instances);
+}
+
+}  // namespace
+}  // namespace ug::editor
