@@ -10,7 +10,14 @@
 //    {"action": "undo"}, {"action": "redo"}, {"action": "save"}, {"action": "save_as", "path": "out.json"},
 //    {"action": "screenshot", "path": "shot.png", "overlays": false},
 //    {"action": "view", "target": [x, y, z], "distance": 8, "yaw_deg": -90, "pitch_deg": 35},
-//    {"action": "wait_idle"}]
+//    {"action": "wait_idle"},
+//    {"action": "set_seed", "seed": 42},                                    one undo step
+//    {"action": "set_instancing", "type": "rock", "strategy": "elevation", "layer": 0.05,
+//     "orientation": {"direction": [0, 0, 1] | "gradient", "max_angle_deg": 30} | false,
+//     "size": {"target": 1.0, "tolerance": 0.2} | false},                   only the keys given change
+//    {"action": "export", "path": "out.glb", "plain_nodes": false, "chunk": 8},   waits for the file
+//    {"action": "open", "path": "other.json"},    waits for the load; a failed one keeps the document
+//    {"action": "new"}]                           an untitled document from assets/scenes/default.json
 //
 // "frame" (optional) is the earliest frame, counted from the first frame that shows the document's
 // instances, at which the action may start. Every action also waits until the previous one is finished and
@@ -26,6 +33,10 @@
 #include <string>
 #include <vector>
 
+namespace ug {
+struct InstancingDesc;
+}
+
 namespace ug::editor {
 
 enum class ReplayKind {
@@ -38,8 +49,14 @@ enum class ReplayKind {
     SaveAs,
     Screenshot,
     View,
-    WaitIdle
+    WaitIdle,
+    SetSeed,
+    SetInstancing,
+    Export,
+    Open,
+    New
 };
+constexpr int kReplayKindCount = int(ReplayKind::New) + 1;
 const char* replayKindName(ReplayKind kind);  // the "action" string
 
 struct ReplayAction {
@@ -59,7 +76,16 @@ struct ReplayAction {
     glm::vec3 target{0.0f};
     float distance_m = -1.0f;  // < 0: keep
     float yaw_deg = NAN, pitch_deg = NAN;
+    uint64_t seed = 0;            // set_seed
+    std::string type;             // set_instancing
+    std::string instancing_json;  // set_instancing: the action's object (applyInstancingChanges reads it)
+    bool plain_nodes = false;     // export
+    float chunk_m = -1.0f;        // export: <= 0 keeps the project's chunk size
 };
+
+// set_instancing: applies the keys the action gives ("strategy", "layer", "orientation", "size") to *desc;
+// the others keep their values. Errors name the key and the reason.
+bool applyInstancingChanges(const std::string& action_json, InstancingDesc* desc, std::string* error);
 
 // Reads a script; errors name the file, the action's index and the reason.
 bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, std::string* error);

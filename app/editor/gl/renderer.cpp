@@ -275,6 +275,11 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
     glBindVertexArray(0);
 }
 
+void Renderer::setTypeVisible(size_t type, bool visible) {
+    if (type >= type_visible_.size()) type_visible_.resize(type + 1, 1);
+    type_visible_[type] = visible ? 1 : 0;
+}
+
 void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const glm::mat4& view_proj, const glm::vec3& eye,
                            int height, const LodSettings& lod, float fog_density) {
     // Re-bucket (cull + LOD) and refill the instance buffers only when the view or the LOD settings moved.
@@ -307,7 +312,9 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
     glUniform1f(loc(detail_, "u_tile_size_m"), tile_size_m_);
     setLighting(detail_, eye, fog_density);
     // Thin sheets (leaves, blades) are closed but ~1 mm thick: back faces are never the visible side.
+    auto hidden = [&](size_t i) { return i < type_visible_.size() && !type_visible_[i]; };
     for (size_t i = 0; i < types_.size() && i < buckets_.types.size(); ++i) {
+        if (hidden(i)) continue;
         const DetailLodMesh& m = (*meshes_)[i];
         const DrawBuckets::Type& b = buckets_.types[i];
         glUniform3fv(loc(detail_, "u_color"), 1, glm::value_ptr(m.color));
@@ -335,6 +342,7 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
     setLighting(impostor_, eye, fog_density);
     glEnable(GL_PROGRAM_POINT_SIZE);
     for (size_t i = 0; i < types_.size() && i < buckets_.types.size(); ++i) {
+        if (hidden(i)) continue;
         const DetailLodMesh& m = (*meshes_)[i];
         const DrawBuckets::Type& b = buckets_.types[i];
         const uint32_t count = b.lod_count[kImpostorLod];

@@ -55,6 +55,9 @@ public:
     void clearScene() { releaseScene(); }
     // Overlay lines and points (skeletons, brush), drawn over everything; uploaded now (small).
     void setMarkers(const MarkerGeometry& markers);
+    // The outliner's eye toggle: a hidden type is skipped when drawing (its instances stay bucketed, so
+    // showing it again costs nothing). View state only: not an edit, never saved. Types default to visible.
+    void setTypeVisible(size_t type, bool visible);
 
     void render(const OrbitCamera& camera, int width_px, int height_px, const LodSettings& lod);
     const RenderStats& stats() const { return stats_; }
@@ -80,6 +83,7 @@ private:
     uint32_t terrain_index_count_ = 0;
     unsigned candidate_buffer_ = 0;
     std::vector<TypeBuffers> types_;
+    std::vector<uint8_t> type_visible_;  // per type, 1 = drawn; missing entries are visible
     const std::vector<DetailLodMesh>* meshes_ = nullptr;
     const RenderInstances* instances_ = nullptr;
     Bounds extent_{};
