@@ -12,7 +12,7 @@ void drawExportPanel(const ExportView& view, ExportSettings* settings, UiRequest
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y - 10), ImGuiCond_FirstUseEver,
                             ImVec2(0.5f, 1.0f));
-    ImGui::SetNextWindowSize(ImVec2(460, 0), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(460, 200), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Export glTF", open)) {
         ImGui::End();
         return;
@@ -36,8 +36,9 @@ void drawExportPanel(const ExportView& view, ExportSettings* settings, UiRequest
     if (ImGui::RadioButton(".glb (binary)", glb)) setExtension(".glb");
     ImGui::SameLine();
     if (ImGui::RadioButton(".gltf (JSON)", gltf)) setExtension(".gltf");
-    ImGui::Checkbox("plain nodes (one per instance; for viewers without EXT_mesh_gpu_instancing)",
+    ImGui::Checkbox("plain nodes (one per instance)",
                     &settings->plain_nodes);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("for viewers without EXT_mesh_gpu_instancing");
     ImGui::DragFloat("chunk size (m)", &settings->chunk_size_m, 0.1f, 0.5f, 1000.0f, "%.1f",
                      ImGuiSliderFlags_AlwaysClamp);
     if (view.running) {

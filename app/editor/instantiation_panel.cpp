@@ -104,7 +104,7 @@ void drawStatistics(const InstantiationView& v) {
         char overlay[48];
         std::snprintf(overlay, sizeof(overlay), "max %.1f ms", top);
         ImGui::PlotLines("##updates", v.update_ms.data(), int(v.update_ms.size()), 0, overlay, 0.0f, top * 1.1f,
-                         ImVec2(-1, 60));
+                         ImVec2(ImGui::GetContentRegionAvail().x, 60));  // 1.86 plots take no -1 width
     }
 }
 
@@ -114,7 +114,7 @@ void drawInstantiationPanel(Document* doc, const std::vector<std::string>& type_
                             std::string* message, bool* open) {
     if (!*open) return;
     ImGui::SetNextWindowPos(ImVec2(350, 30), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(380, 380), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Instantiation", open)) {
         ImGui::End();
         return;
@@ -124,6 +124,8 @@ void drawInstantiationPanel(Document* doc, const std::vector<std::string>& type_
         ImGui::End();
         return;
     }
+    drawStatistics(view);  // first: what the artist watches while editing below
+    ImGui::Separator();
     std::string error;
     // The seed: a copy while its field is being edited (see the top of the file).
     static uint64_t seed_edit = 0;
@@ -149,7 +151,7 @@ void drawInstantiationPanel(Document* doc, const std::vector<std::string>& type_
     for (size_t t = 0; t < types.size(); ++t) {
         ImGui::PushID(int(t));
         const char* name = t < type_names.size() ? type_names[t].c_str() : types[t].model.name.c_str();
-        if (ImGui::CollapsingHeader(name)) {
+        if (ImGui::CollapsingHeader(name, t == 0 ? ImGuiTreeNodeFlags_DefaultOpen : 0)) {
             if (editInstancing(&editing[t]) && !doc->setInstancing(t, editing[t], &error)) {
                 *message = error;
                 editing[t] = types[t].instancing;
@@ -157,8 +159,6 @@ void drawInstantiationPanel(Document* doc, const std::vector<std::string>& type_
         }
         ImGui::PopID();
     }
-    ImGui::Separator();
-    drawStatistics(view);
     ImGui::End();
 }
 

@@ -54,7 +54,7 @@ void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uin
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - 10, vp->Pos.y + 260), ImGuiCond_FirstUseEver,
                             ImVec2(1, 0));
-    ImGui::SetNextWindowSize(ImVec2(300, 300), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(340, 300), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Outliner", open)) {
         ImGui::End();
         return;
@@ -86,8 +86,8 @@ void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uin
         ImGui::SameLine();
         const std::vector<uint64_t> ids = doc->primitiveIds(t);
         const uint64_t count = t < view.instances_per_type.size() ? view.instances_per_type[t] : 0;
-        const std::string label = view.type_names[t] + "  (" + std::to_string(count) + " instances)";
-        if (ImGui::TreeNodeEx("##layer", ImGuiTreeNodeFlags_SpanAvailWidth, "%s", label.c_str())) {
+        const std::string label = view.type_names[t] + "  " + std::to_string(count);
+        if (ImGui::TreeNodeEx("##layer", ImGuiTreeNodeFlags_SpanAvailWidth | (t == 0 ? ImGuiTreeNodeFlags_DefaultOpen : 0), "%s", label.c_str())) {
             ImGui::TextDisabled("%s", densitySummary(doc->project().detail_types[t].density).c_str());
             if (ids.empty()) ImGui::TextDisabled("no user primitives");
             for (const uint64_t id : ids) {

@@ -82,6 +82,7 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             r.steps = a.value("steps", r.steps);
             r.path = a.value("path", std::string());
             r.overlays = a.value("overlays", true);
+            r.ui = a.value("ui", false);
             if (a.contains("type")) r.types[a["type"].get<std::string>()] = 1.0f;
             if (a.contains("types"))
                 for (const auto& [k, v] : a["types"].items()) r.types[k] = v.get<float>();

@@ -8,7 +8,7 @@
 //     "strength": 1.0},
 //    {"action": "erase_stroke", "type": "rock", "points": [...], "radius": 1.0, "strength": 1.0},
 //    {"action": "undo"}, {"action": "redo"}, {"action": "save"}, {"action": "save_as", "path": "out.json"},
-//    {"action": "screenshot", "path": "shot.png", "overlays": false},
+//    {"action": "screenshot", "path": "shot.png", "overlays": false, "ui": false},   ui: with the panels
 //    {"action": "view", "target": [x, y, z], "distance": 8, "yaw_deg": -90, "pitch_deg": 35},
 //    {"action": "wait_idle"},
 //    {"action": "set_seed", "seed": 42},                                    one undo step
@@ -71,6 +71,7 @@ struct ReplayAction {
     int steps = 10;        // sculpt
     std::string path;      // save_as, screenshot
     bool overlays = true;  // screenshot: draw the skeleton overlays
+    bool ui = false;       // screenshot: include the panels (read after the UI is drawn)
     // view
     bool has_target = false;
     glm::vec3 target{0.0f};

@@ -250,6 +250,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
     std::vector<uint8_t> pixels;
     int screenshot_count = 0;
     std::string screenshot_request_path;
+    std::string ui_screenshot_path;  // replay "screenshot" with "ui": true: read after the panels are drawn
     bool screenshot_overlays = true;
     std::vector<PendingStamp> pending_stamps;
     ReplayState replay;
@@ -681,7 +682,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                             break;
                         }
                         case ReplayKind::Screenshot:
-                            screenshot_request_path = a.path;
+                            (a.ui ? ui_screenshot_path : screenshot_request_path) = a.path;
                             screenshot_overlays = a.overlays;
                             replay.record["path"] = a.path;
                             break;
@@ -711,6 +712,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                             export_settings.chunk_size_m = a.chunk_m > 0.0f ? a.chunk_m : doc->project().chunk_size_m;
                             requests.start_export = true;  // started below, the way the Export button does
                             export_record = json();
+                            windows.export_panel = true;  // its progress shows there, as for the menu
                             replay.record["path"] = a.path;
                             break;
                         }
@@ -814,6 +816,12 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             screenshot_request_path.clear();
         }
         window.renderUi();
+        if (!ui_screenshot_path.empty()) {
+            renderer.readPixels(fb_w, fb_h, &pixels);
+            std::string write_error;
+            if (!writeScreenshot(ui_screenshot_path, fb_w, fb_h, pixels, &write_error)) messages.push_back(write_error);
+            ui_screenshot_path.clear();
+        }
         if (options.finish_each_frame) window.finish();
         window.swapBuffers();
 
