@@ -42,6 +42,8 @@ const char* replayKindName(ReplayKind kind) {
             return "open";
         case ReplayKind::New:
             return "new";
+        case ReplayKind::SetVisible:
+            return "set_visible";
     }
     return "?";
 }
@@ -99,6 +101,11 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             if (a.contains("yaw_deg")) r.yaw_deg = a["yaw_deg"].get<float>();
             if (a.contains("pitch_deg")) r.pitch_deg = a["pitch_deg"].get<float>();
             if (r.kind == ReplayKind::SetSeed) r.seed = a.at("seed").get<uint64_t>();
+            if (r.kind == ReplayKind::SetVisible) {
+                r.type = a.at("type").get<std::string>();
+                r.visible = a.at("visible").get<bool>();
+                r.types.clear();
+            }
             if (r.kind == ReplayKind::SetInstancing) {
                 r.type = a.at("type").get<std::string>();
                 r.types.clear();

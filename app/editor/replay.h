@@ -17,7 +17,8 @@
 //     "size": {"target": 1.0, "tolerance": 0.2} | false},                   only the keys given change
 //    {"action": "export", "path": "out.glb", "plain_nodes": false, "chunk": 8},   waits for the file
 //    {"action": "open", "path": "other.json"},    waits for the load; a failed one keeps the document
-//    {"action": "new"}]                           an untitled document from assets/scenes/default.json
+//    {"action": "new"},                           an untitled document from assets/scenes/default.json
+//    {"action": "set_visible", "type": "rock", "visible": false}]   the outliner's eye (view state only)
 //
 // "frame" (optional) is the earliest frame, counted from the first frame that shows the document's
 // instances, at which the action may start. Every action also waits until the previous one is finished and
@@ -54,9 +55,10 @@ enum class ReplayKind {
     SetInstancing,
     Export,
     Open,
-    New
+    New,
+    SetVisible
 };
-constexpr int kReplayKindCount = int(ReplayKind::New) + 1;
+constexpr int kReplayKindCount = int(ReplayKind::SetVisible) + 1;
 const char* replayKindName(ReplayKind kind);  // the "action" string
 
 struct ReplayAction {
@@ -78,7 +80,8 @@ struct ReplayAction {
     float distance_m = -1.0f;  // < 0: keep
     float yaw_deg = NAN, pitch_deg = NAN;
     uint64_t seed = 0;            // set_seed
-    std::string type;             // set_instancing
+    std::string type;             // set_instancing, set_visible
+    bool visible = true;          // set_visible
     std::string instancing_json;  // set_instancing: the action's object (applyInstancingChanges reads it)
     bool plain_nodes = false;     // export
     float chunk_m = -1.0f;        // export: <= 0 keeps the project's chunk size

@@ -358,6 +358,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         }
         if (loader && loader->phase() == LoadPhase::Ready) {
             // Only now does the previous document go (startLoad kept it open while this one loaded).
+            stroke.end();
             renderer.clearScene();
             if (scene) scene->doc->close();
             store.reset();
@@ -416,7 +417,9 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         // ---- UI: navigation, tools, panels, dialogs ----
         const size_t stamps_before_frame = pending_stamps.size();
         window.beginUiFrame();
-        Document* doc = scene ? scene->doc.get() : nullptr;
+        // While another document loads, the current one is shown but not edited: it is replaced (and its
+        // edits dropped) when the new one is ready, and is editable again if that load fails.
+        Document* doc = scene && !loader ? scene->doc.get() : nullptr;
         const ImGuiIO& io = ImGui::GetIO();
         const glm::mat4 view_proj = camera.viewProjection();
         if (scene && !scripted)
@@ -447,7 +450,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             drawInstantiationPanel(doc, view.type_names, inst_view, &panel_message, &windows.instantiation);
             if (!panel_message.empty()) messages.push_back(panel_message);
             ExportView export_view;
-            export_view.has_document = doc != nullptr && store != nullptr;
+            export_view.has_document = doc != nullptr && store != nullptr && settled;  // the settled set
             export_view.running = export_job != nullptr;
             export_view.can_cancel = export_job && export_job->stage() == ExportStage::Gathering;
             export_view.progress = export_job ? export_job->progress() : 0.0f;
@@ -533,7 +536,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         if (drawOpenDialog(&open_dialog_open, &open_dialog_path) == DialogAnswer::Yes)
             requests.open_path = open_dialog_path;
         if (requests.show_export) windows.export_panel = true;
-        if (requests.start_export && doc && store && !export_job) {
+        if (requests.start_export && doc && store && settled && !export_job) {
             const CandidateSet& c = doc->ghostTile().candidates;
             const json stats{{"generator", "undergrowth edit"},
                              {"scene", doc->path()},
@@ -716,6 +719,22 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                             replay.record["path"] = a.path;
                             break;
                         }
+                        case ReplayKind::SetVisible: {
+                            const auto it = std::find(view.type_names.begin(), view.type_names.end(), a.type);
+                            if (it == view.type_names.end()) {
+                                *error = "replay: action " + std::to_string(replay.index) + ": no detail type '" +
+                                         a.type + "'";
+                                return ViewerStatus::Failed;
+                            }
+                            const size_t t = size_t(it - view.type_names.begin());
+                            replay.record["type"] = a.type;
+                            replay.record["visible"] = a.visible;
+                            replay.record["drawn_instances_before"] = renderer.stats().instances_drawn;
+                            type_visible.resize(view.type_names.size(), 1);
+                            type_visible[t] = a.visible ? 1 : 0;
+                            renderer.setTypeVisible(t, a.visible);  // this frame already draws it so
+                            break;
+                        }
                         case ReplayKind::Open:
                         case ReplayKind::New:
                             recordBefore(&replay.record);
@@ -863,6 +882,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             r["instance_store_hash_after"] = hex64(instanceStoreHash(*store));
             const ReplayKind kind = options.replay[replay.index].kind;
             if (kind == ReplayKind::Export) r.update(export_record);
+            if (kind == ReplayKind::SetVisible) r["drawn_instances_after"] = renderer.stats().instances_drawn;
             if (kind == ReplayKind::Open || kind == ReplayKind::New) {
                 r["ok"] = load_error.empty();
                 if (!load_error.empty()) r["error"] = load_error;

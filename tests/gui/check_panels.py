@@ -3,7 +3,7 @@
 
   check_panels.py STATS.json CLI_SEED.json SEED ORIGINAL_SCENE
 
-The script is: set_seed SEED, undo, redo, set_instancing rock random, undo, export (ok), export (fails:
+The script is: set_visible rock off, grass_tuft off, rock on, grass_tuft on, set_seed SEED, undo, redo, set_instancing rock random, undo, export (ok), export (fails:
 a file where the folder should be), open a truncated scene, open a scene whose model is garbage, new,
 save_as. Prints a one-line summary; exits 1 with the reason on the first failed check.
 """
@@ -18,10 +18,21 @@ def main():
     cli = json.load(open(cli_path))
     acts = s["actions"]
     names = [a["action"] for a in acts]
-    want = ["set_seed", "undo", "redo", "set_instancing", "undo", "export", "export", "open", "open", "new",
+    want = ["set_visible"] * 4 + ["set_seed", "undo", "redo", "set_instancing", "undo", "export", "export", "open", "open", "new",
             "save_as"]
     assert names[:len(want)] == want, names
-    seed_a, undo_a, redo_a, inst_a, inst_undo, exp_ok, exp_bad, open_trunc, open_model, new_a, save_a = acts[:11]
+    vis = acts[:4]
+    seed_a, undo_a, redo_a, inst_a, inst_undo, exp_ok, exp_bad, open_trunc, open_model, new_a, save_a = acts[4:15]
+
+    # Visibility: hiding a type stops drawing exactly its instances (the whole scene is in view), showing
+    # it draws them again; the instance set is unchanged and the document stays clean (view state only).
+    for a in vis:
+        n = a["per_type_after"][a["type"]]
+        assert n > 0, a
+        delta = a["drawn_instances_after"] - a["drawn_instances_before"]
+        assert delta == (n if a["visible"] else -n), (a["type"], a["visible"], delta, n)
+        assert not a["dirty"] and a["instance_store_hash_after"] == a["instance_store_hash_before"], a
+    assert vis[3]["drawn_instances_after"] == vis[0]["drawn_instances_before"], vis
 
     # set_seed N gives the CLI's instance set for --seed N (per type), and it is a different set.
     assert seed_a["ok"] and seed_a["seed"] == seed, seed_a
@@ -61,7 +72,7 @@ def main():
     saved = json.load(open(save_a["path"]))
     assert saved["format"] == "undergrowth-project", saved
     assert all("density" not in t for t in saved["detail_types"]), "a new document has no density"
-    print("seed %d: %d instances as the CLI, undo exact; exported %d; opens failed cleanly (%d instances kept); "
+    print("hide/show draws -/+ exactly a type's instances; seed %d: %d instances as the CLI, undo exact; exported %d; opens failed cleanly (%d instances kept); "
           "new + save as" % (seed, seed_a["instances_after"], exp_ok["exported_instances"],
                              open_model["instances_after"]))
 

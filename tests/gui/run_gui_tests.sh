@@ -100,7 +100,8 @@ else
 fi
 
 # ---- panels: seed and instancing edits, export, New and Open (check_panels.py) ----
-# On the default scene: set_seed vs `instantiate --seed`, undo exact; an export read back by the Khronos
+# On the default scene (the whole of it in view): the outliner's eye hides exactly a type's instances
+# and is no edit; set_seed vs `instantiate --seed`, undo exact; an export read back by the Khronos
 # validator and glTF-Transform; a failed export; opening a truncated scene and a scene whose model is
 # garbage (the run goes on, the messages say which file and why, the document stays); New, then Save As.
 pdir="$tmp/panels"
@@ -119,7 +120,11 @@ s["detail_types"][0]["model"]["mesh"] = "garbage.obj"
 json.dump(s, open(os.path.join(out, "bad_model.json"), "w"))
 PY
 cat >"$pdir/script.json" <<EOF
-[{"frame": 1, "action": "set_seed", "seed": 5},
+[{"frame": 1, "action": "set_visible", "type": "rock", "visible": false},
+ {"action": "set_visible", "type": "grass_tuft", "visible": false},
+ {"action": "set_visible", "type": "rock", "visible": true},
+ {"action": "set_visible", "type": "grass_tuft", "visible": true},
+ {"action": "set_seed", "seed": 5},
  {"action": "undo"}, {"action": "redo"},
  {"action": "set_instancing", "type": "rock", "strategy": "random"},
  {"action": "undo"},
