@@ -14,6 +14,9 @@
 // type (instance origins, instance_query.h), "stamp_to_frame_ms" (per stamp, wall clock from the edit to
 // the end of the first frame that shows its result). "before" is the settled state the action started
 // from, "after" the settled state once the live instancer is idle and its result is on screen.
+// Panels' actions add: export "ok", "error", "exported_instances", "export_seconds"; open and new "ok",
+// "error", "document" (their "before" is the replaced document's); set_visible "drawn_instances_before"/
+// "_after" (the renderer's instances drawn in the frame before and the frame after).
 #include "editor/viewer.h"
 
 #include <imgui.h>
