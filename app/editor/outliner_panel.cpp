@@ -14,10 +14,12 @@ namespace ug::editor {
 
 namespace {
 
-// "3 primitives (2 segment, 1 terrain_layer), 2 nodes (1 intersection, 1 union)", counting what the root
-// reaches (the arrays may hold removed primitives until compaction).
-std::string densitySummary(const DensityField& f) {
-    if (f.root == kNoNode) return "no density (0 everywhere)";
+// "file: 3 primitives (2 segment, 1 terrain_layer), 2 nodes (1 intersection, 1 union)": what the root
+// reaches (the arrays may hold removed primitives until compaction) less the user primitives, listed
+// below it. note: once edited, a tree whose root was not a Blend shows one more blend node (the editor's
+// wrapper, edit_commands.h).
+std::string densitySummary(const DensityField& f, const std::vector<Primitive>& user) {
+    if (f.root == kNoNode) return "file: no density (0 everywhere)";
     std::map<std::string, int> prims, nodes;
     int prim_count = 0, node_count = 0;
     // Explicit stack: a deep hand-written tree must not overflow the UI thread's stack.
@@ -37,12 +39,15 @@ std::string densitySummary(const DensityField& f) {
         for (uint32_t c = 0; c < n.child_count && n.first_child + c < f.children.size(); ++c)
             stack.push_back(f.children[n.first_child + c]);
     }
+    for (const Primitive& p : user)
+        if (--prims[primitiveKindName(p.kind)] == 0) prims.erase(primitiveKindName(p.kind));
+    prim_count -= int(user.size());
     auto list = [](const std::map<std::string, int>& m) {
         std::string s;
         for (const auto& [name, count] : m) s += (s.empty() ? "" : ", ") + std::to_string(count) + " " + name;
         return s;
     };
-    return std::to_string(prim_count) + " primitives (" + list(prims) + "), " + std::to_string(node_count) +
+    return "file: " + std::to_string(prim_count) + " primitives (" + list(prims) + "), " + std::to_string(node_count) +
            " nodes (" + list(nodes) + ")";
 }
 
@@ -87,12 +92,22 @@ void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uin
         const std::vector<uint64_t> ids = doc->primitiveIds(t);
         const uint64_t count = t < view.instances_per_type.size() ? view.instances_per_type[t] : 0;
         const std::string label = view.type_names[t] + "  " + std::to_string(count);
+        std::vector<uint64_t> user_ids;
+        std::vector<Primitive> user;
+        for (const uint64_t id : ids) {
+            Primitive p;
+            if (!doc->findPrimitive(id, nullptr, &p)) continue;
+            user_ids.push_back(id);
+            user.push_back(p);
+        }
         if (ImGui::TreeNodeEx("##layer", ImGuiTreeNodeFlags_SpanAvailWidth | (t == 0 ? ImGuiTreeNodeFlags_DefaultOpen : 0), "%s", label.c_str())) {
-            ImGui::TextDisabled("%s", densitySummary(doc->project().detail_types[t].density).c_str());
+            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+            ImGui::TextWrapped("%s", densitySummary(doc->project().detail_types[t].density, user).c_str());
+            ImGui::PopStyleColor();
             if (ids.empty()) ImGui::TextDisabled("no user primitives");
-            for (const uint64_t id : ids) {
-                Primitive p;
-                if (!doc->findPrimitive(id, nullptr, &p)) continue;
+            for (size_t k = 0; k < user.size(); ++k) {
+                const uint64_t id = user_ids[k];
+                const Primitive& p = user[k];
                 ImGui::PushID(static_cast<int>(id));
                 char text[160];
                 std::snprintf(text, sizeof(text), "%s #%llu  (%.2f, %.2f, %.2f) r %.2f w %.2f",
