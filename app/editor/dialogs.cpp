@@ -84,9 +84,13 @@ DialogAnswer drawPathDialog(const char* title, const char* confirm, bool* open, 
 
 }  // namespace
 
-DialogAnswer drawSaveAsDialog(bool* open, std::string* path) { return drawPathDialog("Save As", "Save", open, path); }
+DialogAnswer drawSaveAsDialog(bool* open, std::string* path) {
+    return drawPathDialog("Save As", "Save", open, path);
+}
 
-DialogAnswer drawOpenDialog(bool* open, std::string* path) { return drawPathDialog("Open", "Open", open, path); }
+DialogAnswer drawOpenDialog(bool* open, std::string* path) {
+    return drawPathDialog("Open", "Open", open, path);
+}
 
 void drawMessages(std::vector<std::string>* messages) {
     if (messages->empty()) return;

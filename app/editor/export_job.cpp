@@ -24,8 +24,12 @@ const char* exportStageName(ExportStage stage) {
 
 ExportJob::ExportJob(const Document& doc, std::shared_ptr<const InstanceStore> store, ExportSettings settings,
                      std::string stats_json)
-    : settings_(std::move(settings)), stats_json_(std::move(stats_json)), models_(doc.models()),
-      terrain_(doc.terrain()), extent_(doc.compiled().extent), store_(std::move(store)) {
+    : settings_(std::move(settings)),
+      stats_json_(std::move(stats_json)),
+      models_(doc.models()),
+      terrain_(doc.terrain()),
+      extent_(doc.compiled().extent),
+      store_(std::move(store)) {
     tile_.settings = doc.ghostTile().settings;
     tile_.candidates = doc.ghostTile().candidates;
     thread_ = std::thread([this] { work(); });
@@ -49,8 +53,8 @@ void ExportJob::work() {
         return true;
     };
     std::string error;
-    const bool ok = exportInstancedScene(settings_.path, tile_, models_, *store_, terrain_.get(), extent_, options,
-                                         stats_json_, &error);
+    const bool ok = exportInstancedScene(settings_.path, tile_, models_, *store_, terrain_.get(), extent_,
+                                         options, stats_json_, &error);
     seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     progress_.store(1.0f, std::memory_order_relaxed);
     if (ok) {

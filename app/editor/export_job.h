@@ -26,15 +26,15 @@ namespace ug::editor {
 
 struct ExportSettings {
     std::string path = "export.glb";  // .glb (binary) or .gltf (JSON, buffer embedded)
-    bool plain_nodes = false;          // one node per instance instead of EXT_mesh_gpu_instancing
-    float chunk_size_m = 8.0f;         // XY chunk edge the instances are grouped by, > 0
+    bool plain_nodes = false;         // one node per instance instead of EXT_mesh_gpu_instancing
+    float chunk_size_m = 8.0f;        // XY chunk edge the instances are grouped by, > 0
 };
 
 enum class ExportStage : int { Gathering, Writing, Done, Failed, Cancelled };
 const char* exportStageName(ExportStage stage);  // "gathering instances", "writing the file", ...
 
 class ExportJob {
-public:
+  public:
     // `store` must not be null. `stats_json` (a JSON object) goes into the scene's extras.
     ExportJob(const Document& doc, std::shared_ptr<const InstanceStore> store, ExportSettings settings,
               std::string stats_json);
@@ -54,7 +54,7 @@ public:
     const ExportSettings& settings() const { return settings_; }
     uint64_t instances() const { return store_->instanceCount(); }
 
-private:
+  private:
     void work();
 
     ExportSettings settings_;

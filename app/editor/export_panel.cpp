@@ -10,8 +10,8 @@ namespace ug::editor {
 void drawExportPanel(const ExportView& view, ExportSettings* settings, UiRequests* requests, bool* open) {
     if (!*open) return;
     const ImGuiViewport* vp = ImGui::GetMainViewport();
-    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y - 10), ImGuiCond_FirstUseEver,
-                            ImVec2(0.5f, 1.0f));
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x * 0.5f, vp->Pos.y + vp->Size.y - 10),
+                            ImGuiCond_FirstUseEver, ImVec2(0.5f, 1.0f));
     ImGui::SetNextWindowSize(ImVec2(460, 200), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Export glTF", open)) {
         ImGui::End();
@@ -24,8 +24,10 @@ void drawExportPanel(const ExportView& view, ExportSettings* settings, UiRequest
     }
     if (ImGui::InputText("path", path, sizeof(path))) settings->path = path;
     // The format follows the extension (the exporter's rule); the radio buttons rewrite it.
-    const bool glb = settings->path.size() >= 4 && settings->path.compare(settings->path.size() - 4, 4, ".glb") == 0;
-    const bool gltf = settings->path.size() >= 5 && settings->path.compare(settings->path.size() - 5, 5, ".gltf") == 0;
+    const bool glb =
+        settings->path.size() >= 4 && settings->path.compare(settings->path.size() - 4, 4, ".glb") == 0;
+    const bool gltf =
+        settings->path.size() >= 5 && settings->path.compare(settings->path.size() - 5, 5, ".gltf") == 0;
     auto setExtension = [&](const char* ext) {
         std::string& p = settings->path;
         const size_t dot = p.find_last_of('.');
@@ -36,8 +38,7 @@ void drawExportPanel(const ExportView& view, ExportSettings* settings, UiRequest
     if (ImGui::RadioButton(".glb (binary)", glb)) setExtension(".glb");
     ImGui::SameLine();
     if (ImGui::RadioButton(".gltf (JSON)", gltf)) setExtension(".gltf");
-    ImGui::Checkbox("plain nodes (one per instance)",
-                    &settings->plain_nodes);
+    ImGui::Checkbox("plain nodes (one per instance)", &settings->plain_nodes);
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("for viewers without EXT_mesh_gpu_instancing");
     ImGui::DragFloat("chunk size (m)", &settings->chunk_size_m, 0.1f, 0.5f, 1000.0f, "%.1f",
                      ImGuiSliderFlags_AlwaysClamp);

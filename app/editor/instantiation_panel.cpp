@@ -29,7 +29,8 @@ bool editInstancing(InstancingDesc* d) {
         ImGui::EndCombo();
     }
     if (d->strategy != PriorityStrategy::Random) {
-        ImGui::DragFloat("layer (m)", &d->layer_m, 0.001f, 0.001f, 10.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
+        ImGui::DragFloat("layer (m)", &d->layer_m, 0.001f, 0.001f, 10.0f, "%.3f",
+                         ImGuiSliderFlags_AlwaysClamp);
         commit |= ImGui::IsItemDeactivatedAfterEdit();
     }
     OrientationDesc& o = d->orientation;
@@ -50,7 +51,8 @@ bool editInstancing(InstancingDesc* d) {
                 commit = true;
             }
         }
-        ImGui::SliderFloat("max angle (deg)", &o.max_angle_deg, 0.0f, 180.0f, "%.0f", ImGuiSliderFlags_AlwaysClamp);
+        ImGui::SliderFloat("max angle (deg)", &o.max_angle_deg, 0.0f, 180.0f, "%.0f",
+                           ImGuiSliderFlags_AlwaysClamp);
         commit |= ImGui::IsItemDeactivatedAfterEdit();
         ImGui::Unindent();
     }
@@ -59,7 +61,8 @@ bool editInstancing(InstancingDesc* d) {
     if (s.enabled) {
         ImGui::Indent();
         if (s.kind == SizeFieldKind::Constant) {
-            ImGui::DragFloat("target scale", &s.target, 0.01f, 0.01f, 100.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp);
+            ImGui::DragFloat("target scale", &s.target, 0.01f, 0.01f, 100.0f, "%.2f",
+                             ImGuiSliderFlags_AlwaysClamp);
             commit |= ImGui::IsItemDeactivatedAfterEdit();
         } else {
             // The ramp's field is a density tree from the file; only its mapping is edited here.
@@ -71,14 +74,16 @@ bool editInstancing(InstancingDesc* d) {
                 s.value_hi = values[1];
                 commit = true;
             }
-            ImGui::DragFloat2("scales lo/hi", scales, 0.01f, 0.01f, 100.0f, "%.2f", ImGuiSliderFlags_AlwaysClamp);
+            ImGui::DragFloat2("scales lo/hi", scales, 0.01f, 0.01f, 100.0f, "%.2f",
+                              ImGuiSliderFlags_AlwaysClamp);
             if (ImGui::IsItemDeactivatedAfterEdit()) {
                 s.scale_lo = scales[0];
                 s.scale_hi = scales[1];
                 commit = true;
             }
         }
-        ImGui::DragFloat("tolerance", &s.tolerance, 0.005f, 0.0f, 10.0f, "%.3f", ImGuiSliderFlags_AlwaysClamp);
+        ImGui::DragFloat("tolerance", &s.tolerance, 0.005f, 0.0f, 10.0f, "%.3f",
+                         ImGuiSliderFlags_AlwaysClamp);
         commit |= ImGui::IsItemDeactivatedAfterEdit();
         ImGui::Unindent();
     }
@@ -93,9 +98,9 @@ void drawStatistics(const InstantiationView& v) {
     const InstanceStats& s = v.stats;
     ImGui::Text("#I %llu   #R %llu   (%llu candidates tested)", (unsigned long long)s.instances,
                 (unsigned long long)s.rejected, (unsigned long long)s.candidates_tested);
-    ImGui::Text("rejected: culled %llu, density %llu, constraint %llu, collision %llu", (unsigned long long)s.culled,
-                (unsigned long long)s.density_rejected, (unsigned long long)s.constraint_rejected,
-                (unsigned long long)s.collision_rejected);
+    ImGui::Text("rejected: culled %llu, density %llu, constraint %llu, collision %llu",
+                (unsigned long long)s.culled, (unsigned long long)s.density_rejected,
+                (unsigned long long)s.constraint_rejected, (unsigned long long)s.collision_rejected);
     ImGui::Text("%s run: %llu dirty tiles, %llu changed", v.full ? "full" : "incremental",
                 (unsigned long long)s.tiles_touched, (unsigned long long)v.changed_tiles);
     ImGui::Text("last update %.1f ms%s", s.seconds * 1e3, v.pending ? "  (running...)" : "");
@@ -103,15 +108,16 @@ void drawStatistics(const InstantiationView& v) {
         const float top = *std::max_element(v.update_ms.begin(), v.update_ms.end());
         char overlay[48];
         std::snprintf(overlay, sizeof(overlay), "max %.1f ms", top);
-        ImGui::PlotLines("##updates", v.update_ms.data(), int(v.update_ms.size()), 0, overlay, 0.0f, top * 1.1f,
+        ImGui::PlotLines("##updates", v.update_ms.data(), int(v.update_ms.size()), 0, overlay, 0.0f,
+                         top * 1.1f,
                          ImVec2(ImGui::GetContentRegionAvail().x, 60));  // 1.86 plots take no -1 width
     }
 }
 
 }  // namespace
 
-void drawInstantiationPanel(Document* doc, const std::vector<std::string>& type_names, const InstantiationView& view,
-                            std::string* message, bool* open) {
+void drawInstantiationPanel(Document* doc, const std::vector<std::string>& type_names,
+                            const InstantiationView& view, std::string* message, bool* open) {
     if (!*open) return;
     ImGui::SetNextWindowPos(ImVec2(350, 30), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(380, 380), ImGuiCond_FirstUseEver);

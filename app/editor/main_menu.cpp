@@ -40,7 +40,8 @@ void drawMainMenu(const MenuView& view, UiRequests* requests, ToolState* tools, 
             ImGui::EndMenu();
         }
         ImGui::Separator();
-        if (ImGui::MenuItem("Export glTF...", nullptr, false, view.has_document)) requests->show_export = true;
+        if (ImGui::MenuItem("Export glTF...", nullptr, false, view.has_document))
+            requests->show_export = true;
         ImGui::Separator();
         if (ImGui::MenuItem("Screenshot", "F12")) requests->screenshot = true;
         ImGui::Separator();

@@ -47,14 +47,14 @@ std::string densitySummary(const DensityField& f, const std::vector<Primitive>& 
         for (const auto& [name, count] : m) s += (s.empty() ? "" : ", ") + std::to_string(count) + " " + name;
         return s;
     };
-    return "file: " + std::to_string(prim_count) + " primitives (" + list(prims) + "), " + std::to_string(node_count) +
-           " nodes (" + list(nodes) + ")";
+    return "file: " + std::to_string(prim_count) + " primitives (" + list(prims) + "), " +
+           std::to_string(node_count) + " nodes (" + list(nodes) + ")";
 }
 
 }  // namespace
 
-void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uint8_t>* visible, ToolState* tools,
-                  UiRequests* requests, bool* open) {
+void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uint8_t>* visible,
+                  ToolState* tools, UiRequests* requests, bool* open) {
     if (!*open) return;
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - 10, vp->Pos.y + 260), ImGuiCond_FirstUseEver,
@@ -100,7 +100,9 @@ void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uin
             user_ids.push_back(id);
             user.push_back(p);
         }
-        if (ImGui::TreeNodeEx("##layer", ImGuiTreeNodeFlags_SpanAvailWidth | (t == 0 ? ImGuiTreeNodeFlags_DefaultOpen : 0), "%s", label.c_str())) {
+        if (ImGui::TreeNodeEx(
+                "##layer", ImGuiTreeNodeFlags_SpanAvailWidth | (t == 0 ? ImGuiTreeNodeFlags_DefaultOpen : 0),
+                "%s", label.c_str())) {
             ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
             ImGui::TextWrapped("%s", densitySummary(doc->project().detail_types[t].density, user).c_str());
             ImGui::PopStyleColor();

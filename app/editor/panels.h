@@ -99,9 +99,9 @@ struct OutlinerView {
 struct InstantiationView {
     bool have_result = false;
     bool pending = false;
-    InstanceStats stats;         // of the latest run
-    uint64_t changed_tiles = 0;  // tiles whose selected set changed since the previous result
-    bool full = false;           // the latest result came from a full run
+    InstanceStats stats;           // of the latest run
+    uint64_t changed_tiles = 0;    // tiles whose selected set changed since the previous result
+    bool full = false;             // the latest result came from a full run
     std::vector<float> update_ms;  // the last runs, oldest first (at most kUpdateHistory)
     static constexpr size_t kUpdateHistory = 100;
 };
@@ -119,17 +119,17 @@ struct ExportView {
 // Layers (detail types: swatch, instance count, visibility, "paint with this type"), each with its user
 // primitives (click selects; Delete / Duplicate raise the requests) and a summary of the file's own
 // density tree. `visible` is view state (one byte per type), not a document edit.
-void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uint8_t>* visible, ToolState* tools,
-                  UiRequests* requests, bool* open);
+void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uint8_t>* visible,
+                  ToolState* tools, UiRequests* requests, bool* open);
 // Per type strategy, layer, orientation and size constraints, and the seed: each finished edit is one
 // Document::setInstancing / setSeed (one undo step); errors go to *message. Then the statistics.
-void drawInstantiationPanel(Document* doc, const std::vector<std::string>& type_names, const InstantiationView& view,
-                            std::string* message, bool* open);
+void drawInstantiationPanel(Document* doc, const std::vector<std::string>& type_names,
+                            const InstantiationView& view, std::string* message, bool* open);
 // Path, format (by extension), plain nodes, chunk size; Export / Cancel raise the requests.
 void drawExportPanel(const ExportView& view, ExportSettings* settings, UiRequests* requests, bool* open);
 
-// The main menu bar and the global shortcuts (Ctrl+N, Ctrl+O, Ctrl+S, Ctrl+Z, Ctrl+Shift+Z, Ctrl+Q, F12, Delete, Ctrl+D,
-// and the tool keys Q / B / S / E), ignored while ImGui has the keyboard.
+// The main menu bar and the global shortcuts (Ctrl+N, Ctrl+O, Ctrl+S, Ctrl+Z, Ctrl+Shift+Z, Ctrl+Q, F12,
+// Delete, Ctrl+D, and the tool keys Q / B / S / E), ignored while ImGui has the keyboard.
 void drawMainMenu(const MenuView& view, UiRequests* requests, ToolState* tools, WindowToggles* windows);
 void drawStatisticsPanel(const StatisticsView& view, bool* open);
 // Tool bar and brush settings; type names index the brush's per-type mix.

@@ -125,8 +125,8 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
                 return fail("radius, strength and falloff must be > 0");
             if (r.steps < 1 || r.steps > 100000) return fail("steps must be in [1, 100000]");
         }
-        if ((r.kind == ReplayKind::SaveAs || r.kind == ReplayKind::Screenshot || r.kind == ReplayKind::Export ||
-             r.kind == ReplayKind::Open) &&
+        if ((r.kind == ReplayKind::SaveAs || r.kind == ReplayKind::Screenshot ||
+             r.kind == ReplayKind::Export || r.kind == ReplayKind::Open) &&
             r.path.empty())
             return fail("needs \"path\"");
         if (r.kind == ReplayKind::SetInstancing) {
@@ -169,11 +169,12 @@ bool applyInstancingChanges(const std::string& action_json, InstancingDesc* desc
                         d.orientation.kind = DirectionFieldKind::Gradient;
                     } else {
                         d.orientation.kind = DirectionFieldKind::Constant;
-                        d.orientation.direction = glm::normalize(
-                            glm::vec3(dir.at(0).get<float>(), dir.at(1).get<float>(), dir.at(2).get<float>()));
+                        d.orientation.direction = glm::normalize(glm::vec3(
+                            dir.at(0).get<float>(), dir.at(1).get<float>(), dir.at(2).get<float>()));
                     }
                 }
-                if (o.contains("max_angle_deg")) d.orientation.max_angle_deg = o["max_angle_deg"].get<float>();
+                if (o.contains("max_angle_deg"))
+                    d.orientation.max_angle_deg = o["max_angle_deg"].get<float>();
             }
         }
         if (a.contains("size")) {

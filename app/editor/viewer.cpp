@@ -399,7 +399,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             if (j.stage() == ExportStage::Done) {
                 char text[64];
                 std::snprintf(text, sizeof(text), " in %.2f s", j.seconds());
-                export_result = "wrote " + std::to_string(j.instances()) + " instances to " + j.settings().path + text;
+                export_result =
+                    "wrote " + std::to_string(j.instances()) + " instances to " + j.settings().path + text;
                 view.last_message = export_result;
             } else {
                 export_result = j.error();
@@ -500,8 +501,11 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             if (requests.undo || requests.redo) stroke.end();
             if (requests.undo) doc->undo();
             if (requests.redo) doc->redo();
-            if (requests.save && doc->path().empty()) requests.open_save_as = true;  // untitled: Save As
-            else if (requests.save && !doc->save(&op_error)) messages.push_back("Save failed: " + op_error);
+            if (requests.save && doc->path().empty()) {
+                requests.open_save_as = true;  // an untitled document saves with Save As
+            } else if (requests.save && !doc->save(&op_error)) {
+                messages.push_back("Save failed: " + op_error);
+            }
             if (requests.open_save_as) {
                 save_as_open = true;
                 save_as_path = doc->path();
@@ -579,10 +583,11 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             }
         }
         if (prompt != Prompt::None) {
-            const DialogAnswer a = drawUnsavedDialog(doc && !doc->path().empty() ? doc->path() : "the document",
-                                                     prompt == Prompt::Quit  ? "quit"
-                                                     : prompt == Prompt::New ? "start a new document"
-                                                                             : "open another file");
+            const DialogAnswer a =
+                drawUnsavedDialog(doc && !doc->path().empty() ? doc->path() : "the document",
+                                  prompt == Prompt::Quit  ? "quit"
+                                  : prompt == Prompt::New ? "start a new document"
+                                                          : "open another file");
             bool proceed = false;
             if (a == DialogAnswer::Yes && doc && doc->path().empty()) {
                 save_as_open = true;  // an untitled document: Save As first, then ask again
@@ -699,23 +704,25 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                         case ReplayKind::SetInstancing: {
                             const auto it = std::find(view.type_names.begin(), view.type_names.end(), a.type);
                             if (it == view.type_names.end()) {
-                                *error = "replay: action " + std::to_string(replay.index) + ": no detail type '" +
-                                         a.type + "'";
+                                *error = "replay: action " + std::to_string(replay.index) +
+                                         ": no detail type '" + a.type + "'";
                                 return ViewerStatus::Failed;
                             }
                             const size_t t = size_t(it - view.type_names.begin());
                             InstancingDesc desc = doc->project().detail_types[t].instancing;
                             replay.record["type"] = a.type;
-                            replay.record["ok"] = applyInstancingChanges(a.instancing_json, &desc, &op_error) &&
-                                                  doc->setInstancing(t, desc, &op_error);
-                            replay.record["strategy"] = priorityStrategyName(
-                                doc->project().detail_types[t].instancing.strategy);
+                            replay.record["ok"] =
+                                applyInstancingChanges(a.instancing_json, &desc, &op_error) &&
+                                doc->setInstancing(t, desc, &op_error);
+                            replay.record["strategy"] =
+                                priorityStrategyName(doc->project().detail_types[t].instancing.strategy);
                             break;
                         }
                         case ReplayKind::Export: {
                             export_settings.path = a.path;
                             export_settings.plain_nodes = a.plain_nodes;
-                            export_settings.chunk_size_m = a.chunk_m > 0.0f ? a.chunk_m : doc->project().chunk_size_m;
+                            export_settings.chunk_size_m =
+                                a.chunk_m > 0.0f ? a.chunk_m : doc->project().chunk_size_m;
                             requests.start_export = true;  // started below, the way the Export button does
                             export_record = json();
                             windows.export_panel = true;  // its progress shows there, as for the menu
@@ -725,8 +732,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                         case ReplayKind::SetVisible: {
                             const auto it = std::find(view.type_names.begin(), view.type_names.end(), a.type);
                             if (it == view.type_names.end()) {
-                                *error = "replay: action " + std::to_string(replay.index) + ": no detail type '" +
-                                         a.type + "'";
+                                *error = "replay: action " + std::to_string(replay.index) +
+                                         ": no detail type '" + a.type + "'";
                                 return ViewerStatus::Failed;
                             }
                             const size_t t = size_t(it - view.type_names.begin());
@@ -841,7 +848,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         if (!ui_screenshot_path.empty()) {
             renderer.readPixels(fb_w, fb_h, &pixels);
             std::string write_error;
-            if (!writeScreenshot(ui_screenshot_path, fb_w, fb_h, pixels, &write_error)) messages.push_back(write_error);
+            if (!writeScreenshot(ui_screenshot_path, fb_w, fb_h, pixels, &write_error))
+                messages.push_back(write_error);
             ui_screenshot_path.clear();
         }
         if (options.finish_each_frame) window.finish();

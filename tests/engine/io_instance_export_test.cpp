@@ -18,14 +18,16 @@ namespace fs = std::filesystem;
 
 // One document for the suite: opening builds the Ghost Tile (seconds), the exports only read it.
 class ExportProgress : public ::testing::Test {
-protected:
+  protected:
     static void SetUpTestSuite() {
         std::random_device rd;
-        suite_dir_ = fs::temp_directory_path() / ("ug_export_progress_" + std::to_string(rd()) + std::to_string(rd()));
+        suite_dir_ =
+            fs::temp_directory_path() / ("ug_export_progress_" + std::to_string(rd()) + std::to_string(rd()));
         std::string error;
         // The default scene: 9 types, a few thousand instances, a terrain (so every stage runs).
         doc_ = Document::open((fs::path(UG_SOURCE_DIR) / "assets/scenes/default.json").string(),
-                              DocumentOptions{.cache_dir = (suite_dir_ / "cache").string(), .threads = 2}, &error);
+                              DocumentOptions{.cache_dir = (suite_dir_ / "cache").string(), .threads = 2},
+                              &error);
         ASSERT_TRUE(doc_) << error;
         const LiveResult r = doc_->waitForResult();
         ASSERT_TRUE(r.ok) << r.error;
