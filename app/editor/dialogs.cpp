@@ -51,8 +51,10 @@ DialogAnswer drawUnsavedDialog(const std::string& path, const std::string& what)
     return answer;
 }
 
-DialogAnswer drawSaveAsDialog(bool* open, std::string* path) {
-    const char* title = "Save As";
+namespace {
+
+// A modal path field with a confirm button (Save As, Open). One buffer: only one is open at a time.
+DialogAnswer drawPathDialog(const char* title, const char* confirm, bool* open, std::string* path) {
     if (!*open) return DialogAnswer::Pending;
     static char buffer[1024] = "";
     if (!ImGui::IsPopupOpen(title)) {
@@ -67,7 +69,7 @@ DialogAnswer drawSaveAsDialog(bool* open, std::string* path) {
         if (ImGui::IsWindowAppearing()) ImGui::SetKeyboardFocusHere();
         const bool enter =
             ImGui::InputText("path", buffer, sizeof(buffer), ImGuiInputTextFlags_EnterReturnsTrue);
-        if ((ImGui::Button("Save") || enter) && buffer[0]) answer = DialogAnswer::Yes;
+        if ((ImGui::Button(confirm) || enter) && buffer[0]) answer = DialogAnswer::Yes;
         ImGui::SameLine();
         if (ImGui::Button("Cancel")) answer = DialogAnswer::Cancel;
         if (answer != DialogAnswer::Pending) {
@@ -78,6 +80,16 @@ DialogAnswer drawSaveAsDialog(bool* open, std::string* path) {
         ImGui::EndPopup();
     }
     return answer;
+}
+
+}  // namespace
+
+DialogAnswer drawSaveAsDialog(bool* open, std::string* path) {
+    return drawPathDialog("Save As", "Save", open, path);
+}
+
+DialogAnswer drawOpenDialog(bool* open, std::string* path) {
+    return drawPathDialog("Open", "Open", open, path);
 }
 
 void drawMessages(std::vector<std::string>* messages) {

@@ -22,8 +22,16 @@ void DocumentLoader::work() {
         error_ = message;
         phase_.store(LoadPhase::Failed, std::memory_order_release);
     };
-    s.doc = request_.recover ? Document::recover(request_.scene_path, request_.options, &error)
-                             : Document::open(request_.scene_path, request_.options, &error);
+    if (request_.new_from_template) {
+        Project project;
+        if (!loadProject(request_.scene_path, &project, &error)) return failWith("New: " + error);
+        for (DetailTypeDesc& t : project.detail_types) t.density = DensityField{};
+        project.name = "untitled";
+        s.doc = Document::create(std::move(project), "", request_.options, &error);
+    } else {
+        s.doc = request_.recover ? Document::recover(request_.scene_path, request_.options, &error)
+                                 : Document::open(request_.scene_path, request_.options, &error);
+    }
     if (!s.doc) return failWith(error);
     const Document& doc = *s.doc;
     if (doc.terrain()) {

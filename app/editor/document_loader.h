@@ -31,6 +31,9 @@ struct LoadRequest {
     std::string scene_path;
     DocumentOptions options;
     bool recover = false;  // open the autosave (Document::recover) instead of the file
+    // File > New: scene_path is a template project (its terrain, extent and detail types); the document is
+    // untitled (saved with Save As) and every type starts with no density.
+    bool new_from_template = false;
 };
 
 class DocumentLoader {

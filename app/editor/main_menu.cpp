@@ -13,6 +13,8 @@ void drawMainMenu(const MenuView& view, UiRequests* requests, ToolState* tools, 
         if (pressed(GLFW_KEY_F12)) requests->screenshot = true;
         if (io.KeyCtrl) {
             if (pressed(GLFW_KEY_Q)) requests->quit = true;
+            if (pressed(GLFW_KEY_N)) requests->new_document = true;
+            if (pressed(GLFW_KEY_O)) requests->open_dialog = true;
             if (pressed(GLFW_KEY_S)) (io.KeyShift ? requests->open_save_as : requests->save) = true;
             if (pressed(GLFW_KEY_Z)) (io.KeyShift ? requests->redo : requests->undo) = true;
             if (pressed(GLFW_KEY_Y)) requests->redo = true;
@@ -27,6 +29,8 @@ void drawMainMenu(const MenuView& view, UiRequests* requests, ToolState* tools, 
     }
     if (!ImGui::BeginMainMenuBar()) return;
     if (ImGui::BeginMenu("File")) {
+        if (ImGui::MenuItem("New", "Ctrl+N")) requests->new_document = true;
+        if (ImGui::MenuItem("Open...", "Ctrl+O")) requests->open_dialog = true;
         if (ImGui::MenuItem("Save", "Ctrl+S", false, view.has_document)) requests->save = true;
         if (ImGui::MenuItem("Save As...", "Ctrl+Shift+S", false, view.has_document))
             requests->open_save_as = true;
@@ -35,6 +39,9 @@ void drawMainMenu(const MenuView& view, UiRequests* requests, ToolState* tools, 
                 if (ImGui::MenuItem(f.c_str())) requests->open_path = f;
             ImGui::EndMenu();
         }
+        ImGui::Separator();
+        if (ImGui::MenuItem("Export glTF...", nullptr, false, view.has_document))
+            requests->show_export = true;
         ImGui::Separator();
         if (ImGui::MenuItem("Screenshot", "F12")) requests->screenshot = true;
         ImGui::Separator();
@@ -60,6 +67,9 @@ void drawMainMenu(const MenuView& view, UiRequests* requests, ToolState* tools, 
         ImGui::MenuItem("Inspector", nullptr, &windows->inspector);
         ImGui::MenuItem("Ghost Tile", nullptr, &windows->ghost_tile);
         ImGui::MenuItem("Render", nullptr, &windows->render);
+        ImGui::MenuItem("Outliner", nullptr, &windows->outliner);
+        ImGui::MenuItem("Instantiation", nullptr, &windows->instantiation);
+        ImGui::MenuItem("Export", nullptr, &windows->export_panel);
         ImGui::MenuItem("Skeleton overlays", nullptr, &tools->show_markers);
         ImGui::EndMenu();
     }

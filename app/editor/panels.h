@@ -8,8 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "editor/export_job.h"
 #include "editor/render_data.h"
 #include "editor/tools.h"
+#include "instancer/instantiator.h"
 #include "scene/document.h"
 
 namespace ug::editor {
@@ -26,6 +28,12 @@ struct UiRequests {
     bool redo = false;
     bool delete_selected = false;
     bool duplicate_selected = false;
+    // ---- New / Open / Export (outliner, instantiation and export panels) ----
+    bool new_document = false;  // File > New (asks first when there are unsaved changes)
+    bool open_dialog = false;   // File > Open...: show the path dialog (its answer goes to open_path)
+    bool show_export = false;   // File > Export glTF...: show the Export window
+    bool start_export = false;  // the Export window's Export button
+    bool cancel_export = false;
 };
 
 // What the Statistics window shows.
@@ -80,6 +88,9 @@ struct WindowToggles {
     bool inspector = true;
     bool ghost_tile = false;
     bool render = false;
+    bool outliner = true;
+    bool instantiation = true;
+    bool export_panel = false;  // opened by File > Export glTF...
 };
 
 // The Render panel's settings: LOD switch distances and what is drawn over the scene.
@@ -92,8 +103,50 @@ struct RenderSettings {
     float overlay_radius_m = 3.0f;  // "near the target"
 };
 
-// The main menu bar and the global shortcuts (Ctrl+S, Ctrl+Z, Ctrl+Shift+Z, Ctrl+Q, F12, Delete, Ctrl+D,
-// and the tool keys Q / B / S / E), ignored while ImGui has the keyboard.
+// ---- outliner, instantiation and export panels ----
+
+// One row per detail type (a layer), in type order.
+struct OutlinerView {
+    std::vector<std::string> type_names;
+    std::vector<glm::vec3> colors;  // linear RGB, the viewport's
+    std::vector<uint64_t> instances_per_type;
+};
+
+// The live instancer's latest run and the recent ones (viewer.cpp keeps them).
+struct InstantiationView {
+    bool have_result = false;
+    bool pending = false;
+    InstanceStats stats;           // of the latest run
+    uint64_t changed_tiles = 0;    // tiles whose selected set changed since the previous result
+    bool full = false;             // the latest result came from a full run
+    std::vector<float> update_ms;  // the last runs, oldest first (at most kUpdateHistory)
+    static constexpr size_t kUpdateHistory = 100;
+};
+
+// What the Export window shows about the running (or last) export.
+struct ExportView {
+    bool has_document = false;
+    bool running = false;
+    bool can_cancel = false;  // false once the final write started
+    float progress = 0.0f;
+    std::string stage;        // exportStageName
+    std::string last_result;  // "wrote N instances to PATH in S s", or the error
+};
+
+// Layers (detail types: swatch, instance count, visibility, "paint with this type"), each with its user
+// primitives (click selects; Delete / Duplicate raise the requests) and a summary of the file's own
+// density tree. `visible` is view state (one byte per type), not a document edit.
+void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uint8_t>* visible,
+                  ToolState* tools, UiRequests* requests, bool* open);
+// Per type strategy, layer, orientation and size constraints, and the seed: each finished edit is one
+// Document::setInstancing / setSeed (one undo step); errors go to *message. Then the statistics.
+void drawInstantiationPanel(Document* doc, const std::vector<std::string>& type_names,
+                            const InstantiationView& view, std::string* message, bool* open);
+// Path, format (by extension), plain nodes, chunk size; Export / Cancel raise the requests.
+void drawExportPanel(const ExportView& view, ExportSettings* settings, UiRequests* requests, bool* open);
+
+// The main menu bar and the global shortcuts (Ctrl+N, Ctrl+O, Ctrl+S, Ctrl+Z, Ctrl+Shift+Z, Ctrl+Q, F12,
+// Delete, Ctrl+D, and the tool keys Q / B / S / E), ignored while ImGui has the keyboard.
 void drawMainMenu(const MenuView& view, UiRequests* requests, ToolState* tools, WindowToggles* windows);
 void drawStatisticsPanel(const StatisticsView& view, bool* open);
 // Tool bar and brush settings; type names index the brush's per-type mix.
@@ -137,6 +190,8 @@ DialogAnswer drawRecoveryDialog(const std::string& path, const std::string& save
 DialogAnswer drawUnsavedDialog(const std::string& path, const std::string& what);
 // The Save As path field; *open turns false when closed; Yes puts the path in *path.
 DialogAnswer drawSaveAsDialog(bool* open, std::string* path);
+// The Open path field (no native file dialog): like Save As; Yes puts the path in *path.
+DialogAnswer drawOpenDialog(bool* open, std::string* path);
 // Errors: a window listing them with a Dismiss button (clears the list).
 void drawMessages(std::vector<std::string>* messages);
 

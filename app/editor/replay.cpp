@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "scene/project.h"
 
 namespace ug::editor {
 
@@ -37,6 +38,18 @@ const char* replayKindName(ReplayKind kind) {
             return "wait_idle";
         case ReplayKind::GhostTile:
             return "ghost_tile";
+        case ReplayKind::SetSeed:
+            return "set_seed";
+        case ReplayKind::SetInstancing:
+            return "set_instancing";
+        case ReplayKind::Export:
+            return "export";
+        case ReplayKind::Open:
+            return "open";
+        case ReplayKind::New:
+            return "new";
+        case ReplayKind::SetVisible:
+            return "set_visible";
     }
     return "?";
 }
@@ -62,7 +75,7 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
         ReplayAction r;
         const std::string name = a["action"].get<std::string>();
         bool known = false;
-        for (int k = 0; k <= int(ReplayKind::GhostTile); ++k)
+        for (int k = 0; k < kReplayKindCount; ++k)
             if (name == replayKindName(ReplayKind(k))) {
                 r.kind = ReplayKind(k);
                 known = true;
@@ -78,6 +91,7 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             r.path = a.value("path", std::string());
             r.surface = a.value("surface", std::string());
             r.overlays = a.value("overlays", true);
+            r.ui = a.value("ui", false);
             if (a.contains("type")) r.types[a["type"].get<std::string>()] = 1.0f;
             if (a.contains("types"))
                 for (const auto& [k, v] : a["types"].items()) r.types[k] = v.get<float>();
@@ -113,6 +127,19 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
                     g.seed = a["seed"].get<uint64_t>();
                 }
             }
+            if (r.kind == ReplayKind::SetSeed) r.seed = a.at("seed").get<uint64_t>();
+            if (r.kind == ReplayKind::SetVisible) {
+                r.type = a.at("type").get<std::string>();
+                r.visible = a.at("visible").get<bool>();
+                r.types.clear();
+            }
+            if (r.kind == ReplayKind::SetInstancing) {
+                r.type = a.at("type").get<std::string>();
+                r.types.clear();
+                r.instancing_json = a.dump();
+            }
+            r.plain_nodes = a.value("plain_nodes", false);
+            r.chunk_m = a.value("chunk", -1.0f);
         } catch (const json::exception& e) {
             return fail(std::string("bad value: ") + e.what());
         }
@@ -129,8 +156,15 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             if (r.points.size() != 2) return fail("a move needs \"from\" [x, y] and \"to\" [x, y]");
             if (r.steps < 1 || r.steps > 100000) return fail("steps must be in [1, 100000]");
         }
-        if ((r.kind == ReplayKind::SaveAs || r.kind == ReplayKind::Screenshot) && r.path.empty())
+        if ((r.kind == ReplayKind::SaveAs || r.kind == ReplayKind::Screenshot ||
+             r.kind == ReplayKind::Export || r.kind == ReplayKind::Open) &&
+            r.path.empty())
             return fail("needs \"path\"");
+        if (r.kind == ReplayKind::SetInstancing) {
+            InstancingDesc check;
+            std::string why;
+            if (!applyInstancingChanges(r.instancing_json, &check, &why)) return fail(why);
+        }
         actions.push_back(std::move(r));
     }
     *out = std::move(actions);
@@ -166,6 +200,62 @@ bool applyReplayGhostTile(const ReplayAction& a, GhostTileSpec* spec, std::strin
         if (!std::isnan(g.model_scale)) spec->models[t].scale = g.model_scale;
         if (!g.model_path.empty()) spec->models[t].mesh_path = g.model_path;
     }
+    return true;
+}
+
+bool applyInstancingChanges(const std::string& action_json, InstancingDesc* desc, std::string* error) {
+    const json a = json::parse(action_json, nullptr, false);
+    InstancingDesc d = *desc;
+    try {
+        if (a.contains("strategy")) {
+            const std::string name = a["strategy"].get<std::string>();
+            bool known = false;
+            for (const PriorityStrategy s : {PriorityStrategy::Random, PriorityStrategy::Elevation,
+                                             PriorityStrategy::DistanceToBoundary})
+                if (name == priorityStrategyName(s)) {
+                    d.strategy = s;
+                    known = true;
+                }
+            if (!known) {
+                *error = "strategy: unknown '" + name + "' (random, elevation or distance_to_boundary)";
+                return false;
+            }
+        }
+        if (a.contains("layer")) d.layer_m = a["layer"].get<float>();
+        if (a.contains("orientation")) {
+            const json& o = a["orientation"];
+            d.orientation.enabled = !o.is_boolean() || o.get<bool>();
+            if (o.is_object()) {
+                if (o.contains("direction")) {
+                    const json& dir = o["direction"];
+                    if (dir.is_string() && dir.get<std::string>() == "gradient") {
+                        d.orientation.kind = DirectionFieldKind::Gradient;
+                    } else {
+                        d.orientation.kind = DirectionFieldKind::Constant;
+                        d.orientation.direction = glm::normalize(glm::vec3(
+                            dir.at(0).get<float>(), dir.at(1).get<float>(), dir.at(2).get<float>()));
+                    }
+                }
+                if (o.contains("max_angle_deg"))
+                    d.orientation.max_angle_deg = o["max_angle_deg"].get<float>();
+            }
+        }
+        if (a.contains("size")) {
+            const json& z = a["size"];
+            d.size.enabled = !z.is_boolean() || z.get<bool>();
+            if (z.is_object()) {
+                if (z.contains("target")) {
+                    d.size.kind = SizeFieldKind::Constant;
+                    d.size.target = z["target"].get<float>();
+                }
+                if (z.contains("tolerance")) d.size.tolerance = z["tolerance"].get<float>();
+            }
+        }
+    } catch (const json::exception& e) {
+        *error = std::string("bad instancing value: ") + e.what();
+        return false;
+    }
+    *desc = d;
     return true;
 }
 

@@ -9,18 +9,26 @@
 //    {"action": "erase_stroke", "type": "rock", "points": [...], "radius": 1.0, "strength": 1.0},
 //    {"action": "paint_stroke", "type": "leaf_oak", "surface": "rock", ...}   paint onto the rock pile
 //    {"action": "undo"}, {"action": "redo"}, {"action": "save"}, {"action": "save_as", "path": "out.json"},
-//    {"action": "screenshot", "path": "shot.png", "overlays": false},
+//    {"action": "screenshot", "path": "shot.png", "overlays": false, "ui": false},   ui: with the panels
 //    {"action": "view", "target": [x, y, z], "distance": 8, "yaw_deg": -90, "pitch_deg": 35},
 //    {"action": "move", "from": [x, y], "to": [x, y], "steps": 10},   Select-drag the user primitive whose
 //                                                                     centre is nearest `from` (in XY) by to - from
-//    {"action": "wait_idle"},
 //    {"action": "ghost_tile", "type": "rock", "count": 400, "delta": -0.001, "scale": [0.8, 1.2],
-//     "model": "../models/rock.glb", "model_scale": 1.0, "tile_size": 0.5, "seed": 7}]   every key but
+//     "model": "../models/rock.glb", "model_scale": 1.0, "tile_size": 0.5, "seed": 7},   every key but
 //     "action" optional; "type" is needed for the per-type ones. Builds the edited Ghost Tile in the
 //     background (as the panel's Build) and applies it as one undo step; the action ends when the job has
 //     ended and the new tile's result is on screen. Its statistics add "ghost_tile": {"ok", "error" or the
 //     tile's "candidates", "pairs", "rho", "build_seconds", "graph_bytes", "bytes_per_pair", "cache",
 //     "job_seconds"}. A refused or failed build is reported there and in the messages; the run goes on.
+//    {"action": "set_seed", "seed": 42},                                    one undo step
+//    {"action": "set_instancing", "type": "rock", "strategy": "elevation", "layer": 0.05,
+//     "orientation": {"direction": [0, 0, 1] | "gradient", "max_angle_deg": 30} | false,
+//     "size": {"target": 1.0, "tolerance": 0.2} | false},                   only the keys given change
+//    {"action": "export", "path": "out.glb", "plain_nodes": false, "chunk": 8},   waits for the file
+//    {"action": "open", "path": "other.json"},    waits for the load; a failed one keeps the document
+//    {"action": "new"},                           an untitled document from assets/scenes/default.json
+//    {"action": "set_visible", "type": "rock", "visible": false},   the outliner's eye (view state only)
+//    {"action": "wait_idle"}]
 //
 // "frame" (optional) is the earliest frame, counted from the first frame that shows the document's
 // instances, at which the action may start. Every action also waits until the previous one is finished and
@@ -37,6 +45,9 @@
 #include <vector>
 
 #include "scene/ghost_tile_job.h"
+namespace ug {
+struct InstancingDesc;
+}
 
 namespace ug::editor {
 
@@ -52,8 +63,15 @@ enum class ReplayKind {
     View,
     Move,
     WaitIdle,
-    GhostTile
+    GhostTile,
+    SetSeed,
+    SetInstancing,
+    Export,
+    Open,
+    New,
+    SetVisible
 };
+constexpr int kReplayKindCount = int(ReplayKind::SetVisible) + 1;
 const char* replayKindName(ReplayKind kind);  // the "action" string
 
 struct ReplayAction {
@@ -69,6 +87,7 @@ struct ReplayAction {
     std::string surface;   // strokes: the type whose pile the brush works on ("": the stroke's last type)
     std::string path;      // save_as, screenshot
     bool overlays = true;  // screenshot: draw the skeleton overlays
+    bool ui = false;       // screenshot: include the panels (read after the UI is drawn)
     // view
     bool has_target = false;
     glm::vec3 target{0.0f};
@@ -82,7 +101,17 @@ struct ReplayAction {
         bool has_seed = false;
         uint64_t seed = 0;
     } ghost;
+    uint64_t seed = 0;            // set_seed
+    std::string type;             // set_instancing, set_visible
+    bool visible = true;          // set_visible
+    std::string instancing_json;  // set_instancing: the action's object (applyInstancingChanges reads it)
+    bool plain_nodes = false;     // export
+    float chunk_m = -1.0f;        // export: <= 0 keeps the project's chunk size
 };
+
+// set_instancing: applies the keys the action gives ("strategy", "layer", "orientation", "size") to *desc;
+// the others keep their values. Errors name the key and the reason.
+bool applyInstancingChanges(const std::string& action_json, InstancingDesc* desc, std::string* error);
 
 // Reads a script; errors name the file, the action's index and the reason.
 bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, std::string* error);

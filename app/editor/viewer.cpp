@@ -15,6 +15,9 @@
 // type (instance origins, instance_query.h), "stamp_to_frame_ms" (per stamp, wall clock from the edit to
 // the end of the first frame that shows its result). "before" is the settled state the action started
 // from, "after" the settled state once the live instancer is idle and its result is on screen.
+// Panels' actions add: export "ok", "error", "exported_instances", "export_seconds"; open and new "ok",
+// "error", "document" (their "before" is the replaced document's); set_visible "drawn_instances_before"/
+// "_after" (the renderer's instances drawn in the frame before and the frame after).
 #include "editor/viewer.h"
 
 #include <imgui.h>
@@ -33,6 +36,7 @@
 #include "core/atomic_file.h"
 #include "core/hash.h"
 #include "editor/document_loader.h"
+#include "editor/export_job.h"
 #include "editor/gl/renderer.h"
 #include "editor/gl/window.h"
 #include "editor/markers.h"
@@ -195,13 +199,9 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
     bool have_result = false;
     std::string asking_recovery;  // a path whose recovery dialog is open
     RecoveryInfo recovery_info;
+    // The current document stays open and editable until the new one is ready: a failed open (a corrupt
+    // scene or model) leaves it as it was, and the error goes to the messages (see "apply finished work").
     auto startLoad = [&](const std::string& path, bool recover) {
-        renderer.clearScene();
-        scene.reset();
-        store.reset();
-        instances = ResidentTiles{};
-        have_result = false;
-        shown_generation = 0;
         loader = std::make_unique<DocumentLoader>(LoadRequest{path, doc_options, recover});
     };
     // Opens `path`, asking first (interactive) when an autosave of it is newer than the file.
@@ -242,14 +242,30 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
     std::string last_autosave_error;
     bool save_as_open = false;
     std::string save_as_path;
-    enum class Prompt { None, Quit, Open } prompt = Prompt::None;
+    enum class Prompt { None, Quit, Open, New } prompt = Prompt::None;
     std::string prompt_open_path;
     bool quitting = false;
+    // ---- outliner, instantiation and export panels, New / Open ----
+    std::vector<uint8_t> type_visible;  // view state, not a document edit: never undone, never saved
+    InstantiationView inst_view;
+    ExportSettings export_settings;
+    std::unique_ptr<ExportJob> export_job;
+    std::string export_result;
+    json export_record;  // the finished export's outcome, for the replay
+    bool open_dialog_open = false;
+    std::string open_dialog_path;
+    std::string load_error;  // the last failed open or new (for the replay's record)
+    // File > New: the template's terrain, extent and types, no density.
+    const std::string new_template = std::string(UG_SOURCE_DIR) + "/assets/scenes/default.json";
+    auto startNew = [&] {
+        loader = std::make_unique<DocumentLoader>(LoadRequest{new_template, doc_options, false, true});
+    };
 
     std::vector<double> frame_ms;
     std::vector<uint8_t> pixels;
     int screenshot_count = 0;
     std::string screenshot_request_path;
+    std::string ui_screenshot_path;  // replay "screenshot" with "ui": true: read after the panels are drawn
     bool screenshot_overlays = true;
     std::vector<PendingStamp> pending_stamps;
     ReplayState replay;
@@ -312,6 +328,16 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         reach_m = largestReach(doc);
     };
 
+    // The "before" statistics of a replay action that replaces the document (computed while it is there).
+    auto recordBefore = [&](json* r) {
+        const InstanceStore empty;
+        const InstanceStore& before = replay.before ? *replay.before : empty;
+        const CandidateSet& c = scene->doc->ghostTile().candidates;
+        (*r)["instances_before"] = before.instanceCount();
+        (*r)["per_type_before"] = perTypeJson(view.type_names, perTypeCounts(before, c));
+        (*r)["instance_store_hash_before"] = hex64(instanceStoreHash(before));
+    };
+
     // Takes a finished live result, if any, and re-packs it for the GPU (see the top of this file).
     auto takeLiveResult = [&]() -> bool {
         if (!scene) return true;
@@ -360,6 +386,13 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 view.bytes_uploaded = uploads.bytes_uploaded;
                 view.instantiate_seconds = live.stats.seconds;
                 view.changed_tiles = live.changed_tiles.size();
+                inst_view.have_result = true;
+                inst_view.stats = live.stats;
+                inst_view.changed_tiles = live.changed_tiles.size();
+                inst_view.full = live.full;
+                if (inst_view.update_ms.size() >= InstantiationView::kUpdateHistory)
+                    inst_view.update_ms.erase(inst_view.update_ms.begin());
+                inst_view.update_ms.push_back(float(live.stats.seconds * 1e3));
                 if (!have_result && !camera_moved) frameBounds(framingBounds(*scene, &instances), &camera);
                 have_result = true;
             }
@@ -378,14 +411,26 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
 
         // ---- apply finished background work at the frame boundary ----
         if (loader && loader->phase() == LoadPhase::Failed) {
-            if (scripted) {
+            if (scripted && !scene) {  // the document the run was started on
                 *error = loader->error();
                 return ViewerStatus::Failed;
             }
+            load_error = loader->error();
             messages.push_back(loader->error());
             loader.reset();
         }
         if (loader && loader->phase() == LoadPhase::Ready) {
+            // Only now does the previous document go (startLoad kept it open while this one loaded).
+            stroke.end();
+            move_drag.end();
+            renderer.clearScene();
+            if (scene) scene->doc->close();
+            store.reset();
+            instances = ResidentTiles{};
+            have_result = false;
+            shown_generation = 0;
+            inst_view = InstantiationView{};
+            load_error.clear();
             scene = std::make_unique<EditorScene>(std::move(loader->scene()));
             result->recovered = loader->request().recover;
             loader.reset();
@@ -398,6 +443,9 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             view.type_names.clear();
             for (const DetailLodMesh& m : scene->meshes) view.type_names.push_back(m.name);
             view.instances_per_type.assign(scene->meshes.size(), 0);
+            type_visible.assign(scene->meshes.size(), 1);
+            if (doc.path().empty()) view.scene = "untitled";
+            export_settings.chunk_size_m = doc.project().chunk_size_m;
             tools.brush = defaultBrush(doc);
             tools.selected = 0;
             reach_m = largestReach(doc);
@@ -448,6 +496,25 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         ghost_panel.running = ghost_job != nullptr;
         ghost_panel.progress = ghost_job ? ghost_job->progress() : 0.0f;
         if (!takeLiveResult()) return ViewerStatus::Failed;
+        if (export_job && export_job->finished()) {
+            const ExportJob& j = *export_job;
+            export_record = json{{"ok", j.stage() == ExportStage::Done},
+                                 {"path", j.settings().path},
+                                 {"exported_instances", j.instances()},
+                                 {"export_seconds", j.seconds()}};
+            if (j.stage() == ExportStage::Done) {
+                char text[64];
+                std::snprintf(text, sizeof(text), " in %.2f s", j.seconds());
+                export_result =
+                    "wrote " + std::to_string(j.instances()) + " instances to " + j.settings().path + text;
+                view.last_message = export_result;
+            } else {
+                export_result = j.error();
+                export_record["error"] = j.error();
+                if (j.stage() == ExportStage::Failed) messages.push_back(j.error());
+            }
+            export_job.reset();
+        }
         const bool settled = scene && have_result && !scene->doc->live().pending() &&
                              shown_generation == scene->doc->live().generation();
         view.pending = loader != nullptr || (scene && (!settled || !have_result));
@@ -460,7 +527,9 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         // ---- UI: navigation, tools, panels, dialogs ----
         const size_t stamps_before_frame = pending_stamps.size();
         window.beginUiFrame();
-        Document* doc = scene ? scene->doc.get() : nullptr;
+        // While another document loads, the current one is shown but not edited: it is replaced (and its
+        // edits dropped) when the new one is ready, and is editable again if that load fails.
+        Document* doc = scene && !loader ? scene->doc.get() : nullptr;
         const ImGuiIO& io = ImGui::GetIO();
         const glm::mat4 view_proj = camera.viewProjection();
         if (scene && !scripted) {
@@ -500,6 +569,27 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         }
         if (ghost_job && ghost_panel.cancel) ghost_job->cancel();
         ghost_panel.build = ghost_panel.cancel = false;
+        {
+            OutlinerView outliner;
+            outliner.type_names = view.type_names;
+            outliner.instances_per_type = view.instances_per_type;
+            if (scene)
+                for (const DetailLodMesh& m : scene->meshes) outliner.colors.push_back(m.color);
+            drawOutliner(doc, outliner, &type_visible, &tools, &requests, &windows.outliner);
+            for (size_t t = 0; t < type_visible.size(); ++t) renderer.setTypeVisible(t, type_visible[t] != 0);
+            inst_view.pending = scene && !settled;
+            std::string panel_message;
+            drawInstantiationPanel(doc, view.type_names, inst_view, &panel_message, &windows.instantiation);
+            if (!panel_message.empty()) messages.push_back(panel_message);
+            ExportView export_view;
+            export_view.has_document = doc != nullptr && store != nullptr && settled;  // the settled set
+            export_view.running = export_job != nullptr;
+            export_view.can_cancel = export_job && export_job->stage() == ExportStage::Gathering;
+            export_view.progress = export_job ? export_job->progress() : 0.0f;
+            export_view.stage = export_job ? exportStageName(export_job->stage()) : "";
+            export_view.last_result = export_result;
+            drawExportPanel(export_view, &export_settings, &requests, &windows.export_panel);
+        }
 
         markers.clear();
         // Mouse tools: not while a panel has the mouse, Alt is held (Alt + left drag orbits) or a replay
@@ -550,7 +640,11 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             }
             if (requests.undo) doc->undo();
             if (requests.redo) doc->redo();
-            if (requests.save && !doc->save(&op_error)) messages.push_back("Save failed: " + op_error);
+            if (requests.save && doc->path().empty()) {
+                requests.open_save_as = true;  // an untitled document saves with Save As
+            } else if (requests.save && !doc->save(&op_error)) {
+                messages.push_back("Save failed: " + op_error);
+            }
             if (requests.open_save_as) {
                 save_as_open = true;
                 save_as_path = doc->path();
@@ -581,14 +675,36 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                     recent_files = loadRecentFiles(options.config_dir);
             }
         }
-        if (!requests.open_path.empty()) {
+        // ---- New, Open, Export ----
+        if (requests.open_dialog) {
+            open_dialog_open = true;
+            if (open_dialog_path.empty() && doc) open_dialog_path = doc->path();
+        }
+        if (drawOpenDialog(&open_dialog_open, &open_dialog_path) == DialogAnswer::Yes)
+            requests.open_path = open_dialog_path;
+        if (requests.show_export) windows.export_panel = true;
+        if (requests.start_export && doc && store && settled && !export_job) {
+            const CandidateSet& c = doc->ghostTile().candidates;
+            const json stats{{"generator", "undergrowth edit"},
+                             {"scene", doc->path()},
+                             {"seed", doc->project().instantiation_seed},
+                             {"instances", store->instanceCount()},
+                             {"instances_per_type", perTypeJson(view.type_names, perTypeCounts(*store, c))}};
+            export_job = std::make_unique<ExportJob>(*doc, store, export_settings, stats.dump());
+            export_result.clear();
+        }
+        if (requests.cancel_export && export_job) export_job->cancel();
+        // The current document is closed only once the new one is ready (startLoad), so nothing is lost
+        // when the new one fails to load.
+        if (!requests.open_path.empty() || requests.new_document) {
             if (doc && doc->isDirty() && !scripted) {
-                prompt = Prompt::Open;
+                prompt = requests.new_document ? Prompt::New : Prompt::Open;
                 prompt_open_path = requests.open_path;
+            } else if (requests.new_document) {
+                startNew();
             } else {
                 stroke.end();
                 move_drag.end();
-                if (doc) doc->close();
                 requestOpen(requests.open_path, RecoverChoice::Ask);
             }
         }
@@ -609,10 +725,17 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             }
         }
         if (prompt != Prompt::None) {
-            const DialogAnswer a = drawUnsavedDialog(doc ? doc->path() : "the document",
-                                                     prompt == Prompt::Quit ? "quit" : "open another file");
+            const DialogAnswer a =
+                drawUnsavedDialog(doc && !doc->path().empty() ? doc->path() : "the document",
+                                  prompt == Prompt::Quit  ? "quit"
+                                  : prompt == Prompt::New ? "start a new document"
+                                                          : "open another file");
             bool proceed = false;
-            if (a == DialogAnswer::Yes) {
+            if (a == DialogAnswer::Yes && doc && doc->path().empty()) {
+                save_as_open = true;  // an untitled document: Save As first, then ask again
+                save_as_path.clear();
+                prompt = Prompt::None;
+            } else if (a == DialogAnswer::Yes) {
                 std::string save_error;
                 if (doc && !doc->save(&save_error))
                     messages.push_back("Save failed: " + save_error);
@@ -625,12 +748,13 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 if (proceed) {
                     stroke.end();
                     move_drag.end();
-                    if (doc) doc->close();  // removes the autosave: the user chose
                     if (prompt == Prompt::Quit) {
+                        if (doc) doc->close();  // removes the autosave: the user chose
                         quitting = true;
+                    } else if (prompt == Prompt::New) {
+                        startNew();  // the document is closed once the new one is ready
                     } else {
                         requestOpen(prompt_open_path, RecoverChoice::Ask);
-                        doc = nullptr;
                     }
                 }
                 prompt = Prompt::None;
@@ -732,7 +856,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                             break;
                         }
                         case ReplayKind::Screenshot:
-                            screenshot_request_path = a.path;
+                            (a.ui ? ui_screenshot_path : screenshot_request_path) = a.path;
                             screenshot_overlays = a.overlays;
                             replay.record["path"] = a.path;
                             break;
@@ -781,6 +905,64 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                             }
                             break;
                         }
+                        case ReplayKind::SetSeed:
+                            replay.record["seed"] = a.seed;
+                            replay.record["ok"] = doc->setSeed(a.seed, &op_error);
+                            break;
+                        case ReplayKind::SetInstancing: {
+                            const auto it = std::find(view.type_names.begin(), view.type_names.end(), a.type);
+                            if (it == view.type_names.end()) {
+                                *error = "replay: action " + std::to_string(replay.index) +
+                                         ": no detail type '" + a.type + "'";
+                                return ViewerStatus::Failed;
+                            }
+                            const size_t t = size_t(it - view.type_names.begin());
+                            InstancingDesc desc = doc->project().detail_types[t].instancing;
+                            replay.record["type"] = a.type;
+                            replay.record["ok"] =
+                                applyInstancingChanges(a.instancing_json, &desc, &op_error) &&
+                                doc->setInstancing(t, desc, &op_error);
+                            replay.record["strategy"] =
+                                priorityStrategyName(doc->project().detail_types[t].instancing.strategy);
+                            break;
+                        }
+                        case ReplayKind::Export: {
+                            export_settings.path = a.path;
+                            export_settings.plain_nodes = a.plain_nodes;
+                            export_settings.chunk_size_m =
+                                a.chunk_m > 0.0f ? a.chunk_m : doc->project().chunk_size_m;
+                            requests.start_export = true;  // started below, the way the Export button does
+                            export_record = json();
+                            windows.export_panel = true;  // its progress shows there, as for the menu
+                            replay.record["path"] = a.path;
+                            break;
+                        }
+                        case ReplayKind::SetVisible: {
+                            const auto it = std::find(view.type_names.begin(), view.type_names.end(), a.type);
+                            if (it == view.type_names.end()) {
+                                *error = "replay: action " + std::to_string(replay.index) +
+                                         ": no detail type '" + a.type + "'";
+                                return ViewerStatus::Failed;
+                            }
+                            const size_t t = size_t(it - view.type_names.begin());
+                            replay.record["type"] = a.type;
+                            replay.record["visible"] = a.visible;
+                            replay.record["drawn_instances_before"] = renderer.stats().instances_drawn;
+                            type_visible.resize(view.type_names.size(), 1);
+                            type_visible[t] = a.visible ? 1 : 0;
+                            renderer.setTypeVisible(t, a.visible);  // this frame already draws it so
+                            break;
+                        }
+                        case ReplayKind::Open:
+                        case ReplayKind::New:
+                            recordBefore(&replay.record);
+                            load_error.clear();
+                            if (a.kind == ReplayKind::New)
+                                startNew();
+                            else
+                                requestOpen(a.path, RecoverChoice::Ask);
+                            replay.record["path"] = a.path;
+                            break;
                         case ReplayKind::View:
                             if (a.has_target) camera.target = a.target;
                             if (a.distance_m > 0.0f) camera.distance_m = a.distance_m;
@@ -909,6 +1091,13 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             screenshot_request_path.clear();
         }
         window.renderUi();
+        if (!ui_screenshot_path.empty()) {
+            renderer.readPixels(fb_w, fb_h, &pixels);
+            std::string write_error;
+            if (!writeScreenshot(ui_screenshot_path, fb_w, fb_h, pixels, &write_error))
+                messages.push_back(write_error);
+            ui_screenshot_path.clear();
+        }
         if (options.finish_each_frame) window.finish();
         window.swapBuffers();
 
@@ -928,16 +1117,34 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         }
         const bool settled_now = scene && have_result && !scene->doc->live().pending() &&
                                  shown_generation == scene->doc->live().generation();
-        if (replay.finishing && settled_now && scene) {
+        // An open, a new document or an export finishes when its background work did (and, for a document
+        // that loaded, once its first result is on screen).
+        const bool export_waiting = replay.finishing && replay.index < options.replay.size() &&
+                                    options.replay[replay.index].kind == ReplayKind::Export &&
+                                    (export_job || export_record.is_null());
+        if (replay.finishing && settled_now && scene && !loader && !export_waiting) {
             Document& d = *scene->doc;
             const CandidateSet& c = d.ghostTile().candidates;
             const std::vector<std::string>& names = view.type_names;
             json& r = replay.record;
             const InstanceStore empty;
             const InstanceStore& before = replay.before ? *replay.before : empty;
+            if (!r.contains("instances_before")) {  // open / new recorded theirs against the old document
+                r["instances_before"] = before.instanceCount();
+                r["per_type_before"] = perTypeJson(names, perTypeCounts(before, c));
+                r["instance_store_hash_before"] = hex64(instanceStoreHash(before));
+            }
             r["instances_after"] = store->instanceCount();
             r["per_type_after"] = perTypeJson(names, perTypeCounts(*store, c));
             r["instance_store_hash_after"] = hex64(instanceStoreHash(*store));
+            const ReplayKind kind = options.replay[replay.index].kind;
+            if (kind == ReplayKind::Export) r.update(export_record);
+            if (kind == ReplayKind::SetVisible) r["drawn_instances_after"] = renderer.stats().instances_drawn;
+            if (kind == ReplayKind::Open || kind == ReplayKind::New) {
+                r["ok"] = load_error.empty();
+                if (!load_error.empty()) r["error"] = load_error;
+                r["document"] = d.path();
+            }
             if (r.contains("box_lo")) {
                 const Bounds box{glm::vec3(r["box_lo"][0].get<float>(), r["box_lo"][1].get<float>(),
                                            r["box_lo"][2].get<float>()),

@@ -34,7 +34,25 @@ bool exportInstancedScene(const std::string& path, const GhostTile& tile, const 
         scene.types[i].mesh = &models[i].mesh;
         scene.types[i].collision_spheres = models[i].spheres;
     }
-    store.forEach([&](uint64_t key, uint32_t j) { scene.types[c.type[j]].instances.push_back(instanceTransform(tile, key, j)); });
+    // Gathering is most of the work before the write: 0.8 of the reported fraction, polled every 16k
+    // instances (a callback per instance would cost more than the transform).
+    const uint64_t total = store.instanceCount();
+    uint64_t done = 0;
+    bool cancelled = false;
+    store.forEach([&](uint64_t key, uint32_t j) {
+        if (cancelled) return;
+        scene.types[c.type[j]].instances.push_back(instanceTransform(tile, key, j));
+        if (options.progress && (++done & 0x3fff) == 0)
+            cancelled = !options.progress(0.8f * float(done) / float(total));
+    });
+    auto stopped = [&](float fraction) {
+        if (cancelled || (options.progress && !options.progress(fraction))) {
+            if (error) *error = path + ": cancelled";
+            return true;
+        }
+        return false;
+    };
+    if (stopped(0.8f)) return false;
     TriangleMesh terrain_mesh;
     if (terrain) {
         if (!heightFieldMesh(*terrain, extent, options.terrain_max_cells_per_side, &terrain_mesh, error)) {
@@ -43,6 +61,7 @@ bool exportInstancedScene(const std::string& path, const GhostTile& tile, const 
         }
         scene.terrain = &terrain_mesh;
     }
+    if (stopped(0.9f)) return false;
     return writeSceneGltf(path, scene, error);
 }
 

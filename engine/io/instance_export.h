@@ -3,6 +3,7 @@
 // writes through writeSceneGltf (EXT_mesh_gpu_instancing, chunked). Shared by the CLI and the editor.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,11 @@ struct InstanceExportOptions {
     float chunk_size_m = 8.0f;
     bool use_instancing_extension = true;
     int terrain_max_cells_per_side = 512;  // the terrain mesh is decimated beyond this
+    // Optional, for a caller on a background thread (the editor): called with the fraction done in [0, 1)
+    // while instances are gathered and the terrain is meshed; returning false stops the export before
+    // anything is written (error "<path>: cancelled"). The final write (writeSceneGltf) is one atomic step
+    // and reports no progress.
+    std::function<bool(float fraction)> progress;
 };
 
 // The world frame of candidate j in the tile with packed key tile_key.

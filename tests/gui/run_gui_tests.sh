@@ -155,6 +155,71 @@ else
   bad "edit rock pile Ghost Tile: $(tail -5 "$tmp/ghost.log")"
 fi
 
+# ---- panels: seed and instancing edits, export, New and Open (check_panels.py) ----
+# On the default scene (the whole of it in view): the outliner's eye hides exactly a type's instances
+# and is no edit; set_seed vs `instantiate --seed`, undo exact; an export read back by the Khronos
+# validator and glTF-Transform; a failed export; opening a truncated scene and a scene whose model is
+# garbage (the run goes on, the messages say which file and why, the document stays); New, then Save As.
+pdir="$tmp/panels"
+mkdir -p "$pdir"
+default_scene="$root/assets/scenes/default.json"
+printf '{"format": "undergrowth-project", "format_version": 2, "name": "cut' >"$pdir/truncated.json"
+printf 'v 1 2\nf 1 2 3 4 5\nvt x y z\n\001\002 not a mesh\n' >"$pdir/garbage.obj"
+python3 - "$default_scene" "$pdir" <<'PY'
+import json, os, sys
+scene, out = sys.argv[1], sys.argv[2]
+s = json.load(open(scene))
+models = os.path.normpath(os.path.join(os.path.dirname(scene), "../models"))
+for t in s["detail_types"]:
+    t["model"]["mesh"] = os.path.join(models, os.path.basename(t["model"]["mesh"]))
+s["detail_types"][0]["model"]["mesh"] = "garbage.obj"
+json.dump(s, open(os.path.join(out, "bad_model.json"), "w"))
+PY
+cat >"$pdir/script.json" <<EOF
+[{"frame": 1, "action": "set_visible", "type": "rock", "visible": false},
+ {"action": "set_visible", "type": "grass_tuft", "visible": false},
+ {"action": "set_visible", "type": "rock", "visible": true},
+ {"action": "set_visible", "type": "grass_tuft", "visible": true},
+ {"action": "set_seed", "seed": 5},
+ {"action": "undo"}, {"action": "redo"},
+ {"action": "set_instancing", "type": "rock", "strategy": "random"},
+ {"action": "undo"},
+ {"action": "export", "path": "$pdir/editor.glb"},
+ {"action": "export", "path": "$tmp/not_a_folder/editor.glb"},
+ {"action": "open", "path": "$pdir/truncated.json"},
+ {"action": "open", "path": "$pdir/bad_model.json"},
+ {"action": "new"},
+ {"action": "save_as", "path": "$pdir/new.json"},
+ {"action": "wait_idle"}]
+EOF
+if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$default_scene" --frames 3 --size 640x360 --cache "$cache" \
+    --config "$pdir/config" --replay "$pdir/script.json" --stats "$pdir/stats.json" >"$pdir/log" 2>&1; then
+  ok "edit panels: set_seed, set_instancing, export, failed opens, new, save as (exit 0)"
+  if "$bin" instantiate "$default_scene" --seed 5 -o "$pdir/cli.glb" --stats "$pdir/cli.json" --cache "$cache" \
+       >/dev/null 2>&1 &&
+     out="$(python3 "$root/tests/gui/check_panels.py" "$pdir/stats.json" "$pdir/cli.json" 5 "$default_scene" 2>&1)"; then
+    ok "edit panels: $out"
+  else
+    bad "edit panels: $out"
+  fi
+  n="$(python3 -c 'import json,sys; print([a for a in json.load(open(sys.argv[1]))["actions"] if a["action"] == "export"][0]["exported_instances"])' "$pdir/stats.json" 2>/dev/null)"
+  if command -v node >/dev/null 2>&1 && bash "$root/tests/gltf/setup.sh" >"$pdir/npm.txt" 2>&1 &&
+     node "$root/tests/gltf/check_gltf.mjs" "$pdir/editor.glb" --expect-detail-instances "${n:-0}" \
+       --expect-types 9 >"$pdir/gltf.txt" 2>&1; then
+    ok "edit panels: the editor's export is valid (Khronos validator) with its $n instances (glTF-Transform)"
+  else
+    bad "edit panels: export check: $(tail -5 "$pdir/gltf.txt" "$pdir/npm.txt" 2>/dev/null)"
+  fi
+  if "$bin" instantiate "$pdir/new.json" -o "$pdir/new.glb" --stats "$pdir/new.cli.json" --cache "$cache" >/dev/null 2>&1 &&
+     python3 -c 'import json,sys; d=json.load(open(sys.argv[1])); assert d["instances"] == 0, d["instances"]' "$pdir/new.cli.json"; then
+    ok "edit panels: the new document saved by Save As loads in the CLI (0 instances)"
+  else
+    bad "edit panels: the saved new document does not load in the CLI"
+  fi
+else
+  bad "edit panels: $(tail -5 "$pdir/log")"
+fi
+
 # kill -9 while editing: an interactive session paints, autosaves every second, and is killed; the next
 # start recovers the autosave with the painted primitives and the same instances.
 kconfig="$tmp/kill-config"

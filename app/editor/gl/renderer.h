@@ -62,7 +62,9 @@ public:
     // update changed in them: only those slot ranges are uploaded (the whole type buffer when `uploads`
     // says so). The indirect commands are rebuilt on the next frame.
     void uploadTiles(const ResidentTiles* tiles, const TileUploads& uploads);
-    // Hidden types are not drawn (their commands are skipped); all types are visible after setScene().
+    // The outliner's eye toggle: hidden types are not drawn (their commands are skipped; their tiles stay
+    // resident, so showing them again costs nothing). View state only: not an edit, never saved. All types
+    // are visible after setScene().
     void setTypeVisible(size_t type, bool visible);
     // Forgets the scene and the instances (before the document they point into goes away).
     void clearScene() { releaseScene(); }
