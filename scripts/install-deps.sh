@@ -8,7 +8,7 @@ packages=(
   libglm-dev nlohmann-json3-dev libtinygltf-dev libopenmesh-dev libmeshoptimizer-dev libstb-dev
   libglfw3-dev libimgui-dev libgl-dev libepoxy-dev
   libgtest-dev
-  xvfb xauth
+  xvfb xauth xdotool
   nodejs npm
 )
 

@@ -1,3 +1,4 @@
+#include <GLFW/glfw3.h>  // key codes only: the ImGui 1.86 GLFW backend indexes io.KeysDown by them
 #include <imgui.h>
 
 #include <cstring>
@@ -14,6 +15,12 @@ void centerNext() {
                             ImGuiCond_Appearing, ImVec2(0.5f, 0.5f));
 }
 
+// Dialog keys, as in the desktop's own dialogs: Enter takes the default (safe) answer, Escape cancels.
+bool enterPressed() {
+    return ImGui::IsKeyPressed(GLFW_KEY_ENTER, false) || ImGui::IsKeyPressed(GLFW_KEY_KP_ENTER, false);
+}
+bool escapePressed() { return ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false); }
+
 }  // namespace
 
 DialogAnswer drawRecoveryDialog(const std::string& path, const std::string& saved_when) {
@@ -24,7 +31,8 @@ DialogAnswer drawRecoveryDialog(const std::string& path, const std::string& save
     if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::Text("An autosave of %s", path.c_str());
         ImGui::Text("(%s) is newer than the file.", saved_when.c_str());
-        if (ImGui::Button("Recover")) answer = DialogAnswer::Yes;
+        // Enter recovers; no key drops the autosave (that takes a click on the second button).
+        if (ImGui::Button("Recover (Enter)") || enterPressed()) answer = DialogAnswer::Yes;
         ImGui::SameLine();
         if (ImGui::Button("Open the saved file")) answer = DialogAnswer::No;
         if (answer != DialogAnswer::Pending) ImGui::CloseCurrentPopup();
@@ -40,11 +48,11 @@ DialogAnswer drawUnsavedDialog(const std::string& path, const std::string& what)
     DialogAnswer answer = DialogAnswer::Pending;
     if (ImGui::BeginPopupModal(title, nullptr, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::Text("%s has unsaved changes. Save them before you %s?", path.c_str(), what.c_str());
-        if (ImGui::Button("Save")) answer = DialogAnswer::Yes;
+        if (ImGui::Button("Save (Enter)") || enterPressed()) answer = DialogAnswer::Yes;
         ImGui::SameLine();
-        if (ImGui::Button("Discard")) answer = DialogAnswer::No;
+        if (ImGui::Button("Discard (D)") || ImGui::IsKeyPressed(GLFW_KEY_D, false)) answer = DialogAnswer::No;
         ImGui::SameLine();
-        if (ImGui::Button("Cancel")) answer = DialogAnswer::Cancel;
+        if (ImGui::Button("Cancel (Esc)") || escapePressed()) answer = DialogAnswer::Cancel;
         if (answer != DialogAnswer::Pending) ImGui::CloseCurrentPopup();
         ImGui::EndPopup();
     }
@@ -71,7 +79,7 @@ DialogAnswer drawPathDialog(const char* title, const char* confirm, bool* open, 
             ImGui::InputText("path", buffer, sizeof(buffer), ImGuiInputTextFlags_EnterReturnsTrue);
         if ((ImGui::Button(confirm) || enter) && buffer[0]) answer = DialogAnswer::Yes;
         ImGui::SameLine();
-        if (ImGui::Button("Cancel")) answer = DialogAnswer::Cancel;
+        if (ImGui::Button("Cancel (Esc)") || escapePressed()) answer = DialogAnswer::Cancel;
         if (answer != DialogAnswer::Pending) {
             if (answer == DialogAnswer::Yes) *path = buffer;
             *open = false;

@@ -119,8 +119,12 @@ void drawStatistics(const InstantiationView& v) {
 void drawInstantiationPanel(Document* doc, const std::vector<std::string>& type_names,
                             const InstantiationView& view, std::string* message, bool* open) {
     if (!*open) return;
-    ImGui::SetNextWindowPos(ImVec2(350, 30), ImGuiCond_FirstUseEver);
+    // Bottom right, collapsed at first: the middle of the viewport is where the user paints.
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - 10, vp->Pos.y + vp->Size.y - 10), ImGuiCond_FirstUseEver,
+                            ImVec2(1, 1));
     ImGui::SetNextWindowSize(ImVec2(380, 380), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Instantiation", open)) {
         ImGui::End();
         return;

@@ -67,13 +67,29 @@ void addConeSide(glm::vec3 a, float ra, glm::vec3 b, float rb, glm::vec3 color, 
     }
 }
 
-void addDiscHull(glm::vec3 c, glm::vec3 n, float r, glm::vec3 color, std::vector<MarkerVertex>* out) {
+// A disc's support: the points within R of the flat disc, a puck with a rounded rim (half a torus of
+// minor radius R around the rim, flat caps R above and below). Drawn whole, so on the ground the upper cap
+// shows where the painted slab reaches instead of a flat disc half buried in the terrain.
+void addDiscHull(glm::vec3 c, glm::vec3 n, float disc_r, float r, glm::vec3 color, std::vector<MarkerVertex>* out) {
+    n = glm::normalize(n);
     glm::vec3 u, v;
-    planeBasis(glm::normalize(n), &u, &v);
+    planeBasis(n, &u, &v);
+    constexpr int kRimSteps = kHullStacks;  // from the bottom cap's edge to the top cap's
+    auto at = [&](int i, int k) {
+        const float theta = 6.2831853f * float(i) / float(2 * kHullSlices);
+        const float phi = 3.14159265f * (float(k) / float(kRimSteps) - 0.5f);
+        const glm::vec3 radial = std::cos(theta) * u + std::sin(theta) * v;
+        return c + (disc_r + r * std::cos(phi)) * radial + r * std::sin(phi) * n;
+    };
     for (int i = 0; i < 2 * kHullSlices; ++i) {
-        const float t0 = 3.14159265f * float(i) / kHullSlices, t1 = 3.14159265f * float(i + 1) / kHullSlices;
-        addTriangle(c, c + r * (std::cos(t0) * u + std::sin(t0) * v), c + r * (std::cos(t1) * u + std::sin(t1) * v),
-                    color, out);
+        for (int k = 0; k < kRimSteps; ++k) {
+            addTriangle(at(i, k), at(i + 1, k), at(i + 1, k + 1), color, out);
+            addTriangle(at(i, k), at(i + 1, k + 1), at(i, k + 1), color, out);
+        }
+        if (disc_r > 0.0f) {
+            addTriangle(c + r * n, at(i, kRimSteps), at(i + 1, kRimSteps), color, out);
+            addTriangle(c - r * n, at(i + 1, 0), at(i, 0), color, out);
+        }
     }
 }
 
@@ -177,8 +193,7 @@ void addPrimitiveHulls(const Document& doc, const std::vector<DetailLodMesh>& me
                     addConeSide(p.center_m, p.radius_m, p.end_m, p.end_radius_m, color, &out->hull);
                     break;
                 case PrimitiveKind::Disc:
-                    // note: the support is a flattened torus; its footprint in the disc's plane reads enough.
-                    addDiscHull(p.center_m, p.normal, p.disc_radius_m + p.radius_m, color, &out->hull);
+                    addDiscHull(p.center_m, p.normal, p.disc_radius_m, p.radius_m, color, &out->hull);
                     break;
                 case PrimitiveKind::Box:
                     // note: the support is the box rounded by R; the box grown by R bounds it.

@@ -6,7 +6,7 @@
 //   disc     the disc's rim in its own plane and a dot at the centre
 //   box      the box's 12 edges
 // and around each a translucent hull of its support (addPrimitiveHulls): a sphere of radius R for a point, a
-// capsule for a segment, a flat disc for a disc, the box for a box.
+// capsule for a segment, a rounded puck for a disc (the points within R of it), the box for a box.
 // The selected primitive is drawn in kSelectedColor; the others in their detail type's colour, lightened.
 // Optional overlays near the view target (addTileOverlay, addAnchorOverlay, addSphereOverlay): outlines of
 // non-empty tiles, the Ghost Tile candidates' anchor points in them, and the instances' collision spheres;

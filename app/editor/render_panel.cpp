@@ -8,7 +8,8 @@ namespace ug::editor {
 
 void drawRenderPanel(const StatisticsView& v, RenderSettings* settings, bool* open) {
     if (!*open) return;
-    ImGui::SetNextWindowPos(ImVec2(10, 420), ImGuiCond_FirstUseEver);
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + 10, vp->Pos.y + vp->Size.y - 10), ImGuiCond_FirstUseEver, ImVec2(0, 1));
     ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Render", open)) {
         ImGui::End();

@@ -1219,6 +1219,12 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
     result->frames_measured = int(frame_ms.size());
     result->frame_ms = percentile(frame_ms, 0.5);
     result->frame_ms_p95 = percentile(frame_ms, 0.95);
+    // The statistics describe the document as it was left: its final instance set, not a stale one.
+    if (scene && !scripted && !options.stats_path.empty()) {
+        scene->doc->live().waitIdle();
+        LiveResult last;
+        if (scene->doc->live().poll(&last) && last.generation >= scene->doc->tileLiveGeneration()) store = last.store;
+    }
     fillDocumentResult();
     if (!scripted) writeInteractiveStats();
     return ViewerStatus::Ok;

@@ -7,6 +7,7 @@ usage: check_edit.py strokes STATS.json CLI_STATS.json     paint, sculpt, undo/r
        check_edit.py recovered PRE_KILL_STATS.json RECOVERED_STATS.json
        check_edit.py move STATS.json CLI_STATS.json           a painted disc dragged with the Select tool
        check_edit.py pile_paint STATS.json                    a held sculpt brush, paint onto the pile
+       check_edit.py driven ORIGINAL.json SAVED.json STATS.json CLI_STATS.json WORKDIR   driven_session.sh
 """
 import json
 import os
@@ -164,5 +165,29 @@ def pile_paint(stats_path):
         on_pile["inside_after"]["leaf_oak"]))
 
 
+def driven(original_path, saved_path, stats_path, cli_path, work):
+    s = json.load(open(stats_path))
+    doc = s["document"]
+    start = json.load(open(os.path.join(work, "session.start.json")))["document"]
+    # Two discs painted, the pile undone, the first disc picked and deleted, then saved from the dialog.
+    # (Editable primitives include the file's own top-level ones, present from the start.)
+    assert not doc["dirty"] and doc["user_primitives"] == start["user_primitives"] + 1, (start, doc)
+    assert not s["messages"], s["messages"]
+    original, saved = open(original_path).read(), open(saved_path).read()
+    count = lambda text, kind: text.count('"%s"' % kind)
+    assert count(saved, "disc") == count(original, "disc") + 1, ("user discs", count(original, "disc"),
+                                                                  count(saved, "disc"))
+    assert count(saved, "point") == count(original, "point"), ("the pile should be undone",
+                                                                count(original, "point"), count(saved, "point"))
+    cli = json.load(open(cli_path))
+    assert cli["instances_per_type"] == s["instances_per_type"], (cli["instances_per_type"], s["instances_per_type"])
+    shots = [f for f in os.listdir(work) if "-screenshot-" in f and f.endswith(".png")]
+    assert len(shots) == 1, ("F12 should write one screenshot", os.listdir(work))
+    w, h, _ = decode_png(os.path.join(work, shots[0]))
+    assert (w, h) == (960, 540), (w, h)
+    print("mouse paint, a held stroke undone by Ctrl+Z, click-pick + Delete, F12, Ctrl+Q/Esc kept running, Ctrl+Q/Enter "
+          "saved 1 user disc; the CLI re-instantiates %d instances as the editor" % cli["instances"])
+
+
 if __name__ == "__main__":
-    {"strokes": strokes, "diff": diff, "recovered": recovered, "move": move, "pile_paint": pile_paint}[sys.argv[1]](*sys.argv[2:])
+    {"strokes": strokes, "diff": diff, "recovered": recovered, "move": move, "pile_paint": pile_paint, "driven": driven}[sys.argv[1]](*sys.argv[2:])

@@ -220,6 +220,26 @@ else
   bad "edit panels: $(tail -5 "$pdir/log")"
 fi
 
+# An interactive session driven by real X input (xdotool): mouse tools, picking, shortcuts and the
+# unsaved-changes dialog (driven_session.sh). On a copy of the assets, since it saves the project.
+if command -v xdotool >/dev/null 2>&1; then
+  dwork="$tmp/driven"
+  mkdir -p "$dwork"
+  cp -r "$root/assets" "$dwork/assets"
+  if out="$(xvfb-run -a -s "-screen 0 1280x720x24" bash "$root/tests/gui/driven_session.sh" "$bin" \
+              "$dwork/assets/scenes/meadow.json" "$dwork" 2>&1)" &&
+     "$bin" instantiate "$dwork/assets/scenes/meadow.json" -o "$dwork/out.glb" --stats "$dwork/cli.json" \
+       --cache "$dwork/cache" >/dev/null 2>&1 &&
+     out="$(python3 "$root/tests/gui/check_edit.py" driven "$root/assets/scenes/meadow.json" \
+              "$dwork/assets/scenes/meadow.json" "$dwork/session.stats.json" "$dwork/cli.json" "$dwork" 2>&1)"; then
+    ok "edit meadow: driven by X input ($out)"
+  else
+    bad "edit meadow: driven by X input: $out $(tail -3 "$dwork/session.log" 2>/dev/null)"
+  fi
+else
+  bad "xdotool is not installed: the driven-session test needs it (scripts/install-deps.sh)"
+fi
+
 # kill -9 while editing: an interactive session paints, autosaves every second, and is killed; the next
 # start recovers the autosave with the painted primitives and the same instances.
 kconfig="$tmp/kill-config"
