@@ -129,84 +129,86 @@ glm::vec3 typeDisplayColor(const std::vector<DetailLodMesh>& meshes, size_t type
 
 glm::vec3 rotate(const glm::quat& q, glm::vec3 v) { return q * v; }
 
-}  // namespace
+// The selection in kSelectedColor, negative (erasing) weights in red, the rest in their type's colour.
+glm::vec3 primitiveColor(bool selected, const Primitive& p, glm::vec3 type_color) {
+    if (selected) return kSelectedColor;
+    return p.weight < 0.0f ? glm::vec3(0.9f, 0.3f, 0.3f) : type_color;
+}
 
-void addPrimitiveMarkers(const Document& doc, const std::vector<DetailLodMesh>& meshes, uint64_t selected,
-                         MarkerGeometry* out) {
+// Calls fn(primitive, display colour) for every user primitive of every type.
+template <typename Fn>
+void forEachUserPrimitive(const Document& doc, const std::vector<DetailLodMesh>& meshes, uint64_t selected, Fn fn) {
     for (size_t type = 0; type < doc.project().detail_types.size(); ++type) {
         const glm::vec3 type_color = typeDisplayColor(meshes, type);
         for (uint64_t id : doc.primitiveIds(type)) {
             Primitive p;
-            if (!doc.findPrimitive(id, nullptr, &p)) continue;
-            const glm::vec3 color = id == selected    ? kSelectedColor
-                                    : p.weight < 0.0f ? glm::vec3(0.9f, 0.3f, 0.3f)
-                                                      : type_color;
-            switch (p.kind) {
-                case PrimitiveKind::Point:
-                    out->points.push_back({p.center_m, color});
-                    addCircle(p.center_m, glm::vec3(0, 0, 1), p.radius_m, color, out);
-                    break;
-                case PrimitiveKind::Segment:
-                    out->lines.push_back({p.center_m, color});
-                    out->lines.push_back({p.end_m, color});
-                    out->points.push_back({p.center_m, color});
-                    out->points.push_back({p.end_m, color});
-                    break;
-                case PrimitiveKind::Disc:
-                    out->points.push_back({p.center_m, color});
-                    addCircle(p.center_m, p.normal, std::max(p.disc_radius_m, 0.02f), color, out);
-                    break;
-                case PrimitiveKind::Box:
-                    addBoxEdges(p.center_m - p.half_extents_m, p.center_m + p.half_extents_m, color, out);
-                    out->points.push_back({p.center_m, color});
-                    break;
-                case PrimitiveKind::HalfSpace:
-                    out->points.push_back({p.center_m, color});
-                    out->lines.push_back({p.center_m, color});
-                    out->lines.push_back({p.center_m + p.normal * p.radius_m, color});
-                    break;
-                case PrimitiveKind::TerrainLayer:
-                case PrimitiveKind::TerrainSolid:
-                    break;
-            }
+            if (doc.findPrimitive(id, nullptr, &p)) fn(p, primitiveColor(id == selected, p, type_color));
         }
     }
 }
 
+}  // namespace
+
+void addPrimitiveMarkers(const Document& doc, const std::vector<DetailLodMesh>& meshes, uint64_t selected,
+                         MarkerGeometry* out) {
+    forEachUserPrimitive(doc, meshes, selected, [&](const Primitive& p, glm::vec3 color) {
+        switch (p.kind) {
+            case PrimitiveKind::Point:
+                out->points.push_back({p.center_m, color});
+                addCircle(p.center_m, glm::vec3(0, 0, 1), p.radius_m, color, out);
+                break;
+            case PrimitiveKind::Segment:
+                out->lines.push_back({p.center_m, color});
+                out->lines.push_back({p.end_m, color});
+                out->points.push_back({p.center_m, color});
+                out->points.push_back({p.end_m, color});
+                break;
+            case PrimitiveKind::Disc:
+                out->points.push_back({p.center_m, color});
+                addCircle(p.center_m, p.normal, std::max(p.disc_radius_m, 0.02f), color, out);
+                break;
+            case PrimitiveKind::Box:
+                addBoxEdges(p.center_m - p.half_extents_m, p.center_m + p.half_extents_m, color, out);
+                out->points.push_back({p.center_m, color});
+                break;
+            case PrimitiveKind::HalfSpace:
+                out->points.push_back({p.center_m, color});
+                out->lines.push_back({p.center_m, color});
+                out->lines.push_back({p.center_m + p.normal * p.radius_m, color});
+                break;
+            case PrimitiveKind::TerrainLayer:
+            case PrimitiveKind::TerrainSolid:
+                break;
+        }
+    });
+}
+
 void addPrimitiveHulls(const Document& doc, const std::vector<DetailLodMesh>& meshes, uint64_t selected,
                        MarkerGeometry* out) {
-    for (size_t type = 0; type < doc.project().detail_types.size(); ++type) {
-        const glm::vec3 type_color = typeDisplayColor(meshes, type);
-        for (uint64_t id : doc.primitiveIds(type)) {
-            Primitive p;
-            if (!doc.findPrimitive(id, nullptr, &p)) continue;
-            const glm::vec3 color = id == selected    ? kSelectedColor
-                                    : p.weight < 0.0f ? glm::vec3(0.9f, 0.3f, 0.3f)
-                                                      : type_color;
-            switch (p.kind) {
-                case PrimitiveKind::Point:
-                    addSphereHull(p.center_m, p.radius_m, color, &out->hull);
-                    break;
-                case PrimitiveKind::Segment:
-                    addSphereHull(p.center_m, p.radius_m, color, &out->hull);
-                    addSphereHull(p.end_m, p.end_radius_m, color, &out->hull);
-                    addConeSide(p.center_m, p.radius_m, p.end_m, p.end_radius_m, color, &out->hull);
-                    break;
-                case PrimitiveKind::Disc:
-                    addDiscHull(p.center_m, p.normal, p.disc_radius_m, p.radius_m, color, &out->hull);
-                    break;
-                case PrimitiveKind::Box:
-                    // note: the support is the box rounded by R; the box grown by R bounds it.
-                    addBoxHull(p.center_m - p.half_extents_m - p.radius_m, p.center_m + p.half_extents_m + p.radius_m,
-                               color, &out->hull);
-                    break;
-                case PrimitiveKind::HalfSpace:
-                case PrimitiveKind::TerrainLayer:
-                case PrimitiveKind::TerrainSolid:
-                    break;  // unbounded or following the terrain: no hull
-            }
+    forEachUserPrimitive(doc, meshes, selected, [&](const Primitive& p, glm::vec3 color) {
+        switch (p.kind) {
+            case PrimitiveKind::Point:
+                addSphereHull(p.center_m, p.radius_m, color, &out->hull);
+                break;
+            case PrimitiveKind::Segment:
+                addSphereHull(p.center_m, p.radius_m, color, &out->hull);
+                addSphereHull(p.end_m, p.end_radius_m, color, &out->hull);
+                addConeSide(p.center_m, p.radius_m, p.end_m, p.end_radius_m, color, &out->hull);
+                break;
+            case PrimitiveKind::Disc:
+                addDiscHull(p.center_m, p.normal, p.disc_radius_m, p.radius_m, color, &out->hull);
+                break;
+            case PrimitiveKind::Box:
+                // note: the support is the box rounded by R; the box grown by R bounds it.
+                addBoxHull(p.center_m - p.half_extents_m - p.radius_m, p.center_m + p.half_extents_m + p.radius_m,
+                           color, &out->hull);
+                break;
+            case PrimitiveKind::HalfSpace:
+            case PrimitiveKind::TerrainLayer:
+            case PrimitiveKind::TerrainSolid:
+                break;  // unbounded or following the terrain: no hull
         }
-    }
+    });
 }
 
 void nearestTiles(const ResidentTiles& tiles, glm::vec3 target, float radius_m, size_t cap, std::vector<uint32_t>* out) {

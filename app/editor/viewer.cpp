@@ -773,6 +773,24 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         if (doc != (scene ? scene->doc.get() : nullptr)) doc = nullptr;  // replaced this frame
 
         // ---- replay: start or advance the current action ----
+        // Where an action's edits changed the fields, grown by twice the largest object reach (collisions at
+        // the rim count as inside): its statistics count instances inside and outside it.
+        auto recordChangeBox = [&](Bounds box) {
+            const float grow = 2.0f * reach_m + std::max(0.0f, scene->doc->ghostTile().settings.delta_m);
+            box.lo -= grow;
+            box.hi += grow;
+            replay.record["box"] = {{"min", {box.lo.x, box.lo.y, box.lo.z}}, {"max", {box.hi.x, box.hi.y, box.hi.z}}};
+            replay.record["box_lo"] = {box.lo.x, box.lo.y, box.lo.z};
+            replay.record["box_hi"] = {box.hi.x, box.hi.y, box.hi.z};
+        };
+        // A type named by the script, or kNoType with *error set (the run fails: the script is wrong).
+        constexpr size_t kNoType = SIZE_MAX;
+        auto replayType = [&](const std::string& name) -> size_t {
+            const auto it = std::find(view.type_names.begin(), view.type_names.end(), name);
+            if (it != view.type_names.end()) return size_t(it - view.type_names.begin());
+            *error = "replay: action " + std::to_string(replay.index) + ": no detail type '" + name + "'";
+            return kNoType;
+        };
         if (doc && have_result && replay.index < options.replay.size() && !replay.finishing) {
             const ReplayAction& a = options.replay[replay.index];
             std::string op_error;
@@ -801,13 +819,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                     brush.type_mix.assign(view.type_names.size(), 0.0f);
                     json types = json::object();
                     for (const auto& [name, weight] : a.types) {
-                        const auto it = std::find(view.type_names.begin(), view.type_names.end(), name);
-                        if (it == view.type_names.end()) {
-                            *error = "replay: action " + std::to_string(replay.index) + ": no detail type '" +
-                                     name + "'";
-                            return ViewerStatus::Failed;
-                        }
-                        const size_t t = size_t(it - view.type_names.begin());
+                        const size_t t = replayType(name);
+                        if (t == kNoType) return ViewerStatus::Failed;
                         brush.type_mix[t] = weight;
                         brush.sculpt_type = t;
                         types[name] = weight;
@@ -815,13 +828,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                     // Paint and erase work on the ground unless the script names a pile ("surface").
                     if (a.kind != ReplayKind::SculptStroke) brush.sculpt_type = SIZE_MAX;
                     if (!a.surface.empty()) {
-                        const auto it = std::find(view.type_names.begin(), view.type_names.end(), a.surface);
-                        if (it == view.type_names.end()) {
-                            *error = "replay: action " + std::to_string(replay.index) + ": no detail type '" +
-                                     a.surface + "'";
-                            return ViewerStatus::Failed;
-                        }
-                        brush.sculpt_type = size_t(it - view.type_names.begin());
+                        brush.sculpt_type = replayType(a.surface);
+                        if (brush.sculpt_type == kNoType) return ViewerStatus::Failed;
                     }
                     replay.record["types"] = types;
                     replay.record["radius"] = a.radius_m;
@@ -910,13 +918,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                             replay.record["ok"] = doc->setSeed(a.seed, &op_error);
                             break;
                         case ReplayKind::SetInstancing: {
-                            const auto it = std::find(view.type_names.begin(), view.type_names.end(), a.type);
-                            if (it == view.type_names.end()) {
-                                *error = "replay: action " + std::to_string(replay.index) +
-                                         ": no detail type '" + a.type + "'";
-                                return ViewerStatus::Failed;
-                            }
-                            const size_t t = size_t(it - view.type_names.begin());
+                            const size_t t = replayType(a.type);
+                            if (t == kNoType) return ViewerStatus::Failed;
                             InstancingDesc desc = doc->project().detail_types[t].instancing;
                             replay.record["type"] = a.type;
                             replay.record["ok"] =
@@ -938,13 +941,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                             break;
                         }
                         case ReplayKind::SetVisible: {
-                            const auto it = std::find(view.type_names.begin(), view.type_names.end(), a.type);
-                            if (it == view.type_names.end()) {
-                                *error = "replay: action " + std::to_string(replay.index) +
-                                         ": no detail type '" + a.type + "'";
-                                return ViewerStatus::Failed;
-                            }
-                            const size_t t = size_t(it - view.type_names.begin());
+                            const size_t t = replayType(a.type);
+                            if (t == kNoType) return ViewerStatus::Failed;
                             replay.record["type"] = a.type;
                             replay.record["visible"] = a.visible;
                             replay.record["drawn_instances_before"] = renderer.stats().instances_drawn;
@@ -988,14 +986,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                     replay.record["moves"] = move_drag.moves();
                     replay.record["to_center"] = {p.center_m.x, p.center_m.y, p.center_m.z};
                     // Old and new supports: where the move can change instances.
-                    Bounds box = unite(replay.moved_from, editBounds(p));
-                    const float grow = 2.0f * reach_m + std::max(0.0f, doc->ghostTile().settings.delta_m);
-                    box.lo -= grow;
-                    box.hi += grow;
-                    replay.record["box"] = {{"min", {box.lo.x, box.lo.y, box.lo.z}},
-                                            {"max", {box.hi.x, box.hi.y, box.hi.z}}};
-                    replay.record["box_lo"] = {box.lo.x, box.lo.y, box.lo.z};
-                    replay.record["box_hi"] = {box.hi.x, box.hi.y, box.hi.z};
+                    recordChangeBox(unite(replay.moved_from, editBounds(p)));
                     move_drag.end();
                     replay.finishing = true;
                 }
@@ -1016,14 +1007,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                     json points = json::array();
                     for (const glm::vec3& p : stroke.stampPoints()) points.push_back({p.x, p.y, p.z});
                     replay.record["stamp_points"] = points;
-                    Bounds box = stroke.changedBounds();
-                    const float grow = 2.0f * reach_m + std::max(0.0f, doc->ghostTile().settings.delta_m);
-                    box.lo -= grow;
-                    box.hi += grow;
-                    replay.record["box"] = {{"min", {box.lo.x, box.lo.y, box.lo.z}},
-                                            {"max", {box.hi.x, box.hi.y, box.hi.z}}};
-                    replay.record["box_lo"] = {box.lo.x, box.lo.y, box.lo.z};
-                    replay.record["box_hi"] = {box.hi.x, box.hi.y, box.hi.z};
+                    recordChangeBox(stroke.changedBounds());
                     stroke.end();
                     replay.finishing = true;
                 }
