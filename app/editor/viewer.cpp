@@ -517,10 +517,14 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         }
         const bool settled = scene && have_result && !scene->doc->live().pending() &&
                              shown_generation == scene->doc->live().generation();
-        view.pending = loader != nullptr || (scene && (!settled || !have_result));
-        view.progress = settled ? 1.0f : 0.0f;
+        // Long background jobs show in the Statistics window too, whichever panel started them.
+        view.pending = loader != nullptr || ghost_job != nullptr || export_job != nullptr ||
+                       (scene && (!settled || !have_result));
+        view.progress = ghost_job ? ghost_job->progress() : export_job ? export_job->progress() : settled ? 1.0f : 0.0f;
         view.status = loader         ? "loading scene\xE2\x80\xA6"
                       : !scene       ? "no document"
+                      : ghost_job    ? "building the Ghost Tile\xE2\x80\xA6"
+                      : export_job   ? "exporting glTF\xE2\x80\xA6"
                       : view.pending ? "pending\xE2\x80\xA6"
                                      : "ready";
 
