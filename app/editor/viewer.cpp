@@ -7,17 +7,19 @@
 // tiles it changed (LiveResult::changed_tiles) and uploads only their slots; a full result (first open,
 // LiveResult::full) rebuilds them all. The next frame rebuilds the indirect commands (cull + LOD per tile).
 //
-// Statistics of a replay, per action (ViewerResult::actions): "uploads" ({"tiles", "bytes"} per live result
-// taken while the action ran), "uploaded_tiles" (every tile re-uploaded then, [x, y, z]), "tiles_resident", "action", "frame" (when it started),
-// "stamps", "instances_before"/"_after", "per_type_before"/"_after", "instance_store_hash_before"/"_after",
-// and for strokes "box" {min, max} (the added primitives' supports grown by twice the largest object reach,
-// so collisions at the rim count as inside), "inside_before"/"_after" and "outside_before"/"_after" per
+// Statistics of a replay, per action (ViewerResult::actions): "action", "frame" (when it started), "uploads"
+// ({"tiles", "bytes"} per live result taken while the action ran), "uploaded_tiles" (every tile re-uploaded
+// then, [x, y, z]), "tiles_resident", "stamps", "instances_before"/"_after", "per_type_before"/"_after",
+// "instance_store_hash_before"/"_after"; for strokes "stamp_points"; for strokes and moves "box" {min, max}
+// (the changed primitives' supports grown by twice the largest object reach, so collisions at the rim count
+// as inside), "inside_before"/"_after" and "outside_before"/"_after" per
 // type (instance origins, instance_query.h), "stamp_to_frame_ms" (per stamp, wall clock from the edit to
 // the end of the first frame that shows its result). "before" is the settled state the action started
 // from, "after" the settled state once the live instancer is idle and its result is on screen.
 // Panels' actions add: export "ok", "error", "exported_instances", "export_seconds"; open and new "ok",
 // "error", "document" (their "before" is the replaced document's); set_visible "drawn_instances_before"/
-// "_after" (the renderer's instances drawn in the frame before and the frame after).
+// "_after" (the renderer's instances drawn in the frame before and the frame after); move "id",
+// "from_center", "to_center", "moves"; ghost_tile "ghost_tile" (replay.h).
 #include "editor/viewer.h"
 
 #include <imgui.h>
