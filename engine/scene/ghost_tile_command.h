@@ -7,6 +7,7 @@
 #pragma once
 
 #include <memory>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -36,7 +37,11 @@ public:
     void revert(EditTarget target, EditEffect* effect) override;
 
 private:
+    // Model paths are kept absolute here and written back relative to the project's folder of the moment
+    // (those that were relative; absolute ones stay absolute): a Save As to another folder between an apply
+    // and its undo must not leave paths meant for the old folder.
     GhostTileSpec new_spec_, old_spec_;
+    std::vector<uint8_t> new_relative_, old_relative_;  // per type: the path was relative
     TileAssets new_assets_, old_assets_;
 };
 

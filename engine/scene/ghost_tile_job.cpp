@@ -113,6 +113,7 @@ bool validateGhostTileSpec(const GhostTileSpec& spec, const Project& project, st
 
 GhostTileJob::GhostTileJob(GhostTileSpec spec, GhostTileJobContext context) : context_(std::move(context)) {
     build_.spec = std::move(spec);
+    build_.base_dir = context_.base_dir;
     thread_ = std::thread([this] { work(); });
 }
 

@@ -55,6 +55,7 @@ bool validateGhostTileSpec(const GhostTileSpec& spec, const Project& project, st
 // was obtained.
 struct GhostTileBuild {
     GhostTileSpec spec;
+    std::string base_dir;  // the folder the spec's relative model paths are relative to (the job's context)
     std::shared_ptr<const GhostTile> tile;
     std::shared_ptr<const std::vector<DetailModel>> models;  // one per type, project order
     CacheOutcome outcome = CacheOutcome::BuiltMissing;

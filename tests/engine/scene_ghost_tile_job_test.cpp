@@ -285,5 +285,62 @@ TEST(GhostTileJob, AChangedModelIsLoadedAndTheOldTileIsFreedOnceNothingHoldsIt) 
     EXPECT_FALSE(opened_tile.expired());
 }
 
+// A Save As to another folder between a tile change and its undo: the model paths the undo writes back
+// are relative to the new folder (they were relative to the old one), so the file still opens.
+TEST(GhostTileJob, UndoAfterSaveAsToAnotherFolderKeepsModelPathsValid) {
+    TempDir dir;
+    fs::create_directories(dir.path() / "a");
+    fs::create_directories(dir.path() / "models");
+    fs::create_directories(dir.path() / "b" / "c");
+    const fs::path source_models = fs::path(UG_SOURCE_DIR) / "assets" / "models";
+    for (const char* m : {"rock.glb", "pebble.glb"}) fs::copy_file(source_models / m, dir.path() / "models" / m);
+    std::string text;
+    {
+        std::ifstream in(writeScene(dir.path()));
+        text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    for (size_t at; (at = text.find(source_models.string())) != std::string::npos;)
+        text.replace(at, source_models.string().size(), "../models");
+    const fs::path project = dir.path() / "a" / "scene.json";
+    std::ofstream(project) << text;
+    std::string error;
+    std::unique_ptr<Document> doc = Document::open(project.string(), optionsFor(dir), &error);
+    ASSERT_TRUE(doc) << error;
+    ASSERT_EQ(doc->project().detail_types[0].model.mesh_path, "../models/rock.glb");
+
+    GhostTileSpec spec = ghostTileSpec(doc->project());
+    spec.types[0].candidate_count = 130;
+    std::unique_ptr<GhostTileJob> job = doc->startGhostTileJob(spec, &error);
+    ASSERT_TRUE(job) << error;
+    ASSERT_EQ(runJob(*job), GhostTileJobState::Done) << job->error();
+    ASSERT_TRUE(doc->applyGhostTile(job->take(), &error)) << error;
+    const InstanceStore built = settled(*doc);
+    ASSERT_TRUE(doc->saveAs((dir.path() / "b" / "c" / "scene.json").string(), &error)) << error;
+
+    auto expectPathsValid = [&](const char* when) {
+        for (const DetailTypeDesc& t : doc->project().detail_types) {
+            const std::string& path = t.model.mesh_path;
+            EXPECT_FALSE(fs::path(path).is_absolute()) << when << ": " << path << " should stay relative";
+            EXPECT_TRUE(fs::exists(fs::path(doc->project().base_dir) / path))
+                << when << ": " << path << " does not resolve from " << doc->project().base_dir;
+        }
+    };
+    expectPathsValid("after save as");
+    ASSERT_TRUE(doc->undo());
+    expectPathsValid("after undo");
+    EXPECT_EQ(doc->project().detail_types[0].model.mesh_path, "../../models/rock.glb");
+    const InstanceStore undone = settled(*doc);
+    ASSERT_TRUE(doc->redo());
+    expectPathsValid("after redo");
+    EXPECT_TRUE(settled(*doc) == built);
+
+    // Saved after the undo, the file opens and gives the undone set.
+    ASSERT_TRUE(doc->undo());
+    ASSERT_TRUE(doc->save(&error)) << error;
+    std::unique_ptr<Document> reopened = Document::open(doc->path(), optionsFor(dir), &error);
+    ASSERT_TRUE(reopened) << error;
+    EXPECT_TRUE(settled(*reopened) == undone);
+}
+
 }  // namespace
 }  // namespace ug
