@@ -204,6 +204,8 @@ bool Document::load(Project project, const std::string& path, const DocumentOpti
     project_ = std::move(project);
     const std::string name = path.empty() ? project_.name : path;
     auto models = std::make_shared<std::vector<DetailModel>>();
+    for (const DetailTypeDesc& t : project_.detail_types)
+        assets_.model_files.push_back(modelFileStamp(resolveProjectPath(project_, t.model.mesh_path)));
     if (!loadProjectModels(project_, models.get(), error)) {
         *error = name + ": " + *error;
         return false;
@@ -361,6 +363,7 @@ std::unique_ptr<GhostTileJob> Document::startGhostTileJob(GhostTileSpec spec, st
     context.threads = options_.threads;
     for (const DetailTypeDesc& t : project_.detail_types) context.current_sources.push_back(t.model);
     context.current_models = assets_.models;
+    context.current_files = assets_.model_files;
     return std::make_unique<GhostTileJob>(std::move(spec), std::move(context));
 }
 

@@ -39,7 +39,7 @@ GhostTileSpec modelPathsRelativeTo(GhostTileSpec spec, const std::string& base_d
 
 SetGhostTileCommand::SetGhostTileCommand(GhostTileBuild build)
     : new_spec_(std::move(build.spec)),
-      new_assets_{std::move(build.tile), std::move(build.models), build.outcome} {
+      new_assets_{std::move(build.tile), std::move(build.models), build.outcome, std::move(build.model_files)} {
     absolutizeModelPaths(&new_spec_, build.base_dir, &new_relative_);
 }
 

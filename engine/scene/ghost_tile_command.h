@@ -25,6 +25,7 @@ struct TileAssets {
     std::shared_ptr<const GhostTile> tile;
     std::shared_ptr<const std::vector<DetailModel>> models;
     CacheOutcome outcome = CacheOutcome::BuiltMissing;
+    std::vector<ModelFileStamp> model_files;  // per type: the model files as they were loaded
 };
 
 // Swaps the project's Ghost Tile spec (ghost_tile_job.h) and the target's assets for `build`'s. Refused

@@ -37,6 +37,18 @@ std::string resolve(const std::string& base_dir, const std::string& path) {
 
 }  // namespace
 
+ModelFileStamp modelFileStamp(const std::string& path) {
+    std::error_code ec;
+    ModelFileStamp stamp;
+    const uintmax_t size = std::filesystem::file_size(path, ec);
+    if (ec) return stamp;
+    const auto time = std::filesystem::last_write_time(path, ec);
+    if (ec) return stamp;
+    stamp.size = int64_t(size);
+    stamp.mtime_ns = int64_t(std::chrono::duration_cast<std::chrono::nanoseconds>(time.time_since_epoch()).count());
+    return stamp;
+}
+
 GhostTileSpec ghostTileSpec(const Project& project) {
     GhostTileSpec spec;
     spec.settings = project.ghost_tile;
@@ -137,16 +149,21 @@ void GhostTileJob::work() {
     const GhostTileSpec& spec = build_.spec;
     const size_t n = spec.types.size();
     auto models = std::make_shared<std::vector<DetailModel>>(n);
+    build_.model_files.assign(n, ModelFileStamp{});
     const std::vector<DetailModel>* current = context_.current_models.get();
     for (size_t t = 0; t < n; ++t) {
         if (cancel_.load()) return finish(GhostTileJobState::Cancelled);
+        DetailModelSource source = spec.models[t];
+        source.mesh_path = resolve(context_.base_dir, source.mesh_path);
+        // Taken before loading: a file that changes while it is read is read again next time.
+        build_.model_files[t] = modelFileStamp(source.mesh_path);
         const bool reuse = current && t < current->size() && t < context_.current_sources.size() &&
-                           sameModelSource(spec.models[t], context_.current_sources[t]);
+                           t < context_.current_files.size() &&
+                           sameModelSource(spec.models[t], context_.current_sources[t]) &&
+                           build_.model_files[t] == context_.current_files[t];
         if (reuse) {
             (*models)[t] = (*current)[t];
         } else {
-            DetailModelSource source = spec.models[t];
-            source.mesh_path = resolve(context_.base_dir, source.mesh_path);
             std::string model_error;
             if (!loadDetailModel(source, &(*models)[t], &model_error)) {
                 error_ = "detail type '" + source.name + "': " + model_error;

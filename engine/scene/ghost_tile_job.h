@@ -53,6 +53,15 @@ bool validateGhostTileSpec(const GhostTileSpec& spec, const Project& project, st
 
 // What a finished job gives: the tile and the models it was built from (shared, immutable), and how it
 // was obtained.
+// What a model file looked like when it was loaded (size and modification time): a model whose settings are
+// unchanged is reused only while its file still looks the same, so a model edited on disk is read again.
+struct ModelFileStamp {
+    int64_t size = -1;  // -1: missing or unreadable
+    int64_t mtime_ns = 0;
+    bool operator==(const ModelFileStamp&) const = default;
+};
+ModelFileStamp modelFileStamp(const std::string& path);
+
 struct GhostTileBuild {
     GhostTileSpec spec;
     std::string base_dir;  // the folder the spec's relative model paths are relative to (the job's context)
@@ -62,6 +71,7 @@ struct GhostTileBuild {
     std::string note;            // e.g. a cache that could not be written (the tile is still good)
     double seconds = 0.0;        // wall time of the whole job (models, cache or build)
     uint32_t models_loaded = 0;  // types whose model was (re)loaded from its file
+    std::vector<ModelFileStamp> model_files;  // per type, as the models were taken
 };
 
 // What the job may reuse and where it writes.
@@ -71,6 +81,7 @@ struct GhostTileJobContext {
     int threads = 0;        // 0 = all hardware threads
     std::vector<DetailModelSource> current_sources;            // the document's, per type
     std::shared_ptr<const std::vector<DetailModel>> current_models;  // loaded from current_sources
+    std::vector<ModelFileStamp> current_files;                      // their files then
 };
 
 enum class GhostTileJobState : int { Running, Done, Failed, Cancelled };

@@ -342,5 +342,53 @@ TEST(GhostTileJob, UndoAfterSaveAsToAnotherFolderKeepsModelPathsValid) {
     EXPECT_TRUE(settled(*reopened) == undone);
 }
 
+// A model whose settings are unchanged is reused only while its file looks the same: a model edited on
+// disk (here: replaced by another one) is read again by the next build.
+TEST(GhostTileJob, AModelEditedOnDiskIsReadAgain) {
+    TempDir dir;
+    const fs::path source_models = fs::path(UG_SOURCE_DIR) / "assets" / "models";
+    fs::create_directories(dir.path() / "models");
+    for (const char* m : {"rock.glb", "pebble.glb"}) fs::copy_file(source_models / m, dir.path() / "models" / m);
+    std::string text;
+    {
+        std::ifstream in(writeScene(dir.path()));
+        text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    for (size_t at; (at = text.find(source_models.string())) != std::string::npos;)
+        text.replace(at, source_models.string().size(), (dir.path() / "models").string());
+    std::ofstream(dir.path() / "scene.json") << text;
+    std::string error;
+    std::unique_ptr<Document> doc = Document::open((dir.path() / "scene.json").string(), optionsFor(dir), &error);
+    ASSERT_TRUE(doc) << error;
+    const float rock_radius = doc->models()[0].bounds.radius;
+
+    GhostTileSpec spec = ghostTileSpec(doc->project());
+    spec.types[0].candidate_count = 120;
+    std::unique_ptr<GhostTileJob> job = doc->startGhostTileJob(spec, &error);
+    ASSERT_TRUE(job) << error;
+    ASSERT_EQ(runJob(*job), GhostTileJobState::Done) << job->error();
+    EXPECT_EQ(job->take().models_loaded, 0u) << "nothing changed on disk: both models reused";
+
+    // The rock's file now holds the pebble (another size; its time moved on too).
+    fs::copy_file(dir.path() / "models" / "pebble.glb", dir.path() / "models" / "rock.glb",
+                  fs::copy_options::overwrite_existing);
+    fs::last_write_time(dir.path() / "models" / "rock.glb",
+                        fs::last_write_time(dir.path() / "models" / "rock.glb") + std::chrono::seconds(5));
+    job = doc->startGhostTileJob(spec, &error);
+    ASSERT_TRUE(job) << error;
+    ASSERT_EQ(runJob(*job), GhostTileJobState::Done) << job->error();
+    GhostTileBuild build = job->take();
+    EXPECT_EQ(build.models_loaded, 1u) << "the edited file is read again, the other reused";
+    ASSERT_TRUE(doc->applyGhostTile(std::move(build), &error)) << error;
+    EXPECT_NE(doc->models()[0].bounds.radius, rock_radius);
+    EXPECT_EQ(doc->models()[0].bounds.radius, doc->models()[1].bounds.radius) << "the rock type now has the pebble";
+
+    // Applied, the new stamps are the document's: building again reuses both.
+    job = doc->startGhostTileJob(spec, &error);
+    ASSERT_TRUE(job) << error;
+    ASSERT_EQ(runJob(*job), GhostTileJobState::Done) << job->error();
+    EXPECT_EQ(job->take().models_loaded, 0u);
+}
+
 }  // namespace
 }  // namespace ug
