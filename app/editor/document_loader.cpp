@@ -48,14 +48,7 @@ void DocumentLoader::work() {
             return failWith(request_.scene_path + ": terrain mesh: " + error);
         s.has_terrain = true;
     }
-    const CandidateSet& candidates = doc.ghostTile().candidates;
-    for (size_t i = 0; i < doc.models().size(); ++i) {
-        float scale_max = 1.0f;
-        if (i < candidates.typeCount())
-            for (uint32_t c = candidates.type_begin[i]; c < candidates.type_begin[i + 1]; ++c)
-                scale_max = std::max(scale_max, candidates.scale[c]);
-        s.meshes.push_back(buildDetailLods(doc.models()[i], scale_max));
-    }
+    s.meshes = buildTypeMeshes(doc.models(), doc.ghostTile().candidates);
     phase_.store(LoadPhase::Ready, std::memory_order_release);
 }
 

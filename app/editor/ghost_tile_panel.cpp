@@ -150,15 +150,7 @@ void drawGhostTilePanel(const Document* doc, GhostTilePanelState* s, bool* open)
     // As tall as the viewport allows: settings, statistics and the sphere views fit without scrolling.
     ImGui::SetNextWindowSize(ImVec2(460, std::min(830.0f, ImGui::GetMainViewport()->Size.y - 40.0f)),
                              ImGuiCond_FirstUseEver);
-    if (!ImGui::Begin("Ghost Tile", open)) {
-        ImGui::End();
-        return;
-    }
-    if (!doc) {
-        ImGui::TextDisabled("no document");
-        ImGui::End();
-        return;
-    }
+    if (!beginDocumentPanel("Ghost Tile", open, doc != nullptr)) return;
     syncWithDocument(*doc, s);
     GhostTileSpec& p = s->pending;
     const bool modified = !(p == ghostTileSpec(doc->project()));

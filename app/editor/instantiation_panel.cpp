@@ -125,15 +125,7 @@ void drawInstantiationPanel(Document* doc, const std::vector<std::string>& type_
                             ImVec2(1, 1));
     ImGui::SetNextWindowSize(ImVec2(380, 380), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowCollapsed(true, ImGuiCond_FirstUseEver);
-    if (!ImGui::Begin("Instantiation", open)) {
-        ImGui::End();
-        return;
-    }
-    if (!doc) {
-        ImGui::TextDisabled("no document");
-        ImGui::End();
-        return;
-    }
+    if (!beginDocumentPanel("Instantiation", open, doc != nullptr)) return;
     drawStatistics(view);  // first: what the artist watches while editing below
     ImGui::Separator();
     std::string error;

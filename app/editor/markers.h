@@ -39,6 +39,12 @@ struct MarkerGeometry {
         points.clear();
         dots.clear();
     }
+    void append(const MarkerGeometry& other) {
+        hull.insert(hull.end(), other.hull.begin(), other.hull.end());
+        lines.insert(lines.end(), other.lines.begin(), other.lines.end());
+        points.insert(points.end(), other.points.begin(), other.points.end());
+        dots.insert(dots.end(), other.dots.begin(), other.dots.end());
+    }
 };
 
 constexpr glm::vec3 kSelectedColor{1.0f, 0.75f, 0.1f};

@@ -60,15 +60,7 @@ void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uin
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - 10, vp->Pos.y + 260), ImGuiCond_FirstUseEver,
                             ImVec2(1, 0));
     ImGui::SetNextWindowSize(ImVec2(340, 300), ImGuiCond_FirstUseEver);
-    if (!ImGui::Begin("Outliner", open)) {
-        ImGui::End();
-        return;
-    }
-    if (!doc) {
-        ImGui::TextDisabled("no document");
-        ImGui::End();
-        return;
-    }
+    if (!beginDocumentPanel("Outliner", open, doc != nullptr)) return;
     const size_t types = std::min(view.type_names.size(), doc->project().detail_types.size());
     visible->resize(types, 1);
     for (size_t t = 0; t < types; ++t) {

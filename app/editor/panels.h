@@ -145,6 +145,10 @@ void drawInstantiationPanel(Document* doc, const std::vector<std::string>& type_
 // Path, format (by extension), plain nodes, chunk size; Export / Cancel raise the requests.
 void drawExportPanel(const ExportView& view, ExportSettings* settings, UiRequests* requests, bool* open);
 
+// Begins a panel that works on the document: false (the window already ended) when it is collapsed, or
+// when there is no document (it then says so); true: draw its content, then ImGui::End().
+bool beginDocumentPanel(const char* title, bool* open, bool has_document);
+
 // The main menu bar and the global shortcuts (Ctrl+N, Ctrl+O, Ctrl+S, Ctrl+Z, Ctrl+Shift+Z, Ctrl+Q, F12,
 // Delete, Ctrl+D, and the tool keys Q / B / S / E), ignored while ImGui has the keyboard.
 void drawMainMenu(const MenuView& view, UiRequests* requests, ToolState* tools, WindowToggles* windows);

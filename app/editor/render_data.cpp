@@ -83,6 +83,20 @@ DetailLodMesh buildDetailLods(const DetailModel& model, float scale_max) {
     return out;
 }
 
+float candidateScaleMax(const CandidateSet& candidates, size_t type) {
+    float scale = 1.0f;
+    if (type < candidates.typeCount())
+        for (uint32_t k = candidates.type_begin[type]; k < candidates.type_begin[type + 1]; ++k)
+            scale = std::max(scale, candidates.scale[k]);
+    return scale;
+}
+
+std::vector<DetailLodMesh> buildTypeMeshes(const std::vector<DetailModel>& models, const CandidateSet& candidates) {
+    std::vector<DetailLodMesh> meshes;
+    for (size_t i = 0; i < models.size(); ++i) meshes.push_back(buildDetailLods(models[i], candidateScaleMax(candidates, i)));
+    return meshes;
+}
+
 uint64_t ResidentTiles::instanceCount() const {
     uint64_t n = 0;
     for (uint64_t c : instances_per_type) n += c;

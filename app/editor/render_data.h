@@ -71,6 +71,11 @@ struct DetailLodMesh {
 // fails, a mesh that cannot shrink keeps its previous level.
 DetailLodMesh buildDetailLods(const DetailModel& model, float scale_max);
 
+// The largest scale among a type's candidates, at least 1 (a type without candidates: 1).
+float candidateScaleMax(const CandidateSet& candidates, size_t type);
+// Every detail type's LOD meshes (buildDetailLods), in type order, each with its candidates' largest scale.
+std::vector<DetailLodMesh> buildTypeMeshes(const std::vector<DetailModel>& models, const CandidateSet& candidates);
+
 // The instances as they live on the GPU: per detail type one instance array (the CPU mirror of the
 // type's GPU buffer) in which every resident tile owns a slot (tile_slots.h). A live result rewrites only
 // the slots of the tiles it changed and records them as uploads; nothing else moves. Tiles are resident

@@ -205,13 +205,6 @@ bool BrushStroke::stamp(const SurfaceHit& hit, double now_s, std::string* error)
     return true;
 }
 
-Primitive translatedPrimitive(Primitive prim, glm::vec3 offset_m) {
-    if (prim.kind == PrimitiveKind::TerrainLayer || prim.kind == PrimitiveKind::TerrainSolid) return prim;
-    prim.center_m += offset_m;
-    if (prim.kind == PrimitiveKind::Segment) prim.end_m += offset_m;
-    return prim;
-}
-
 namespace {
 
 // Where the ray meets the plane through `point` with normal `n`; false when parallel or behind.

@@ -136,9 +136,6 @@ class MoveDrag {
     int moves_ = 0;
 };
 
-// A primitive's skeleton moved by offset_m (centre and segment end; terrain kinds unchanged).
-Primitive translatedPrimitive(Primitive prim, glm::vec3 offset_m);
-
 // Select: the user primitive whose centre is nearest the cursor on screen, within max_px; 0 for none.
 // view_proj maps world to clip space of a width x height viewport (pixels, y down from the top).
 uint64_t pickPrimitive(const Document& doc, const glm::mat4& view_proj, float width_px, float height_px,

@@ -114,10 +114,8 @@ float largestReach(const Document& doc) {
     const CandidateSet& c = doc.ghostTile().candidates;
     float reach = 0.0f;
     for (size_t i = 0; i < doc.models().size() && i < c.typeCount(); ++i) {
-        float scale = 1.0f;
-        for (uint32_t k = c.type_begin[i]; k < c.type_begin[i + 1]; ++k) scale = std::max(scale, c.scale[k]);
         const DetailModel& m = doc.models()[i];
-        reach = std::max(reach, scale * (glm::length(m.bounds.center) + m.bounds.radius));
+        reach = std::max(reach, candidateScaleMax(c, i) * (glm::length(m.bounds.center) + m.bounds.radius));
     }
     return reach;
 }
@@ -233,6 +231,18 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
     BrushStroke stroke;
     MoveDrag move_drag;
     MarkerGeometry markers;
+    // The user primitives' skeletons and hulls change only with an edit, the selection or the hull toggle,
+    // so they are kept between frames: a stroke leaves dozens of hulls of hundreds of triangles each.
+    struct PrimitiveMarkersKey {
+        const Document* doc = nullptr;
+        uint64_t edits = 0;  // the live instancer's generation: every edit, undo and redo moves it
+        uint64_t tile = 0;   // type colours come from the meshes, rebuilt with the tile
+        uint64_t selected = 0;
+        bool hulls = false;
+        bool operator==(const PrimitiveMarkersKey&) const = default;
+    };
+    MarkerGeometry primitive_markers;
+    PrimitiveMarkersKey primitive_markers_key;
     RenderSettings render_settings;
     render_settings.lod = options.lod;
     StatisticsView view;
@@ -315,29 +325,13 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         Document& doc = *scene->doc;
         scene_tile_generation = doc.tileGeneration();
         const CandidateSet& c = doc.ghostTile().candidates;
-        scene->meshes.clear();
-        for (size_t i = 0; i < doc.models().size(); ++i) {
-            float scale_max = 1.0f;
-            for (uint32_t k = c.type_begin[i]; i < c.typeCount() && k < c.type_begin[i + 1]; ++k)
-                scale_max = std::max(scale_max, c.scale[k]);
-            scene->meshes.push_back(buildDetailLods(doc.models()[i], scale_max));
-        }
+        scene->meshes = buildTypeMeshes(doc.models(), c);
         renderer.setScene(doc.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr, &scene->meshes, c,
                           doc.ghostTile().settings.tile_size_m);
         // What is on screen indexes the old tile's candidates: nothing is shown until the new result.
         instances = ResidentTiles{};
         store = std::make_shared<const InstanceStore>();
         reach_m = largestReach(doc);
-    };
-
-    // The "before" statistics of a replay action that replaces the document (computed while it is there).
-    auto recordBefore = [&](json* r) {
-        const InstanceStore empty;
-        const InstanceStore& before = replay.before ? *replay.before : empty;
-        const CandidateSet& c = scene->doc->ghostTile().candidates;
-        (*r)["instances_before"] = before.instanceCount();
-        (*r)["per_type_before"] = perTypeJson(view.type_names, perTypeCounts(before, c));
-        (*r)["instance_store_hash_before"] = hex64(instanceStoreHash(before));
     };
 
     // Takes a finished live result, if any, and re-packs it for the GPU (see the top of this file).
@@ -429,6 +423,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             if (scene) scene->doc->close();
             store.reset();
             instances = ResidentTiles{};
+            primitive_markers_key = PrimitiveMarkersKey{};  // a new document may come at the old one's address
             have_result = false;
             shown_generation = 0;
             inst_view = InstantiationView{};
@@ -786,8 +781,6 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             box.lo -= grow;
             box.hi += grow;
             replay.record["box"] = {{"min", {box.lo.x, box.lo.y, box.lo.z}}, {"max", {box.hi.x, box.hi.y, box.hi.z}}};
-            replay.record["box_lo"] = {box.lo.x, box.lo.y, box.lo.z};
-            replay.record["box_hi"] = {box.hi.x, box.hi.y, box.hi.z};
         };
         // A type named by the script, or kNoType with *error set (the run fails: the script is wrong).
         constexpr size_t kNoType = SIZE_MAX;
@@ -959,7 +952,6 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                         }
                         case ReplayKind::Open:
                         case ReplayKind::New:
-                            recordBefore(&replay.record);
                             load_error.clear();
                             if (a.kind == ReplayKind::New)
                                 startNew();
@@ -1033,8 +1025,15 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         }
         if (!takeLiveResult()) return ViewerStatus::Failed;
         if (tools.show_markers && doc && have_result && (screenshot_request_path.empty() || screenshot_overlays)) {
-            addPrimitiveMarkers(*doc, scene->meshes, tools.selected, &markers);
-            if (render_settings.hulls) addPrimitiveHulls(*doc, scene->meshes, tools.selected, &markers);
+            const PrimitiveMarkersKey key{doc, doc->live().generation(), doc->tileGeneration(), tools.selected,
+                                          render_settings.hulls};
+            if (!(key == primitive_markers_key)) {
+                primitive_markers.clear();
+                addPrimitiveMarkers(*doc, scene->meshes, tools.selected, &primitive_markers);
+                if (render_settings.hulls) addPrimitiveHulls(*doc, scene->meshes, tools.selected, &primitive_markers);
+                primitive_markers_key = key;
+            }
+            markers.append(primitive_markers);
             const float r = render_settings.overlay_radius_m;
             const CandidateSet& c = doc->ghostTile().candidates;
             if (render_settings.tile_grid) addTileOverlay(instances, camera.target, r, &markers);
@@ -1119,11 +1118,6 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             json& r = replay.record;
             const InstanceStore empty;
             const InstanceStore& before = replay.before ? *replay.before : empty;
-            if (!r.contains("instances_before")) {  // open / new recorded theirs against the old document
-                r["instances_before"] = before.instanceCount();
-                r["per_type_before"] = perTypeJson(names, perTypeCounts(before, c));
-                r["instance_store_hash_before"] = hex64(instanceStoreHash(before));
-            }
             r["instances_after"] = store->instanceCount();
             r["per_type_after"] = perTypeJson(names, perTypeCounts(*store, c));
             r["instance_store_hash_after"] = hex64(instanceStoreHash(*store));
@@ -1135,13 +1129,12 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 if (!load_error.empty()) r["error"] = load_error;
                 r["document"] = d.path();
             }
-            if (r.contains("box_lo")) {
-                const Bounds box{glm::vec3(r["box_lo"][0].get<float>(), r["box_lo"][1].get<float>(),
-                                           r["box_lo"][2].get<float>()),
-                                 glm::vec3(r["box_hi"][0].get<float>(), r["box_hi"][1].get<float>(),
-                                           r["box_hi"][2].get<float>())};
-                r.erase("box_lo");
-                r.erase("box_hi");
+            if (r.contains("box")) {
+                auto corner = [&](const char* key) {
+                    const json& v = r["box"][key];
+                    return glm::vec3(v[0].get<float>(), v[1].get<float>(), v[2].get<float>());
+                };
+                const Bounds box{corner("min"), corner("max")};
                 const float s = d.ghostTile().settings.tile_size_m;
                 const BoxCounts b = countInstancesInBox(before, c, s, box),
                                 a = countInstancesInBox(*store, c, s, box);

@@ -113,6 +113,13 @@ Primitive makeTerrainSolid(uint32_t height_field, float falloff_depth_m, float w
     return p;
 }
 
+Primitive translatedPrimitive(Primitive prim, glm::vec3 offset_m) {
+    if (prim.kind == PrimitiveKind::TerrainLayer || prim.kind == PrimitiveKind::TerrainSolid) return prim;
+    prim.center_m += offset_m;
+    if (prim.kind == PrimitiveKind::Segment) prim.end_m += offset_m;
+    return prim;
+}
+
 namespace {
 
 bool finite3(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }

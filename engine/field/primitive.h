@@ -78,6 +78,10 @@ Primitive makeHalfSpace(glm::vec3 point_m, glm::vec3 outward_normal, float radiu
 Primitive makeTerrainLayer(uint32_t height_field, float thickness_m, float radius_m, float weight = 1.0f);
 Primitive makeTerrainSolid(uint32_t height_field, float falloff_depth_m, float weight = kSolidWeight);
 
+// The primitive with its skeleton moved by offset_m (centre, and a segment's end). Terrain kinds follow
+// their height field and are returned unchanged.
+Primitive translatedPrimitive(Primitive prim, glm::vec3 offset_m);
+
 // Checks every field the kind uses (finite, ranges above, height_field < height_field_count for terrain
 // kinds). On failure *error = "primitive <index> (<kind>): <field> <reason>".
 bool validatePrimitive(const Primitive& prim, size_t index, size_t height_field_count, std::string* error);

@@ -340,11 +340,7 @@ uint64_t Document::duplicatePrimitive(uint64_t id, glm::vec3 offset_m, std::stri
         *error = "no primitive with id " + std::to_string(id);
         return 0;
     }
-    if (prim.kind != PrimitiveKind::TerrainLayer && prim.kind != PrimitiveKind::TerrainSolid) {
-        prim.center_m += offset_m;
-        if (prim.kind == PrimitiveKind::Segment) prim.end_m += offset_m;
-    }
-    return addPrimitive(type, prim, error);
+    return addPrimitive(type, translatedPrimitive(prim, offset_m), error);
 }
 
 bool Document::setInstancing(size_t type, const InstancingDesc& desc, std::string* error) {

@@ -31,21 +31,10 @@ namespace fs = std::filesystem;
 using test::samePrimitive;
 using test::sameValues;
 
-class TempDir {
+// Every test's own folder.
+class TempDir : public test::TempDir {
 public:
-    TempDir() {
-        std::random_device rd;
-        path_ = fs::temp_directory_path() / ("ug_document_test_" + std::to_string(rd()) + std::to_string(rd()));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
+    TempDir() : test::TempDir("ug_document_test_") {}
 };
 
 // Two types: rocks with a Blend root (one editable point) and pebbles whose root is an intersection

@@ -17,27 +17,17 @@
 #include "instancer/instantiator.h"
 #include "scene/document.h"
 #include "scene/ghost_tile_job.h"
+#include "scene_test_util.h"
 
 namespace ug {
 namespace {
 
 namespace fs = std::filesystem;
 
-class TempDir {
+// Every test's own folder.
+class TempDir : public test::TempDir {
 public:
-    TempDir() {
-        std::random_device rd;
-        path_ = fs::temp_directory_path() / ("ug_ghost_job_test_" + std::to_string(rd()) + std::to_string(rd()));
-        fs::create_directories(path_);
-    }
-    ~TempDir() {
-        std::error_code ec;
-        fs::remove_all(path_, ec);
-    }
-    const fs::path& path() const { return path_; }
-
-private:
-    fs::path path_;
+    TempDir() : test::TempDir("ug_ghost_job_test_") {}
 };
 
 // Rocks and pebbles on a small procedural terrain, the models from assets/models (absolute paths).
@@ -56,6 +46,25 @@ std::string writeScene(const fs::path& dir) {
     const fs::path path = dir / "scene.json";
     std::ofstream(path) << text;
     return path.string();
+}
+
+// writeScene's project in scene_dir, with its own copy of the models in dir/models, which the file names
+// by `models_ref` (a path relative to scene_dir, or absolute).
+std::string writeSceneWithOwnModels(const fs::path& dir, const fs::path& scene_dir, const std::string& models_ref) {
+    const fs::path source_models = fs::path(UG_SOURCE_DIR) / "assets" / "models";
+    fs::create_directories(dir / "models");
+    fs::create_directories(scene_dir);
+    for (const char* m : {"rock.glb", "pebble.glb"}) fs::copy_file(source_models / m, dir / "models" / m);
+    std::string text;
+    {
+        std::ifstream in(writeScene(dir));
+        text.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    for (size_t at; (at = text.find(source_models.string())) != std::string::npos;)
+        text.replace(at, source_models.string().size(), models_ref);
+    const fs::path project = scene_dir / "scene.json";
+    std::ofstream(project) << text;
+    return project.string();
 }
 
 DocumentOptions optionsFor(const TempDir& dir) {
@@ -289,22 +298,10 @@ TEST(GhostTileJob, AChangedModelIsLoadedAndTheOldTileIsFreedOnceNothingHoldsIt) 
 // are relative to the new folder (they were relative to the old one), so the file still opens.
 TEST(GhostTileJob, UndoAfterSaveAsToAnotherFolderKeepsModelPathsValid) {
     TempDir dir;
-    fs::create_directories(dir.path() / "a");
-    fs::create_directories(dir.path() / "models");
     fs::create_directories(dir.path() / "b" / "c");
-    const fs::path source_models = fs::path(UG_SOURCE_DIR) / "assets" / "models";
-    for (const char* m : {"rock.glb", "pebble.glb"}) fs::copy_file(source_models / m, dir.path() / "models" / m);
-    std::string text;
-    {
-        std::ifstream in(writeScene(dir.path()));
-        text.assign(std::istreambuf_iterator<char>(in), {});
-    }
-    for (size_t at; (at = text.find(source_models.string())) != std::string::npos;)
-        text.replace(at, source_models.string().size(), "../models");
-    const fs::path project = dir.path() / "a" / "scene.json";
-    std::ofstream(project) << text;
+    const std::string project = writeSceneWithOwnModels(dir.path(), dir.path() / "a", "../models");
     std::string error;
-    std::unique_ptr<Document> doc = Document::open(project.string(), optionsFor(dir), &error);
+    std::unique_ptr<Document> doc = Document::open(project, optionsFor(dir), &error);
     ASSERT_TRUE(doc) << error;
     ASSERT_EQ(doc->project().detail_types[0].model.mesh_path, "../models/rock.glb");
 
@@ -346,19 +343,10 @@ TEST(GhostTileJob, UndoAfterSaveAsToAnotherFolderKeepsModelPathsValid) {
 // disk (here: replaced by another one) is read again by the next build.
 TEST(GhostTileJob, AModelEditedOnDiskIsReadAgain) {
     TempDir dir;
-    const fs::path source_models = fs::path(UG_SOURCE_DIR) / "assets" / "models";
-    fs::create_directories(dir.path() / "models");
-    for (const char* m : {"rock.glb", "pebble.glb"}) fs::copy_file(source_models / m, dir.path() / "models" / m);
-    std::string text;
-    {
-        std::ifstream in(writeScene(dir.path()));
-        text.assign(std::istreambuf_iterator<char>(in), {});
-    }
-    for (size_t at; (at = text.find(source_models.string())) != std::string::npos;)
-        text.replace(at, source_models.string().size(), (dir.path() / "models").string());
-    std::ofstream(dir.path() / "scene.json") << text;
+    const std::string project =
+        writeSceneWithOwnModels(dir.path(), dir.path(), (dir.path() / "models").string());
     std::string error;
-    std::unique_ptr<Document> doc = Document::open((dir.path() / "scene.json").string(), optionsFor(dir), &error);
+    std::unique_ptr<Document> doc = Document::open(project, optionsFor(dir), &error);
     ASSERT_TRUE(doc) << error;
     const float rock_radius = doc->models()[0].bounds.radius;
 

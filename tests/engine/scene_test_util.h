@@ -1,16 +1,38 @@
-// Helpers for the scene tests: bitwise comparison of density fields (structure and values).
+// Helpers for the scene tests: bitwise comparison of density fields (structure and values), and a
+// temporary folder removed with everything in it.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <cstdint>
 #include <cstring>
+#include <filesystem>
 #include <random>
 #include <string>
 
 #include "field/density_field.h"
 
 namespace ug::test {
+
+// A fresh folder under the system's temporary directory (`prefix` + random digits), removed at the end.
+class TempDir {
+public:
+    explicit TempDir(const std::string& prefix) {
+        std::random_device rd;
+        path_ = std::filesystem::temp_directory_path() / (prefix + std::to_string(rd()) + std::to_string(rd()));
+        std::filesystem::create_directories(path_);
+    }
+    ~TempDir() {
+        std::error_code ec;
+        std::filesystem::remove_all(path_, ec);
+    }
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    const std::filesystem::path& path() const { return path_; }
+
+private:
+    std::filesystem::path path_;
+};
 
 inline bool sameBits(float a, float b) {
     return std::memcmp(&a, &b, sizeof(float)) == 0;
