@@ -11,6 +11,7 @@
 
 #include "core/atomic_file.h"
 #include "core/hash.h"
+#include "ghosttile/ghost_tile_verify.h"
 
 namespace ug {
 
@@ -30,6 +31,7 @@ public:
     template <typename T>
     void putArray(const std::vector<T>& v) {
         put(uint64_t(v.size()));
+        if (v.empty()) return;
         const auto* p = reinterpret_cast<const unsigned char*>(v.data());
         bytes.insert(bytes.end(), p, p + v.size() * sizeof(T));
     }
@@ -51,7 +53,9 @@ public:
         uint64_t count;
         if (!get(&count) || count > max_count || count > size_t(end_ - p_) / sizeof(T)) return false;
         v->resize(count);
-        std::memcpy(v->data(), p_, count * sizeof(T));
+        // An empty array is legal (a tile without colliding pairs writes one); memcpy must not see the
+        // null data() of an empty vector.
+        if (count > 0) std::memcpy(v->data(), p_, count * sizeof(T));
         p_ += count * sizeof(T);
         return true;
     }
@@ -188,9 +192,16 @@ bool loadOrBuildGhostTile(const std::string& cache_dir, const GhostTileInput& in
     std::string load_error;
     *outcome = CacheOutcome::BuiltMissing;
     if (std::filesystem::exists(path)) {
-        if (loadGhostTileCache(path, key, out, &load_error)) {
-            *outcome = CacheOutcome::Loaded;
-            return true;
+        GhostTile loaded;
+        std::string why;
+        if (loadGhostTileCache(path, key, &loaded, &load_error)) {
+            // The checksum only proves the file is what its writer wrote, not that the writer was right.
+            if (verifyGhostTileAgainstInput(loaded, input, &why)) {
+                *out = std::move(loaded);
+                *outcome = CacheOutcome::Loaded;
+                return true;
+            }
+            load_error = path + ": disagrees with the scene: " + why;
         }
         *outcome = load_error.find("stale") != std::string::npos ? CacheOutcome::BuiltStale
                                                                   : CacheOutcome::BuiltCorrupt;

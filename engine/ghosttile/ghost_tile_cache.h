@@ -5,7 +5,8 @@
 //   u64 payload checksum | payload
 // The payload holds the settings, candidate frames, the collision graph stream and the statistics.
 // A file is used only if every check passes: magic, version, key (the inputs' hash), size and checksum;
-// otherwise the caller rebuilds. A cache is never trusted.
+// otherwise the caller rebuilds. A cache is never trusted: loadOrBuildGhostTile also checks every payload
+// value of a loaded tile against the scene's inputs (ghost_tile_verify.h) before it uses it.
 #pragma once
 
 #include <cstdint>
@@ -30,8 +31,10 @@ const char* cacheOutcomeName(CacheOutcome outcome);
 // The cache file name for a key inside `cache_dir`: "<dir>/ghosttile-<16 hex digits>.ugt".
 std::string ghostTileCachePath(const std::string& cache_dir, uint64_t key);
 
-// Loads the tile for `input` from cache_dir when a valid file exists, else builds it and writes the
-// cache (a failure to write the cache is reported in *note, not as an error: the tile is still good).
+// Loads the tile for `input` from cache_dir when a valid file exists and agrees with `input`
+// (verifyGhostTileAgainstInput), else builds it and writes the cache; a refused file is named in *note
+// with the reason ("disagrees with the scene: candidate 12: position differs ..."). A failure to write
+// the cache is reported in *note too, not as an error: the tile is still good.
 bool loadOrBuildGhostTile(const std::string& cache_dir, const GhostTileInput& input, const BuildOptions& options,
                           GhostTile* out, CacheOutcome* outcome, std::string* note, std::string* error);
 

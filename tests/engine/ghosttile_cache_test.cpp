@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 
 #include "core/atomic_file.h"
 #include "ghosttile/ghost_tile_cache.h"
@@ -134,6 +135,147 @@ TEST_F(CacheFixture, LoadOrBuildRebuildsWhatItCannotTrust) {
     // And the rebuilt cache is good again.
     ASSERT_TRUE(loadOrBuildGhostTile(dir.string(), input, {}, &third, &outcome, &note, &error)) << error;
     EXPECT_EQ(outcome, CacheOutcome::Loaded);
+}
+
+// A forger rewrites the payload and recomputes the checksum (saveGhostTileCache does exactly that): the
+// file then passes every structural check, so only the comparison with the scene's inputs can refuse it.
+struct ForgedCache : CacheFixture {
+    GhostTile good;
+    void SetUp() override {
+        CacheFixture::SetUp();
+        std::string error;
+        ASSERT_TRUE(buildGhostTile(input, {}, &good, &error)) << error;
+        ASSERT_GT(good.stats.pair_count, 0u);
+    }
+    std::vector<std::vector<uint32_t>> rowsOf(const GhostTile& t) {
+        std::vector<std::vector<uint32_t>> rows(t.candidates.size());
+        for (uint32_t i = 0; i < t.candidates.size(); ++i)
+            t.graph.forEachNeighbor(i, [&](uint32_t j, uint32_t v) { rows[i].push_back(j * kOffsetCount + v); });
+        return rows;
+    }
+    void setRows(GhostTile* t, const std::vector<std::vector<uint32_t>>& rows) {
+        std::string error;
+        ASSERT_TRUE(CollisionGraph::fromRows(t->candidates.size(), rows, &t->graph, &error)) << error;
+    }
+    // Writes the forged tile where loadOrBuild looks, loads: it must be refused with `reason` and rebuilt.
+    void expectRefused(const GhostTile& forged, const std::string& reason) {
+        std::string error, note;
+        const std::string path = ghostTileCachePath(dir.string(), ghostTileKey(input));
+        ASSERT_TRUE(saveGhostTileCache(path, forged, &error)) << error;
+        GhostTile raw;
+        ASSERT_TRUE(loadGhostTileCache(path, ghostTileKey(input), &raw, &error)) << "structurally valid: " << error;
+        GhostTile used;
+        CacheOutcome outcome;
+        ASSERT_TRUE(loadOrBuildGhostTile(dir.string(), input, {}, &used, &outcome, &note, &error)) << error;
+        EXPECT_EQ(outcome, CacheOutcome::BuiltCorrupt) << reason;
+        EXPECT_NE(note.find("disagrees with the scene"), std::string::npos) << note;
+        EXPECT_NE(note.find(reason), std::string::npos) << note;
+        EXPECT_NE(note.find(path), std::string::npos) << note;
+        expectSameTile(good, used);
+        // The rebuilt file is the honest one.
+        ASSERT_TRUE(loadOrBuildGhostTile(dir.string(), input, {}, &used, &outcome, &note, &error)) << error;
+        EXPECT_EQ(outcome, CacheOutcome::Loaded);
+    }
+};
+
+TEST_F(ForgedCache, HonestTileIsLoaded) {
+    std::string error, note;
+    ASSERT_TRUE(saveGhostTileCache(ghostTileCachePath(dir.string(), ghostTileKey(input)), good, &error)) << error;
+    GhostTile used;
+    CacheOutcome outcome;
+    ASSERT_TRUE(loadOrBuildGhostTile(dir.string(), input, {}, &used, &outcome, &note, &error)) << error;
+    EXPECT_EQ(outcome, CacheOutcome::Loaded) << note;
+    expectSameTile(good, used);
+}
+
+TEST_F(ForgedCache, OtherTileSizeIsRefused) {
+    GhostTile forged = good;
+    forged.settings.tile_size_m = 0.25f;
+    expectRefused(forged, "tile size");
+}
+
+TEST_F(ForgedCache, OtherDeltaIsRefused) {
+    GhostTile forged = good;
+    forged.settings.delta_m = -0.01f;
+    expectRefused(forged, "delta");
+}
+
+TEST_F(ForgedCache, NanPositionIsRefused) {
+    GhostTile forged = good;
+    forged.candidates.position[7].y = std::numeric_limits<float>::quiet_NaN();
+    expectRefused(forged, "candidate 7: position");
+}
+
+TEST_F(ForgedCache, ZeroScaleIsRefused) {
+    GhostTile forged = good;
+    forged.candidates.scale[3] = 0.0f;
+    expectRefused(forged, "candidate 3: scale");
+}
+
+TEST_F(ForgedCache, NonUnitRotationIsRefused) {
+    GhostTile forged = good;
+    forged.candidates.rotation[11] *= 2.0f;
+    expectRefused(forged, "candidate 11: rotation");
+}
+
+TEST_F(ForgedCache, FewerCandidatesAreRefused) {
+    // Drop the last candidate everywhere, graph included, so the file is consistent in itself.
+    GhostTile forged = good;
+    CandidateSet& c = forged.candidates;
+    const uint32_t n = c.size() - 1;
+    c.type.resize(n);
+    c.position.resize(n);
+    c.rotation.resize(n);
+    c.scale.resize(n);
+    c.type_begin.back() = n;
+    auto rows = rowsOf(good);
+    rows.resize(n);
+    for (auto& row : rows) std::erase_if(row, [&](uint32_t k) { return k / kOffsetCount >= n; });
+    setRows(&forged, rows);
+    expectRefused(forged, "candidate counts");
+}
+
+TEST_F(ForgedCache, OneSidedEdgeIsRefused) {
+    GhostTile forged = good;
+    auto rows = rowsOf(good);
+    rows[0].clear();  // row 0 forgets its edges, its neighbours still list it
+    setRows(&forged, rows);
+    expectRefused(forged, "not symmetric");
+}
+
+TEST_F(ForgedCache, EmptiedGraphIsRefused) {
+    // Symmetric, structurally perfect, and wrong: every sampled row misses its edges.
+    GhostTile forged = good;
+    setRows(&forged, std::vector<std::vector<uint32_t>>(good.candidates.size()));
+    expectRefused(forged, "collision graph row");
+}
+
+TEST_F(ForgedCache, InventedPairsAreRefused) {
+    // Every candidate claims to collide with every other one in the home tile (both directions): symmetric
+    // and structurally valid, but most of these pairs are far apart.
+    GhostTile forged = good;
+    const uint32_t n = good.candidates.size();
+    std::vector<std::vector<uint32_t>> rows(n);
+    for (uint32_t i = 0; i < n; ++i)
+        for (uint32_t j = 0; j < n; ++j)
+            if (j != i) rows[i].push_back(j * kOffsetCount + kCenterOffset);
+    setRows(&forged, rows);
+    expectRefused(forged, "collision graph");
+}
+
+TEST_F(CacheFixture, TileWithoutCollidingPairsRoundTrips) {
+    // One small candidate in a large tile: no pairs, so the graph's stream is an empty array on disk.
+    input.settings.tile_size_m = 5.0f;
+    input.types = {{.name = "rock", .candidate_count = 1}};
+    GhostTile tile, back;
+    std::string error;
+    ASSERT_TRUE(buildGhostTile(input, {}, &tile, &error)) << error;
+    ASSERT_EQ(tile.stats.pair_count, 0u);
+    const std::string path = (dir / "empty.ugt").string();
+    ASSERT_TRUE(saveGhostTileCache(path, tile, &error)) << error;
+    ASSERT_TRUE(loadGhostTileCache(path, tile.key, &back, &error)) << error;
+    expectSameTile(tile, back);
+    EXPECT_TRUE(back.graph.encodedBytes().empty());
 }
 
 TEST_F(CacheFixture, ChangedInputsChangeTheKey) {
