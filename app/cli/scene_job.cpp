@@ -9,6 +9,9 @@ bool loadSceneJob(const std::string& scene, const std::string& cache_dir, int th
                   std::string* error) {
     job->path = scene;
     if (!loadProject(scene, &job->project, error)) return false;
+    // The terrain first: it is cheap to check, and a bad one must not wait for the models and the tile.
+    std::shared_ptr<const HeightField> terrain;
+    if (!loadTerrain(job->project, &terrain, error)) return false;
     const auto t0 = std::chrono::steady_clock::now();
     if (!loadProjectModels(job->project, &job->models, error)) return false;
     job->models_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -29,8 +32,6 @@ bool loadSceneJob(const std::string& scene, const std::string& cache_dir, int th
         return false;
     }
     if (!note.empty() && !quiet) std::fprintf(stderr, "  note: %s\n", note.c_str());
-    std::shared_ptr<const HeightField> terrain;
-    if (!loadTerrain(job->project, &terrain, error)) return false;
     return compileScene(job->project, terrain, &job->compiled, error);
 }
 

@@ -11,6 +11,8 @@ namespace ug {
 
 // Errors name the path and the system's reason (e.g. "out/x.glb: cannot create temporary file:
 // Permission denied"). On failure the target is untouched and the temporary file is removed.
+// The temporary file is ".<name>.tmp-<host>-<pid>-XXXXXX" beside the target; one left by a writer that
+// was killed (same host, process gone; or over an hour old) is removed by the next write of the target.
 bool writeFileAtomically(const std::string& path, const void* data, size_t size, std::string* error);
 bool writeTextFileAtomically(const std::string& path, const std::string& text, std::string* error);
 

@@ -11,6 +11,7 @@
 #include <limits>
 #include <cassert>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <utility>
 
@@ -121,6 +122,23 @@ std::string stbReason() {
     return r ? r : "unknown reason";
 }
 
+// A PNG's pixels are deflate-compressed, and deflate never packs better than about 1032:1, so a file
+// of N bytes cannot hold more than ~1032 N bytes of raw rows. Checked from the header, so an 85-byte file
+// claiming 16384 x 16384 is refused before a gigabyte is allocated for it. Other formats pass.
+bool pngCouldHold(FILE* file, uint64_t raw_bytes_one_channel) {
+    static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+    unsigned char head[8] = {};
+    const long here = std::ftell(file);
+    if (std::fseek(file, 0, SEEK_SET) != 0) return true;
+    const size_t got = std::fread(head, 1, sizeof head, file);
+    std::fseek(file, 0, SEEK_END);
+    const long size = std::ftell(file);
+    std::fseek(file, here, SEEK_SET);
+    if (got != sizeof head || std::memcmp(head, kSignature, sizeof head) != 0 || size <= 0) return true;
+    // One channel is the least a row can carry; 1100 leaves room over deflate's bound for the headers.
+    return raw_bytes_one_channel <= uint64_t(size) * 1100u;
+}
+
 }  // namespace
 
 bool makeProceduralHeightField(const ProceduralTerrainDesc& d, HeightField* out, std::string* error) {
@@ -129,9 +147,14 @@ bool makeProceduralHeightField(const ProceduralTerrainDesc& d, HeightField* out,
     if (!std::isfinite(d.origin_m.x) || !std::isfinite(d.origin_m.y))
         return fail(error, where + "origin_m must be finite");
     if (!finitePositive(d.cell_size_m)) return fail(error, where + "cell_size_m must be finite and > 0");
-    if (d.width < 1 || d.height < 1 || d.width > kMaxHeightFieldSide || d.height > kMaxHeightFieldSide)
-        return fail(error, where + "width and height must be in [1, " + std::to_string(kMaxHeightFieldSide) +
-                               "], got " + std::to_string(d.width) + "x" + std::to_string(d.height));
+    if (d.width < kMinTerrainSide || d.height < kMinTerrainSide || d.width > kMaxHeightFieldSide ||
+        d.height > kMaxHeightFieldSide)
+        return fail(error, where + "width and height must be in [" + std::to_string(kMinTerrainSide) + ", " +
+                               std::to_string(kMaxHeightFieldSide) + "], got " + std::to_string(d.width) + "x" +
+                               std::to_string(d.height));
+    if (uint64_t(d.width) * uint64_t(d.height) > kMaxHeightFieldSamples)
+        return fail(error, where + std::to_string(d.width) + "x" + std::to_string(d.height) +
+                               " samples exceed the limit of " + std::to_string(kMaxHeightFieldSamples));
     if (d.octaves < 1 || d.octaves > 16)
         return fail(error, where + "octaves must be in [1, 16], got " + std::to_string(d.octaves));
     if (!std::isfinite(d.base_height_m)) return fail(error, where + "base_height_m must be finite");
@@ -177,16 +200,23 @@ bool loadHeightFieldPng(const std::string& path, const HeightFieldImageDesc& d, 
         std::fclose(file);
         return fail(error, where + "not an image stb_image can read (" + stbReason() + ")");
     }
+    const std::string size_text = std::to_string(w) + "x" + std::to_string(h);
     if (w <= 0 || h <= 0) {
         std::fclose(file);
         return fail(error, where + "the image has zero size");
     }
-    if (w > kMaxHeightFieldSide || h > kMaxHeightFieldSide) {
+    if (w > kMaxHeightFieldSide || h > kMaxHeightFieldSide || uint64_t(w) * uint64_t(h) > kMaxHeightFieldSamples) {
         std::fclose(file);
-        return fail(error, where + "the image is " + std::to_string(w) + "x" + std::to_string(h) +
-                               ", larger than the " + std::to_string(kMaxHeightFieldSide) + " per side accepted");
+        return fail(error, where + "the image is " + size_text + ", larger than the accepted " +
+                               std::to_string(kMaxHeightFieldSide) + " per side and " +
+                               std::to_string(kMaxHeightFieldSamples) + " pixels in all");
     }
     const bool sixteen = stbi_is_16_bit_from_file(file) != 0;
+    if (!pngCouldHold(file, uint64_t(w) * uint64_t(h) * (sixteen ? 2u : 1u))) {
+        std::fclose(file);
+        return fail(error, where + "the header claims " + size_text +
+                               " pixels, more than the file's compressed data can hold (truncated or forged)");
+    }
     std::vector<float> heights(size_t(w) * size_t(h));
     const float range = d.max_height_m - d.min_height_m;
     int lw = 0, lh = 0, lc = 0;

@@ -48,8 +48,12 @@ inline AxisCell locate(float coord_m, float origin_m, float cell_m, int n) {
 
 }  // namespace height_detail
 
-// The largest accepted grid, per axis (16384² samples = 1 GiB of floats).
+// The largest accepted grid: per axis, and in samples (8192² = 64 Mi samples = 256 MiB of floats; a
+// procedural grid of that size takes about 20 s to compute on two cores, a larger one is refused up front).
 constexpr int kMaxHeightFieldSide = 16384;
+constexpr uint64_t kMaxHeightFieldSamples = uint64_t(8192) * 8192;
+// A terrain is a surface: at least 2 samples per axis (a 1 x N field has no cells to mesh or sample).
+constexpr int kMinTerrainSide = 2;
 
 class HeightField {
 public:
@@ -108,7 +112,8 @@ private:
 struct ProceduralTerrainDesc {
     glm::vec2 origin_m{0.0f};
     float cell_size_m = 1.0f;      // > 0
-    int width = 129;               // samples, in [1, kMaxHeightFieldSide]
+    int width = 129;               // samples, in [kMinTerrainSide, kMaxHeightFieldSide], width * height <=
+                                   // kMaxHeightFieldSamples
     int height = 129;
     uint64_t seed = 1;
     int octaves = 5;               // in [1, 16]
@@ -133,8 +138,10 @@ struct HeightFieldImageDesc {
 };
 
 // Loads an 8- or 16-bit PNG (any format stb_image reads; colour is converted to luminance). Returns
-// false with *error = "<path>: <reason>" for a missing or unreadable file, a file that is not an image, a
-// zero-sized image, or one larger than kMaxHeightFieldSide on a side; *out is untouched then.
+// false with *error = "<path>: <reason>" for a missing or unreadable file, a file that is not an image, an
+// image larger than kMaxHeightFieldSide on a side or kMaxHeightFieldSamples
+// in all, or a PNG whose header claims more pixels than its compressed data could hold (deflate packs at
+// most ~1032:1) — all refused from the header, before any pixel memory is taken; *out is untouched then.
 bool loadHeightFieldPng(const std::string& path, const HeightFieldImageDesc& desc, HeightField* out,
                         std::string* error);
 

@@ -5,6 +5,7 @@
 #include "instancer/instantiator.h"
 
 #include <algorithm>
+#include <cassert>
 #include <atomic>
 #include <bit>
 #include <chrono>
@@ -413,59 +414,77 @@ bool Instantiator::Engine::enumerateAndCompute(const Bounds& box_in, const Insta
     const int threads = resolveThreadCount(options.threads);
     const size_t type_count = input.types.size();
 
-    // Pass 1: which tiles of each block may hold an alive candidate (cheap, bounds only).
-    struct BlockTiles {
-        std::vector<glm::ivec3> coords;
+    // Worst case per planned tile: every candidate alive (13 bytes each), the tile's own state and its
+    // place in the plan. The budget is a tile count, checked while planning: pass 1 holds no per-tile
+    // memory, so a world too dense for the budget is refused before anything large is allocated.
+    const uint64_t per_tile =
+        sizeof(TileState) + sizeof(glm::ivec3) + 2 * ((prep.n + 63) / 64) * 8 + uint64_t(prep.n) * 13;
+    const uint64_t max_tiles = options.max_memory_bytes / per_tile;
+
+    // The tiles of one block that may hold an alive candidate, given each type's positive bounds in the
+    // block. Pass 1 counts them, pass 2 visits the same ones (same block lists, same bounds, same order).
+    auto forEachPlannedTile = [&](const glm::ivec3& first, const glm::ivec3& last, const std::vector<Bounds>& positive,
+                                  auto&& visit) {
+        for (int z = first.z; z <= last.z; ++z)
+            for (int y = first.y; y <= last.y; ++y)
+                for (int x = first.x; x <= last.x; ++x) {
+                    const glm::vec3 o = tileOrigin(glm::ivec3(x, y, z), s);
+                    const Bounds tile_box{o, o + s};
+                    if (!overlaps(tile_box, input.extent)) continue;
+                    for (size_t i = 0; i < type_count; ++i)
+                        if (!positive[i].empty() && overlaps(expand(tile_box, prep.reach[i]), positive[i])) {
+                            visit(glm::ivec3(x, y, z));
+                            break;
+                        }
+                }
     };
-    std::vector<BlockTiles> plan(block_count);
-    std::atomic<bool> stop{false};
+    // Each type's positive bounds inside a block (empty where its field cannot be positive).
+    auto blockPositive = [&](const Bounds& block_box, std::vector<TileFieldList>* lists, std::vector<Bounds>* positive) {
+        bool any = false;
+        for (size_t i = 0; i < type_count; ++i) {
+            (*positive)[i] = Bounds{};
+            if (!runtime[i].field) continue;
+            buildTileList(*runtime[i].field, expand(block_box, prep.reach[i]), &(*lists)[i], &global_lists[i]);
+            if ((*lists)[i].empty()) continue;
+            (*positive)[i] = positiveBoundsIn(*runtime[i].field, (*lists)[i]);
+            any = any || !(*positive)[i].empty();
+        }
+        return any;
+    };
+
+    // Pass 1: how many tiles of each block may hold an alive candidate (cheap, bounds only).
+    std::vector<uint32_t> planned(block_count, 0);
+    std::atomic<uint64_t> planned_total{0};
+    std::atomic<bool> stop{false}, over_budget{false};
     parallelFor(block_count, threads, 16, [&](size_t b0, size_t b1, int) {
-        TileFieldList block_list;
+        std::vector<TileFieldList> block_lists(type_count);
         std::vector<Bounds> positive(type_count);
         for (size_t b = b0; b < b1; ++b) {
             if (options.cancel && options.cancel->load()) return stop.store(true);
+            if (over_budget.load(std::memory_order_relaxed)) return;
             const glm::ivec3 bc(int(b % nblocks.x), int(b / nblocks.x % nblocks.y), int(b / nblocks.x / nblocks.y));
             const glm::ivec3 first = tlo + bc * kBlock;
             const glm::ivec3 last = glm::min(first + (kBlock - 1), thi);
             const Bounds block_box{tileOrigin(first, s), tileOrigin(last + 1, s)};
-            bool any = false;
-            for (size_t i = 0; i < type_count; ++i) {
-                positive[i] = Bounds{};
-                if (!runtime[i].field) continue;
-                buildTileList(*runtime[i].field, expand(block_box, prep.reach[i]), &block_list, &global_lists[i]);
-                if (block_list.empty()) continue;
-                positive[i] = positiveBoundsIn(*runtime[i].field, block_list);
-                any = any || !positive[i].empty();
-            }
-            if (!any) continue;
-            for (int z = first.z; z <= last.z; ++z)
-                for (int y = first.y; y <= last.y; ++y)
-                    for (int x = first.x; x <= last.x; ++x) {
-                        const glm::vec3 o = tileOrigin(glm::ivec3(x, y, z), s);
-                        const Bounds tile_box{o, o + s};
-                        if (!overlaps(tile_box, input.extent)) continue;
-                        for (size_t i = 0; i < type_count; ++i)
-                            if (!positive[i].empty() && overlaps(expand(tile_box, prep.reach[i]), positive[i])) {
-                                plan[b].coords.push_back(glm::ivec3(x, y, z));
-                                break;
-                            }
-                    }
+            if (!blockPositive(block_box, &block_lists, &positive)) continue;
+            uint32_t count = 0;
+            forEachPlannedTile(first, last, positive, [&](const glm::ivec3&) { ++count; });
+            planned[b] = count;
+            if (planned_total.fetch_add(count, std::memory_order_relaxed) + count > max_tiles) over_budget = true;
         }
     });
     if (stop.load()) {
         if (error) *error = "instancer: cancelled";
         return false;
     }
-    uint64_t tile_total = 0;
-    for (const BlockTiles& bt : plan) tile_total += bt.coords.size();
-    // Worst case: every candidate of every planned tile alive (13 bytes each) plus the tile's own state.
-    const uint64_t per_tile = sizeof(TileState) + 2 * ((prep.n + 63) / 64) * 8 + uint64_t(prep.n) * 13;
-    if (tile_total * per_tile > options.max_memory_bytes) {
+    const uint64_t tile_total = planned_total.load();
+    if (over_budget.load() || tile_total > max_tiles) {
         if (error)
-            *error = "instancer: the scene needs up to " + std::to_string(tile_total * per_tile >> 20) + " MiB for " +
-                     std::to_string(tile_total) + " tiles of " + std::to_string(prep.n) +
-                     " candidates, more than the allowed " + std::to_string(options.max_memory_bytes >> 20) +
-                     " MiB; shrink the extent or the fields";
+            *error = "instancer: the scene needs more than " + std::to_string(max_tiles * per_tile >> 20) +
+                     " MiB (at least " + std::to_string(tile_total) + " tiles of " + std::to_string(prep.n) +
+                     " candidates, up to " + std::to_string(per_tile) + " bytes each), more than the allowed " +
+                     std::to_string(options.max_memory_bytes >> 20) +
+                     " MiB; shrink the extent or the fields, or cut the world into --region jobs";
         return false;
     }
 
@@ -474,26 +493,25 @@ bool Instantiator::Engine::enumerateAndCompute(const Bounds& box_in, const Insta
     std::atomic<uint64_t> done{0};
     parallelFor(block_count, threads, 1, [&](size_t b0, size_t b1, int) {
         TileScratch scratch;
+        std::vector<glm::ivec3> coords;
         std::vector<TileFieldList> block_lists(type_count);
         std::vector<Bounds> block_positive(type_count);
         std::vector<const TileFieldList*> parents(type_count);
         for (size_t b = b0; b < b1; ++b) {
-            if (plan[b].coords.empty()) continue;
+            if (planned[b] == 0) continue;
             if (options.cancel && options.cancel->load()) return stop.store(true);
             const glm::ivec3 bc(int(b % nblocks.x), int(b / nblocks.x % nblocks.y), int(b / nblocks.x / nblocks.y));
             const glm::ivec3 first = tlo + bc * kBlock;
             const glm::ivec3 last = glm::min(first + (kBlock - 1), thi);
             const Bounds block_box{tileOrigin(first, s), tileOrigin(last + 1, s)};
-            for (size_t i = 0; i < type_count; ++i) {
-                block_positive[i] = Bounds{};
-                if (!runtime[i].field) continue;
-                buildTileList(*runtime[i].field, expand(block_box, prep.reach[i]), &block_lists[i], &global_lists[i]);
-                if (!block_lists[i].empty()) block_positive[i] = positiveBoundsIn(*runtime[i].field, block_lists[i]);
-            }
-            per_block[b].resize(plan[b].coords.size());
-            for (size_t k = 0; k < plan[b].coords.size(); ++k) {
+            blockPositive(block_box, &block_lists, &block_positive);
+            coords.clear();
+            forEachPlannedTile(first, last, block_positive, [&](const glm::ivec3& c) { coords.push_back(c); });
+            assert(coords.size() == planned[b]);
+            per_block[b].resize(coords.size());
+            for (size_t k = 0; k < coords.size(); ++k) {
                 TileState& ts = per_block[b][k];
-                ts.coord = plan[b].coords[k];
+                ts.coord = coords[k];
                 ts.key = packTile(ts.coord);
                 // A type whose positive part misses this tile's reach is not even looked at here.
                 const glm::vec3 o = tileOrigin(ts.coord, s);
@@ -502,7 +520,7 @@ bool Instantiator::Engine::enumerateAndCompute(const Bounds& box_in, const Insta
                                                                                                     : nullptr;
                 computeTile(&ts, parents, &scratch);
             }
-            done.fetch_add(plan[b].coords.size(), std::memory_order_relaxed);
+            done.fetch_add(coords.size(), std::memory_order_relaxed);
         }
     });
     if (stop.load()) {

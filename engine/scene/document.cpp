@@ -206,8 +206,10 @@ bool Document::load(Project project, const std::string& path, const DocumentOpti
     auto models = std::make_shared<std::vector<DetailModel>>();
     for (const DetailTypeDesc& t : project_.detail_types)
         assets_.model_files.push_back(modelFileStamp(resolveProjectPath(project_, t.model.mesh_path)));
+    // The terrain first: cheap to check, and a bad one must not wait for the models and the tile.
+    if (!loadTerrain(project_, &terrain_, error)) return false;
     if (!loadProjectModels(project_, models.get(), error)) {
-        *error = name + ": " + *error;
+        if (project_.source.empty()) *error = name + ": " + *error;  // else the message starts with the file
         return false;
     }
     std::string note;
@@ -221,7 +223,6 @@ bool Document::load(Project project, const std::string& path, const DocumentOpti
     assets_.tile = std::move(tile);
     assets_.models = std::move(models);
     live_assets_ = assets_;
-    if (!loadTerrain(project_, &terrain_, error)) return false;
     if (!compileScene(project_, terrain_, &compiled_, error)) {
         // The CLI refuses a scene with nothing to instantiate; the editor opens it (a new project) with an
         // empty extent. Every other reason stands.

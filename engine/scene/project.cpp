@@ -3,10 +3,12 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <set>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
 #include "scene/field_json.h"
+#include "scene/json_parse.h"
 #include "scene/json_reader.h"
 
 namespace ug {
@@ -89,8 +91,8 @@ bool readTerrain(JsonReader& r, const json& j, const std::string& p, TerrainDesc
         if (auto o = it->find("origin"); o != it->end() && !readVec2(r, *o, pp + "/origin", &d.origin_m))
             return false;
         if (!positiveNumber(r, *it, pp, "cell_size_m", &d.cell_size_m, 1e4) ||
-            !r.integer(*it, pp, "width", &d.width, 1, kMaxHeightFieldSide) ||
-            !r.integer(*it, pp, "height", &d.height, 1, kMaxHeightFieldSide) ||
+            !r.integer(*it, pp, "width", &d.width, kMinTerrainSide, kMaxHeightFieldSide) ||
+            !r.integer(*it, pp, "height", &d.height, kMinTerrainSide, kMaxHeightFieldSide) ||
             !r.integer(*it, pp, "seed", &d.seed, 0, UINT64_MAX) ||
             !r.integer(*it, pp, "octaves", &d.octaves, 1, 16) ||
             !r.number(*it, pp, "base_height_m", &d.base_height_m, -1e6, 1e6) ||
@@ -99,6 +101,11 @@ bool readTerrain(JsonReader& r, const json& j, const std::string& p, TerrainDesc
             !positiveNumber(r, *it, pp, "lacunarity", &d.lacunarity, 1e3) ||
             !positiveNumber(r, *it, pp, "gain", &d.gain, 1.0))
             return false;
+        // Refused here, before anything is loaded: the grid's samples are computed (and held) one by one.
+        if (uint64_t(d.width) * uint64_t(d.height) > kMaxHeightFieldSamples)
+            return r.fail(pp + "/width", std::to_string(d.width) + "x" + std::to_string(d.height) +
+                                             " samples exceed the limit of " +
+                                             std::to_string(kMaxHeightFieldSamples) + " samples per terrain");
         t->kind = TerrainKind::Procedural;
         return true;
     }
@@ -220,6 +227,8 @@ bool readModel(JsonReader& r, const json& j, const std::string& p, DetailModelSo
     if (!r.string(j, p, "mesh", &m->mesh_path, true) || !r.number(j, p, "scale", &m->scale, 1e-6, 1e6) ||
         !r.boolean(j, p, "y_up", &m->y_up))
         return false;
+    // An empty path would resolve to the scene's folder and fail later with a message about a directory.
+    if (m->mesh_path.empty()) return r.fail(p + "/mesh", "must name a model file (.glb, .gltf, .obj, .ply, .off or .stl)");
     if (auto it = j.find("spheres"); it != j.end()) {
         const std::string sp = p + "/spheres";
         if (it->is_array()) {
@@ -229,8 +238,8 @@ bool readModel(JsonReader& r, const json& j, const std::string& p, DetailModelSo
                 if (!s.is_array() || s.size() != 4) return r.fail(kp, "expected [x, y, z, radius]");
                 Sphere sphere;
                 if (!readVec3(r, json::array({s[0], s[1], s[2]}), kp, &sphere.center)) return false;
-                if (!s[3].is_number() || !(s[3].get<double>() > 0.0) || !std::isfinite(s[3].get<double>()))
-                    return r.fail(kp + "/3", "radius must be a finite number > 0");
+                if (!s[3].is_number() || !(s[3].get<double>() > 0.0) || !(s[3].get<double>() <= 1e6))
+                    return r.fail(kp + "/3", "radius must be a number in (0, 1e6] metres");
                 sphere.radius = s[3].get<float>();
                 m->authored_spheres.push_back(sphere);
             }
@@ -320,13 +329,7 @@ bool readCandidates(JsonReader& r, const json& j, const std::string& p, DetailTy
 
 bool parseProject(const std::string& text, const std::string& source_name, Project* out, std::string* error) {
     json doc;
-    try {
-        doc = json::parse(text);
-    } catch (const json::parse_error& e) {
-        // nlohmann's message already carries "line L, column C".
-        *error = source_name + ": invalid JSON: " + e.what();
-        return false;
-    }
+    if (!parseJsonText(text, source_name, &doc, error)) return false;
     JsonReader r(source_name, error);
     if (!r.expectObject(doc, "")) return false;
     std::string format;
@@ -371,6 +374,12 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
     const json& types = doc["detail_types"];
     if (!r.expectArray(types, "/detail_types")) return false;
     if (types.empty()) return r.fail("/detail_types", "at least one detail type is needed");
+    // Refused before any type is read or any model loaded: each type costs a model load and a sphere fit.
+    if (types.size() > kMaxDetailTypes)
+        return r.fail("/detail_types", std::to_string(types.size()) + " detail types exceed the limit of " +
+                                           std::to_string(kMaxDetailTypes));
+    std::set<std::string> type_names;
+    uint64_t total_candidates = 0;
     for (size_t t = 0; t < types.size(); ++t) {
         const std::string tp = "/detail_types/" + std::to_string(t);
         const json& jt = types[t];
@@ -381,12 +390,18 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
         DetailTypeDesc d;
         if (!r.string(jt, tp, "name", &d.model.name, true)) return false;
         if (d.model.name.empty()) return r.fail(tp + "/name", "must not be empty");
-        for (const DetailTypeDesc& other : p.detail_types)
-            if (other.model.name == d.model.name) return r.fail(tp + "/name", "duplicate detail type '" + d.model.name + "'");
+        if (!type_names.insert(d.model.name).second)
+            return r.fail(tp + "/name", "duplicate detail type '" + d.model.name + "'");
         if (!r.require(jt, tp, "model") || !readModel(r, jt["model"], tp + "/model", &d.model)) return false;
         d.ghost.name = d.model.name;
         if (auto it = jt.find("candidates"); it != jt.end() && !readCandidates(r, *it, tp + "/candidates", &d.ghost))
             return false;
+        // The tile holds every type's candidates: the sum has the per-tile limit, checked before models load.
+        total_candidates += d.ghost.candidate_count;
+        if (total_candidates > kMaxCandidatesPerTile)
+            return r.fail(tp + "/candidates/count", "the detail types' candidates add up to " +
+                                                        std::to_string(total_candidates) + ", more than the limit of " +
+                                                        std::to_string(kMaxCandidatesPerTile) + " per Ghost Tile");
         if (auto it = jt.find("density");
             it != jt.end() && !readDensityField(r, *it, tp + "/density", has_terrain, &d.density))
             return false;
@@ -610,7 +625,10 @@ bool loadProjectModels(const Project& project, std::vector<DetailModel>* models,
         source.mesh_path = resolveProjectPath(project, source.mesh_path);
         std::string model_error;
         if (!loadDetailModel(source, &(*models)[t], &model_error)) {
-            *error = "detail type '" + source.name + "': " + model_error;
+            // The scene and the place that named the model come first: the model's own message (path,
+            // element, reason) alone does not say which scene or which type referenced it.
+            *error = (project.source.empty() ? std::string() : project.source + ": ") + "/detail_types/" +
+                     std::to_string(t) + "/model: detail type '" + source.name + "': " + model_error;
             return false;
         }
     }

@@ -54,6 +54,8 @@ namespace ug {
 
 // 2: terrain, extent, instantiation, and per type density, subtract_terrain, terrain_falloff_m, instancing.
 constexpr int kProjectFormatVersion = 2;
+// Refused when the project is read, before any model is loaded (each type costs a model load and a fit).
+constexpr size_t kMaxDetailTypes = 1024;
 
 // The orientation constraint as the user sets it (compiled to OrientationConstraint).
 struct OrientationDesc {
@@ -129,7 +131,9 @@ std::string projectToJson(const Project& project);
 bool saveProject(const std::string& path, const Project& project, std::string* error);  // atomic
 
 // Loads every detail type's model (fitting sphere sets) and assembles the Ghost Tile input.
-// `models` receives the loaded models; input.models points into it (keep it alive).
+// `models` receives the loaded models; input.models points into it (keep it alive). An error names the
+// scene file (project.source, when set), the JSON Pointer of the type's model and the model's own message
+// ("meadow.json: /detail_types/2/model: detail type 'rock': rock.ply: line 7: ...").
 bool loadProjectModels(const Project& project, std::vector<DetailModel>* models, std::string* error);
 GhostTileInput ghostTileInput(const Project& project, const std::vector<DetailModel>& models);
 

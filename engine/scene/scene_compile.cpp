@@ -89,6 +89,12 @@ bool loadTerrain(const Project& project, std::shared_ptr<const HeightField>* out
             const std::string path = resolveProjectPath(project, project.terrain.image_path);
             if (!loadHeightFieldPng(path, project.terrain.image, &hf, &why))
                 return fail(error, project, "/terrain/image/path", why);
+            // Refused here, not when the job is done and the terrain mesh cannot be built for the export.
+            if (hf.width() < kMinTerrainSide || hf.height() < kMinTerrainSide)
+                return fail(error, project, "/terrain/image/path",
+                            path + ": the image is " + std::to_string(hf.width()) + "x" + std::to_string(hf.height()) +
+                                " pixels; a terrain needs at least " + std::to_string(kMinTerrainSide) +
+                                " samples per side");
             break;
         }
     }

@@ -476,6 +476,15 @@ TEST(Instancer, RejectsBadInputWithReasons) {
     InstanceStats st;
     EXPECT_FALSE(inst.instantiateAll({.threads = 2}, &st, &error));
     EXPECT_NE(error.find("refusing"), std::string::npos) << error;
+    // Within the tile-count limit but too dense for the memory budget (8 km x 8 km, a field everywhere):
+    // refused while planning, before any per-tile state exists (it used to end in bad_alloc at 8 GB).
+    InstancerInput dense = fx.input;
+    dense.extent = Bounds{glm::vec3(-4000.0f, -4000.0f, 0.0f), glm::vec3(4000.0f, 4000.0f, 0.5f)};
+    dense.types[0].field = InstancerFixture::field({makeBox({0, 0, 0.25f}, glm::vec3(4000.0f, 4000.0f, 0.25f), 0.1f, 1.0f)});
+    ASSERT_TRUE(inst.setInput(dense, &error)) << error;
+    EXPECT_FALSE(inst.instantiateAll({.threads = 2}, &st, &error));
+    EXPECT_NE(error.find("more than the allowed 8192 MiB"), std::string::npos) << error;
+    EXPECT_NE(error.find("--region"), std::string::npos) << error;
 }
 
 TEST(InstanceStore, RoundTripsTilesAndIdsCompactly) {

@@ -50,7 +50,16 @@ TEST(Project, ErrorsNameTheFileThePlaceAndTheReason) {
     const std::string head = R"({"format": "undergrowth-project", "format_version": 1, )";
     const std::string rock = R"({"name": "rock", "model": {"mesh": "r.glb"}})";
     std::vector<Case> cases = {
-        {"{\"format\": ", "s.json: invalid JSON: [json.exception.parse_error.101] parse error at line 1, column 12"},
+        {"{\"format\": ", "s.json: invalid JSON at line 1, column 12 (in /format): syntax error"},
+        // Numbers no double can hold are located errors too, not an uncaught exception.
+        {"{\"format\": \"undergrowth-project\", \"format_version\": 2,\n \"detail_types\": [{\"name\": \"a\", "
+         "\"candidates\": {\"count\": 1e400}}]}",
+         "s.json: /detail_types/0/candidates/count: number 1e400 is out of range (larger than a double can hold) "
+         "(line 2, column 57)"},
+        {"{\"format\": \"undergrowth-project\", \"format_version\": 2, \"ghost_tile\": {\"seed\": "
+         "1" + std::string(400, '0') + "}}",
+         "s.json: /ghost_tile/seed: number 1" + std::string(400, '0') + " is out of range"},
+        {"{\"a\": [1, 2, -1e999]}", "s.json: /a/2: number -1e999 is out of range"},
         {"[1, 2]", "s.json: /: expected an object"},
         {R"({"format": "other", "format_version": 1, "detail_types": []})", "/format: expected \"undergrowth-project\""},
         {R"({"format": "undergrowth-project", "format_version": 99, "detail_types": []})", "/format_version: version 99 is newer"},
