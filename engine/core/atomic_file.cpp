@@ -148,9 +148,9 @@ bool readWholeFile(const std::string& path, std::vector<unsigned char>* out, std
     return true;
 }
 
-bool readTextFile(const std::string& path, std::string* out, std::string* error) {
+bool readTextFile(const std::string& path, std::string* out, std::string* error, size_t max_bytes) {
     std::vector<unsigned char> bytes;
-    if (!readWholeFile(path, &bytes, error, size_t(1) << 30)) return false;
+    if (!readWholeFile(path, &bytes, error, max_bytes)) return false;
     out->assign(bytes.begin(), bytes.end());
     return true;
 }

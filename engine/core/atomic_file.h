@@ -27,6 +27,6 @@ bool writeFileAtomically(const std::string& path, const std::vector<ByteSpan>& p
 // Reads a whole file; errors name the path and the reason. Refuses files larger than max_bytes.
 bool readWholeFile(const std::string& path, std::vector<unsigned char>* out, std::string* error,
                    size_t max_bytes = size_t(4) << 30);
-bool readTextFile(const std::string& path, std::string* out, std::string* error);
+bool readTextFile(const std::string& path, std::string* out, std::string* error, size_t max_bytes = size_t(1) << 30);
 
 }  // namespace ug

@@ -419,7 +419,9 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
 
 bool loadProject(const std::string& path, Project* out, std::string* error) {
     std::string text;
-    if (!readTextFile(path, &text, error)) return false;
+    // A project stores recipes, never instances: even a world's is kilobytes. The limit keeps a wrong file
+    // (a dump, a model renamed .json) from becoming a parse tree many times its size.
+    if (!readTextFile(path, &text, error, kMaxProjectFileBytes)) return false;
     if (!parseProject(text, path, out, error)) return false;
     out->base_dir = std::filesystem::path(path).parent_path().string();
     return true;
@@ -625,10 +627,10 @@ bool loadProjectModels(const Project& project, std::vector<DetailModel>* models,
         source.mesh_path = resolveProjectPath(project, source.mesh_path);
         std::string model_error;
         if (!loadDetailModel(source, &(*models)[t], &model_error)) {
-            // The scene and the place that named the model come first: the model's own message (path,
-            // element, reason) alone does not say which scene or which type referenced it.
+            // The scene and the place that named the model come first: the model's own message ("detail
+            // model 'rock' (path): element: reason") does not say which scene referenced it, nor where.
             *error = (project.source.empty() ? std::string() : project.source + ": ") + "/detail_types/" +
-                     std::to_string(t) + "/model: detail type '" + source.name + "': " + model_error;
+                     std::to_string(t) + "/model: " + model_error;
             return false;
         }
     }

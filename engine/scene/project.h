@@ -56,6 +56,8 @@ namespace ug {
 constexpr int kProjectFormatVersion = 2;
 // Refused when the project is read, before any model is loaded (each type costs a model load and a fit).
 constexpr size_t kMaxDetailTypes = 1024;
+// Larger project files are refused before they are read (named in the message).
+constexpr size_t kMaxProjectFileBytes = size_t(64) << 20;
 
 // The orientation constraint as the user sets it (compiled to OrientationConstraint).
 struct OrientationDesc {
@@ -133,7 +135,7 @@ bool saveProject(const std::string& path, const Project& project, std::string* e
 // Loads every detail type's model (fitting sphere sets) and assembles the Ghost Tile input.
 // `models` receives the loaded models; input.models points into it (keep it alive). An error names the
 // scene file (project.source, when set), the JSON Pointer of the type's model and the model's own message
-// ("meadow.json: /detail_types/2/model: detail type 'rock': rock.ply: line 7: ...").
+// ("meadow.json: /detail_types/2/model: detail model 'rock' (rock.ply): rock.ply: line 7: ...").
 bool loadProjectModels(const Project& project, std::vector<DetailModel>* models, std::string* error);
 GhostTileInput ghostTileInput(const Project& project, const std::vector<DetailModel>& models);
 

@@ -72,7 +72,7 @@ cat >"$tmp/nomodel.json" <<JSON
 {"format": "undergrowth-project", "format_version": 1,
  "detail_types": [{"name": "rock", "model": {"mesh": "missing/rock.glb"}}]}
 JSON
-expect_fail "missing model" 1 "detail type 'rock'" -- "$bin" build-tile "$tmp/nomodel.json" --cache "$tmp/c"
+expect_fail "missing model" 1 "nomodel.json: /detail_types/0/model: detail model 'rock'" -- "$bin" build-tile "$tmp/nomodel.json" --cache "$tmp/c"
 head -c 300 "$root/assets/models/rock.glb" >"$tmp/rock_cut.glb"
 cat >"$tmp/cutmodel.json" <<JSON
 {"format": "undergrowth-project", "format_version": 1,
