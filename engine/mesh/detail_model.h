@@ -55,7 +55,7 @@ enum class AnchorMode : uint8_t {
 // Where a detail model comes from: a mesh file plus how to derive its collision spheres and anchors.
 struct DetailModelSource {
     std::string name;                    // e.g. "rock"
-    std::string mesh_path;               // .glb/.gltf (tinygltf) or .obj/.ply/.off/.stl (OpenMesh)
+    std::string mesh_path;               // .glb/.gltf (tinygltf) or .obj/.ply/.off/.stl (mesh_readers.h)
     float scale = 1.0f;                  // applied to the file's coordinates to get metres, > 0
     bool y_up = true;                    // glTF files are Y up (spec); set false for Z-up OBJ etc.
     std::vector<Sphere> authored_spheres;  // non-empty: used as-is instead of fitting
