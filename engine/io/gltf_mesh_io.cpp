@@ -1,17 +1,19 @@
 // glTF mesh IO on top of tinygltf. tinygltf parses the JSON and the GLB container; everything that
 // reads buffer bytes (accessors, views, strides) is re-checked here, because a truncated or hostile
-// file must give an error, never an out-of-bounds read.
+// file must give an error, never an out-of-bounds read. What tinygltf itself may allocate is bounded
+// before it runs: the file's size is checked first, external buffers are read through our own
+// size-capped callback, and images are not decoded (a small PNG can declare gigapixels; a mesh load
+// needs no pixels).
 #include "io/gltf_mesh_io.h"
 
 #include "core/atomic_file.h"
+#include "mesh/mesh_readers.h"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
-#include <iterator>
 #include <limits>
 #include <sstream>
 
@@ -64,23 +66,24 @@ bool accessorSpan(const tinygltf::Model& model, int accessor_index, size_t eleme
         *why = where + ": byteStride " + std::to_string(stride) + " is smaller than the element";
         return false;
     }
-    // 64-bit sums: no field here can overflow them (each is at most 2^32-ish from JSON).
-    const uint64_t view_end = uint64_t(view.byteOffset) + uint64_t(view.byteLength);
-    if (view_end > bytes.size()) {
-        *why = where + ": bufferView " + std::to_string(acc.bufferView) + " ends at byte " +
-               std::to_string(view_end) + " of a " + std::to_string(bytes.size()) + "-byte buffer";
+    // Every field is a size_t straight from the JSON, so each test is written as a subtraction from a
+    // bound already known to hold: no sum or product here can wrap around.
+    if (view.byteOffset > bytes.size() || view.byteLength > bytes.size() - view.byteOffset) {
+        *why = where + ": bufferView " + std::to_string(acc.bufferView) + " (offset " +
+               std::to_string(view.byteOffset) + ", length " + std::to_string(view.byteLength) + ") overruns its " +
+               std::to_string(bytes.size()) + "-byte buffer";
         return false;
     }
     if (acc.count > 0) {
-        const uint64_t last = uint64_t(acc.byteOffset) + uint64_t(stride) * (uint64_t(acc.count) - 1) +
-                              element_size;
-        if (acc.count > (uint64_t(1) << 32) || last > uint64_t(view.byteLength)) {
+        const bool fits = acc.byteOffset <= view.byteLength && element_size <= view.byteLength - acc.byteOffset &&
+                          acc.count - 1 <= (view.byteLength - acc.byteOffset - element_size) / stride;
+        if (!fits) {
             *why = where + ": " + std::to_string(acc.count) + " elements overrun bufferView " +
                    std::to_string(acc.bufferView);
             return false;
         }
+        span->data = bytes.data() + view.byteOffset + acc.byteOffset;
     }
-    span->data = bytes.data() + view.byteOffset + acc.byteOffset;
     span->stride = stride;
     span->count = acc.count;
     return true;
@@ -112,11 +115,14 @@ struct GltfReader {
     TriangleMesh mesh;
     bool have_color = false;
     std::string why;
+    std::vector<char> visited;  // per node, sized on first use
 
-    bool addPrimitive(const tinygltf::Primitive& prim, const glm::mat4& xf, int mesh_index) {
+    // `node_index` < 0: the primitive is taken untransformed (a file without scenes).
+    bool addPrimitive(const tinygltf::Primitive& prim, const glm::mat4& xf, int mesh_index, size_t prim_index,
+                      int node_index) {
         const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES) return true;  // points, lines and strips are skipped
-        const std::string where = "mesh " + std::to_string(mesh_index);
+        const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(prim_index);
         auto pos_it = prim.attributes.find("POSITION");
         if (pos_it == prim.attributes.end()) {
             why = where + ": triangle primitive without POSITION";
@@ -134,11 +140,29 @@ struct GltfReader {
         }
         AccessorSpan pspan;
         if (!accessorSpan(model, pos_acc, 12, &pspan, &why)) return false;
+        // Totals, not per primitive: many nodes may instance one large mesh.
+        if (pspan.count > kMaxMeshVertices - mesh.positions.size()) {
+            why = where + ": more than " + std::to_string(kMaxMeshVertices) +
+                  " vertices in the model (kMaxMeshVertices)";
+            return false;
+        }
+        // note: no reserve here; an exact reserve per instance would make many instances quadratic.
         const size_t base = mesh.positions.size();
         for (size_t i = 0; i < pspan.count; ++i) {
             float v[3];
             std::memcpy(v, pspan.data + i * pspan.stride, 12);
+            for (int k = 0; k < 3; ++k)
+                if (!std::isfinite(v[k])) {
+                    why = where + ": POSITION vertex " + std::to_string(i) + " has a non-finite " +
+                          std::string(1, "xyz"[k]) + " coordinate (" + (std::isnan(v[k]) ? "nan" : "inf") + ")";
+                    return false;
+                }
             const glm::vec4 p = xf * glm::vec4(v[0], v[1], v[2], 1.0f);
+            if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
+                why = where + ": POSITION vertex " + std::to_string(i) + " is not finite after the transform of node " +
+                      std::to_string(node_index);
+                return false;
+            }
             mesh.positions.emplace_back(p.x, p.y, p.z);
         }
         if (prim.indices >= 0) {
@@ -164,8 +188,13 @@ struct GltfReader {
             }
             AccessorSpan ispan;
             if (!accessorSpan(model, prim.indices, size, &ispan, &why)) return false;
-            const size_t usable = ispan.count - ispan.count % 3;
-            for (size_t i = 0; i < usable; ++i) {
+            if (ispan.count % 3 != 0) {
+                why = where + ": index accessor " + std::to_string(prim.indices) + " has " +
+                      std::to_string(ispan.count) + " indices, not a multiple of 3";
+                return false;
+            }
+            if (!triangleRoom(ispan.count / 3, where)) return false;
+            for (size_t i = 0; i < ispan.count; ++i) {
                 const unsigned char* p = ispan.data + i * ispan.stride;
                 uint32_t index = 0;
                 if (size == 1) index = p[0];
@@ -179,6 +208,12 @@ struct GltfReader {
                 mesh.indices.push_back(uint32_t(base) + index);
             }
         } else {
+            if (pspan.count % 3 != 0) {
+                why = where + ": non-indexed POSITION has " + std::to_string(pspan.count) +
+                      " vertices, not a multiple of 3";
+                return false;
+            }
+            if (!triangleRoom(pspan.count / 3, where)) return false;
             for (size_t i = 0; i + 2 < pspan.count; i += 3)
                 for (size_t k = 0; k < 3; ++k) mesh.indices.push_back(uint32_t(base + i + k));
         }
@@ -192,11 +227,25 @@ struct GltfReader {
         return true;
     }
 
+    bool triangleRoom(size_t triangles, const std::string& where) {
+        if (triangles <= kMaxMeshTriangles - mesh.triangleCount()) return true;
+        why = where + ": more than " + std::to_string(kMaxMeshTriangles) + " triangles in the model (kMaxMeshTriangles)";
+        return false;
+    }
+
     bool addNode(int node_index, const glm::mat4& parent, int depth) {
         if (node_index < 0 || size_t(node_index) >= model.nodes.size()) {
             why = "node " + std::to_string(node_index) + " does not exist";
             return false;
         }
+        // glTF nodes form disjoint trees. A node reached twice would let a tiny file that lists the same
+        // child many times at every level make the walk exponential, so it is an error.
+        if (visited.empty()) visited.assign(model.nodes.size(), 0);
+        if (visited[size_t(node_index)]) {
+            why = "node " + std::to_string(node_index) + " is reached twice (glTF nodes must form trees)";
+            return false;
+        }
+        visited[size_t(node_index)] = 1;
         // glTF forbids cycles; a depth cap turns a cyclic (hostile) file into an error, not a stack overflow.
         if (depth > 64) {
             why = "node hierarchy deeper than 64 (cycle?) at node " + std::to_string(node_index);
@@ -209,8 +258,9 @@ struct GltfReader {
                 why = "node " + std::to_string(node_index) + " references missing mesh " + std::to_string(node.mesh);
                 return false;
             }
-            for (const tinygltf::Primitive& prim : model.meshes[size_t(node.mesh)].primitives)
-                if (!addPrimitive(prim, xf, node.mesh)) return false;
+            const std::vector<tinygltf::Primitive>& prims = model.meshes[size_t(node.mesh)].primitives;
+            for (size_t p = 0; p < prims.size(); ++p)
+                if (!addPrimitive(prims[p], xf, node.mesh, p, node_index)) return false;
         }
         for (int child : node.children)
             if (!addNode(child, xf, depth + 1)) return false;
@@ -218,23 +268,60 @@ struct GltfReader {
     }
 };
 
-bool readFileBytes(const std::string& path, std::vector<unsigned char>* bytes) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) return false;
-    bytes->assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    return !in.bad();
+// tinygltf's file callback for external buffers and images: the same size cap as the model file, and
+// one budget for all of them together (a .gltf may name the same large file many times).
+struct ExternalBudget {
+    uint64_t left = kMaxMeshFileBytes;
+};
+
+bool readExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+    ExternalBudget* budget = static_cast<ExternalBudget*>(user);
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+        if (err) *err += "not a regular file";
+        return false;
+    }
+    const uintmax_t size = fs::file_size(path, ec);
+    if (ec) {
+        if (err) *err += "cannot read its size: " + ec.message();
+        return false;
+    }
+    if (size > budget->left) {
+        if (err)
+            *err += std::to_string(size) + " bytes would take the model past " + std::to_string(kMaxMeshFileBytes) +
+                    " bytes with its external files (kMaxMeshFileBytes)";
+        return false;
+    }
+    std::string why;
+    if (!readWholeFile(path, out, &why, size_t(budget->left))) {
+        if (err) *err += why;
+        return false;
+    }
+    budget->left -= out->size();
+    return true;
+}
+
+// Images are never needed to load a mesh; skipping the decode also skips its allocation.
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+    return true;
 }
 
 }  // namespace
 
 bool loadGltfMesh(const std::string& path, TriangleMesh* out, std::string* error) {
-    std::error_code ec;
-    if (!fs::is_regular_file(path, ec)) return fail(error, path, "no such file");
+    // The size is checked before anything is read, so tinygltf never sees more than kMaxMeshFileBytes
+    // (which also keeps the length within tinygltf's unsigned int).
     std::vector<unsigned char> bytes;
-    if (!readFileBytes(path, &bytes)) return fail(error, path, "cannot read the file");
-    if (bytes.size() > std::numeric_limits<unsigned int>::max()) return fail(error, path, "file larger than 4 GiB");
+    if (!readMeshFileBytes(path, &bytes, error)) return false;
+    static_assert(kMaxMeshFileBytes <= std::numeric_limits<unsigned int>::max());
 
     tinygltf::TinyGLTF loader;
+    ExternalBudget budget;
+    budget.left -= bytes.size();
+    tinygltf::FsCallbacks callbacks{&tinygltf::FileExists, &tinygltf::ExpandFilePath, &readExternalFile,
+                                    &tinygltf::WriteWholeFile, &budget};
+    loader.SetFsCallbacks(callbacks);
+    loader.SetImageLoader(&skipImage, nullptr);
     tinygltf::Model model;
     std::string err, warn;
     const std::string base_dir = fs::path(path).parent_path().string();
@@ -253,7 +340,7 @@ bool loadGltfMesh(const std::string& path, TriangleMesh* out, std::string* error
         return fail(error, path, "glTF parse error: " + (err.empty() ? std::string("unknown") : err));
     }
 
-    GltfReader reader{model, {}, false, {}};
+    GltfReader reader{model, {}, false, {}, {}};
     bool walked = true;
     if (!model.scenes.empty()) {
         const int scene = (model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size())
@@ -263,11 +350,12 @@ bool loadGltfMesh(const std::string& path, TriangleMesh* out, std::string* error
     } else {
         // note: a file without scenes is legal ("a library of meshes"); take every mesh untransformed.
         for (size_t m = 0; m < model.meshes.size() && walked; ++m)
-            for (const tinygltf::Primitive& prim : model.meshes[m].primitives)
-                if (!(walked = reader.addPrimitive(prim, glm::mat4(1.0f), int(m)))) break;
+            for (size_t p = 0; p < model.meshes[m].primitives.size() && walked; ++p)
+                walked = reader.addPrimitive(model.meshes[m].primitives[p], glm::mat4(1.0f), int(m), p, -1);
     }
     if (!walked) return fail(error, path, reader.why);
     if (reader.mesh.indices.empty()) return fail(error, path, "no triangles");
+    // validateMesh is the backstop; the walk above already named any bad element.
     std::string why;
     if (!validateMesh(reader.mesh, &why)) return fail(error, path, why);
     computeNormals(&reader.mesh);

@@ -24,9 +24,14 @@ namespace ug {
 // base_color comes from the first triangle primitive's material pbrMetallicRoughness.baseColorFactor
 // (else the TriangleMesh default). Normals are recomputed (area-weighted).
 // .glb is chosen by the "glTF" magic, anything else is read as JSON .gltf (external buffers resolved
-// next to the file). Returns false, out untouched, with "<path>: <reason>" (tinygltf's text included
-// for parse errors) on a missing file, bad data, out-of-range accessors, non-finite positions or no
-// triangles.
+// next to the file). Limits (mesh/mesh_readers.h): the file and its external files together at most
+// kMaxMeshFileBytes (checked before tinygltf reads them), the loaded model (all instances) at most
+// kMaxMeshVertices vertices and kMaxMeshTriangles triangles. Images are not decoded. Returns false, out
+// untouched, with "<path>: <reason>" (tinygltf's text included for parse errors) on a missing file, bad
+// data, out-of-range accessors, index counts that are not a multiple of 3, a node reached twice (glTF
+// nodes form trees), exceeded limits or no triangles; non-finite positions and out-of-range indices
+// name the mesh, primitive and element ("mesh 2 primitive 0: index 5 is 99 but POSITION has 8
+// vertices").
 bool loadGltfMesh(const std::string& path, TriangleMesh* out, std::string* error);
 
 // Writes one glTF mesh and one node per entry (name, mesh), all in the default scene. The meshes are in

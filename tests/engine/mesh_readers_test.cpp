@@ -10,10 +10,13 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
 
+#include "io/gltf_mesh_io.h"
 #include "mesh/mesh_loader.h"
 #include "mesh_test_util.h"
 
@@ -529,6 +532,69 @@ TEST(MeshReaders, LoaderPrefixesThePathAndLeavesOutUntouched) {
     ASSERT_TRUE(loadMeshFile(ply, &mesh, &error)) << error;
     EXPECT_EQ(mesh.triangleCount(), 1u);
     EXPECT_EQ(mesh.normals.size(), 3u);
+}
+
+std::vector<char> readAll(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// Writes the unit cube as GLB, lets `patch` change the file's bytes (given the offset of the binary chunk's
+// data: POSITION at 0, NORMAL at 96, uint32 indices at 192), and returns the path of the patched file.
+template <typename Patch>
+std::string patchedCubeGlb(const std::string& name, Patch patch) {
+    const TriangleMesh cube = test::unitCube();
+    const std::string path = test::tempPath(name);
+    std::string error;
+    EXPECT_TRUE(writeGltfMeshes(path, {{"cube", &cube}}, &error)) << error;
+    std::vector<char> bytes = readAll(path);
+    uint32_t json_length = 0;
+    std::memcpy(&json_length, bytes.data() + 12, 4);
+    patch(bytes, 20 + size_t(json_length) + 8);
+    std::ofstream(path, std::ios::binary | std::ios::trunc)
+        .write(bytes.data(), std::streamsize(bytes.size()));
+    return path;
+}
+
+TEST(MeshReaders, GltfNonFinitePositionAndBadIndexNameMeshPrimitiveAndElement) {
+    const std::string nan_path = patchedCubeGlb("nan_position.glb", [](std::vector<char>& bytes, size_t bin) {
+        std::memcpy(&bytes[bin + 12 * 3 + 4], &kNaN, 4);  // vertex 3, y
+    });
+    TriangleMesh mesh;
+    std::string error;
+    EXPECT_FALSE(loadMeshFile(nan_path, &mesh, &error));
+    EXPECT_EQ(error,
+              nan_path + ": mesh 0 primitive 0: POSITION vertex 3 has a non-finite y coordinate (nan)");
+
+    const std::string index_path = patchedCubeGlb("bad_index.glb", [](std::vector<char>& bytes, size_t bin) {
+        const uint32_t index = 99;
+        std::memcpy(&bytes[bin + 192 + 4 * 5], &index, 4);  // index 5
+    });
+    EXPECT_FALSE(loadMeshFile(index_path, &mesh, &error));
+    EXPECT_EQ(error, index_path + ": mesh 0 primitive 0: index 5 is 99 but POSITION has 8 vertices");
+
+    // 35 indices (the JSON edited in place, same length): not whole triangles.
+    const std::string count_path =
+        patchedCubeGlb("partial_triangle.glb", [](std::vector<char>& bytes, size_t) {
+            const std::string from = "\"count\":36", to = "\"count\":35";
+            const auto at = std::search(bytes.begin(), bytes.end(), from.begin(), from.end());
+            ASSERT_NE(at, bytes.end());
+            std::copy(to.begin(), to.end(), at);
+        });
+    EXPECT_FALSE(loadMeshFile(count_path, &mesh, &error));
+    EXPECT_EQ(error,
+              count_path + ": mesh 0 primitive 0: index accessor 2 has 35 indices, not a multiple of 3");
+}
+
+TEST(MeshReaders, GltfNodeReachedTwiceIsAnError) {
+    // A node listed many times at every level would make the walk exponential; glTF forbids it.
+    const std::string path = test::tempPath("shared_child.gltf");
+    test::writeText(path, R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],)"
+                          R"("nodes":[{"children":[1,1]},{}]})");
+    TriangleMesh mesh;
+    std::string error;
+    EXPECT_FALSE(loadMeshFile(path, &mesh, &error));
+    EXPECT_EQ(error, path + ": node 1 is reached twice (glTF nodes must form trees)");
 }
 
 }  // namespace
