@@ -6,21 +6,21 @@
 // needs no pixels).
 #include "io/gltf_mesh_io.h"
 
-#include "core/atomic_file.h"
-#include "mesh/mesh_readers.h"
+#include <tiny_gltf.h>
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
-#include <limits>
-#include <sstream>
-
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
-#include <tiny_gltf.h>
+#include <limits>
+#include <sstream>
+
+#include "core/atomic_file.h"
+#include "mesh/mesh_readers.h"
 
 namespace ug {
 namespace {
@@ -70,12 +70,13 @@ bool accessorSpan(const tinygltf::Model& model, int accessor_index, size_t eleme
     // bound already known to hold: no sum or product here can wrap around.
     if (view.byteOffset > bytes.size() || view.byteLength > bytes.size() - view.byteOffset) {
         *why = where + ": bufferView " + std::to_string(acc.bufferView) + " (offset " +
-               std::to_string(view.byteOffset) + ", length " + std::to_string(view.byteLength) + ") overruns its " +
-               std::to_string(bytes.size()) + "-byte buffer";
+               std::to_string(view.byteOffset) + ", length " + std::to_string(view.byteLength) +
+               ") overruns its " + std::to_string(bytes.size()) + "-byte buffer";
         return false;
     }
     if (acc.count > 0) {
-        const bool fits = acc.byteOffset <= view.byteLength && element_size <= view.byteLength - acc.byteOffset &&
+        const bool fits = acc.byteOffset <= view.byteLength &&
+                          element_size <= view.byteLength - acc.byteOffset &&
                           acc.count - 1 <= (view.byteLength - acc.byteOffset - element_size) / stride;
         if (!fits) {
             *why = where + ": " + std::to_string(acc.count) + " elements overrun bufferView " +
@@ -97,8 +98,8 @@ glm::mat4 nodeLocalMatrix(const tinygltf::Node& node) {
     }
     glm::mat4 m(1.0f);
     if (node.translation.size() == 3)
-        m = glm::translate(m, glm::vec3(float(node.translation[0]), float(node.translation[1]),
-                                        float(node.translation[2])));
+        m = glm::translate(
+            m, glm::vec3(float(node.translation[0]), float(node.translation[1]), float(node.translation[2])));
     if (node.rotation.size() == 4) {
         // glTF stores (x, y, z, w); glm's constructor takes (w, x, y, z).
         const glm::quat q(float(node.rotation[3]), float(node.rotation[0]), float(node.rotation[1]),
@@ -122,7 +123,8 @@ struct GltfReader {
                       int node_index) {
         const int mode = prim.mode < 0 ? TINYGLTF_MODE_TRIANGLES : prim.mode;
         if (mode != TINYGLTF_MODE_TRIANGLES) return true;  // points, lines and strips are skipped
-        const std::string where = "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(prim_index);
+        const std::string where =
+            "mesh " + std::to_string(mesh_index) + " primitive " + std::to_string(prim_index);
         auto pos_it = prim.attributes.find("POSITION");
         if (pos_it == prim.attributes.end()) {
             why = where + ": triangle primitive without POSITION";
@@ -154,13 +156,14 @@ struct GltfReader {
             for (int k = 0; k < 3; ++k)
                 if (!std::isfinite(v[k])) {
                     why = where + ": POSITION vertex " + std::to_string(i) + " has a non-finite " +
-                          std::string(1, "xyz"[k]) + " coordinate (" + (std::isnan(v[k]) ? "nan" : "inf") + ")";
+                          std::string(1, "xyz"[k]) + " coordinate (" + (std::isnan(v[k]) ? "nan" : "inf") +
+                          ")";
                     return false;
                 }
             const glm::vec4 p = xf * glm::vec4(v[0], v[1], v[2], 1.0f);
             if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-                why = where + ": POSITION vertex " + std::to_string(i) + " is not finite after the transform of node " +
-                      std::to_string(node_index);
+                why = where + ": POSITION vertex " + std::to_string(i) +
+                      " is not finite after the transform of node " + std::to_string(node_index);
                 return false;
             }
             mesh.positions.emplace_back(p.x, p.y, p.z);
@@ -173,9 +176,15 @@ struct GltfReader {
             const tinygltf::Accessor& iacc = model.accessors[size_t(prim.indices)];
             size_t size = 0;
             switch (iacc.componentType) {
-                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: size = 1; break;
-                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: size = 2; break;
-                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: size = 4; break;
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+                    size = 1;
+                    break;
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+                    size = 2;
+                    break;
+                case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+                    size = 4;
+                    break;
                 default:
                     why = where + ": index accessor " + std::to_string(prim.indices) +
                           " has component type " + std::to_string(iacc.componentType) +
@@ -197,9 +206,14 @@ struct GltfReader {
             for (size_t i = 0; i < ispan.count; ++i) {
                 const unsigned char* p = ispan.data + i * ispan.stride;
                 uint32_t index = 0;
-                if (size == 1) index = p[0];
-                else if (size == 2) { uint16_t s; std::memcpy(&s, p, 2); index = s; }
-                else std::memcpy(&index, p, 4);
+                if (size == 1)
+                    index = p[0];
+                else if (size == 2) {
+                    uint16_t s;
+                    std::memcpy(&s, p, 2);
+                    index = s;
+                } else
+                    std::memcpy(&index, p, 4);
                 if (index >= pspan.count) {
                     why = where + ": index " + std::to_string(i) + " is " + std::to_string(index) + " but " +
                           "POSITION has " + std::to_string(pspan.count) + " vertices";
@@ -218,7 +232,8 @@ struct GltfReader {
                 for (size_t k = 0; k < 3; ++k) mesh.indices.push_back(uint32_t(base + i + k));
         }
         if (!have_color && prim.material >= 0 && size_t(prim.material) < model.materials.size()) {
-            const std::vector<double>& f = model.materials[size_t(prim.material)].pbrMetallicRoughness.baseColorFactor;
+            const std::vector<double>& f =
+                model.materials[size_t(prim.material)].pbrMetallicRoughness.baseColorFactor;
             if (f.size() >= 3) {
                 mesh.base_color = glm::clamp(glm::vec3(float(f[0]), float(f[1]), float(f[2])), 0.0f, 1.0f);
                 have_color = true;
@@ -229,7 +244,8 @@ struct GltfReader {
 
     bool triangleRoom(size_t triangles, const std::string& where) {
         if (triangles <= kMaxMeshTriangles - mesh.triangleCount()) return true;
-        why = where + ": more than " + std::to_string(kMaxMeshTriangles) + " triangles in the model (kMaxMeshTriangles)";
+        why = where + ": more than " + std::to_string(kMaxMeshTriangles) +
+              " triangles in the model (kMaxMeshTriangles)";
         return false;
     }
 
@@ -255,7 +271,8 @@ struct GltfReader {
         const glm::mat4 xf = parent * nodeLocalMatrix(node);
         if (node.mesh >= 0) {
             if (size_t(node.mesh) >= model.meshes.size()) {
-                why = "node " + std::to_string(node_index) + " references missing mesh " + std::to_string(node.mesh);
+                why = "node " + std::to_string(node_index) + " references missing mesh " +
+                      std::to_string(node.mesh);
                 return false;
             }
             const std::vector<tinygltf::Primitive>& prims = model.meshes[size_t(node.mesh)].primitives;
@@ -274,7 +291,8 @@ struct ExternalBudget {
     uint64_t left = kMaxMeshFileBytes;
 };
 
-bool readExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path, void* user) {
+bool readExternalFile(std::vector<unsigned char>* out, std::string* err, const std::string& path,
+                      void* user) {
     ExternalBudget* budget = static_cast<ExternalBudget*>(user);
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
@@ -288,8 +306,8 @@ bool readExternalFile(std::vector<unsigned char>* out, std::string* err, const s
     }
     if (size > budget->left) {
         if (err)
-            *err += std::to_string(size) + " bytes would take the model past " + std::to_string(kMaxMeshFileBytes) +
-                    " bytes with its external files (kMaxMeshFileBytes)";
+            *err += std::to_string(size) + " bytes would take the model past " +
+                    std::to_string(kMaxMeshFileBytes) + " bytes with its external files (kMaxMeshFileBytes)";
         return false;
     }
     std::string why;
@@ -302,7 +320,8 @@ bool readExternalFile(std::vector<unsigned char>* out, std::string* err, const s
 }
 
 // Images are never needed to load a mesh; skipping the decode also skips its allocation.
-bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
+bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int,
+               void*) {
     return true;
 }
 
@@ -344,7 +363,8 @@ bool loadGltfMesh(const std::string& path, TriangleMesh* out, std::string* error
     bool walked = true;
     if (!model.scenes.empty()) {
         const int scene = (model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size())
-                              ? model.defaultScene : 0;
+                              ? model.defaultScene
+                              : 0;
         for (int node : model.scenes[size_t(scene)].nodes)
             if (!(walked = reader.addNode(node, glm::mat4(1.0f), 0))) break;
     } else {
@@ -396,12 +416,16 @@ bool writeGltfMeshes(const std::string& path,
     };
     auto addVec3Accessor = [&](const std::vector<glm::vec3>& values) {
         tinygltf::Accessor acc;
-        acc.bufferView = addView(values.data(), values.size() * sizeof(glm::vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
+        acc.bufferView =
+            addView(values.data(), values.size() * sizeof(glm::vec3), TINYGLTF_TARGET_ARRAY_BUFFER);
         acc.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
         acc.type = TINYGLTF_TYPE_VEC3;
         acc.count = values.size();
         glm::vec3 lo = values[0], hi = values[0];
-        for (const glm::vec3& v : values) { lo = glm::min(lo, v); hi = glm::max(hi, v); }
+        for (const glm::vec3& v : values) {
+            lo = glm::min(lo, v);
+            hi = glm::max(hi, v);
+        }
         acc.minValues = {lo.x, lo.y, lo.z};
         acc.maxValues = {hi.x, hi.y, hi.z};
         model.accessors.push_back(acc);
@@ -415,7 +439,8 @@ bool writeGltfMeshes(const std::string& path,
 
         tinygltf::Material material;
         material.name = name;
-        material.pbrMetallicRoughness.baseColorFactor = {mesh.base_color.x, mesh.base_color.y, mesh.base_color.z, 1.0};
+        material.pbrMetallicRoughness.baseColorFactor = {mesh.base_color.x, mesh.base_color.y,
+                                                         mesh.base_color.z, 1.0};
         material.pbrMetallicRoughness.metallicFactor = 0.0;
         material.pbrMetallicRoughness.roughnessFactor = 0.9;
         material.doubleSided = false;
@@ -427,12 +452,16 @@ bool writeGltfMeshes(const std::string& path,
         prim.attributes["POSITION"] = addVec3Accessor(mesh.positions);
         prim.attributes["NORMAL"] = addVec3Accessor(mesh.normals);
         tinygltf::Accessor iacc;
-        iacc.bufferView = addView(mesh.indices.data(), mesh.indices.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+        iacc.bufferView =
+            addView(mesh.indices.data(), mesh.indices.size() * 4, TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
         iacc.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
         iacc.type = TINYGLTF_TYPE_SCALAR;
         iacc.count = mesh.indices.size();
         uint32_t lo = mesh.indices[0], hi = mesh.indices[0];
-        for (uint32_t i : mesh.indices) { lo = std::min(lo, i); hi = std::max(hi, i); }
+        for (uint32_t i : mesh.indices) {
+            lo = std::min(lo, i);
+            hi = std::max(hi, i);
+        }
         iacc.minValues = {double(lo)};
         iacc.maxValues = {double(hi)};
         model.accessors.push_back(iacc);
