@@ -10,6 +10,7 @@
 #include <bit>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <limits>
@@ -532,6 +533,22 @@ TEST(MeshReaders, LoaderPrefixesThePathAndLeavesOutUntouched) {
     ASSERT_TRUE(loadMeshFile(ply, &mesh, &error)) << error;
     EXPECT_EQ(mesh.triangleCount(), 1u);
     EXPECT_EQ(mesh.normals.size(), 3u);
+}
+
+TEST(MeshReaders, FileOverTheSizeLimitIsRefusedBeforeReading) {
+    // Sparse files: the size is what counts, and nothing is read, so no disk space or memory is used.
+    for (const char* name : {"huge.obj", "huge.glb"}) {
+        const std::string path = test::tempPath(name);
+        test::writeText(path, "");
+        std::filesystem::resize_file(path, kMaxMeshFileBytes + 1);
+        TriangleMesh mesh;
+        std::string error;
+        EXPECT_FALSE(loadMeshFile(path, &mesh, &error));
+        EXPECT_EQ(error, path +
+                             ": the file has 2147483649 bytes; model files are limited to 2147483648 bytes "
+                             "(2 GiB, kMaxMeshFileBytes)");
+        std::filesystem::remove(path);
+    }
 }
 
 std::vector<char> readAll(const std::string& path) {
