@@ -407,6 +407,26 @@ std::string elementItem(const Element& element, uint64_t i) {
     return "element '" + element.name + "' " + std::to_string(i);
 }
 
+// Checks every element's count against the bytes after the header, all elements together. With a
+// layout, each face's index list counts as at least 3 items.
+bool checkCounts(const Header& header, uint64_t file_size, const Layout* layout, std::string* why) {
+    const bool ascii = header.encoding == Encoding::Ascii;
+    uint64_t budget =
+        file_size - header.data_offset + (ascii ? 1 : 0);  // ASCII: the last value needs no separator
+    for (size_t e = 0; e < header.elements.size(); ++e) {
+        const Element& element = header.elements[e];
+        const int index_list = layout && int(e) == layout->face ? layout->indices : -1;
+        const uint64_t min_bytes = minElementBytes(element, ascii, index_list);
+        *why = countExceedsFile(element.count, min_bytes, budget, plural(element), file_size);
+        if (!why->empty()) {
+            *why = headerLine(element.line) + *why;
+            return false;
+        }
+        budget -= element.count * min_bytes;
+    }
+    return true;
+}
+
 template <typename Source>
 bool readElements(Source& source, const Header& header, const Layout& layout, TriangleMesh* mesh,
                   std::string* why) {
@@ -512,22 +532,15 @@ bool readPly(std::string_view bytes, const std::string& name, TriangleMesh* out,
     Header header;
     std::string why;
     if (!parseHeader(bytes, &header, &why)) return fail(error, name, why);
+    // Every count against the bytes that follow the header (all elements together), then the limits,
+    // before anything is allocated. The first pass needs no layout, so an impossible count is reported
+    // as such even when the header is unusable for other reasons (no face element, say); the second
+    // counts each face's index list as at least 3 items, which also bounds the index memory.
+    const bool ascii = header.encoding == Encoding::Ascii;
+    if (!checkCounts(header, bytes.size(), nullptr, &why)) return fail(error, name, why);
     Layout layout;
     if (!findLayout(header, &layout, &why)) return fail(error, name, why);
-
-    // Every count against the bytes that follow the header (all elements together), then the limits,
-    // before anything is allocated.
-    const bool ascii = header.encoding == Encoding::Ascii;
-    const uint64_t data_bytes = bytes.size() - header.data_offset;
-    uint64_t budget = data_bytes + (ascii ? 1 : 0);  // ASCII: the last value needs no separator
-    for (size_t e = 0; e < header.elements.size(); ++e) {
-        const Element& element = header.elements[e];
-        const uint64_t min_bytes =
-            minElementBytes(element, ascii, int(e) == layout.face ? layout.indices : -1);
-        why = countExceedsFile(element.count, min_bytes, budget, plural(element), bytes.size());
-        if (!why.empty()) return fail(error, name, headerLine(element.line) + why);
-        budget -= element.count * min_bytes;
-    }
+    if (!checkCounts(header, bytes.size(), &layout, &why)) return fail(error, name, why);
     const Element& vertices = header.elements[size_t(layout.vertex)];
     const Element& faces = header.elements[size_t(layout.face)];
     if (vertices.count > kMaxMeshVertices)

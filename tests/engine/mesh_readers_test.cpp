@@ -275,6 +275,14 @@ TEST(PlyReader, HugeDeclaredCountIsRefusedBeforeAllocating) {
     EXPECT_EQ(r.error, "rock.ply: header line 3: declares 1099511627776 vertices but the file has only " +
                            std::to_string(header.size() + 12) + " bytes");
 
+    // The count is the reported problem even when the header also lacks a face element.
+    const std::string no_faces =
+        "ply\nformat binary_little_endian 1.0\nelement vertex 1099511627776\nproperty float x\n"
+        "property float y\nproperty float z\nend_header\n";
+    const Read n = read(&readPly, no_faces, "huge.ply");
+    EXPECT_EQ(n.error, "huge.ply: header line 3: declares 1099511627776 vertices but the file has only " +
+                           std::to_string(no_faces.size()) + " bytes");
+
     // Same in ASCII, for the faces.
     const Read a =
         read(&readPly,
@@ -356,12 +364,13 @@ TEST(PlyReader, HeaderProblemsAreErrors) {
     Read r = read(&readPly, "PLY\n", "x.ply");
     EXPECT_EQ(r.error, "x.ply: not a PLY file (the first line is not \"ply\")");
     r = read(&readPly,
-             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nend_header\n",
+             "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nend_header\n"
+             "0 0\n1 0\n0 1\n",
              "x.ply");
     EXPECT_EQ(r.error, "x.ply: no face element (a point cloud has no triangles)");
     r = read(&readPly,
              "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nelement face 0\n"
-             "property list uchar int vertex_indices\nend_header\n",
+             "property list uchar int vertex_indices\nend_header\n0 0\n1 0\n0 1\n",
              "x.ply");
     EXPECT_EQ(r.error, "x.ply: header line 3: the vertex element has no 'z' property");
     r = read(&readPly, "ply\nformat ascii 1.0\nelement vertex 3\nproperty quad x\nend_header\n", "x.ply");
