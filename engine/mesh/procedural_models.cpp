@@ -6,10 +6,12 @@
 // Random choices come from hashWords(seed, part, k), never from generator state.
 #include "mesh/procedural_models.h"
 
+#include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <filesystem>
 #include <functional>
+#include <map>
 
 #include "core/hash.h"
 #include "io/gltf_mesh_io.h"
@@ -390,6 +392,80 @@ TriangleMesh makePineNeedles(uint64_t seed) {
         addTube(&b, line, radii, 4);
     }
     return finish(&b, {0.10f, 0.24f, 0.10f});
+}
+
+TriangleMesh makeScannedRock(uint32_t target_triangles, uint64_t seed) {
+    seed = hashWords(seed, 110);
+    const uint32_t target = std::clamp<uint32_t>(target_triangles, 20u, 50'000'000u);
+    const uint32_t k = std::max<uint32_t>(1, uint32_t(std::lround(std::sqrt(double(target) / 20.0))));
+    // The icosahedron of icosphere(0); each face becomes a triangular grid of k x k cells. Vertices on
+    // the 30 edges are made once (by the lower-numbered corner's direction) so the faces share them.
+    const TriangleMesh ico = icosphere(0);
+    Builder b;
+    b.mesh.positions = ico.positions;
+    b.mesh.positions.reserve(10 * size_t(k) * k + 2);
+    b.mesh.indices.reserve(60 * size_t(k) * k);
+    // (lo, hi) -> its k - 1 inner vertices from lo to hi.
+    std::map<std::pair<uint32_t, uint32_t>, std::vector<uint32_t>> edges;
+    // The vertex s/k of the way from corner u to corner v, s in [1, k).
+    auto edgeVertex = [&](uint32_t u, uint32_t v, uint32_t s) {
+        const uint32_t lo = std::min(u, v), hi = std::max(u, v);
+        auto it = edges.find({lo, hi});
+        if (it == edges.end()) {
+            std::vector<uint32_t> ids(k - 1);
+            for (uint32_t i = 1; i < k; ++i)
+                ids[i - 1] = b.vertex(glm::mix(ico.positions[lo], ico.positions[hi], float(i) / float(k)));
+            it = edges.emplace(std::make_pair(lo, hi), std::move(ids)).first;
+        }
+        return it->second[lo == u ? s - 1 : k - s - 1];
+    };
+    std::vector<uint32_t> grid;  // (i, j), i + j <= k: corner A + i/k (B - A) + j/k (C - A)
+    for (size_t f = 0; f < ico.indices.size(); f += 3) {
+        const uint32_t A = ico.indices[f], B = ico.indices[f + 1], C = ico.indices[f + 2];
+        const glm::vec3 pa = ico.positions[A], pb = ico.positions[B], pc = ico.positions[C];
+        grid.assign(size_t(k + 1) * (k + 1), 0);
+        auto at = [&](uint32_t i, uint32_t j) -> uint32_t& { return grid[size_t(i) * (k + 1) + j]; };
+        for (uint32_t i = 0; i <= k; ++i)
+            for (uint32_t j = 0; i + j <= k; ++j) {
+                uint32_t id;
+                if (i == 0 && j == 0) {
+                    id = A;
+                } else if (i == k) {
+                    id = B;
+                } else if (j == k) {
+                    id = C;
+                } else if (j == 0) {
+                    id = edgeVertex(A, B, i);
+                } else if (i == 0) {
+                    id = edgeVertex(A, C, j);
+                } else if (i + j == k) {
+                    id = edgeVertex(B, C, j);
+                } else {
+                    id = b.vertex(pa + (pb - pa) * (float(i) / float(k)) + (pc - pa) * (float(j) / float(k)));
+                }
+                at(i, j) = id;
+            }
+        for (uint32_t i = 0; i < k; ++i)
+            for (uint32_t j = 0; i + j < k; ++j) {
+                b.tri(at(i, j), at(i + 1, j), at(i, j + 1));  // same winding as (A, B, C): outward
+                if (i + j + 1 < k) b.tri(at(i + 1, j), at(i + 1, j + 1), at(i, j + 1));
+            }
+    }
+    // Radial displacement of the unit sphere keeps the surface closed and star-shaped. Scales: the
+    // boulder's lumpy outline, knobs of a few cm, mm bumps, and scan noise a fraction of an edge long.
+    const glm::vec3 axes_m(0.50f, 0.40f, 0.30f);
+    const glm::vec3 offset(rnd(seed, 1, 0, 0, 100), rnd(seed, 1, 1, 0, 100), rnd(seed, 1, 2, 0, 100));
+    const float edge = 1.2f / float(k);  // about the unit sphere's edge length
+    for (size_t v = 0; v < b.mesh.positions.size(); ++v) {
+        const glm::vec3 dir = glm::normalize(b.mesh.positions[v]);
+        const glm::vec3 q = dir + offset;
+        const float d = 1.0f + 0.26f * fbm(q * 1.5f, hashWords(seed, 2), 4) +
+                        0.035f * fbm(q * 9.0f, hashWords(seed, 3), 3) +
+                        0.006f * fbm(q * 55.0f, hashWords(seed, 4), 2) +
+                        0.15f * edge * (unitFloat(hashWords(seed, 5, v)) - 0.5f);
+        b.mesh.positions[v] = dir * d * axes_m;
+    }
+    return finish(&b, {0.45f, 0.43f, 0.40f});
 }
 
 const std::vector<std::string>& starterAssetNames() {

@@ -1,7 +1,7 @@
 // Procedural starter assets: small natural details for the Ghost Tile (rocks, leaves, twigs, grass,
 // mushrooms, pine needles), so a fresh install has something to scatter.
 //
-// Every generator is deterministic in its seed (core/hash.h, no generator state), returns a closed,
+// Every starter generator is deterministic in its seed (core/hash.h, no generator state), returns a closed,
 // outward-wound TriangleMesh (several closed parts may overlap, e.g. a leaf blade and its stem) in
 // metres, Z up, centred on its bounding-box centre, with normals and a base_color, and has between 200
 // and 3000 triangles. Sizes are the largest bounding-box extent.
@@ -24,6 +24,16 @@ TriangleMesh makeTwig(uint64_t seed);          // ~30 cm, tapered, two side bran
 TriangleMesh makeGrassTuft(uint64_t seed);     // ~10 cm tall clump of curved tapered blades, green
 TriangleMesh makeMushroom(uint64_t seed);      // ~10 cm, stem + domed cap, tan-red
 TriangleMesh makePineNeedles(uint64_t seed);   // ~8 cm bundle of thin needles from a sheath, dark green
+
+// A "scanned" boulder for performance work, like what photogrammetry gives artists: about 1 m across,
+// a lumpy ellipsoid with mid-scale knobs, fine bumps and per-vertex scan noise, as a uniformly
+// subdivided icosahedron (k segments per edge: 20 k^2 triangles, k = round(sqrt(target / 20))), so the
+// triangle count is within sqrt(20 target) + 5 of `target_triangles` (clamped to [20, 50'000'000]):
+// 1,003,520 for a million. Closed, outward wound, star-shaped about its centre (so never
+// self-intersecting), centred, with normals; triangles come face by face and row by row (spatially
+// coherent, as scanner output usually is). Deterministic in the seed; about 0.6 s per million
+// triangles. Not a starter asset (not in starterAssetNames()).
+TriangleMesh makeScannedRock(uint32_t target_triangles, uint64_t seed);
 
 // The starter set, in a fixed order: rock, flat_stone, pebble, leaf_oak, leaf_birch, twig, grass_tuft,
 // mushroom, pine_needles.

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <map>
 
 #include <gtest/gtest.h>
@@ -45,6 +46,43 @@ TEST(ProceduralModels, AreDeterministicInTheSeed) {
     EXPECT_NE(makeRock(4).positions, makeRock(5).positions);
     TriangleMesh unused;
     EXPECT_FALSE(makeStarterAsset("unicorn", 1, &unused));
+}
+
+}  // namespace ug
+
+namespace ug {
+
+TEST(ProceduralModels, ScannedRockIsClosedOutwardAndSized) {
+    for (uint32_t target : {20u, 5000u, 100000u}) {
+        SCOPED_TRACE(target);
+        const TriangleMesh m = makeScannedRock(target, 3);
+        std::string error;
+        ASSERT_TRUE(validateMesh(m, &error)) << error;
+        // 20 k^2 triangles, k rounded: off by at most sqrt(20 target) + 5.
+        EXPECT_NEAR(double(m.triangleCount()), double(target), std::sqrt(20.0 * target) + 5.0);
+        EXPECT_EQ(m.normals.size(), m.positions.size());
+        EXPECT_EQ(m.positions.size(), m.triangleCount() / 2 + 2);  // a closed genus-0 triangle mesh
+        const Bounds3 b = meshBounds(m);
+        EXPECT_LT(glm::length(b.min + b.max), 1e-5f);
+        const glm::vec3 e = b.max - b.min;
+        EXPECT_GE(std::max(e.x, std::max(e.y, e.z)), 0.6f);
+        EXPECT_LE(std::max(e.x, std::max(e.y, e.z)), 1.4f);
+        if (target > 5000) continue;  // the edge check is for the small ones (a map of every edge)
+        std::map<std::pair<uint32_t, uint32_t>, int> edges;
+        double volume = 0.0;
+        for (size_t t = 0; t < m.indices.size(); t += 3) {
+            const glm::vec3 a = m.positions[m.indices[t]], p = m.positions[m.indices[t + 1]],
+                            c = m.positions[m.indices[t + 2]];
+            volume += double(glm::dot(a, glm::cross(p, c))) / 6.0;
+            for (int k = 0; k < 3; ++k) edges[{m.indices[t + k], m.indices[t + (k + 1) % 3]}]++;
+        }
+        int open = 0;
+        for (const auto& [edge, n] : edges) open += (n != 1 || !edges.count({edge.second, edge.first}));
+        EXPECT_EQ(open, 0);
+        EXPECT_GT(volume, 0.0);
+    }
+    EXPECT_EQ(makeScannedRock(3000, 8).positions, makeScannedRock(3000, 8).positions);
+    EXPECT_NE(makeScannedRock(3000, 8).positions, makeScannedRock(3000, 9).positions);
 }
 
 }  // namespace ug
