@@ -32,17 +32,9 @@ bool fail(std::string* error, const DetailModelSource& source, const std::string
 bool checkSource(const DetailModelSource& source, std::string* error) {
     if (!(std::isfinite(source.scale) && source.scale > 0.0f))
         return fail(error, source, "scale = " + std::to_string(source.scale) + " must be finite and > 0");
-    const SphereFitSettings& fit = source.fit;
-    if (fit.max_spheres < 1 || fit.max_spheres > 4096)
-        return fail(error, source, "fit.max_spheres = " + std::to_string(fit.max_spheres) + " is outside [1, 4096]");
-    if (!(std::isfinite(fit.tolerance_m) && fit.tolerance_m >= 0.0f))
-        return fail(error, source, "fit.tolerance_m = " + std::to_string(fit.tolerance_m) + " must be finite and >= 0");
-    if (fit.tolerance_m == 0.0f && !(std::isfinite(fit.tolerance_rel) && fit.tolerance_rel > 0.0f))
-        return fail(error, source, "fit.tolerance_rel = " + std::to_string(fit.tolerance_rel) +
-                                       " must be finite and > 0 when fit.tolerance_m is 0");
-    if (fit.surface_samples < 16 || fit.surface_samples > 1000000)
-        return fail(error, source, "fit.surface_samples = " + std::to_string(fit.surface_samples) +
-                                       " is outside [16, 1000000]");
+    // The fit's limits (surface_samples above all) are refused here, before the mesh file is read.
+    std::string why;
+    if (!validateSphereFitSettings(source.fit, &why)) return fail(error, source, why);
     for (size_t i = 0; i < source.authored_spheres.size(); ++i) {
         const Sphere& s = source.authored_spheres[i];
         if (!(std::isfinite(s.radius) && s.radius > 0.0f) || !isFinite(s.center))

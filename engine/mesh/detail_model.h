@@ -7,7 +7,9 @@
 // centre of the bounding box).
 #pragma once
 
+#include <atomic>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -22,12 +24,29 @@ struct Sphere {
     float radius = 0.0f;  // metres, > 0
 };
 
+// Limits of the sphere fit, checked before anything is allocated (validateSphereFitSettings). The fit
+// costs O(triangles log triangles) for its ray-cast BVH plus about O(surface_samples x log) for the
+// medial balls and the set cover, and O(surface_samples) memory: the sample limit keeps one model's fit
+// to seconds and a few hundred MB whatever the settings.
+constexpr uint32_t kMinSurfaceSamples = 16;
+constexpr uint32_t kMaxSurfaceSamples = 100000;
+constexpr uint32_t kMaxFitSpheres = 4096;
+
 struct SphereFitSettings {
-    uint32_t max_spheres = 96;          // hard upper bound on the fitted set, in [1, 4096]
+    uint32_t max_spheres = 96;          // hard upper bound on the fitted set, in [1, kMaxFitSpheres]
     float tolerance_m = 0.0f;           // coverage tolerance; 0 = tolerance_rel * bounding radius
     float tolerance_rel = 0.04f;        // used when tolerance_m == 0
-    uint32_t surface_samples = 3000;    // samples the coverage is fitted and checked against
+    // Samples the coverage is fitted and checked against, in [kMinSurfaceSamples, kMaxSurfaceSamples].
+    // Mesh vertices join them (every k-th, about as many as the samples), and each repair round draws
+    // twice as many fresh ones.
+    uint32_t surface_samples = 3000;
     uint64_t seed = 1;
+
+    // How to run, not what to compute: the result is bit-identical for any value of these.
+    int threads = 0;                            // workers (0 = all hardware threads)
+    const std::atomic<bool>* cancel = nullptr;  // set to true to stop early: the fit fails with "cancelled"
+    // Called from the calling thread with the fraction done, rising, ending with exactly 1 on success.
+    std::function<void(float fraction)> progress;
 };
 
 // Fitted sphere set quality. Guarantee: every one of the fit's surface samples lies within
@@ -39,8 +58,8 @@ struct SphereFitReport {
     bool radii_grown = false;            // the count bound was hit and radii were grown to reach coverage
     // Measured on a second, independent sample set (same count, another seed) after the fit: an honest
     // estimate of the coverage between the fit's samples. The fit aims below tolerance_m (it covers its
-    // samples to 0.75 * tolerance_m and repairs check samples that fall outside), so this is normally
-    // <= tolerance_m too, but it is a measurement, not a guarantee.
+    // samples to 0.70 * tolerance_m and repairs check samples beyond 0.80 * tolerance_m), so this is
+    // normally <= tolerance_m too, but it is a measurement, not a guarantee.
     float max_check_distance_m = 0.0f;
     uint32_t check_sample_count = 0;
 };
@@ -85,7 +104,13 @@ bool loadDetailModel(const DetailModelSource& source, DetailModel* out, std::str
 bool makeDetailModel(const DetailModelSource& source, TriangleMesh mesh, DetailModel* out,
                      std::string* error);
 
+// Checks the fit settings against their ranges and limits, without looking at a mesh. False with a
+// message naming the field, e.g. "fit.surface_samples = 1000000 exceeds the limit of 100000".
+bool validateSphereFitSettings(const SphereFitSettings& settings, std::string* error);
+
 // Fits a bounded union of spheres that covers the mesh surface within the tolerance (see report).
+// The settings are validated first (validateSphereFitSettings), before any work or allocation.
+// Deterministic: the same mesh and settings give the same spheres for any thread count.
 bool fitSphereSet(const TriangleMesh& mesh, const SphereFitSettings& settings, std::vector<Sphere>* out,
                   SphereFitReport* report, std::string* error);
 
@@ -93,6 +118,7 @@ bool fitSphereSet(const TriangleMesh& mesh, const SphereFitSettings& settings, s
 float distanceToSphereUnion(const std::vector<Sphere>& spheres, const glm::vec3& p);
 
 // Points on the surface, uniformly by area, deterministic in seed; optional per-sample normals.
+// O(triangles + count log triangles).
 void sampleSurface(const TriangleMesh& mesh, uint32_t count, uint64_t seed, std::vector<glm::vec3>* points,
                    std::vector<glm::vec3>* normals);
 

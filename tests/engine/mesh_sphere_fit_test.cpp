@@ -1,3 +1,5 @@
+#include <atomic>
+
 #include <gtest/gtest.h>
 
 #include "mesh_test_util.h"
@@ -151,6 +153,109 @@ TEST(SphereFit, RejectsBadSettings) {
     s.surface_samples = 2000000;
     EXPECT_FALSE(fitSphereSet(cube, s, &spheres, nullptr, &error));
     EXPECT_NE(error.find("surface_samples"), std::string::npos);
+}
+
+}  // namespace ug
+
+namespace ug {
+
+// A scan-sized model: the fit meets the coverage guarantee on its samples, its independent check set
+// and a third, denser set of our own; the spheres do not depend on the thread count.
+TEST(SphereFit, ScannedRockIsCoveredAndThreadCountIndependent) {
+    const TriangleMesh scan = makeScannedRock(200000, 9);
+    ASSERT_GE(scan.triangleCount(), 198000u);
+    std::vector<Sphere> one, two;
+    SphereFitReport report_one, report_two;
+    std::string error;
+    SphereFitSettings settings;
+    settings.threads = 1;
+    ASSERT_TRUE(fitSphereSet(scan, settings, &one, &report_one, &error)) << error;
+    settings.threads = 2;
+    ASSERT_TRUE(fitSphereSet(scan, settings, &two, &report_two, &error)) << error;
+    ASSERT_EQ(one.size(), two.size());
+    for (size_t i = 0; i < one.size(); ++i) {
+        EXPECT_EQ(one[i].center, two[i].center) << i;
+        EXPECT_EQ(one[i].radius, two[i].radius) << i;
+    }
+    EXPECT_EQ(report_one.max_check_distance_m, report_two.max_check_distance_m);
+    EXPECT_EQ(report_one.radii_grown, report_two.radii_grown);
+    expectTightCover(scan, one, report_one, "scanned rock");
+    EXPECT_LE(report_one.max_check_distance_m, report_one.tolerance_m);
+    EXPECT_EQ(report_one.check_sample_count, settings.surface_samples);
+    EXPECT_LE(one.size(), settings.max_spheres);
+}
+
+TEST(SphereFit, SurfaceSampleLimitIsRefusedBeforeAnyWork) {
+    SphereFitSettings s;
+    s.surface_samples = 1000000;
+    std::string error;
+    EXPECT_FALSE(validateSphereFitSettings(s, &error));
+    EXPECT_EQ(error, "fit.surface_samples = 1000000 exceeds the limit of 100000");
+    // The settings are refused before the mesh is looked at: an empty mesh would say "no triangles".
+    std::vector<Sphere> spheres;
+    EXPECT_FALSE(fitSphereSet(TriangleMesh{}, s, &spheres, nullptr, &error));
+    EXPECT_EQ(error, "fit.surface_samples = 1000000 exceeds the limit of 100000");
+    EXPECT_TRUE(spheres.empty());
+    // ... and before a model's file is read: a missing file would name the path.
+    DetailModelSource source;
+    source.name = "scan";
+    source.mesh_path = test::tempPath("not_there.glb");
+    source.fit = s;
+    DetailModel model;
+    EXPECT_FALSE(loadDetailModel(source, &model, &error));
+    EXPECT_EQ(error, "detail model 'scan' (" + source.mesh_path +
+                         "): fit.surface_samples = 1000000 exceeds the limit of 100000");
+    // The limit itself is allowed, and so is the minimum; below the minimum is refused.
+    s.surface_samples = kMaxSurfaceSamples;
+    EXPECT_TRUE(validateSphereFitSettings(s, &error)) << error;
+    s.surface_samples = kMinSurfaceSamples;
+    EXPECT_TRUE(validateSphereFitSettings(s, &error)) << error;
+    s.surface_samples = kMinSurfaceSamples - 1;
+    EXPECT_FALSE(validateSphereFitSettings(s, &error));
+    EXPECT_EQ(error, "fit.surface_samples = 15 is below the minimum of 16");
+}
+
+TEST(SphereFit, ProgressRisesToOneAndDoesNotChangeTheResult) {
+    for (const TriangleMesh& mesh : {makeRock(5), makeOakLeaf(5), makeScannedRock(20000, 5)}) {
+        SphereFitSettings plain;
+        plain.threads = 2;
+        std::vector<Sphere> want, got;
+        SphereFitReport want_report, got_report;
+        ASSERT_TRUE(fitSphereSet(mesh, plain, &want, &want_report, nullptr));
+        std::vector<float> fractions;
+        SphereFitSettings with = plain;
+        with.progress = [&](float f) { fractions.push_back(f); };
+        ASSERT_TRUE(fitSphereSet(mesh, with, &got, &got_report, nullptr));
+        ASSERT_EQ(want.size(), got.size());
+        for (size_t i = 0; i < want.size(); ++i) {
+            EXPECT_EQ(want[i].center, got[i].center);
+            EXPECT_EQ(want[i].radius, got[i].radius);
+        }
+        EXPECT_EQ(want_report.max_check_distance_m, got_report.max_check_distance_m);
+        EXPECT_EQ(want_report.max_sample_distance_m, got_report.max_sample_distance_m);
+        ASSERT_GE(fractions.size(), 5u);
+        EXPECT_GE(fractions.front(), 0.0f);
+        for (size_t i = 1; i < fractions.size(); ++i) EXPECT_GT(fractions[i], fractions[i - 1]) << i;
+        EXPECT_EQ(fractions.back(), 1.0f);
+    }
+}
+
+TEST(SphereFit, CancelStopsTheFit) {
+    const TriangleMesh rock = makeScannedRock(20000, 6);
+    std::atomic<bool> cancel{false};
+    SphereFitSettings s;
+    s.cancel = &cancel;
+    int calls = 0;
+    s.progress = [&](float f) {
+        ++calls;
+        if (f > 0.3f) cancel = true;
+    };
+    std::vector<Sphere> spheres;
+    std::string error;
+    EXPECT_FALSE(fitSphereSet(rock, s, &spheres, nullptr, &error));
+    EXPECT_EQ(error, "cancelled");
+    EXPECT_TRUE(spheres.empty());
+    EXPECT_GT(calls, 0);
 }
 
 }  // namespace ug
