@@ -20,6 +20,8 @@ struct BenchContext {
 // Returns false with an error when a section cannot run at all (e.g. a missing asset).
 bool benchGhostTile(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 bool benchInstancer(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
+// Detail model preparation (sphere fit and anchors) on a 1 M-triangle procedural scan.
+bool benchModels(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 // Needs a display (DISPLAY set and a window that opens); without one it adds no rows and prints a note.
 bool benchRender(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 

@@ -30,7 +30,10 @@ int runBenchCommand(int argc, char** argv) {
         const char* name;
         bool (*run)(const BenchContext&, std::vector<BenchRow>*, std::string*);
     };
-    const Section sections[] = {{"ghosttile", benchGhostTile}, {"instantiate", benchInstancer}, {"render", benchRender}};
+    const Section sections[] = {{"ghosttile", benchGhostTile},
+                                {"instantiate", benchInstancer},
+                                {"models", benchModels},
+                                {"render", benchRender}};
     std::vector<BenchRow> rows;
     for (const Section& s : sections) {
         if (!ctx.filter.empty() && std::string(s.name).find(ctx.filter) == std::string::npos) continue;

@@ -195,7 +195,8 @@ rows = json.load(open(sys.argv[1]))["results"]
 names = {r["name"] for r in rows}
 for needed in ("ghosttile.dense.seconds", "ghosttile.dense.pairs", "ghosttile.bytes_per_pair",
                "instantiate.field.seconds", "instantiate.field.instances", "instances.bytes_per_instance",
-               "edit.meadow.stamp_p50_ms", "edit.meadow.stamp_p95_ms"):
+               "edit.meadow.stamp_p50_ms", "edit.meadow.stamp_p95_ms", "models.scan_1m.triangles",
+               "models.scan_1m.fit_seconds", "models.scan_1m.spheres", "models.scan_1m.coverage_m"):
     assert needed in names, needed
 for r in rows:
     assert set(("name", "value", "unit", "target", "paper")) <= set(r), r
