@@ -249,7 +249,7 @@ bool readModel(JsonReader& r, const json& j, const std::string& p, DetailModelSo
                 !r.integer(*it, sp, "max_spheres", &m->fit.max_spheres, 1, 4096) ||
                 !r.number(*it, sp, "tolerance_m", &m->fit.tolerance_m, 0.0, 10.0) ||
                 !r.number(*it, sp, "tolerance_rel", &m->fit.tolerance_rel, 1e-4, 1.0) ||
-                !r.integer(*it, sp, "surface_samples", &m->fit.surface_samples, 16, 1000000) ||
+                !r.integer(*it, sp, "surface_samples", &m->fit.surface_samples, kMinSurfaceSamples, kMaxSurfaceSamples) ||
                 !r.integer(*it, sp, "seed", &m->fit.seed, 0, UINT64_MAX))
                 return false;
         }

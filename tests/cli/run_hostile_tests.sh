@@ -93,6 +93,11 @@ out="$("$bin" build-tile "$tmp/indexobj.json" --cache "$tmp/c" 2>&1)"
 if [ "$(wc -l <<<"$out")" -eq 1 ]; then ok "a bad model gives one message, not the mesh library's lines"; else
   bad "bad model printed $(wc -l <<<"$out") lines: $(head -5 <<<"$out")"; fi
 
+# --- sphere fitting settings that would make the fit quadratic: refused when the scene is read ----------
+scene_with_model "$tmp/samples.json" "$rock" ', "spheres": {"surface_samples": 1000000}'
+hostile "surface_samples 1000000" 1 200 "samples.json: /detail_types/0/model/spheres/surface_samples" "out of range" -- \
+  timeout 10 "$bin" build-tile "$tmp/samples.json" --cache "$tmp/c"
+
 # --- a model path that names nothing, and model errors that name the scene and the place --------------------
 scene_with_model "$tmp/emptymesh.json" ""
 hostile "empty model path" 1 200 "emptymesh.json: /detail_types/0/model/mesh: must name a model file" -- \
