@@ -56,7 +56,7 @@ def main():
 
     # Failed opens: the message names the file and the reason; the document and its instances stay.
     for a, file, reason in ((open_trunc, "truncated.json", "invalid JSON"),
-                            (open_model, "garbage.obj", "could not read")):
+                            (open_model, "garbage.obj", "line 1: vertex 1 has only 2 coordinates")):
         assert a["ok"] is False, a
         assert file in a["error"] and reason in a["error"], a["error"]
         assert any(file in m and reason in m for m in s["messages"]), s["messages"]
