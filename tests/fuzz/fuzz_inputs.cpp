@@ -5,6 +5,7 @@
 //               [--keep-going] [--timeout S] [--rss-mb M] [--batch N] [--no-leak-check] [--save N]
 //   fuzz_inputs TARGET --replay FILE... [--in-process]     run given files (findings) instead
 //   fuzz_inputs TARGET --minimize FILE [--to OUT]           shrink a failing file (default OUT: FILE.min)
+//   ... [--summary FILE]                                     also append the closing lines to FILE
 //   fuzz_inputs --list                                       the targets
 //   fuzz_inputs --make-corpus DIR                            rewrite the seed corpus (fuzz_corpus.cpp)
 //
@@ -43,9 +44,12 @@
 // and are counted, not reported.
 //
 // Output: per target "fuzz TARGET: N inputs, C crashes, H hangs, S sanitizer reports, ...; R rejected
-// with a message, A accepted (T s)", then "P passed, F failed" (targets). Exit 0 when every target passed.
+// with a message, A accepted (T s)" ("replay TARGET: ..." for --replay), then "P passed, F failed"
+// (targets). Exit 0 when every target passed. --summary appends the per-target lines to a file as well:
+// CTest shows the output of failed tests only, and CI prints the counts of every target from there.
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
@@ -114,7 +118,7 @@ int main(int argc, char** argv) {
     options.self_path = argv[0];
     std::string corpus_root = UG_FUZZ_CORPUS_DIR;
     std::vector<std::string> names;
-    std::string minimize_file, minimize_to;
+    std::string minimize_file, minimize_to, summary_file;
     for (int i = 1; i < argc; ++i) {
         const std::string a = argv[i];
         auto value = [&](double* out) {
@@ -153,6 +157,8 @@ int main(int argc, char** argv) {
             options.leak_check = false;
         } else if (a == "--in-process") {
             options.in_process = true;
+        } else if (a == "--summary" && i + 1 < argc) {
+            summary_file = argv[++i];
         } else if (a == "--minimize" && i + 1 < argc) {
             minimize_file = argv[++i];
         } else if (a == "--to" && i + 1 < argc) {
@@ -184,6 +190,7 @@ int main(int argc, char** argv) {
     if (!minimize_file.empty() && names.size() != 1) return usage("--minimize takes exactly one target");
 
     int passed = 0, failed = 0;
+    std::string summary;
     for (const std::string& name : names) {
         const Target* target = findTarget(name);
         if (!target) return usage(("unknown target '" + name + "'").c_str());
@@ -200,17 +207,30 @@ int main(int argc, char** argv) {
             return minimize(*target, corpus, minimize_file, options,
                             minimize_to.empty() ? minimize_file + ".min" : minimize_to);
         const TargetResult r = fuzzTarget(*target, corpus, options);
-        std::printf("fuzz %s: %llu inputs, %llu crashes, %llu hangs, %llu sanitizer reports, %llu over memory, "
-                    "%llu bad messages, %llu broken promises; %llu rejected with a message, %llu accepted "
-                    "(%.1f s, slowest input %.2f s: #%llu)%s\n",
-                    name.c_str(), (unsigned long long)r.inputs, (unsigned long long)r.crashes,
-                    (unsigned long long)r.hangs, (unsigned long long)r.sanitizer, (unsigned long long)r.memory,
-                    (unsigned long long)r.messages, (unsigned long long)r.promises, (unsigned long long)r.rejected,
-                    (unsigned long long)r.accepted, r.seconds, r.slowest_s, (unsigned long long)r.slowest_index,
-                    r.passed() ? "" : " FAILED");
+        char line[1024];
+        std::snprintf(line, sizeof(line),
+                      "%s %s: %llu inputs, %llu crashes, %llu hangs, %llu sanitizer reports, %llu over memory, "
+                      "%llu bad messages, %llu broken promises; %llu rejected with a message, %llu accepted "
+                      "(%.1f s, slowest input %.2f s: #%llu)%s\n",
+                      options.replay.empty() ? "fuzz" : "replay", name.c_str(), (unsigned long long)r.inputs,
+                      (unsigned long long)r.crashes, (unsigned long long)r.hangs, (unsigned long long)r.sanitizer,
+                      (unsigned long long)r.memory, (unsigned long long)r.messages, (unsigned long long)r.promises,
+                      (unsigned long long)r.rejected, (unsigned long long)r.accepted, r.seconds, r.slowest_s,
+                      (unsigned long long)r.slowest_index, r.passed() ? "" : " FAILED");
+        summary += line;
+        std::fputs(line, stdout);
         std::fflush(stdout);
         (r.passed() ? passed : failed)++;
     }
     std::printf("%d passed, %d failed\n", passed, failed);
+    if (!summary_file.empty()) {
+        // One write with O_APPEND: lines of targets running in parallel (ctest -j) do not interleave.
+        const int fd = open(summary_file.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);
+        if (fd < 0 || write(fd, summary.data(), summary.size()) != ssize_t(summary.size())) {
+            std::perror(summary_file.c_str());
+            failed = std::max(failed, 1);
+        }
+        if (fd >= 0) close(fd);
+    }
     return failed ? 1 : 0;
 }
