@@ -122,21 +122,46 @@ std::string stbReason() {
     return r ? r : "unknown reason";
 }
 
-// A PNG's pixels are deflate-compressed, and deflate never packs better than about 1032:1, so a file
-// of N bytes cannot hold more than ~1032 N bytes of raw rows. Checked from the header, so an 85-byte file
-// claiming 16384 x 16384 is refused before a gigabyte is allocated for it. Other formats pass.
-bool pngCouldHold(FILE* file, uint64_t raw_bytes_one_channel) {
+// PNG's structure, walked from the header before stb_image sees the file: the signature, IHDR first, each
+// chunk inside the file, IDAT chunks non-empty, an IEND. Only PNG is taken: stb_image also reads PNM, BMP,
+// PSD, ... whose headers it trusts further than we want (a PGM width of 2^31 overflows its parser). The
+// pixels are deflate-compressed and deflate never packs better than about 1032:1, so the IDAT bytes bound
+// the pixels the header may claim: an 85-byte file claiming 16384 x 16384 is refused before a gigabyte
+// is allocated for it (see loadHeightFieldPng). Returns false with the reason; *idat_bytes is the total
+// of the IDAT chunks.
+bool walkPngChunks(FILE* file, uint64_t* idat_bytes_out, std::string* why) {
     static const unsigned char kSignature[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-    unsigned char head[8] = {};
-    const long here = std::ftell(file);
-    if (std::fseek(file, 0, SEEK_SET) != 0) return true;
-    const size_t got = std::fread(head, 1, sizeof head, file);
-    std::fseek(file, 0, SEEK_END);
+    if (std::fseek(file, 0, SEEK_END) != 0) return (*why = "cannot seek in the file", false);
     const long size = std::ftell(file);
-    std::fseek(file, here, SEEK_SET);
-    if (got != sizeof head || std::memcmp(head, kSignature, sizeof head) != 0 || size <= 0) return true;
-    // One channel is the least a row can carry; 1100 leaves room over deflate's bound for the headers.
-    return raw_bytes_one_channel <= uint64_t(size) * 1100u;
+    std::rewind(file);
+    unsigned char head[8] = {};
+    if (size < 8 || std::fread(head, 1, 8, file) != 8 || std::memcmp(head, kSignature, 8) != 0)
+        return (*why = "not a PNG file (height fields are read from PNG only)", false);
+    uint64_t at = 8, idat_bytes = 0;
+    bool first = true, ended = false;
+    while (!ended) {
+        unsigned char chunk[8];
+        if (at + 12 > uint64_t(size) || std::fread(chunk, 1, 8, file) != 8)
+            return (*why = "truncated: the chunks end at byte " + std::to_string(at) + " before an IEND", false);
+        const uint64_t length = (uint64_t(chunk[0]) << 24) | (uint64_t(chunk[1]) << 16) | (uint64_t(chunk[2]) << 8) | chunk[3];
+        const std::string type(reinterpret_cast<const char*>(chunk + 4), 4);
+        if (length > uint64_t(size) - at - 12)
+            return (*why = "chunk '" + type + "' at byte " + std::to_string(at) + " claims " + std::to_string(length) +
+                           " bytes, past the end of the file",
+                    false);
+        if (first && (type != "IHDR" || length != 13)) return (*why = "the first chunk is not a 13-byte IHDR", false);
+        if (type == "IDAT") {
+            if (length == 0) return (*why = "an empty IDAT chunk at byte " + std::to_string(at), false);
+            idat_bytes += length;
+        }
+        ended = type == "IEND";
+        first = false;
+        at += 12 + length;
+        if (std::fseek(file, long(at), SEEK_SET) != 0) return (*why = "cannot seek in the file", false);
+    }
+    std::rewind(file);
+    *idat_bytes_out = idat_bytes;
+    return true;
 }
 
 }  // namespace
@@ -194,6 +219,12 @@ bool loadHeightFieldPng(const std::string& path, const HeightFieldImageDesc& d, 
 
     FILE* file = std::fopen(path.c_str(), "rb");
     if (!file) return fail(error, where + "cannot open the file (missing or unreadable)");
+    std::string why;
+    uint64_t idat_bytes = 0;
+    if (!walkPngChunks(file, &idat_bytes, &why)) {
+        std::fclose(file);
+        return fail(error, where + why);
+    }
     int w = 0, h = 0, channels = 0;
     // Read the header first so an absurd size is refused before anything is decoded.
     if (!stbi_info_from_file(file, &w, &h, &channels)) {
@@ -212,10 +243,16 @@ bool loadHeightFieldPng(const std::string& path, const HeightFieldImageDesc& d, 
                                std::to_string(kMaxHeightFieldSamples) + " pixels in all");
     }
     const bool sixteen = stbi_is_16_bit_from_file(file) != 0;
-    if (!pngCouldHold(file, uint64_t(w) * uint64_t(h) * (sixteen ? 2u : 1u))) {
+    if (idat_bytes == 0) {
+        std::fclose(file);
+        return fail(error, where + "no image data (no IDAT chunk)");
+    }
+    // Deflate's bound: at least one byte per pixel (two at 16 bits); 1100 leaves room for its headers.
+    if (uint64_t(w) * uint64_t(h) * (sixteen ? 2u : 1u) > idat_bytes * 1100u) {
         std::fclose(file);
         return fail(error, where + "the header claims " + size_text +
-                               " pixels, more than the file's compressed data can hold (truncated or forged)");
+                               " pixels, more than the file's compressed data can hold (" +
+                               std::to_string(idat_bytes) + " bytes of image data; truncated or forged)");
     }
     std::vector<float> heights(size_t(w) * size_t(h));
     const float range = d.max_height_m - d.min_height_m;

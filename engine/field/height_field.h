@@ -137,11 +137,12 @@ struct HeightFieldImageDesc {
     float max_height_m = 1.0f;  // >= min_height_m
 };
 
-// Loads an 8- or 16-bit PNG (any format stb_image reads; colour is converted to luminance). Returns
-// false with *error = "<path>: <reason>" for a missing or unreadable file, a file that is not an image, an
-// image larger than kMaxHeightFieldSide on a side or kMaxHeightFieldSamples
-// in all, or a PNG whose header claims more pixels than its compressed data could hold (deflate packs at
-// most ~1032:1) — all refused from the header, before any pixel memory is taken; *out is untouched then.
+// Loads an 8- or 16-bit PNG (PNG only; colour is converted to luminance). Returns false with
+// *error = "<path>: <reason>" for a missing or unreadable file, a file that is not a PNG, a PNG whose
+// chunks run past the file or lack IHDR / IDAT / IEND (or hold an empty IDAT), an image larger than
+// kMaxHeightFieldSide on a side or kMaxHeightFieldSamples in all, or one whose header claims more pixels
+// than its compressed data could hold (deflate packs at most ~1032:1) — all refused from the chunk walk
+// and the header, before any pixel memory is taken; *out is untouched then.
 bool loadHeightFieldPng(const std::string& path, const HeightFieldImageDesc& desc, HeightField* out,
                         std::string* error);
 

@@ -54,6 +54,11 @@ bool CollisionGraph::fromEncoded(uint32_t node_count, std::vector<uint32_t> row_
             *error = "collision graph: row " + std::to_string(i) + " has a negative length";
             return false;
         }
+        // Only the last offset was checked against the stream: a middle one may point past it.
+        if (end > bytes.size()) {
+            *error = "collision graph: row " + std::to_string(i) + " ends past the edge stream";
+            return false;
+        }
         uint64_t key = 0;
         bool first = true;
         uint32_t p = begin;

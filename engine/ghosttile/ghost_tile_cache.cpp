@@ -163,8 +163,11 @@ bool loadGhostTileCache(const std::string& path, uint64_t expected_key, GhostTil
         c.position.size() != n || c.rotation.size() != n || c.scale.size() != n) {
         return fail("candidate arrays disagree in size");
     }
-    for (size_t t = 0; t + 1 < c.type_begin.size(); ++t) {
+    // Order first, over every entry: with the ends fixed at 0 and n, ordered entries all lie in [0, n],
+    // so the walk below stays inside the arrays.
+    for (size_t t = 0; t + 1 < c.type_begin.size(); ++t)
         if (c.type_begin[t] > c.type_begin[t + 1]) return fail("candidate type ranges are not ordered");
+    for (size_t t = 0; t + 1 < c.type_begin.size(); ++t) {
         for (uint32_t i = c.type_begin[t]; i < c.type_begin[t + 1]; ++i)
             if (c.type[i] != t) return fail("candidate " + std::to_string(i) + " is filed under the wrong type");
     }

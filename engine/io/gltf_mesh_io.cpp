@@ -12,6 +12,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <filesystem>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
@@ -346,13 +347,20 @@ bool loadGltfMesh(const std::string& path, TriangleMesh* out, std::string* error
     const std::string base_dir = fs::path(path).parent_path().string();
     const bool is_glb = bytes.size() >= 4 && std::memcmp(bytes.data(), "glTF", 4) == 0;
     bool ok = false;
-    if (is_glb) {
-        ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir);
-    } else {
-        if (fs::path(path).extension() == ".glb")
-            return fail(error, path, "not a binary glTF (the file does not start with \"glTF\")");
-        const std::string text(bytes.begin(), bytes.end());
-        ok = loader.LoadASCIIFromString(&model, &err, &warn, text.c_str(), unsigned(text.size()), base_dir);
+    if (!is_glb && fs::path(path).extension() == ".glb")
+        return fail(error, path, "not a binary glTF (the file does not start with \"glTF\")");
+    // tinygltf reports most problems in `err`, but some malformed files reach a throwing call inside it
+    // (a zero-byte buffer's data.at(0)); no exception may leave a reader.
+    try {
+        if (is_glb) {
+            ok = loader.LoadBinaryFromMemory(&model, &err, &warn, bytes.data(), unsigned(bytes.size()), base_dir);
+        } else {
+            const std::string text(bytes.begin(), bytes.end());
+            ok = loader.LoadASCIIFromString(&model, &err, &warn, text.c_str(), unsigned(text.size()), base_dir);
+        }
+    } catch (const std::exception& e) {
+        ok = false;
+        err = std::string("malformed file (") + e.what() + ")";
     }
     if (!ok) {
         while (!err.empty() && (err.back() == '\n' || err.back() == '\r')) err.pop_back();

@@ -197,7 +197,7 @@ TEST(HeightField, PngErrorsNameTheFileAndTheReason) {
     std::fclose(f);
     EXPECT_FALSE(loadHeightFieldPng(text, {}, &hf, &error));
     EXPECT_NE(error.find(text), std::string::npos) << error;
-    EXPECT_NE(error.find("not an image"), std::string::npos) << error;
+    EXPECT_NE(error.find("not a PNG file"), std::string::npos) << error;
     std::remove(text.c_str());
 
     const std::string huge = tempPath("huge.png");
