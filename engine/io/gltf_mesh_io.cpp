@@ -326,6 +326,35 @@ bool skipImage(tinygltf::Image*, const int, std::string*, std::string*, int, int
     return true;
 }
 
+// The GLB container (glTF 2.0 §4.4), checked before tinygltf reads it: tinygltf bounds the BIN chunk's
+// data without its 8-byte chunk header, so a BIN length that reaches the file's end makes it read up to 8
+// bytes past the buffer. Header: magic, version 2, total length within the file; chunk 0 JSON, then an
+// optional chunk 1 BIN, each wholly inside the declared length.
+bool checkGlbContainer(const std::vector<unsigned char>& bytes, std::string* why) {
+    auto u32 = [&](size_t at) {
+        return uint32_t(bytes[at]) | uint32_t(bytes[at + 1]) << 8 | uint32_t(bytes[at + 2]) << 16 |
+               uint32_t(bytes[at + 3]) << 24;
+    };
+    if (bytes.size() < 20) return (*why = "GLB shorter than its 20-byte header and first chunk header", false);
+    if (u32(4) != 2) return (*why = "GLB version " + std::to_string(u32(4)) + " (only 2 is read)", false);
+    const uint64_t length = u32(8);
+    if (length > bytes.size())
+        return (*why = "GLB header declares " + std::to_string(length) + " bytes, the file has " +
+                       std::to_string(bytes.size()),
+                false);
+    const uint64_t json_end = 20 + uint64_t(u32(12));
+    if (u32(16) != 0x4E4F534Au || json_end > length)
+        return (*why = "GLB's first chunk is not a JSON chunk inside the file", false);
+    if (json_end == length) return true;  // no BIN chunk
+    if (json_end + 8 > length) return (*why = "GLB has a truncated chunk header after the JSON chunk", false);
+    const uint64_t bin_end = json_end + 8 + uint64_t(u32(size_t(json_end)));
+    if (u32(size_t(json_end) + 4) == 0x004E4942u && bin_end > length)
+        return (*why = "GLB's BIN chunk declares " + std::to_string(u32(size_t(json_end))) +
+                       " bytes, more than the file holds after its header",
+                false);
+    return true;
+}
+
 }  // namespace
 
 bool loadGltfMesh(const std::string& path, TriangleMesh* out, std::string* error) {
@@ -349,6 +378,8 @@ bool loadGltfMesh(const std::string& path, TriangleMesh* out, std::string* error
     bool ok = false;
     if (!is_glb && fs::path(path).extension() == ".glb")
         return fail(error, path, "not a binary glTF (the file does not start with \"glTF\")");
+    std::string container_error;
+    if (is_glb && !checkGlbContainer(bytes, &container_error)) return fail(error, path, container_error);
     // tinygltf reports most problems in `err`, but some malformed files reach a throwing call inside it
     // (a zero-byte buffer's data.at(0)); no exception may leave a reader.
     try {
