@@ -157,6 +157,8 @@ int main(int argc, char** argv) {
             options.leak_check = false;
         } else if (a == "--in-process") {
             options.in_process = true;
+        } else if (a == "--work-dir" && i + 1 < argc) {
+            options.work_dir = argv[++i];  // internal: the fresh-process replay of a finding (fuzz_runner.cpp)
         } else if (a == "--summary" && i + 1 < argc) {
             summary_file = argv[++i];
         } else if (a == "--minimize" && i + 1 < argc) {

@@ -463,6 +463,13 @@ std::string rerunFresh(const Target& target, const std::string& file, double tim
     char tmpl[] = "/tmp/ug-fuzz-rerun-XXXXXX";
     const int fd = mkstemp(tmpl);
     if (fd < 0) return "";
+    char work_tmpl[] = "/tmp/ug-fuzz-rerun-dir-XXXXXX";
+    const char* work = mkdtemp(work_tmpl);
+    if (!work) {
+        close(fd);
+        unlink(tmpl);
+        return "";
+    }
     std::fflush(nullptr);
     const pid_t pid = fork();
     if (pid == 0) {
@@ -472,7 +479,8 @@ std::string rerunFresh(const Target& target, const std::string& file, double tim
         const std::string asan =
             (env ? std::string(env) + ":" : "") + "symbolize=1:fast_unwind_on_malloc=0:malloc_context_size=40";
         setenv("ASAN_OPTIONS", asan.c_str(), 1);
-        execl(self, self, target.name, "--replay", file.c_str(), "--in-process", static_cast<char*>(nullptr));
+        execl(self, self, target.name, "--replay", file.c_str(), "--in-process", "--work-dir", work,
+              static_cast<char*>(nullptr));
         _exit(127);
     }
     int status = 0;
@@ -493,6 +501,8 @@ std::string rerunFresh(const Target& target, const std::string& file, double tim
     const std::string log = out.read();
     close(fd);
     unlink(tmpl);
+    std::error_code ec;
+    fs::remove_all(work, ec);
     return log;
 }
 
@@ -538,12 +548,14 @@ ChildEnd watchChild(pid_t pid, Shared* sh, Log& log, const RunOptions& options, 
 }
 
 // A scratch folder holding the corpus's data/ and the path the input is written to.
+// `given`: a folder made (and removed) by the caller, for a process that may die before its destructor
+// runs (rerunFresh's replays are expected to crash).
 struct Workspace {
     std::string dir, input_path;
     int log_fd = -1;
-    bool make(const Target& target, const Corpus& corpus) {
+    bool make(const Target& target, const Corpus& corpus, const std::string& given = "") {
         char tmpl[] = "/tmp/ug-fuzz-XXXXXX";
-        const char* made = mkdtemp(tmpl);
+        const char* made = given.empty() ? mkdtemp(tmpl) : given.c_str();
         if (!made) {
             std::perror("mkdtemp");
             return false;
@@ -623,7 +635,7 @@ TargetResult fuzzTarget(const Target& target, const Corpus& corpus, const RunOpt
     const int64_t deadline = t_start + int64_t(options.seconds * 1e9);
 
     Workspace ws;
-    if (!ws.make(target, corpus)) return result;
+    if (!ws.make(target, corpus, options.work_dir)) return result;
     const std::string& work = ws.dir;
     const std::string& input_path = ws.input_path;
     const int log_fd = ws.log_fd;

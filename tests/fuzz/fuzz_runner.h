@@ -23,6 +23,7 @@ struct RunOptions {
     int save_per_finding = 2;    // inputs saved for each distinct finding
     std::vector<std::string> replay;  // files to run instead of generated inputs
     bool in_process = false;     // replay without forking (for a debugger)
+    std::string work_dir;        // scratch folder to use instead of a fresh one (set by the harness itself)
     std::string self_path;       // argv[0], for the reproduce hint
 };
 
