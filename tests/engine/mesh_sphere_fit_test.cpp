@@ -204,7 +204,7 @@ TEST(SphereFit, SurfaceSampleLimitIsRefusedBeforeAnyWork) {
     DetailModel model;
     EXPECT_FALSE(loadDetailModel(source, &model, &error));
     EXPECT_EQ(error, "detail model 'scan' (" + source.mesh_path +
-                         "): fit.surface_samples = 1000000 exceeds the limit of 100000");
+                         "): fit.surface_samples = 1000000 exceeds the limit of 20000");
     // The limit itself is allowed, and so is the minimum; below the minimum is refused.
     s.surface_samples = kMaxSurfaceSamples;
     EXPECT_TRUE(validateSphereFitSettings(s, &error)) << error;
