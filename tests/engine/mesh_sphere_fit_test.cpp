@@ -190,11 +190,11 @@ TEST(SphereFit, SurfaceSampleLimitIsRefusedBeforeAnyWork) {
     s.surface_samples = 1000000;
     std::string error;
     EXPECT_FALSE(validateSphereFitSettings(s, &error));
-    EXPECT_EQ(error, "fit.surface_samples = 1000000 exceeds the limit of 100000");
+    EXPECT_EQ(error, "fit.surface_samples = 1000000 exceeds the limit of 20000");
     // The settings are refused before the mesh is looked at: an empty mesh would say "no triangles".
     std::vector<Sphere> spheres;
     EXPECT_FALSE(fitSphereSet(TriangleMesh{}, s, &spheres, nullptr, &error));
-    EXPECT_EQ(error, "fit.surface_samples = 1000000 exceeds the limit of 100000");
+    EXPECT_EQ(error, "fit.surface_samples = 1000000 exceeds the limit of 20000");
     EXPECT_TRUE(spheres.empty());
     // ... and before a model's file is read: a missing file would name the path.
     DetailModelSource source;
