@@ -10,6 +10,7 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "cli/scene_job.h"
+#include "cli/scene_metrics.h"
 #include "core/atomic_file.h"
 #include "core/hash.h"
 #include "core/parallel.h"
@@ -175,7 +176,9 @@ int runInstantiateCommand(int argc, char** argv) {
     if (last >= 0) std::fprintf(stderr, "\n");
     if (!ok) return fail(scene + ": " + error);
 
-    const nlohmann::json stats = instanceStatsJson(job, st, seed, resolveThreadCount(threads), has_region ? &region : nullptr);
+    nlohmann::json stats = instanceStatsJson(job, st, seed, resolveThreadCount(threads), has_region ? &region : nullptr);
+    // The rest, packing and tiling measurements cost about as much as the instantiation: only on request.
+    if (args.has("--stats")) stats["measurements"] = sceneMetricsJson(measureScene(job, store, threads));
     InstanceExportOptions export_options;
     export_options.chunk_size_m = chunk > 0.0f ? chunk : job.project.chunk_size_m;
     export_options.use_instancing_extension = !args.has("--plain-nodes");
