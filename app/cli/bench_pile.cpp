@@ -1,6 +1,8 @@
 // Rest, packing and tiling rows (issue "piles that rest"): measurements of the sample scenes' results, not
 // timings, so one run gives the figure (a "median" of identical values). The definitions are those of
 // engine/analysis (rest_metrics.h, tiling_metrics.h), the same as `instantiate --stats` reports.
+#include <algorithm>
+#include <chrono>
 #include <cstdio>
 
 #include "cli/bench.h"
@@ -11,7 +13,7 @@ namespace ug::cli {
 namespace {
 
 bool instantiateScene(const BenchContext& ctx, const std::string& scene, SceneJob* job, InstanceStore* store,
-                      std::string* error) {
+                      SettledDrops* drops, double* settle_seconds, std::string* error) {
     if (!loadSceneJob(ctx.assets_dir + "/scenes/" + scene + ".json", ctx.cache_dir, ctx.threads, true, job, error))
         return false;
     Instantiator inst;
@@ -20,6 +22,18 @@ bool instantiateScene(const BenchContext& ctx, const std::string& scene, SceneJo
         !inst.instantiateAll({.threads = ctx.threads}, &st, error))
         return false;
     *store = inst.store();
+    const SettleInput settle = settleInput(job->project, job->compiled.terrain, job->tile, job->models);
+    *settle_seconds = 0.0;
+    if (settle.settings.enabled) {
+        std::vector<double> seconds;
+        for (int r = 0; r < ctx.repetitions(); ++r) {
+            const auto t0 = std::chrono::steady_clock::now();
+            settleAll(settle, *store, ctx.threads, drops);
+            seconds.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+        }
+        std::sort(seconds.begin(), seconds.end());
+        *settle_seconds = seconds[seconds.size() / 2];
+    }
     return true;
 }
 
@@ -41,10 +55,17 @@ bool benchPile(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string
     for (const Case& c : cases) {
         SceneJob job;
         InstanceStore store;
-        if (!instantiateScene(ctx, c.scene, &job, &store, error)) return false;
-        const SceneMetrics m = measureScene(job, store, ctx.threads);
+        SettledDrops drops;
+        double settle_seconds = 0.0;
+        if (!instantiateScene(ctx, c.scene, &job, &store, &drops, &settle_seconds, error)) return false;
+        const bool settled = job.project.settling.settle.enabled;
+        const SceneMetrics m = measureScene(job, store, settled ? &drops : nullptr, ctx.threads);
         const std::string prefix = std::string("pile.") + c.scene;
         addRestRows(prefix, m, rows);
+        if (settled)
+            rows->push_back({std::string("settle.") + c.scene + ".seconds", settle_seconds, "s", "", std::nullopt,
+                             "settling pass, median of " + std::to_string(ctx.repetitions()) + ", " +
+                                 std::to_string(store.instanceCount()) + " instances"});
         for (const TypePacking& p : m.packing)
             if (c.pile_type && p.name == c.pile_type)
                 rows->push_back({prefix + ".volume_fraction", p.packing.volume_fraction, "", ">= 0.45", std::nullopt,

@@ -1,15 +1,19 @@
 #include "cli/scene_metrics.h"
 
+#include <cmath>
+
 namespace ug::cli {
 
-SceneMetrics measureScene(const SceneJob& job, const InstanceStore& store, int threads) {
+SceneMetrics measureScene(const SceneJob& job, const InstanceStore& store, const SettledDrops* drops, int threads) {
     SceneMetrics m;
     for (const DetailModel& d : job.models) m.type_names.push_back(d.name);
-    const std::vector<PlacedInstance> all = placeInstances(store, job.tile);
+    const std::vector<PlacedInstance> all = placeInstances(store, job.tile, drops);
     std::vector<const DetailModel*> models;
     for (const DetailModel& d : job.models) models.push_back(&d);
-    RestSupport support;
-    support.terrain = job.compiled.terrain.get();
+    // What the scene rests on, as settling sees it (the plane only where the project gives one); a scene
+    // without either is measured against z = 0, where the editor draws its ground grid.
+    RestSupport support = settleInput(job.project, job.compiled.terrain, job.tile, job.models).support;
+    if (!support.terrain && !std::isfinite(support.ground_z)) support.ground_z = 0.0f;
     m.rest = measureRest(all, models, support, 0.02f, threads);
     m.rest_per_type = restPerType(m.rest, all, uint32_t(job.models.size()));
     m.rest.drop_m.clear();

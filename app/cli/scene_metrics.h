@@ -36,7 +36,8 @@ struct SceneMetrics {
     std::vector<TypePacking> packing;   // per elevation-layered type with instances
 };
 
-SceneMetrics measureScene(const SceneJob& job, const InstanceStore& store, int threads);
+// `drops`: the store's settled drops, or null (instances where their candidates are).
+SceneMetrics measureScene(const SceneJob& job, const InstanceStore& store, const SettledDrops* drops, int threads);
 nlohmann::json sceneMetricsJson(const SceneMetrics& m);
 
 // The type's tiling figures, or null when it has no instances.

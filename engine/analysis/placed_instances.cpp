@@ -4,15 +4,17 @@
 
 namespace ug {
 
-std::vector<PlacedInstance> placeInstances(const InstanceStore& store, const GhostTile& tile) {
+std::vector<PlacedInstance> placeInstances(const InstanceStore& store, const GhostTile& tile,
+                                           const SettledDrops* drops) {
     std::vector<PlacedInstance> out;
     out.reserve(store.instanceCount());
     const CandidateSet& c = tile.candidates;
     const float s = tile.settings.tile_size_m;
-    store.forEach([&](uint64_t tile_key, uint32_t j) {
+    forEachSettled(store, drops, [&](uint64_t tile_key, uint32_t j, float drop_m) {
         PlacedInstance p;
         p.type = c.type[j];
         p.position = tileOrigin(unpackTile(tile_key), s) + c.position[j];
+        p.position.z -= drop_m;
         p.rotation = c.rotation[j];
         p.scale = c.scale[j];
         out.push_back(p);

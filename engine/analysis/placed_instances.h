@@ -12,6 +12,7 @@
 
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instance_store.h"
+#include "instancer/settling.h"
 #include "mesh/detail_model.h"
 
 namespace ug {
@@ -23,8 +24,9 @@ struct PlacedInstance {
     float scale = 1.0f;
 };
 
-// Every instance of the store, in store order.
-std::vector<PlacedInstance> placeInstances(const InstanceStore& store, const GhostTile& tile);
+// Every instance of the store, in store order, lowered by its settled drop (when `drops` is given).
+std::vector<PlacedInstance> placeInstances(const InstanceStore& store, const GhostTile& tile,
+                                           const SettledDrops* drops = nullptr);
 
 // The world spheres of one placed instance: centre = position + R (scale c), radius = scale r.
 void placedSpheres(const PlacedInstance& instance, const DetailModel& model, std::vector<Sphere>* out);

@@ -44,24 +44,6 @@ XyGrid sphereGrid(const WorldSpheres& w) {
     return XyGrid(std::span<const glm::vec3>(w.center), std::max(2.0f * w.max_radius, 1e-3f));
 }
 
-// How far sphere (c, r) can fall before it touches the support: the lowest clearance over the sphere's
-// underside, sampled at its centre and on two rings (a sloped terrain is touched off-centre).
-float supportClearance(const RestSupport& support, glm::vec3 c, float r) {
-    if (!support.terrain) return c.z - r - support.ground_z;
-    float clearance = c.z - r - support.heightAt(c.x, c.y);
-    constexpr int kRing = 8;
-    for (float rel : {0.5f, 0.9f}) {
-        const float d = rel * r;
-        const float lift = std::sqrt(std::max(0.0f, r * r - d * d));
-        for (int k = 0; k < kRing; ++k) {
-            const float a = 6.2831853f * (float(k) + 0.5f * rel) / float(kRing);
-            const float x = c.x + d * std::cos(a), y = c.y + d * std::sin(a);
-            clearance = std::min(clearance, c.z - lift - support.heightAt(x, y));
-        }
-    }
-    return clearance;
-}
-
 double median(std::vector<float> v) {
     if (v.empty()) return 0.0;
     const size_t m = v.size() / 2;
@@ -194,6 +176,8 @@ PackingReport measurePacking(std::span<const PlacedInstance> all, const std::vec
         lo = glm::min(lo, glm::vec2(bound_center[i]) - bound_radius[i]);
         hi = glm::max(hi, glm::vec2(bound_center[i]) + bound_radius[i]);
     }
+    float lowest = std::numeric_limits<float>::max();
+    for (size_t s = 0; s < w.center.size(); ++s) lowest = std::min(lowest, w.center[s].z - w.radius[s]);
     const int nx = std::max(1, int(std::ceil((hi.x - lo.x) / cell_m)));
     const int ny = std::max(1, int(std::ceil((hi.y - lo.y) / cell_m)));
     std::atomic<uint64_t> core{0}, solid{0};
@@ -211,7 +195,9 @@ PackingReport measurePacking(std::span<const PlacedInstance> all, const std::vec
                 const float h2 = (xy.x - c.x) * (xy.x - c.x) + (xy.y - c.y) * (xy.y - c.y);
                 if (h2 < r * r) top = std::max(top, c.z + std::sqrt(r * r - h2));
             });
-            const float bottom = support.heightAt(xy.x, xy.y);
+            // Without a ground plane the pile stands on its own lowest grains.
+            const float ground = support.heightAt(xy.x, xy.y);
+            const float bottom = std::isfinite(ground) ? ground : lowest;
             for (float z = bottom + 0.5f * cell_m; z < top - 2.0f * m; z += cell_m) {
                 ++my_core;
                 const glm::vec3 p(xy, z);

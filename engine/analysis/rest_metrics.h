@@ -23,15 +23,10 @@
 #include "analysis/placed_instances.h"
 #include "field/bounds.h"
 #include "field/height_field.h"
+#include "instancer/rest_support.h"
 #include "mesh/detail_model.h"
 
 namespace ug {
-
-struct RestSupport {
-    const HeightField* terrain = nullptr;  // the ground where the scene has a terrain (not owned)
-    float ground_z = 0.0f;                 // otherwise the plane z = ground_z
-    float heightAt(float x, float y) const { return terrain ? terrain->sample(x, y) : ground_z; }
-};
 
 struct RestReport {
     uint64_t instances = 0;

@@ -343,7 +343,7 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
                                              std::to_string(kProjectFormatVersion) + "); update Undergrowth");
     if (!versionedKeys(r, doc, "", version,
                        {"format", "format_version", "name", "ghost_tile", "detail_types"},
-                       {"terrain", "extent", "instantiation"}))
+                       {"terrain", "extent", "instantiation", "settling"}))
         return false;
     Project p;
     p.source = source_name;
@@ -369,6 +369,19 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
             !r.integer(*it, "/instantiation", "seed", &p.instantiation_seed, 0, UINT64_MAX) ||
             !positiveNumber(r, *it, "/instantiation", "chunk_size_m", &p.chunk_size_m, 1e6))
             return false;
+    }
+    if (auto it = doc.find("settling"); it != doc.end()) {
+        SettleSettings& st = p.settling.settle;
+        st.enabled = true;  // the object's presence switches it on unless it says otherwise
+        float ground = 0.0f;
+        if (!r.expectObject(*it, "/settling") ||
+            !r.onlyKeys(*it, "/settling", {"enabled", "passes", "max_drop_m", "ground_z"}) ||
+            !r.boolean(*it, "/settling", "enabled", &st.enabled) ||
+            !r.integer(*it, "/settling", "passes", &st.passes, 1, kMaxSettlePasses) ||
+            !r.number(*it, "/settling", "max_drop_m", &st.max_drop_m, 0.0, kMaxSettleDropM) ||
+            !r.number(*it, "/settling", "ground_z", &ground, -1e6, 1e6))
+            return false;
+        if (it->contains("ground_z")) p.settling.ground_z = ground;
     }
     if (!r.require(doc, "", "detail_types")) return false;
     const json& types = doc["detail_types"];
@@ -559,6 +572,11 @@ std::string projectToJson(const Project& project) {
         doc["extent"] = {{"min", vec3Json(project.extent->lo)}, {"max", vec3Json(project.extent->hi)}};
     doc["instantiation"] = {{"seed", project.instantiation_seed},
                             {"chunk_size_m", jsonFloat(project.chunk_size_m)}};
+    const SettleSettings& st = project.settling.settle;
+    if (st.enabled || project.settling.ground_z) {
+        doc["settling"] = {{"enabled", st.enabled}, {"passes", st.passes}, {"max_drop_m", jsonFloat(st.max_drop_m)}};
+        if (project.settling.ground_z) doc["settling"]["ground_z"] = jsonFloat(*project.settling.ground_z);
+    }
     json types = json::array();
     for (const DetailTypeDesc& d : project.detail_types) {
         json model = {

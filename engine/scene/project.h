@@ -16,6 +16,8 @@
 //    "extent": {"min": [x, y, z], "max": [x, y, z]},             (optional: derived when absent, see
 //                                                                 computeSceneExtent)
 //    "instantiation": {"seed": 1, "chunk_size_m": 8},            (optional; chunk: export chunking, > 0)
+//    "settling": {"enabled": true, "passes": 8, "max_drop_m": 0.5,  (optional; instancer/settling.h;
+//                 "ground_z": 0},                                    ground_z: the plane without a terrain)
 //    "detail_types": [{
 //        "name": "grass_tuft",
 //        "model": {"mesh": "../models/grass_tuft.glb", "scale", "y_up", "spheres", "anchors"},
@@ -48,6 +50,7 @@
 #include "field/height_field.h"
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instancing_settings.h"
+#include "instancer/settling.h"
 #include "mesh/detail_model.h"
 
 namespace ug {
@@ -108,9 +111,17 @@ struct TerrainDesc {
     std::string image_path;            // kind == Image: a PNG, as written (relative to the project file)
 };
 
+// Settling (instancer/settling.h) as the project sets it; the support is the terrain, or without one the
+// plane z = ground_z when given.
+struct SettlingDesc {
+    SettleSettings settle;                 // enabled false: instances stay where their candidates are
+    std::optional<float> ground_z;         // only without a terrain; absent: no ground plane
+};
+
 struct Project {
     std::string name;
     GhostTileSettings ghost_tile;
+    SettlingDesc settling;
     TerrainDesc terrain;
     std::optional<Bounds> extent;  // finite, lo < hi on every axis; absent: derived (computeSceneExtent)
     uint64_t instantiation_seed = 1;
