@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -105,7 +106,10 @@ TEST_F(SculptTool, HeldBrushPoursTheSameVerticalConeFromAnyView) {
         EXPECT_NEAR(cone.radius_m, first.radius_m, 1e-4f);
         const PileMeasure m = measureSculptedPile(*doc, 0, glm::vec2(g), 3.0f, 0.03f, 4.0f);
         ASSERT_TRUE(m.found);
-        EXPECT_LT(glm::length(m.centroid_m - glm::vec2(g)), 0.2f);
+        // Flat ground: nothing pulls the pile off the brush's ground point (the bound of the issue is 0.2 m).
+        EXPECT_LT(glm::length(m.centroid_m - glm::vec2(g)), 0.05f);
+        std::printf("view yaw %.0f pitch %.0f: centre %.3f m off, height %.3f m, radius %.3f m, h/r %.3f\n", yaw,
+                    pitch, glm::length(m.centroid_m - glm::vec2(g)), m.height_m, m.radius_m, m.height_m / m.radius_m);
         EXPECT_NEAR(m.height_m / m.radius_m, std::tan(glm::radians(35.0f)), 0.25f * std::tan(glm::radians(35.0f)));
         // One undo step takes the whole stroke away.
         EXPECT_EQ(doc->undoName(), "Sculpt");
