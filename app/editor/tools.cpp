@@ -161,7 +161,11 @@ bool BrushStroke::drag(const Ray& ray, double now_s, std::string* error) {
     return stamp(hit, now_s, error);
 }
 
-float BrushStroke::pileWeight() const { return std::max(1.0f, brush_.strength); }
+float BrushStroke::pileWeight() const { return kSculptPileWeight * std::max(1.0f, brush_.strength); }
+
+float BrushStroke::stampVolume() const {
+    return sculptStampVolume(std::max(brush_.radius_m, 1e-3f), std::max(1.0f, brush_.strength), kSculptIso);
+}
 
 float BrushStroke::pileAngleDeg() const {
     return brush_.sculpt_type < doc_->project().detail_types.size()
@@ -171,7 +175,7 @@ float BrushStroke::pileAngleDeg() const {
 
 bool BrushStroke::startPile(const SurfaceHit& landing, double now_s, std::string* error) {
     pile_base_ = landing.point_m;
-    pile_volume_m3_ = sculptStampVolume(std::max(brush_.radius_m, 1e-3f), pileWeight(), kSculptIso);
+    pile_volume_m3_ = stampVolume();
     const Primitive prim =
         pileConePrimitive(pileConeForVolume(pile_base_, pile_volume_m3_, pileAngleDeg()), pileWeight(), kSculptIso);
     const uint64_t id = doc_->addPrimitive(brush_.sculpt_type, prim, error);
@@ -188,7 +192,7 @@ bool BrushStroke::startPile(const SurfaceHit& landing, double now_s, std::string
 bool BrushStroke::growPile(double now_s, std::string* error) {
     if (pile_ids_.empty()) return true;
     const float volume =
-        pile_volume_m3_ + sculptStampVolume(std::max(brush_.radius_m, 1e-3f), pileWeight(), kSculptIso);
+        pile_volume_m3_ + stampVolume();
     const Primitive prim =
         pileConePrimitive(pileConeForVolume(pile_base_, volume, pileAngleDeg()), pileWeight(), kSculptIso);
     if (!doc_->setPrimitive(pile_ids_.back(), prim, error)) return false;

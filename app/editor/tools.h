@@ -19,11 +19,12 @@
 //           (sculptLanding). There the stroke grows ONE cone primitive (scene/sculpt_pile.h): a vertical
 //           Segment whose isosurface is a cone at the type's angle of repose
 //           (DetailTypeDesc::angle_of_repose_deg), holding the material of all its stamps (each the
-//           volume of the old brush's ball, sculptStampVolume). A stamp every radius / 3 of travel over
-//           the ground starts a new cone there; while the brush is held still, every
-//           kSculptHoldInterval_s the current cone takes one more stamp's volume in place (the same
-//           primitive, Document::setPrimitive), so a held brush is one primitive that grows as a cone,
-//           selected, moved, deleted and re-weighted as a unit and one undo step.
+//           volume of the old brush's ball, sculptStampVolume; weight kSculptPileWeight * max(1,
+//           strength)). A stamp every radius / 3 of travel over the ground starts a new cone there;
+//           while the brush is held still, every kSculptHoldInterval_s the current cone takes one more
+//           stamp's volume in place (the same primitive, Document::setPrimitive), so a held brush is one
+//           primitive that grows as a cone, selected, moved, deleted and re-weighted as a unit, and the
+//           whole stroke is one undo step. (A dragged stroke leaves one cone per radius / 3 of travel.)
 //   Erase   per painted type: a point at the surface under the brush with weight
 //           -kEraseWeight * strength * m_i, radius = brush radius: it cancels painted and sculpted density (and the file's) under the brush. We chose
 //           negative points over deleting the primitives whose centres are under the brush because it
@@ -48,6 +49,12 @@ const char* toolName(ToolKind tool);  // "select", "paint", "sculpt", "erase"
 
 constexpr double kSculptHoldInterval_s = 0.05;
 constexpr float kEraseWeight = 4.0f;
+// A pile's weight per unit of strength. The instancer keeps a candidate with probability min(1, density),
+// so the density's fall from 1 to 0 is a shell of loose, floating objects around the pile: with weight 1
+// the support reaches 2.2 times the isosurface's radius, with 4 only 1.41 times, and the inside is full
+// (f >= 1 inside 86 % of the isosurface's radius). 4 = kEraseWeight: an erase of the same strength
+// cancels a pile's core.
+constexpr float kSculptPileWeight = kEraseWeight;
 constexpr float kSculptIso = 0.5f;
 
 struct BrushSettings {
@@ -119,7 +126,8 @@ class BrushStroke {
   private:
     bool stamp(const SurfaceHit& hit, double now_s, std::string* error);
     SurfaceHit pick(const Ray& ray) const;
-    float pileWeight() const;    // the cone's weight: a full core (f >= 1) as the old balls had
+    float pileWeight() const;   // kSculptPileWeight * max(1, strength)
+    float stampVolume() const;  // one stamp's material: the old brush's ball (weight max(1, strength))
     float pileAngleDeg() const;  // the sculpt type's angle of repose
     bool startPile(const SurfaceHit& landing, double now_s, std::string* error);
     bool growPile(double now_s, std::string* error);
