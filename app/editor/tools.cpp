@@ -148,7 +148,10 @@ bool BrushStroke::drag(const Ray& ray, double now_s, std::string* error) {
         const SurfaceHit ground = pickGround(*doc_, ray);
         if (!ground.hit) return true;
         const float travel = glm::length(glm::vec2(ground.point_m) - glm::vec2(last_point_));
-        if (travel >= brush_.radius_m / 3.0f) return stamp(pick(ray), now_s, error);
+        if (travel >= brush_.radius_m / 3.0f) {
+            const SurfaceHit landing = pick(ray);
+            return !landing.hit || stamp(landing, now_s, error);
+        }
         if (now_s - last_time_s_ >= kSculptHoldInterval_s - 1e-9) return growPile(now_s, error);
         return true;
     }
@@ -191,8 +194,7 @@ bool BrushStroke::startPile(const SurfaceHit& landing, double now_s, std::string
 
 bool BrushStroke::growPile(double now_s, std::string* error) {
     if (pile_ids_.empty()) return true;
-    const float volume =
-        pile_volume_m3_ + stampVolume();
+    const float volume = pile_volume_m3_ + stampVolume();
     const Primitive prim =
         pileConePrimitive(pileConeForVolume(pile_base_, volume, pileAngleDeg()), pileWeight(), kSculptIso);
     if (!doc_->setPrimitive(pile_ids_.back(), prim, error)) return false;

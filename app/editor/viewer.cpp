@@ -19,7 +19,10 @@
 // Panels' actions add: export "ok", "error", "exported_instances", "export_seconds"; open and new "ok",
 // "error", "document" (their "before" is the replaced document's); set_visible "drawn_instances_before"/
 // "_after" (the renderer's instances drawn in the frame before and the frame after); move "id",
-// "from_center", "to_center", "moves"; ghost_tile "ghost_tile" (replay.h).
+// "from_center", "to_center", "moves"; ghost_tile "ghost_tile" (replay.h); sculpt strokes "pile" (pileRecord:
+// the pile's centroid, height, radius and volume around the first stamp's ground point, the cones it left)
+// and "user_primitives_before"/"_after" (the sculpt type's). Mouse sculpt strokes are kept in
+// ViewerResult::sculpt_strokes ("sculpt_strokes"), so a session driven by real input is judged the same way.
 #include "editor/viewer.h"
 
 #include <imgui.h>

@@ -52,7 +52,7 @@ TEST(SculptPile, ConePrimitiveIsosurfaceIsTheCone) {
         const DensityField field = makeBlendField({prim});
         const PileMeasure m = measurePile(
             [&](glm::vec2 xy) { return pileThicknessOverPlane(field, kIso, xy, base.z, base.z + 20.0f); },
-            glm::vec2(base), 3.0f * cone.base_radius_m, 0.02f);
+            glm::vec2(base), 1.5f * cone.base_radius_m, 0.02f);
         ASSERT_TRUE(m.found);
         EXPECT_LT(glm::length(m.centroid_m - glm::vec2(base)), 0.01f);
         EXPECT_NEAR(m.height_m, cone.height_m, 0.02f * cone.height_m + 0.01f);
