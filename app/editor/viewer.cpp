@@ -74,6 +74,7 @@ json pileRecord(const Document& doc, const BrushStroke& st) {
     const float angle =
         type < doc.project().detail_types.size() ? doc.project().detail_types[type].angle_of_repose_deg : 35.0f;
     return {{"found", m.found},
+            {"type", type},
             {"ground_point", {at.x, at.y}},
             {"centroid", {m.centroid_m.x, m.centroid_m.y}},
             {"height", m.height_m},
@@ -83,6 +84,30 @@ json pileRecord(const Document& doc, const BrushStroke& st) {
             {"stamps", st.stamps()},
             {"primitives", st.pileIds().size()},
             {"ids", st.pileIds()}};
+}
+
+// The pile as its instances show it: the sculpt type's instances whose origin lies within 1.25 pile radii
+// (horizontally) of the ground point: how many, their centroid, and the highest origin above the ground.
+json pileInstancesJson(const Document& doc, const InstanceStore& store, const json& pile) {
+    const size_t type = pile["type"].get<size_t>();
+    const glm::vec2 at(pile["ground_point"][0].get<float>(), pile["ground_point"][1].get<float>());
+    const float reach = 1.25f * pile["radius"].get<float>();
+    const CandidateSet& c = doc.ghostTile().candidates;
+    const float s = doc.ghostTile().settings.tile_size_m;
+    uint64_t count = 0;
+    glm::dvec2 sum(0.0);
+    float top = 0.0f;
+    store.forEach([&](uint64_t key, uint32_t id) {
+        if (c.type[id] != type) return;
+        const glm::vec3 o = tileOrigin(unpackTile(key), s) + c.position[id];
+        if (glm::length(glm::vec2(o) - at) > reach) return;
+        ++count;
+        sum += glm::dvec2(o.x, o.y);
+        const SurfaceHit ground = pickGround(doc, rayDownOnto(doc, glm::vec2(o)));
+        if (ground.hit) top = std::max(top, o.z - ground.point_m.z);
+    });
+    const glm::dvec2 centre = count ? sum / double(count) : glm::dvec2(at);
+    return {{"count", count}, {"centroid", {centre.x, centre.y}}, {"top", top}};
 }
 
 bool writeScreenshot(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba,
@@ -1179,6 +1204,10 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 r["ok"] = load_error.empty();
                 if (!load_error.empty()) r["error"] = load_error;
                 r["document"] = d.path();
+            }
+            if (r.contains("pile")) {
+                r["pile"]["instances"] = pileInstancesJson(d, *store, r["pile"]);
+                r["pile"]["instances_before"] = pileInstancesJson(d, before, r["pile"]);
             }
             if (r.contains("box")) {
                 auto corner = [&](const char* key) {

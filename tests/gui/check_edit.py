@@ -171,8 +171,21 @@ def check_pile(a, xy, label, tolerance=0.2):
     assert pile["primitives"] == 1, (label, pile)
     assert a["user_primitives_after"] - a["user_primitives_before"] == 1, (label, a["user_primitives_before"],
                                                                           a["user_primitives_after"])
-    return "%s: %d stamps -> 1 primitive, centre %.3f m off, h %.2f r %.2f h/r %.3f (tan %g = %.3f)" % (
+    text = "%s: %d stamps -> 1 primitive, centre %.3f m off, h %.2f r %.2f h/r %.3f (tan %g = %.3f)" % (
         label, a["stamps"], off, pile["height"], pile["radius"], ratio, pile["angle_of_repose_deg"], want)
+    if "instances" in pile:
+        # The rocks the pile made (none stood there before) sit on the same cone: centred on the ground
+        # point (the slopes' downhill pull of a cone's volume reaches 0.19 m here, hence 0.25 m), and the
+        # highest one about tan(repose) radii up.
+        inst, before = pile["instances"], pile["instances_before"]
+        assert before["count"] == 0 and inst["count"] > 30, (label, before, inst)
+        ioff = math.hypot(inst["centroid"][0] - xy[0], inst["centroid"][1] - xy[1])
+        assert ioff < max(tolerance, 0.25), (label, "the rocks' centre is %.3f m off" % ioff, inst)
+        itop = inst["top"] / pile["radius"]
+        assert abs(itop / want - 1.0) <= 0.25, (label, "highest rock / radius %.3f" % itop, inst)
+        text += "; %d rocks, their centre %.3f m off, the highest %.2f m up (%.3f radii)" % (
+            inst["count"], ioff, inst["top"], itop)
+    return text
 
 
 def pile_paint(stats_path):
