@@ -398,7 +398,7 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
         const json& jt = types[t];
         if (!r.expectObject(jt, tp) ||
             !versionedKeys(r, jt, tp, version, {"name", "model", "candidates"},
-                           {"density", "subtract_terrain", "terrain_falloff_m", "instancing"}))
+                           {"density", "subtract_terrain", "terrain_falloff_m", "angle_of_repose_deg", "instancing"}))
             return false;
         DetailTypeDesc d;
         if (!r.string(jt, tp, "name", &d.model.name, true)) return false;
@@ -419,7 +419,8 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
             it != jt.end() && !readDensityField(r, *it, tp + "/density", has_terrain, &d.density))
             return false;
         if (!r.boolean(jt, tp, "subtract_terrain", &d.subtract_terrain) ||
-            !positiveNumber(r, jt, tp, "terrain_falloff_m", &d.terrain_falloff_m, 100.0))
+            !positiveNumber(r, jt, tp, "terrain_falloff_m", &d.terrain_falloff_m, 100.0) ||
+            !positiveNumber(r, jt, tp, "angle_of_repose_deg", &d.angle_of_repose_deg, 89.0))
             return false;
         if (auto it = jt.find("instancing");
             it != jt.end() && !readInstancing(r, *it, tp + "/instancing", has_terrain, &d.instancing))
@@ -617,6 +618,7 @@ std::string projectToJson(const Project& project) {
                        {"position", d.ghost.position == PositionMode::Jittered ? "jittered" : "uniform"}}},
                      {"subtract_terrain", d.subtract_terrain},
                      {"terrain_falloff_m", jsonFloat(d.terrain_falloff_m)},
+                     {"angle_of_repose_deg", jsonFloat(d.angle_of_repose_deg)},
                      {"instancing", instancingJson(d.instancing)}};
         if (d.density.root != kNoNode) type["density"] = densityFieldToJson(d.density);
         types.push_back(std::move(type));

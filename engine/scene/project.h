@@ -25,6 +25,8 @@
 //        "density": <field node>,        (optional, default: 0 everywhere; grammar in field_json.h)
 //        "subtract_terrain": true,       (optional: remove the ground solid so details never sink; only
 //        "terrain_falloff_m": 0.05,       acts when the project has a terrain; falloff > 0)
+//        "angle_of_repose_deg": 35,      (optional: the steepest slope a sculpted pile of this type keeps,
+//                                         in (0, 89]; the sculpt brush grows cones this steep, tools.h)
 //        "instancing": {                 (optional)
 //            "strategy": "random" | "elevation" | "distance_to_boundary",   (default random)
 //            "layer_m": 0.02,                                                (> 0)
@@ -99,6 +101,9 @@ struct DetailTypeDesc {
     DensityField density;
     bool subtract_terrain = true;     // only acts when the project has a terrain
     float terrain_falloff_m = 0.05f;  // depth over which the ground solid reaches full weight, > 0
+    // The sculpt brush's piles of this type keep this slope (loose gravel ~35 deg), in (0, 89]: a vertical
+    // pile (90) has no cone, and the tangent grows without bound.
+    float angle_of_repose_deg = 35.0f;
     InstancingDesc instancing;
 };
 
