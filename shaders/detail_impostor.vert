@@ -17,6 +17,7 @@ layout(std430, binding = 0) readonly buffer CandidateFrames { CandidateFrame u_f
 
 uniform mat4 u_view_proj;
 uniform float u_tile_size_m;
+uniform float u_drop_unit_m;
 uniform vec3 u_color;
 uniform vec3 u_center;
 uniform float u_half_size_m;
@@ -30,15 +31,19 @@ vec3 rotate(vec4 q, vec3 v) {
 }
 
 void main() {
-    ivec3 tile = ivec3(int(a_instance.x << 16) >> 16, int(a_instance.x) >> 16, int(a_instance.y << 16) >> 16);
-    CandidateFrame f = u_frames[a_instance.y >> 16];
+    // Sign-extend the tile coordinates (16, 16 and 9 bits; arithmetic shifts of a signed int).
+    ivec3 tile = ivec3(int(a_instance.x << 16) >> 16, int(a_instance.x) >> 16, int(a_instance.y << 23) >> 23);
+    // The settled drop, in steps of u_drop_unit_m (render_data.h).
+    float drop = float(a_instance.y >> 25) * u_drop_unit_m;
+    CandidateFrame f = u_frames[(a_instance.y >> 9) & 0xffffu];
     float scale = f.position_scale.w;
-    vec3 world = vec3(tile) * u_tile_size_m + f.position_scale.xyz + rotate(f.rotation, scale * u_center);
+    vec3 world = vec3(tile) * u_tile_size_m + f.position_scale.xyz + rotate(f.rotation, scale * u_center) -
+                 vec3(0.0, 0.0, drop);
     // The model's +Z as the normal (a leaf's face, a tuft's up), turned toward the eye: the sprite is lit
     // like the object's dominant facet.
     vec3 n = rotate(f.rotation, vec3(0.0, 0.0, 1.0));
     n = dot(n, u_to_eye) < 0.0 ? -n : n;
-    uint h = (a_instance.x * 2654435761u) ^ (a_instance.y * 2246822519u);
+    uint h = (a_instance.x * 2654435761u) ^ ((a_instance.y & 0x1ffffffu) * 2246822519u);  // not the drop: stable colours
     h ^= h >> 15;
     h *= 2246822519u;
     h ^= h >> 13;

@@ -1,8 +1,9 @@
 #version 430 core
 // instanced_detail: one detail type at one mesh LOD, one instance per (tile, candidate).
 // Interface: a_position (0), a_normal (1) in model space; a_instance (2, per instance) = the packed
-// instance of app/editor/render_data.h: x = uint16(t.x) | uint16(t.y) << 16, y = uint16(t.z) | j << 16;
-// buffer 0 = the Ghost Tile's candidate frames (uploaded once); u_view_proj, u_tile_size_m, u_color.
+// instance of app/editor/render_data.h: x = uint16(t.x) | uint16(t.y) << 16, y = uint9(t.z) | j << 9 |
+// drop code << 25; buffer 0 = the Ghost Tile's candidate frames (uploaded once); u_view_proj,
+// u_tile_size_m, u_drop_unit_m, u_color.
 layout(location = 0) in vec3 a_position;
 layout(location = 1) in vec3 a_normal;
 layout(location = 2) in uvec2 a_instance;
@@ -15,6 +16,7 @@ layout(std430, binding = 0) readonly buffer CandidateFrames { CandidateFrame u_f
 
 uniform mat4 u_view_proj;
 uniform float u_tile_size_m;
+uniform float u_drop_unit_m;
 uniform vec3 u_color;
 out vec3 v_world;
 out vec3 v_normal;
@@ -26,17 +28,19 @@ vec3 rotate(vec4 q, vec3 v) {
 }
 
 void main() {
-    // Sign-extend the 16-bit tile coordinates (arithmetic shifts of a signed int).
-    ivec3 tile = ivec3(int(a_instance.x << 16) >> 16, int(a_instance.x) >> 16, int(a_instance.y << 16) >> 16);
-    uint j = a_instance.y >> 16;
+    // Sign-extend the tile coordinates (16, 16 and 9 bits; arithmetic shifts of a signed int).
+    ivec3 tile = ivec3(int(a_instance.x << 16) >> 16, int(a_instance.x) >> 16, int(a_instance.y << 23) >> 23);
+    // The settled drop, in steps of u_drop_unit_m (render_data.h).
+    float drop = float(a_instance.y >> 25) * u_drop_unit_m;
+    uint j = (a_instance.y >> 9) & 0xffffu;
     CandidateFrame f = u_frames[j];
     // tileOrigin(t, s) + p_j + R_j (scale_j v): the engine's expression, so instances sit where the
     // exporter puts them.
     vec3 origin = vec3(tile) * u_tile_size_m;
-    v_world = origin + f.position_scale.xyz + rotate(f.rotation, f.position_scale.w * a_position);
+    v_world = origin + f.position_scale.xyz + rotate(f.rotation, f.position_scale.w * a_position) - vec3(0.0, 0.0, drop);
     v_normal = rotate(f.rotation, a_normal);
     // +-10 % brightness per instance, hashed from (tile, candidate): neighbours of one type do not look cloned.
-    uint h = (a_instance.x * 2654435761u) ^ (a_instance.y * 2246822519u);
+    uint h = (a_instance.x * 2654435761u) ^ ((a_instance.y & 0x1ffffffu) * 2246822519u);  // not the drop: stable colours
     h ^= h >> 15;
     h *= 2246822519u;
     h ^= h >> 13;

@@ -10,21 +10,32 @@
 
 namespace ug::editor {
 
-PackedInstance packInstance(const glm::ivec3& tile, uint32_t candidate) {
+PackedInstance packInstance(const glm::ivec3& tile, uint32_t candidate, uint32_t drop_code) {
     assert(std::abs(tile.x) <= kPackedTileLimit && std::abs(tile.y) <= kPackedTileLimit &&
-           std::abs(tile.z) <= kPackedTileLimit && candidate < kPackedCandidateLimit);
+           tile.z >= kPackedTileZMin && tile.z <= kPackedTileZMax && candidate < kPackedCandidateLimit &&
+           drop_code <= kPackedDropSteps);
     PackedInstance p;
     p.x = (uint32_t(tile.x) & 0xffffu) | ((uint32_t(tile.y) & 0xffffu) << 16);
-    p.y = (uint32_t(tile.z) & 0xffffu) | (candidate << 16);
+    p.y = (uint32_t(tile.z) & 0x1ffu) | (candidate << 9) | (drop_code << 25);
     return p;
 }
 
-void unpackInstance(PackedInstance p, glm::ivec3* tile, uint32_t* candidate) {
-    // Sign-extend the 16-bit fields exactly as the vertex shader does.
+void unpackInstance(PackedInstance p, glm::ivec3* tile, uint32_t* candidate, uint32_t* drop_code) {
+    // Sign-extend the fields exactly as the vertex shader does.
     tile->x = int32_t(int16_t(uint16_t(p.x & 0xffffu)));
     tile->y = int32_t(int16_t(uint16_t(p.x >> 16)));
-    tile->z = int32_t(int16_t(uint16_t(p.y & 0xffffu)));
-    *candidate = p.y >> 16;
+    tile->z = int32_t(p.y << 23) >> 23;
+    *candidate = (p.y >> 9) & 0xffffu;
+    if (drop_code) *drop_code = p.y >> 25;
+}
+
+float packedDropUnit(bool settling, float max_drop_m) {
+    return settling && max_drop_m > 0.0f ? max_drop_m / float(kPackedDropSteps) : 0.0f;
+}
+
+uint32_t packedDropCode(float drop_m, float drop_unit_m) {
+    if (!(drop_unit_m > 0.0f) || !(drop_m > 0.0f)) return 0;
+    return std::min(kPackedDropSteps, uint32_t(std::floor(drop_m / drop_unit_m)));
 }
 
 DetailLodMesh buildDetailLods(const DetailModel& model, float scale_max) {
@@ -116,11 +127,13 @@ void TileUploads::clear() {
 namespace {
 
 bool checkTile(const glm::ivec3& coord, std::string* error) {
-    if (std::abs(coord.x) <= kPackedTileLimit && std::abs(coord.y) <= kPackedTileLimit &&
-        std::abs(coord.z) <= kPackedTileLimit)
+    if (std::abs(coord.x) <= kPackedTileLimit && std::abs(coord.y) <= kPackedTileLimit && coord.z >= kPackedTileZMin &&
+        coord.z <= kPackedTileZMax)
         return true;
     *error = "tile (" + std::to_string(coord.x) + ", " + std::to_string(coord.y) + ", " + std::to_string(coord.z) +
-             ") is beyond the renderer's packed range of ±" + std::to_string(kPackedTileLimit) + " tiles";
+             ") is beyond the renderer's packed range (±" + std::to_string(kPackedTileLimit) + " tiles across, " +
+             std::to_string(kPackedTileZMin) + ".." + std::to_string(kPackedTileZMax) +
+             " tiles up); the batch commands (instantiate, export) have no such limit";
     return false;
 }
 
@@ -137,8 +150,8 @@ void countByType(const std::vector<uint32_t>& ids, const CandidateSet& c, std::v
 
 // Writes tile `t`'s instances of every type into its slots (allocating or moving them as needed) and
 // records the uploads.
-void writeTile(ResidentTiles* r, uint32_t t, const std::vector<uint32_t>& ids, const std::vector<uint32_t>& counts,
-               SlotFit fit, TileUploads* uploads) {
+void writeTile(ResidentTiles* r, uint32_t t, const std::vector<uint32_t>& ids, std::span<const uint16_t> drops,
+               const std::vector<uint32_t>& counts, SlotFit fit, TileUploads* uploads) {
     const uint32_t types = r->type_count;
     const glm::ivec3 coord = r->tile_coord[t];
     size_t k = 0;
@@ -163,7 +176,10 @@ void writeTile(ResidentTiles* r, uint32_t t, const std::vector<uint32_t>& ids, c
                 uploads->types[type].whole = true;
             }
         }
-        for (uint32_t i = 0; i < n; ++i) arena.mirror[slot.offset + i] = packInstance(coord, ids[k + i]);
+        for (uint32_t i = 0; i < n; ++i) {
+            const uint32_t code = k + i < drops.size() ? packedDropCode(dropMetres(drops[k + i]), r->drop_unit_m) : 0;
+            arena.mirror[slot.offset + i] = packInstance(coord, ids[k + i], code);
+        }
         k += n;
         if (!uploads->types[type].whole) uploads->types[type].ranges.push_back({slot.offset, n});
     }
@@ -222,8 +238,9 @@ void startUploads(uint32_t type_count, TileUploads* uploads) {
 
 }  // namespace
 
-bool rebuildResidentTiles(const InstanceStore& store, const CandidateSet& candidates, float tile_size_m,
-                          ResidentTiles* out, TileUploads* uploads, std::string* error) {
+bool rebuildResidentTiles(const InstanceStore& store, const SettledDrops* drops, const CandidateSet& candidates,
+                          float tile_size_m, float drop_unit_m, ResidentTiles* out, TileUploads* uploads,
+                          std::string* error) {
     if (candidates.size() > kPackedCandidateLimit) {
         *error = "the Ghost Tile has " + std::to_string(candidates.size()) + " candidates; the renderer packs at most " +
                  std::to_string(kPackedCandidateLimit);
@@ -234,6 +251,7 @@ bool rebuildResidentTiles(const InstanceStore& store, const CandidateSet& candid
     ResidentTiles r;
     r.type_count = candidates.typeCount();
     r.tile_size_m = tile_size_m;
+    r.drop_unit_m = drop_unit_m;
     r.types.resize(r.type_count);
     r.instances_per_type.assign(r.type_count, 0);
     r.tile_key.reserve(store.tileCount());
@@ -246,7 +264,7 @@ bool rebuildResidentTiles(const InstanceStore& store, const CandidateSet& candid
         store.tileIds(i, &ids);
         countByType(ids, candidates, &counts);
         const uint32_t t = addTile(&r, key, unpackTile(key));
-        writeTile(&r, t, ids, counts, SlotFit::Exact, uploads);
+        writeTile(&r, t, ids, drops ? drops->tile(key) : std::span<const uint16_t>(), counts, SlotFit::Exact, uploads);
         uploads->tiles.push_back(r.tile_coord[t]);
     }
     // Everything is new: each type's array goes up whole.
@@ -260,7 +278,7 @@ bool rebuildResidentTiles(const InstanceStore& store, const CandidateSet& candid
     return true;
 }
 
-bool updateResidentTiles(const InstanceStore& store, const CandidateSet& candidates,
+bool updateResidentTiles(const InstanceStore& store, const SettledDrops* drops, const CandidateSet& candidates,
                          const std::vector<uint64_t>& changed_keys, ResidentTiles* r, TileUploads* uploads,
                          std::string* error) {
     assert(r->type_count == candidates.typeCount());
@@ -280,7 +298,7 @@ bool updateResidentTiles(const InstanceStore& store, const CandidateSet& candida
         store.tileIds(size_t(in_store), &ids);
         countByType(ids, candidates, &counts);
         const uint32_t t = it != r->tile_index.end() ? it->second : addTile(r, key, coord);
-        writeTile(r, t, ids, counts, SlotFit::Rounded, uploads);
+        writeTile(r, t, ids, drops ? drops->tile(key) : std::span<const uint16_t>(), counts, SlotFit::Rounded, uploads);
         uploads->tiles.push_back(coord);
     }
     for (TileUploads::Type& u : uploads->types)

@@ -4,12 +4,16 @@
 // (frustum culling and LOD choice per tile, one command per visible tile and type, grouped by type and LOD
 // for one multi-draw each).
 //
-// GPU instance format (8 bytes, DESIGN.md "Rendering"): an instance is (tile t, candidate j), packed as
-//   x = uint16(t.x) | uint16(t.y) << 16,   y = uint16(t.z) | j << 16
-// so tile coordinates must lie in [-32768, 32767] (±16 km with 0.5 m tiles) and a Ghost Tile may hold at
-// most 65,536 candidates. The vertex shader sign-extends the tile coordinates, reads candidate j's frame
-// (position in the tile, rotation, scale) from a buffer uploaded once, and rebuilds the world transform
-//   world(v) = tileOrigin(t, s) + p_j + R_j (scale_j v).
+// GPU instance format (8 bytes, DESIGN.md "Rendering"): an instance is (tile t, candidate j, settled drop
+// d), packed as
+//   x = uint16(t.x) | uint16(t.y) << 16,   y = uint9(t.z) | j << 9 | c << 25
+// so t.x and t.y must lie in [-32768, 32767] (±16 km with 0.5 m tiles), t.z in [-256, 255] (±128 m), a
+// Ghost Tile may hold at most 65,536 candidates, and the drop is c in [0, 127] steps of drop_unit_m
+// (max_drop / 127: 4 mm for the default 0.5 m; rounded down, so an instance is drawn at most one step
+// above where the engine settled it, never inside what it rests on). The vertex shader sign-extends the
+// tile coordinates, reads candidate j's frame (position in the tile, rotation, scale) from a buffer
+// uploaded once, and rebuilds the world transform
+//   world(v) = tileOrigin(t, s) + p_j + R_j (scale_j v) - (0, 0, c drop_unit_m).
 #pragma once
 
 #include <array>
@@ -23,6 +27,7 @@
 #include "editor/tile_slots.h"
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instance_store.h"
+#include "instancer/settling.h"
 #include "mesh/detail_model.h"
 
 namespace ug::editor {
@@ -34,18 +39,24 @@ constexpr int kLodCount = kMeshLodCount + 1;
 constexpr int kImpostorLod = kMeshLodCount;
 constexpr uint32_t kImpostorTriangles = 0;
 
-constexpr int32_t kPackedTileLimit = 32767;     // |tile coordinate| <= this
+constexpr int32_t kPackedTileLimit = 32767;       // |tile.x|, |tile.y| <= this
+constexpr int32_t kPackedTileZMin = -256, kPackedTileZMax = 255;
 constexpr uint32_t kPackedCandidateLimit = 65536;  // candidate ids < this
+constexpr uint32_t kPackedDropSteps = 127;         // drop codes 0..127
 
 struct PackedInstance {
     uint32_t x = 0;  // uint16(tile.x) | uint16(tile.y) << 16
-    uint32_t y = 0;  // uint16(tile.z) | candidate << 16
+    uint32_t y = 0;  // uint9(tile.z) | candidate << 9 | drop code << 25
 };
 static_assert(sizeof(PackedInstance) == 8);
 
-// Contract: |tile| <= kPackedTileLimit on every axis, candidate < kPackedCandidateLimit.
-PackedInstance packInstance(const glm::ivec3& tile, uint32_t candidate);
-void unpackInstance(PackedInstance packed, glm::ivec3* tile, uint32_t* candidate);
+// Contract: tile within the limits above, candidate < kPackedCandidateLimit, drop_code <= kPackedDropSteps.
+PackedInstance packInstance(const glm::ivec3& tile, uint32_t candidate, uint32_t drop_code = 0);
+void unpackInstance(PackedInstance packed, glm::ivec3* tile, uint32_t* candidate, uint32_t* drop_code = nullptr);
+// The GPU step for settled drops of up to max_drop_m (0 when nothing settles).
+float packedDropUnit(bool settling, float max_drop_m);
+// The code of a drop: rounded down to a step, at most kPackedDropSteps.
+uint32_t packedDropCode(float drop_m, float drop_unit_m);
 
 // One detail type's mesh at every mesh LOD: one vertex array, the LODs' index ranges one after the other.
 struct DetailLodMesh {
@@ -87,6 +98,7 @@ struct ResidentTiles {
     };
     uint32_t type_count = 0;
     float tile_size_m = 0.5f;
+    float drop_unit_m = 0.0f;           // packedDropUnit: the shader's step for drop codes
     std::vector<uint64_t> tile_key;     // per resident tile (packed, tile_coord.h)
     std::vector<glm::ivec3> tile_coord;
     std::vector<TileSlot> slot;         // per tile x type (tile * type_count + type)
@@ -118,13 +130,15 @@ struct TileUploads {
 
 // Fails (with the reason) when a tile or a candidate id does not fit the packed format. Leaves *out as it
 // was on failure. Rebuilds everything: tiles in key order, packed tightly (SlotFit::Exact).
-bool rebuildResidentTiles(const InstanceStore& store, const CandidateSet& candidates, float tile_size_m,
-                          ResidentTiles* out, TileUploads* uploads, std::string* error);
+// `drops` (optional): the store's settled drops, packed with drop_unit_m (packedDropUnit).
+bool rebuildResidentTiles(const InstanceStore& store, const SettledDrops* drops, const CandidateSet& candidates,
+                          float tile_size_m, float drop_unit_m, ResidentTiles* out, TileUploads* uploads,
+                          std::string* error);
 // Re-packs only the tiles in `changed_keys` (packed tile keys, any order) from `store`: a tile whose
 // instances fit its slots is rewritten in place, one that outgrew a slot moves to a new one
 // (SlotFit::Rounded), one the store no longer holds is dropped. `out` must have been rebuilt from the
 // same candidates. On failure (a tile out of the packed range) *out may be partly updated; rebuild it.
-bool updateResidentTiles(const InstanceStore& store, const CandidateSet& candidates,
+bool updateResidentTiles(const InstanceStore& store, const SettledDrops* drops, const CandidateSet& candidates,
                          const std::vector<uint64_t>& changed_keys, ResidentTiles* out, TileUploads* uploads,
                          std::string* error);
 

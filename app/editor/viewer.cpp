@@ -395,12 +395,15 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             const auto t0 = Clock::now();
             std::string pack_error;
             const CandidateSet& candidates = doc.ghostTile().candidates;
-            const bool packed = (live.full || !have_result)
-                                    ? rebuildResidentTiles(*live.store, candidates,
-                                                           doc.ghostTile().settings.tile_size_m, &instances,
-                                                           &uploads, &pack_error)
-                                    : updateResidentTiles(*live.store, candidates, live.changed_tiles, &instances,
-                                                          &uploads, &pack_error);
+            const SettleSettings& settle = doc.project().settling.settle;
+            const bool packed =
+                (live.full || !have_result)
+                    ? rebuildResidentTiles(*live.store, live.drops.get(), candidates,
+                                           doc.ghostTile().settings.tile_size_m,
+                                           packedDropUnit(settle.enabled, settle.max_drop_m), &instances, &uploads,
+                                           &pack_error)
+                    : updateResidentTiles(*live.store, live.drops.get(), candidates, live.changed_tiles, &instances,
+                                          &uploads, &pack_error);
             if (!packed) {
                 if (scripted) {
                     *error = pack_error;

@@ -11,15 +11,24 @@
 
 namespace ug {
 
-void SettledDrops::set(uint64_t tile_key, std::vector<uint16_t> drops) {
-    if (drops.empty()) drops_.erase(tile_key);
-    else drops_[tile_key] = std::move(drops);
+std::span<const uint16_t> SettledDrops::tile(uint64_t tile_key) const {
+    auto it = std::lower_bound(keys_.begin(), keys_.end(), tile_key);
+    if (it == keys_.end() || *it != tile_key) return {};
+    const size_t t = size_t(it - keys_.begin());
+    return std::span<const uint16_t>(drops_.data() + offsets_[t], offsets_[t + 1] - offsets_[t]);
 }
 
-uint64_t SettledDrops::byteSize() const {
-    uint64_t bytes = 0;
-    for (const auto& [key, d] : drops_) bytes += d.size() * sizeof(uint16_t);
-    return bytes;
+void SettledDrops::append(uint64_t tile_key, std::span<const uint16_t> drops) {
+    if (drops.empty()) return;
+    keys_.push_back(tile_key);
+    drops_.insert(drops_.end(), drops.begin(), drops.end());
+    offsets_.push_back(uint32_t(drops_.size()));
+}
+
+void SettledDrops::clear() {
+    keys_.clear();
+    offsets_.assign(1, 0);
+    drops_.clear();
 }
 
 bool validateSettleInput(const SettleInput& in, std::string* error) {
@@ -237,6 +246,10 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
                 }
                 if (best <= max_drop) mine.push_back({o, best});  // beyond it: too far below to be reached
             });
+            // Nothing to land on within max_drop where everything still is: the instance is held where
+            // it was (a stone of a corbelled roof, wedged between its neighbours), never dropped into
+            // the open. Decided once, so drops still only grow from pass to pass.
+            if (mine.empty() && !(limit < max_drop)) bound[i] = 0.0f;
         }
     });
 
@@ -288,7 +301,7 @@ void settleAll(const SettleInput& in, const InstanceStore& store, int threads, S
     std::vector<uint32_t> ids;
     for (size_t t = 0; t < store.tileCount(); ++t) {
         store.tileIds(t, &ids);
-        out->set(store.tileKey(t), std::vector<uint16_t>(drops.begin() + long(i), drops.begin() + long(i + ids.size())));
+        out->append(store.tileKey(t), std::span<const uint16_t>(drops.data() + i, ids.size()));
         i += ids.size();
     }
 }
@@ -321,27 +334,34 @@ void settleUpdate(const SettleInput& in, const InstanceStore& store, std::span<c
     };
     Window w;
     std::vector<uint32_t> ids;
-    struct Span {
-        uint64_t tile;
-        size_t first, count;
-    };
-    std::vector<Span> keep;  // the affected tiles of the window, in store order
+    // Per store tile: -1 keeps its old drops, else where its fresh ones start in the window.
+    std::vector<int64_t> fresh(store.tileCount(), -1);
     for (size_t t = 0; t < store.tileCount(); ++t) {
         const glm::ivec3 coord = unpackTile(store.tileKey(t));
         if (!within(coord, need)) continue;
         store.tileIds(t, &ids);
-        if (within(coord, affect)) keep.push_back({store.tileKey(t), w.id.size(), ids.size()});
+        if (within(coord, affect)) fresh[t] = int64_t(w.id.size());
         for (uint32_t j : ids) addInstance(in, store.tileKey(t), j, &w);
     }
     w.sphere_begin.push_back(uint32_t(w.center.size()));
     const std::vector<uint16_t> result = settleWindow(in, w, threads);
-    // Tiles that lost all their instances are no longer in the store: drop their entries too.
-    for (uint64_t k : changed_tiles)
-        if (store.findTile(k) < 0) drops->erase(k);
-    for (const Span& s : keep) {
-        drops->set(s.tile, std::vector<uint16_t>(result.begin() + long(s.first), result.begin() + long(s.first + s.count)));
-        if (touched) touched->push_back(s.tile);
+    // The new drops in store order: fresh where they may have changed, the old ones elsewhere (a tile
+    // outside the affected set kept its instances and their drops). Tiles the store lost are gone.
+    SettledDrops next;
+    for (size_t t = 0; t < store.tileCount(); ++t) {
+        const uint64_t key = store.tileKey(t);
+        if (fresh[t] >= 0) {
+            store.tileIds(t, &ids);
+            const std::span<const uint16_t> now(result.data() + fresh[t], ids.size());
+            const std::span<const uint16_t> before = drops->tile(key);
+            next.append(key, now);
+            // Only tiles whose drops differ need re-drawing (the changed tiles are added below).
+            if (touched && !std::equal(now.begin(), now.end(), before.begin(), before.end())) touched->push_back(key);
+        } else {
+            next.append(key, drops->tile(key));
+        }
     }
+    *drops = std::move(next);
     if (touched) {
         for (uint64_t k : changed_tiles) touched->push_back(k);
         std::sort(touched->begin(), touched->end());
@@ -359,7 +379,7 @@ void cropToRegion(const InstanceStore& store, const SettledDrops& drops, const G
     for (size_t t = 0; t < store.tileCount(); ++t) {
         const uint64_t key = store.tileKey(t);
         store.tileIds(t, &ids);
-        const std::vector<uint16_t>* d = drops.tile(key);
+        const std::span<const uint16_t> d = drops.tile(key);
         const glm::vec3 origin = tileOrigin(unpackTile(key), tile.settings.tile_size_m);
         kept_ids.clear();
         kept_drops.clear();
@@ -369,10 +389,10 @@ void cropToRegion(const InstanceStore& store, const SettledDrops& drops, const G
                   region.lo.z <= p.z && p.z < region.hi.z))
                 continue;
             kept_ids.push_back(ids[k]);
-            kept_drops.push_back(d && k < d->size() ? (*d)[k] : 0);
+            kept_drops.push_back(k < d.size() ? d[k] : 0);
         }
         out_store->appendTile(key, kept_ids);
-        if (!kept_ids.empty() && d) out_drops->set(key, kept_drops);
+        out_drops->append(key, kept_drops);
     }
 }
 

@@ -11,7 +11,9 @@
 //        drop_k(A) = min(max_drop, clearance to the support, min over pairs (a below-over e) of
 //                        max(0, a.z - (e.z - drop_{k-1}(B)) - sqrt((ra + re + gap)^2 - h^2)))
 //    with h the horizontal distance of the pair (pairs with h >= ra + re + gap never meet), rounded down
-//    to kSettleQuantumM. Each pass reads only the previous one, so the result is the same for any thread
+//    to kSettleQuantumM. An instance with nothing within max_drop below it in the unsettled frames (no
+//    such pair, support farther) is HELD: its drop stays 0 (a corbelled roof's stones are held by their
+//    neighbours; a vertical fall would drop them into the room). Each pass reads only the previous one, so the result is the same for any thread
 //    count and any order; passes stop after `passes` or when nothing moves.
 //  - No two instances end up closer than they were allowed to be: in every pair the upper sphere stops
 //    above where the lower one was in the previous pass, and the lower one only goes down. Drops only
@@ -25,7 +27,6 @@
 #include <cstdint>
 #include <span>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include "field/bounds.h"
@@ -54,22 +55,25 @@ struct SettleInput {
 };
 
 // The drop of every instance of a store, per tile in the store's id order, in kSettleQuantumM units.
+// Flat like the store (sorted tile keys, offsets, drops), so a snapshot copies in three memcpys.
 class SettledDrops {
 public:
-    // The drops of a tile's instances (ascending candidate ids), or null when the tile holds none.
-    const std::vector<uint16_t>* tile(uint64_t tile_key) const {
-        auto it = drops_.find(tile_key);
-        return it == drops_.end() ? nullptr : &it->second;
+    // The drops of a tile's instances (ascending candidate ids); empty when the tile holds none.
+    std::span<const uint16_t> tile(uint64_t tile_key) const;
+    // Building: tiles in ascending key order.
+    void append(uint64_t tile_key, std::span<const uint16_t> drops);
+    void clear();
+    size_t tileCount() const { return keys_.size(); }
+    uint64_t instanceCount() const { return drops_.size(); }
+    uint64_t byteSize() const { return drops_.size() * sizeof(uint16_t); }  // the drops (2 bytes each)
+    bool operator==(const SettledDrops& o) const {
+        return keys_ == o.keys_ && offsets_ == o.offsets_ && drops_ == o.drops_;
     }
-    void set(uint64_t tile_key, std::vector<uint16_t> drops);
-    void erase(uint64_t tile_key) { drops_.erase(tile_key); }
-    void clear() { drops_.clear(); }
-    size_t tileCount() const { return drops_.size(); }
-    uint64_t byteSize() const;  // the drops themselves (2 bytes per instance)
-    bool operator==(const SettledDrops& o) const { return drops_ == o.drops_; }
 
 private:
-    std::unordered_map<uint64_t, std::vector<uint16_t>> drops_;
+    std::vector<uint64_t> keys_;
+    std::vector<uint32_t> offsets_{0};
+    std::vector<uint16_t> drops_;
 };
 
 // Checks the settings (message names the setting) and that models match the tile.
@@ -80,7 +84,7 @@ void settleAll(const SettleInput& input, const InstanceStore& store, int threads
 
 // After the store changed only in `changed_tiles` (what Instantiator::update reports): recomputes the drops
 // that can have changed, exactly: *drops equals settleAll(store) afterwards. `touched` (optional) receives
-// the tiles whose drops were rewritten, ascending (a superset of those that changed).
+// changed_tiles and the tiles whose drops changed, ascending.
 void settleUpdate(const SettleInput& input, const InstanceStore& store, std::span<const uint64_t> changed_tiles,
                   int threads, SettledDrops* drops, std::vector<uint64_t>* touched);
 
@@ -103,9 +107,8 @@ void forEachSettled(const InstanceStore& store, const SettledDrops* drops, F&& f
     std::vector<uint32_t> ids;
     for (size_t t = 0; t < store.tileCount(); ++t) {
         store.tileIds(t, &ids);
-        const std::vector<uint16_t>* d = drops ? drops->tile(store.tileKey(t)) : nullptr;
-        for (size_t k = 0; k < ids.size(); ++k)
-            f(store.tileKey(t), ids[k], d && k < d->size() ? dropMetres((*d)[k]) : 0.0f);
+        const std::span<const uint16_t> d = drops ? drops->tile(store.tileKey(t)) : std::span<const uint16_t>();
+        for (size_t k = 0; k < ids.size(); ++k) f(store.tileKey(t), ids[k], k < d.size() ? dropMetres(d[k]) : 0.0f);
     }
 }
 

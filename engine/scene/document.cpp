@@ -239,7 +239,7 @@ bool Document::load(Project project, const std::string& path, const DocumentOpti
     densities_.clear();
     for (const DetailTypeDesc& t : project_.detail_types) densities_.push_back(editableDensityFor(t.density, &next_id_));
     live_ = std::make_unique<LiveInstancer>(options.threads);
-    live_->reset(instancerInput());
+    live_->reset(instancerInput(), settleInputOf());
     return true;
 }
 
@@ -253,6 +253,10 @@ InstancerInput Document::instancerInput() const {
     in.extent = compiled_.extent;
     in.seed = project_.instantiation_seed;
     return in;
+}
+
+SettleInput Document::settleInputOf() const {
+    return settleInput(project_, terrain_, *assets_.tile, *assets_.models);
 }
 
 // ---- Document: primitives and edits ------------------------------------------------------------------------
@@ -292,7 +296,7 @@ bool Document::commit(const EditEffect& effect, std::string* error) {
         ++tile_generation_;
     }
     if (effect.full || extent_changed) {
-        const uint64_t generation = live_->reset(instancerInput());
+        const uint64_t generation = live_->reset(instancerInput(), settleInputOf());
         if (effect.tile) tile_live_generation_ = generation;
     }
     else if (!effect.types.empty())

@@ -116,6 +116,8 @@ public:
     uint64_t tileLiveGeneration() const { return tile_live_generation_; }
     // What the instantiator runs on now (points into this document).
     InstancerInput instancerInput() const;
+    // The settling pass's input for the current project and assets (settling off when the project says so).
+    SettleInput settleInputOf() const;
 
     // ---- user primitives (edit_commands.h) ----
     // The ids of `type`'s user primitives, in blend order.

@@ -36,7 +36,7 @@ LiveInstancer::~LiveInstancer() {
     worker_.join();
 }
 
-uint64_t LiveInstancer::reset(InstancerInput input) {
+uint64_t LiveInstancer::reset(InstancerInput input, SettleInput settle) {
     uint64_t generation = 0;
     {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -45,6 +45,7 @@ uint64_t LiveInstancer::reset(InstancerInput input) {
         pending_.valid = true;
         pending_.full = true;
         pending_.input = std::move(input);
+        pending_.settle = std::move(settle);
         pending_.generation = generation;
         have_input_ = true;
         // The run in progress is stale: a full run stops early (an update is short and not cancellable).
@@ -143,6 +144,7 @@ void LiveInstancer::run() {
             if (!cancelled) {
                 published_.generation = job.generation;
                 published_.store = last_store_;
+                published_.drops = last_drops_;
                 published_.changed_tiles = sortedUnion(published_.changed_tiles, changed);
                 published_.full = published_.full || full;
                 published_.stats = stats;
@@ -157,10 +159,12 @@ void LiveInstancer::run() {
 
 bool LiveInstancer::runJob(Job& job, InstanceStats* stats, std::vector<uint64_t>* changed, bool* full,
                            std::string* error) {
-    if (job.full)
+    if (job.full) {
         base_ = std::move(job.input);
-    else
+        settle_ = std::move(job.settle);
+    } else {
         base_.types = job.types;
+    }
     const InstanceOptions options{.threads = threads_, .cancel = &cancel_};
     if (!job.full && instantiated_) {
         if (!instantiator_.update(std::move(job.types), job.dirty, options, stats, changed, error)) {
@@ -168,6 +172,7 @@ bool LiveInstancer::runJob(Job& job, InstanceStats* stats, std::vector<uint64_t>
             return false;
         }
         last_store_ = std::make_shared<const InstanceStore>(instantiator_.store());
+        settle(false, changed);
         return true;
     }
     // Full: a reset, or an edit after a failed run. Every tile of the old and new result changed.
@@ -177,13 +182,32 @@ bool LiveInstancer::runJob(Job& job, InstanceStats* stats, std::vector<uint64_t>
     if (base_.extent.empty()) {  // no density anywhere: nothing to instantiate
         last_store_ = std::make_shared<const InstanceStore>();
         *changed = std::move(old_keys);
+        settle(true, changed);
         return true;
     }
     if (!instantiator_.setInput(base_, error) || !instantiator_.instantiateAll(options, stats, error)) return false;
     instantiated_ = true;
     last_store_ = std::make_shared<const InstanceStore>(instantiator_.store());
     *changed = sortedUnion(old_keys, tileKeys(last_store_.get()));
+    settle(true, changed);
     return true;
+}
+
+void LiveInstancer::settle(bool full, std::vector<uint64_t>* changed) {
+    if (!settle_.settings.enabled) {
+        last_drops_.reset();
+        return;
+    }
+    auto drops = std::make_shared<SettledDrops>();
+    if (full || !last_drops_) {
+        settleAll(settle_, *last_store_, threads_, drops.get());
+    } else {
+        *drops = *last_drops_;
+        std::vector<uint64_t> touched;
+        settleUpdate(settle_, *last_store_, *changed, threads_, drops.get(), &touched);
+        *changed = sortedUnion(*changed, touched);
+    }
+    last_drops_ = std::move(drops);
 }
 
 }  // namespace ug

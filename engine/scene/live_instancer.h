@@ -36,6 +36,7 @@
 #include "instancer/instance_store.h"
 #include "instancer/instantiator.h"
 #include "instancer/instancing_settings.h"
+#include "instancer/settling.h"
 
 namespace ug {
 
@@ -43,6 +44,9 @@ struct LiveResult {
     // The submission this result reflects: every submit()/reset() up to this number is in it.
     uint64_t generation = 0;
     std::shared_ptr<const InstanceStore> store;  // never null after a successful poll
+    // The store's settled drops (instancer/settling.h), or null when the input does not settle. Tiles
+    // whose drops changed are in changed_tiles too.
+    std::shared_ptr<const SettledDrops> drops;
     // Packed keys (tile_coord.h) of every tile whose selected set changed since the previous poll,
     // ascending; accumulated over every run in between, so re-uploading these tiles is always enough.
     std::vector<uint64_t> changed_tiles;
@@ -64,7 +68,8 @@ public:
     // A new input (first open, new extent, seed, strategy): instantiates everything. The input's tile and
     // models must outlive this object (or the next reset()). An input with an empty extent (no density
     // anywhere) gives an empty result. Returns the generation.
-    uint64_t reset(InstancerInput input);
+    // `settle` (optional; its tile and models must outlive this object too): settle every result.
+    uint64_t reset(InstancerInput input, SettleInput settle = {});
     // An edit: `types` replaces the settings; their fields changed only inside `dirty`. Requires a
     // previous reset(). Returns the generation.
     uint64_t submit(std::vector<InstanceTypeSettings> types, std::vector<Bounds> dirty);
@@ -85,12 +90,16 @@ private:
         bool valid = false;
         bool full = false;
         InstancerInput input;  // full
+        SettleInput settle;    // full
         std::vector<InstanceTypeSettings> types;
         std::vector<Bounds> dirty;
         uint64_t generation = 0;
     };
     void run();
     bool runJob(Job& job, InstanceStats* stats, std::vector<uint64_t>* changed, bool* full, std::string* error);
+    // After a run changed the store: the drops, fully or in the window around `changed` (which grows by
+    // the tiles whose drops were rewritten).
+    void settle(bool full, std::vector<uint64_t>* changed);
 
     const int threads_;
     mutable std::mutex mutex_;
@@ -112,6 +121,8 @@ private:
     bool instantiated_ = false;
     InstancerInput base_;  // the last reset()'s input with the newest types: a failed update restarts from it
     std::shared_ptr<const InstanceStore> last_store_ = std::make_shared<const InstanceStore>();
+    SettleInput settle_;  // the last reset()'s
+    std::shared_ptr<const SettledDrops> last_drops_;
 
     std::thread worker_;  // last: starts after everything above is constructed
 };

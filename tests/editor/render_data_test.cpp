@@ -93,7 +93,7 @@ TEST(ResidentTiles, RebuildHoldsEveryInstanceOfTheStore) {
     ResidentTiles r;
     TileUploads up;
     std::string error;
-    ASSERT_TRUE(rebuildResidentTiles(store, c, 0.5f, &r, &up, &error)) << error;
+    ASSERT_TRUE(rebuildResidentTiles(store, nullptr, c, 0.5f, 0.0f, &r, &up, &error)) << error;
     EXPECT_EQ(residentContent(r), storeContent(store));
     EXPECT_EQ(r.instances_per_type, (std::vector<uint64_t>{4, 2}));
     EXPECT_TRUE(up.full);
@@ -113,13 +113,13 @@ TEST(ResidentTiles, UpdateRewritesOnlyTheChangedTileInPlace) {
     ResidentTiles r;
     TileUploads up;
     std::string error;
-    ASSERT_TRUE(rebuildResidentTiles(a, c, 0.5f, &r, &up, &error)) << error;
+    ASSERT_TRUE(rebuildResidentTiles(a, nullptr, c, 0.5f, 0.0f, &r, &up, &error)) << error;
     const std::vector<TileSlot> slots_before = r.slot;
     m[{1, 0, 0}] = {0, 3};
     const InstanceStore b = makeStore(m);
     const std::vector<uint64_t> changed = changedKeys(a, b);
     ASSERT_EQ(changed, std::vector<uint64_t>{packTile({1, 0, 0})});
-    ASSERT_TRUE(updateResidentTiles(b, c, changed, &r, &up, &error)) << error;
+    ASSERT_TRUE(updateResidentTiles(b, nullptr, c, changed, &r, &up, &error)) << error;
     EXPECT_EQ(residentContent(r), storeContent(b));
     EXPECT_EQ(r.slot.size(), slots_before.size());
     for (size_t i = 0; i < r.slot.size(); ++i) {
@@ -158,7 +158,7 @@ TEST(ResidentTiles, RandomUpdatesEqualRebuild) {
     ResidentTiles r;
     TileUploads up;
     std::string error;
-    ASSERT_TRUE(rebuildResidentTiles(store, c, 0.5f, &r, &up, &error)) << error;
+    ASSERT_TRUE(rebuildResidentTiles(store, nullptr, c, 0.5f, 0.0f, &r, &up, &error)) << error;
     for (int step = 0; step < 60; ++step) {
         // Edit a 2 x 2 patch: new ids, emptied tiles, new tiles outside the start area.
         const int x0 = int(rng() % 8) - 1, y0 = int(rng() % 8) - 1;
@@ -175,7 +175,7 @@ TEST(ResidentTiles, RandomUpdatesEqualRebuild) {
         std::map<uint64_t, std::vector<TileSlot>> old_slots;
         for (size_t t = 0; t < r.tileCount(); ++t)
             old_slots[r.tile_key[t]].assign(r.slot.begin() + long(t * 2), r.slot.begin() + long(t * 2 + 2));
-        ASSERT_TRUE(updateResidentTiles(next, c, changed, &r, &up, &error)) << error;
+        ASSERT_TRUE(updateResidentTiles(next, nullptr, c, changed, &r, &up, &error)) << error;
         store = next;
         ASSERT_EQ(residentContent(r), storeContent(store)) << "step " << step;
         EXPECT_EQ(up.tiles_uploaded, changed.size());
@@ -215,7 +215,7 @@ TEST(ResidentTiles, RefusesTilesOutsideThePackedRange) {
     ResidentTiles r;
     TileUploads up;
     std::string error;
-    EXPECT_FALSE(rebuildResidentTiles(makeStore(m), c, 0.5f, &r, &up, &error));
+    EXPECT_FALSE(rebuildResidentTiles(makeStore(m), nullptr, c, 0.5f, 0.0f, &r, &up, &error));
     EXPECT_NE(error.find("32768"), std::string::npos) << error;
 }
 
@@ -288,11 +288,11 @@ TEST(IndirectDraws, EveryVisibleInstanceOnceAndCulledTilesAbsent) {
     ResidentTiles r;
     TileUploads up;
     std::string error;
-    ASSERT_TRUE(rebuildResidentTiles(store, c, 0.5f, &r, &up, &error)) << error;
+    ASSERT_TRUE(rebuildResidentTiles(store, nullptr, c, 0.5f, 0.0f, &r, &up, &error)) << error;
     // Then some edits, so slots are no longer in tile order (commands must not merge across gaps).
     for (int k = 0; k < 30; ++k) m[{int(rng() % 40) - 20, int(rng() % 40) - 20, 0}] = {0, 1, 2, 3, 4};
     const InstanceStore edited = makeStore(m);
-    ASSERT_TRUE(updateResidentTiles(edited, c, changedKeys(store, edited), &r, &up, &error)) << error;
+    ASSERT_TRUE(updateResidentTiles(edited, nullptr, c, changedKeys(store, edited), &r, &up, &error)) << error;
 
     ViewParams view;
     view.eye = glm::vec3(0.0f, -3.0f, 1.5f);
@@ -335,6 +335,79 @@ TEST(IndirectDraws, EveryVisibleInstanceOnceAndCulledTilesAbsent) {
     }
     // Merging works: fewer commands than visible (tile, type) ranges.
     EXPECT_LT(d.commandCount(), visible_instances);
+}
+
+}  // namespace
+}  // namespace ug::editor
+
+namespace ug::editor {
+namespace {
+
+TEST(PackedInstance, RoundTripsTheCornersOfItsRangeAndTheDropCode) {
+    const glm::ivec3 tiles[] = {{0, 0, 0},
+                                {kPackedTileLimit, -kPackedTileLimit, kPackedTileZMax},
+                                {-kPackedTileLimit, kPackedTileLimit, kPackedTileZMin},
+                                {-1, -1, -1}};
+    for (const glm::ivec3& t : tiles)
+        for (uint32_t j : {0u, 1u, kPackedCandidateLimit - 1})
+            for (uint32_t code : {0u, 1u, kPackedDropSteps}) {
+                glm::ivec3 t2;
+                uint32_t j2 = 0, code2 = 0;
+                unpackInstance(packInstance(t, j, code), &t2, &j2, &code2);
+                EXPECT_EQ(t2, t);
+                EXPECT_EQ(j2, j);
+                EXPECT_EQ(code2, code);
+            }
+}
+
+TEST(PackedInstance, DropCodesRoundDownToTheStepAndSaturate) {
+    const float unit = packedDropUnit(true, 0.5f);
+    EXPECT_FLOAT_EQ(unit, 0.5f / 127.0f);
+    EXPECT_EQ(packedDropUnit(false, 0.5f), 0.0f);
+    EXPECT_EQ(packedDropCode(0.0f, unit), 0u);
+    EXPECT_EQ(packedDropCode(unit * 0.99f, unit), 0u);  // never drawn lower than the engine settled it
+    EXPECT_EQ(packedDropCode(unit * 3.5f, unit), 3u);
+    EXPECT_EQ(packedDropCode(10.0f, unit), kPackedDropSteps);
+    EXPECT_EQ(packedDropCode(0.3f, 0.0f), 0u);  // settling off
+}
+
+TEST(ResidentTiles, RebuildPacksEachInstancesSettledDrop) {
+    CandidateSet c;
+    c.type_begin = {0, 4};
+    for (int j = 0; j < 4; ++j) {
+        c.type.push_back(0);
+        c.position.push_back(glm::vec3(0.1f * float(j)));
+        c.rotation.push_back(glm::quat(1, 0, 0, 0));
+        c.scale.push_back(1.0f);
+    }
+    InstanceStore store;
+    const std::vector<uint32_t> ids = {0, 2, 3};
+    store.appendTile(packTile({1, 2, -3}), ids);
+    SettledDrops drops;
+    const std::vector<uint16_t> units = {0, 1200, 5000};  // 0, 0.12 m, 0.5 m
+    drops.append(packTile({1, 2, -3}), units);
+    const float unit = packedDropUnit(true, 0.5f);
+    ResidentTiles r;
+    TileUploads up;
+    std::string error;
+    ASSERT_TRUE(rebuildResidentTiles(store, &drops, c, 0.5f, unit, &r, &up, &error)) << error;
+    EXPECT_EQ(r.drop_unit_m, unit);
+    const TileSlot slot = r.slot[0];
+    std::vector<uint32_t> codes;
+    for (uint32_t i = 0; i < 3; ++i) {
+        glm::ivec3 t;
+        uint32_t j = 0, code = 0;
+        unpackInstance(r.types[0].mirror[slot.offset + i], &t, &j, &code);
+        EXPECT_EQ(t, glm::ivec3(1, 2, -3));
+        EXPECT_EQ(j, ids[i]);
+        codes.push_back(code);
+    }
+    EXPECT_EQ(codes, (std::vector<uint32_t>{0u, uint32_t(std::floor(0.12f / unit)), kPackedDropSteps}));
+    // A tile above the packed height is refused with the reason.
+    InstanceStore high;
+    high.appendTile(packTile({0, 0, kPackedTileZMax + 1}), ids);
+    EXPECT_FALSE(rebuildResidentTiles(high, nullptr, c, 0.5f, 0.0f, &r, &up, &error));
+    EXPECT_NE(error.find("packed range"), std::string::npos) << error;
 }
 
 }  // namespace

@@ -49,9 +49,10 @@ bool Renderer::init(const std::string& dir, std::string* error) {
     if (!loadProgram(dir, "sky.vert", "sky.frag", {"u_view_to_world", "u_tan_half_fov", "u_sun_dir"}, &sky_, error) ||
         !loadProgram(dir, "terrain.vert", "lit_surface.frag", with({"u_view_proj", "u_color"}, true), &terrain_, error) ||
         !loadProgram(dir, "instanced_detail.vert", "lit_surface.frag",
-                     with({"u_view_proj", "u_tile_size_m", "u_color"}, true), &detail_, error) ||
+                     with({"u_view_proj", "u_tile_size_m", "u_drop_unit_m", "u_color"}, true), &detail_, error) ||
         !loadProgram(dir, "detail_impostor.vert", "flat_color.frag",
-                     with({"u_view_proj", "u_tile_size_m", "u_color", "u_center", "u_half_size_m", "u_point_scale",
+                     with({"u_view_proj", "u_tile_size_m", "u_drop_unit_m", "u_color", "u_center", "u_half_size_m",
+                           "u_point_scale",
                            "u_to_eye"},
                           true),
                      &impostor_, error) ||
@@ -356,6 +357,7 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
     glUseProgram(detail_.id);
     glUniformMatrix4fv(loc(detail_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
     glUniform1f(loc(detail_, "u_tile_size_m"), tile_size_m_);
+    glUniform1f(loc(detail_, "u_drop_unit_m"), tiles_ ? tiles_->drop_unit_m : 0.0f);
     setLighting(detail_, eye, fog_density);
     // Thin sheets (leaves, blades) are closed but ~1 mm thick: back faces are never the visible side.
     for (size_t i = 0; i < types_.size() && i < draws_.groups.size(); ++i) {
@@ -382,6 +384,7 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
     glUseProgram(impostor_.id);
     glUniformMatrix4fv(loc(impostor_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
     glUniform1f(loc(impostor_, "u_tile_size_m"), tile_size_m_);
+    glUniform1f(loc(impostor_, "u_drop_unit_m"), tiles_ ? tiles_->drop_unit_m : 0.0f);
     glUniform1f(loc(impostor_, "u_point_scale"), 0.5f * float(height) / std::tan(0.5f * cam.fov_y_rad));
     const glm::vec3 to_eye(view[0][2], view[1][2], view[2][2]);
     glUniform3fv(loc(impostor_, "u_to_eye"), 1, glm::value_ptr(to_eye));
