@@ -440,11 +440,12 @@ bool buildGhostTile(const GhostTileInput& input, const BuildOptions& options, Gh
                             const CopyEntry& ce = grid.entries[e];
                             const uint32_t j = ce.key / kOffsetCount, v = ce.key % kOffsetCount;
                             if (j < i || (j == i && v <= kCenterOffset)) continue;
-                            // One tile holds one variant: two variants never meet at offset 0.
-                            if (several_variants && v == kCenterOffset && variant_of[i] != variant_of[j]) continue;
                             const float r = bi.radius + ce.radius + delta_pos;
                             const glm::vec3 d = ce.center - bi.center;
                             if (glm::dot(d, d) > r * r) continue;
+                            // One tile holds one variant: two variants never meet at offset 0. Tested after
+                            // the bounds, on the few pairs that pass them, so one variant pays nothing.
+                            if (several_variants && v == kCenterOffset && variant_of[i] != variant_of[j]) continue;
                             const glm::vec3 shift = glm::vec3(offsetVector(v)) * s;
                             if (sphereSetsCollide(&spheres[sphere_begin[i]], sphere_begin[i + 1] - sphere_begin[i], bi,
                                                   &spheres[sphere_begin[j]], sphere_begin[j + 1] - sphere_begin[j],
