@@ -98,6 +98,19 @@ TEST(InstancerVariants, CountsOnlyTheTestedVariant) {
     EXPECT_EQ(st.candidates_tested, st.culled + st.density_rejected + st.constraint_rejected + st.alive);
 }
 
+TEST(InstancerVariants, MemoryBudgetCountsOneVariantPerTile) {
+    // A tile's state holds at most its variant's candidates: the budget's per-tile bound (named in the
+    // refusal) uses 250, not the 1,000 the Ghost Tile stores.
+    InstancerFixture fx(0.0f, 150, 100, kVariants);
+    setSaturatedFields(fx);
+    Instantiator inst;
+    std::string error;
+    ASSERT_TRUE(inst.setInput(fx.input, &error)) << error;
+    InstanceStats st;
+    EXPECT_FALSE(inst.instantiateAll({.threads = 2, .max_memory_bytes = 64 << 10}, &st, &error));
+    EXPECT_NE(error.find("tiles of 250 candidates"), std::string::npos) << error;
+}
+
 TEST(InstancerVariants, MatchesTheSequentialGreedyReference) {
     for (float delta : {0.0f, 0.15f}) {
         InstancerFixture fx(delta, 150, 100, kVariants);
