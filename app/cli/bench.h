@@ -22,6 +22,8 @@ bool benchGhostTile(const BenchContext& ctx, std::vector<BenchRow>* rows, std::s
 bool benchInstancer(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 // Detail model preparation (sphere fit and anchors) on a 1 M-triangle procedural scan.
 bool benchModels(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
+// Rest, packing and tiling of the sample scenes (pile.*, tiling.*): measurements, not timings.
+bool benchPile(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 // Needs a display (DISPLAY set and a window that opens); without one it adds no rows and prints a note.
 bool benchRender(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 

@@ -33,6 +33,7 @@ int runBenchCommand(int argc, char** argv) {
     const Section sections[] = {{"ghosttile", benchGhostTile},
                                 {"instantiate", benchInstancer},
                                 {"models", benchModels},
+                                {"pile", benchPile},
                                 {"render", benchRender}};
     std::vector<BenchRow> rows;
     for (const Section& s : sections) {

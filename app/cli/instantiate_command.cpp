@@ -1,5 +1,6 @@
 // `undergrowth instantiate SCENE.json -o OUT.glb`: the headless batch job. Loads the scene, instantiates
 // it (or one region of it, for jobs cut across machines), writes glTF and the statistics.
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -10,6 +11,7 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "cli/scene_job.h"
+#include "cli/scene_metrics.h"
 #include "core/atomic_file.h"
 #include "core/hash.h"
 #include "core/parallel.h"
@@ -155,6 +157,8 @@ int runInstantiateCommand(int argc, char** argv) {
     }
 
     const InstancerInput input = instancerInput(job, seed);
+    const SettleInput settle = settleInput(job.project, job.compiled.terrain, job.tile, job.models);
+    if (settle.settings.enabled && !validateSettleInput(settle, &error)) return fail(scene + ": " + error);
     InstanceStats st;
     InstanceStore store;
     int last = -1;
@@ -167,7 +171,12 @@ int runInstantiateCommand(int argc, char** argv) {
     if (has_region) {
         if (overlaps(region, input.extent) == false)
             return fail(scene + ": --region does not overlap the scene extent");
-        ok = instantiateRegion(input, region, options, &store, &st, &error);
+        // Settled drops depend on the selection a little beyond the region: instantiate that much more,
+        // settle, then keep the region's own instances (settling.h, "Locality").
+        const Bounds wide = settle.settings.enabled ? Bounds{region.lo - settleHaloMetres(settle),
+                                                             region.hi + settleHaloMetres(settle)}
+                                                    : region;
+        ok = instantiateRegion(input, wide, options, &store, &st, &error);
     } else {
         Instantiator inst;
         ok = inst.setInput(input, &error) && inst.instantiateAll(options, &st, &error);
@@ -176,10 +185,37 @@ int runInstantiateCommand(int argc, char** argv) {
     if (last >= 0) std::fprintf(stderr, "\n");
     if (!ok) return fail(scene + ": " + error);
 
-    const nlohmann::json stats = instanceStatsJson(job, st, seed, resolveThreadCount(threads), has_region ? &region : nullptr);
+    SettledDrops drops;
+    double settle_seconds = 0.0;
+    if (settle.settings.enabled) {
+        const auto t0 = std::chrono::steady_clock::now();
+        settleAll(settle, store, threads, &drops);
+        if (has_region) {
+            InstanceStore own;
+            SettledDrops own_drops;
+            cropToRegion(store, drops, job.tile, region, &own, &own_drops);
+            store = std::move(own);
+            drops = std::move(own_drops);
+            st.instances = store.instanceCount();
+            st.instances_per_type.assign(job.models.size(), 0);
+            store.forEach([&](uint64_t, uint32_t j) { ++st.instances_per_type[job.tile.candidates.type[j]]; });
+        }
+        settle_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    }
+    nlohmann::json stats = instanceStatsJson(job, st, seed, resolveThreadCount(threads), has_region ? &region : nullptr);
+    if (settle.settings.enabled)
+        stats["settling"] = {{"passes", settle.settings.passes},
+                             {"max_drop_m", settle.settings.max_drop_m},
+                             {"seconds", settle_seconds},
+                             {"bytes", drops.byteSize()}};
+    // The rest, packing and tiling measurements cost about as much as the instantiation: only on request.
+    if (args.has("--stats"))
+        stats["measurements"] =
+            sceneMetricsJson(measureScene(job, store, settle.settings.enabled ? &drops : nullptr, threads));
     InstanceExportOptions export_options;
     export_options.chunk_size_m = chunk > 0.0f ? chunk : job.project.chunk_size_m;
     export_options.use_instancing_extension = !args.has("--plain-nodes");
+    if (settle.settings.enabled) export_options.drops = &drops;
     if (!exportInstancedScene(out, job.tile, job.models, store, job.compiled.terrain.get(), job.compiled.extent,
                               export_options, stats.dump(), &error))
         return fail(error);

@@ -1,6 +1,7 @@
 #include <imgui.h>
 
 #include "editor/panels.h"
+#include "scene/sculpt_pile.h"
 
 namespace ug::editor {
 
@@ -23,7 +24,7 @@ void drawInspector(Document* doc, const std::vector<std::string>& type_names, To
         ImGui::End();
         return;
     }
-    ImGui::Text("%s #%llu (%s)", primitiveKindName(prim.kind), (unsigned long long)s->selected,
+    ImGui::Text("%s #%llu (%s)", isPileCone(prim) ? "pile (cone)" : primitiveKindName(prim.kind), (unsigned long long)s->selected,
                 type < type_names.size() ? type_names[type].c_str() : "?");
     // The widgets edit a copy; the document gets one SetPrimitive when an edit is finished (the drag
     // released, the field left), so a drag is one undo step and the instancer is fed once.

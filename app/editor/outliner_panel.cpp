@@ -9,6 +9,7 @@
 #include <map>
 
 #include "editor/panels.h"
+#include "scene/sculpt_pile.h"
 
 namespace ug::editor {
 
@@ -104,8 +105,9 @@ void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uin
                 const Primitive& p = user[k];
                 ImGui::PushID(static_cast<int>(id));
                 char text[160];
+                // A sculpted pile is one cone however long the brush was held (tools.h): named as such.
                 std::snprintf(text, sizeof(text), "%s #%llu  (%.2f, %.2f, %.2f) r %.2f w %.2f",
-                              primitiveKindName(p.kind), (unsigned long long)id, p.center_m.x, p.center_m.y,
+                              isPileCone(p) ? "pile" : primitiveKindName(p.kind), (unsigned long long)id, p.center_m.x, p.center_m.y,
                               p.center_m.z, p.radius_m, p.weight);
                 if (ImGui::Selectable(text, tools->selected == id)) tools->selected = id;
                 if (ImGui::BeginPopupContextItem()) {

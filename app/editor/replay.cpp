@@ -90,6 +90,7 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             r.steps = a.value("steps", r.steps);
             r.path = a.value("path", std::string());
             r.surface = a.value("surface", std::string());
+            r.from_camera = a.value("from_camera", false);
             r.overlays = a.value("overlays", true);
             r.ui = a.value("ui", false);
             if (a.contains("type")) r.types[a["type"].get<std::string>()] = 1.0f;

@@ -6,6 +6,8 @@
 //    {"action": "paint_stroke", "types": {"rock": 1.0, "pebble": 0.5}, "points": [...]},   a mix
 //    {"action": "sculpt_stroke", "type": "rock", "points": [[x, y], ...], "radius": 0.6, "steps": 10,
 //     "strength": 1.0},
+//    {"action": "sculpt_stroke", ..., "from_camera": true}   the brush's rays come from the camera's eye
+//     through the ground under each point (what the mouse does over that point), not straight down
 //    {"action": "erase_stroke", "type": "rock", "points": [...], "radius": 1.0, "strength": 1.0},
 //    {"action": "paint_stroke", "type": "leaf_oak", "surface": "rock", ...}   paint onto the rock pile
 //    {"action": "undo"}, {"action": "redo"}, {"action": "save"}, {"action": "save_as", "path": "out.json"},
@@ -85,6 +87,7 @@ struct ReplayAction {
     bool subtract = false;
     int steps = 10;        // sculpt, move: frames
     std::string surface;   // strokes: the type whose pile the brush works on ("": the stroke's last type)
+    bool from_camera = false;  // strokes: rays from the camera's eye onto the ground under each point
     std::string path;      // save_as, screenshot
     bool overlays = true;  // screenshot: draw the skeleton overlays
     bool ui = false;       // screenshot: include the panels (read after the UI is drawn)

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "scene/edit_commands.h"
+#include "scene/sculpt_pile.h"
 
 namespace ug::editor {
 
@@ -97,7 +98,27 @@ Ray rayDownOnto(const Document& doc, glm::vec2 xy) {
     return Ray{glm::vec3(xy, top), glm::vec3(0.0f, 0.0f, -1.0f)};
 }
 
+SurfaceHit sculptLanding(const Document& doc, size_t type, const Ray& ray) {
+    const SurfaceHit ground = pickGround(doc, ray);
+    if (!ground.hit) return ground;
+    return pickPile(doc, type, rayDownOnto(doc, glm::vec2(ground.point_m)));
+}
+
+PileMeasure measureSculptedPile(const Document& doc, size_t type, glm::vec2 centre_xy, float search_radius_m,
+                                float cell_m, float top_z) {
+    return measurePile(
+        [&](glm::vec2 xy) {
+            const Ray down{glm::vec3(xy, top_z), glm::vec3(0.0f, 0.0f, -1.0f)};
+            const SurfaceHit pile = pickPile(doc, type, down);
+            if (!pile.hit || !pile.on_pile) return 0.0f;
+            const SurfaceHit ground = pickGround(doc, rayDownOnto(doc, xy));
+            return ground.hit ? pile.point_m.z - ground.point_m.z : 0.0f;
+        },
+        centre_xy, search_radius_m, cell_m);
+}
+
 SurfaceHit BrushStroke::pick(const Ray& ray) const {
+    if (tool_ == ToolKind::Sculpt) return sculptLanding(*doc_, brush_.sculpt_type, ray);
     return pickBrushSurface(*doc_, brush_, ray);
 }
 
@@ -110,6 +131,8 @@ bool BrushStroke::begin(Document* doc, ToolKind tool, const BrushSettings& brush
     stamps_ = 0;
     changed_ = Bounds{};
     points_.clear();
+    pile_ids_.clear();
+    pile_volume_m3_ = 0.0f;
     const char* names[] = {"Select", "Paint", "Sculpt", "Erase"};
     doc_->beginStroke(names[int(tool)]);
     const SurfaceHit hit = pick(ray);
@@ -119,45 +142,69 @@ bool BrushStroke::begin(Document* doc, ToolKind tool, const BrushSettings& brush
 
 bool BrushStroke::drag(const Ray& ray, double now_s, std::string* error) {
     if (!active()) return true;
+    if (tool_ == ToolKind::Sculpt && stamps_ > 0) {
+        // Held still over the same ground point, the cone under it takes more material; the landing is
+        // not picked again, since the growing cone would be under the brush and lift it.
+        const SurfaceHit ground = pickGround(*doc_, ray);
+        if (!ground.hit) return true;
+        const float travel = glm::length(glm::vec2(ground.point_m) - glm::vec2(last_point_));
+        if (travel >= brush_.radius_m / 3.0f) {
+            const SurfaceHit landing = pick(ray);
+            return !landing.hit || stamp(landing, now_s, error);
+        }
+        if (now_s - last_time_s_ >= kSculptHoldInterval_s - 1e-9) return growPile(now_s, error);
+        return true;
+    }
     const SurfaceHit hit = pick(ray);
     if (!hit.hit) return true;
     if (stamps_ == 0) return stamp(hit, now_s, error);
-    const float spacing = brush_.radius_m / 3.0f;
     // Travel over the ground, in XY: growing a pile moves the hit point up without the brush moving.
     const float travel = glm::length(glm::vec2(hit.point_m - last_point_));
-    const bool held = tool_ == ToolKind::Sculpt && now_s - last_time_s_ >= kSculptHoldInterval_s - 1e-9;
-    if (travel < spacing && !held) return true;
-    if (travel >= spacing) return stamp(hit, now_s, error);
-    // Held: the stamp settles away from the brush, but the brush has not moved; travel keeps counting
-    // from where it is.
-    const bool ok = stamp(settle(hit), now_s, error);
-    last_point_ = hit.point_m;
-    return ok;
+    if (travel < brush_.radius_m / 3.0f) return true;
+    return stamp(hit, now_s, error);
 }
 
-SurfaceHit BrushStroke::settle(const SurfaceHit& held) const {
-    // Gravel poured at one spot runs down the sides until the slope is no steeper than its angle of
-    // repose, so a held brush builds a cone instead of a column. Each held stamp lands at the point of a
-    // disc twice the brush radius that minimises height + slope * distance from the brush (the brush
-    // point itself included): the top while the sides are steep enough, else lower down the side.
-    // Points on a golden-angle spiral, turned further every stamp so stamps do not keep choosing the same
-    // few spots; vertical rays from above the brush point.
-    const float r = 2.0f * brush_.radius_m;
-    SurfaceHit best = held;
-    float best_score = held.point_m.z;
-    for (int k = 0; k < kSculptSettleSamples; ++k) {
-        const float a = 2.39996323f * float(k + stamps_ * kSculptSettleSamples);
-        const float d = r * std::sqrt((float(k) + 0.5f) / float(kSculptSettleSamples));
-        const glm::vec2 xy = glm::vec2(held.point_m) + d * glm::vec2(std::cos(a), std::sin(a));
-        const Ray down{glm::vec3(xy, held.point_m.z + r), glm::vec3(0.0f, 0.0f, -1.0f)};
-        const SurfaceHit h = pickPile(*doc_, brush_.sculpt_type, down);
-        const float score = h.point_m.z + kSculptReposeSlope * d;
-        if (h.hit && score < best_score) {
-            best = h;
-            best_score = score;
-        }
-    }
-    return best;
+float BrushStroke::pileWeight() const { return kSculptPileWeight * std::max(1.0f, brush_.strength); }
+
+float BrushStroke::stampVolume() const {
+    return sculptStampVolume(std::max(brush_.radius_m, 1e-3f), std::max(1.0f, brush_.strength), kSculptIso);
+}
+
+float BrushStroke::pileAngleDeg() const {
+    return brush_.sculpt_type < doc_->project().detail_types.size()
+               ? doc_->project().detail_types[brush_.sculpt_type].angle_of_repose_deg
+               : 35.0f;
+}
+
+bool BrushStroke::startPile(const SurfaceHit& landing, double now_s, std::string* error) {
+    pile_base_ = landing.point_m;
+    pile_volume_m3_ = stampVolume();
+    const Primitive prim =
+        pileConePrimitive(pileConeForVolume(pile_base_, pile_volume_m3_, pileAngleDeg()), pileWeight(), kSculptIso);
+    const uint64_t id = doc_->addPrimitive(brush_.sculpt_type, prim, error);
+    if (id == 0) return false;
+    pile_ids_.push_back(id);
+    changed_ = unite(changed_, editBounds(prim));
+    last_point_ = landing.point_m;
+    last_time_s_ = now_s;
+    ++stamps_;
+    points_.push_back(landing.point_m);
+    return true;
+}
+
+bool BrushStroke::growPile(double now_s, std::string* error) {
+    if (pile_ids_.empty()) return true;
+    const float volume = pile_volume_m3_ + stampVolume();
+    const Primitive prim =
+        pileConePrimitive(pileConeForVolume(pile_base_, volume, pileAngleDeg()), pileWeight(), kSculptIso);
+    if (!doc_->setPrimitive(pile_ids_.back(), prim, error)) return false;
+    pile_volume_m3_ = volume;
+    // The cone only grows, so its new support holds the old one.
+    changed_ = unite(changed_, editBounds(prim));
+    last_time_s_ = now_s;
+    ++stamps_;
+    points_.push_back(pile_base_);
+    return true;
 }
 
 void BrushStroke::end() {
@@ -182,9 +229,7 @@ bool BrushStroke::stamp(const SurfaceHit& hit, double now_s, std::string* error)
             }
             break;
         case ToolKind::Sculpt:
-            if (brush_.sculpt_type < types)
-                prims.emplace_back(brush_.sculpt_type,
-                                   makePoint(hit.point_m, r, std::max(1.0f, brush_.strength)));
+            if (brush_.sculpt_type < types) return startPile(hit, now_s, error);
             break;
         case ToolKind::Erase:
             for (size_t i = 0; i < types && i < brush_.type_mix.size(); ++i) {

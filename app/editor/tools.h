@@ -12,12 +12,19 @@
 //   Paint   per painted type i (mix weight m_i > 0): a disc at the surface under the brush (the ground, or
 //           a sculpted pile: pickBrushSurface), normal = the surface normal, disc_radius = brush radius, radius = falloff, weight = strength * m_i
 //           (negative in subtract mode). A stamp every radius / 3 of travel over the ground.
-//   Sculpt  a point (ball) for the sculpt type on the pile's own surface (the f = 0.5 isosurface of the
-//           type's compiled field along the ray) or, where the ray meets none, the ground; radius = brush
-//           radius, weight = max(1, strength) so the ball's core is full (f >= 1). A stamp every radius / 3
-//           of travel, and while the brush is held still every kSculptHoldInterval_s (the pile grows).
-//           A held stamp settles like poured gravel (BrushStroke::settle): it runs down the pile's sides
-//           while they are steeper than kSculptReposeSlope, so holding still grows a cone, not a column.
+//   Sculpt  material poured under the cursor, where it would come to rest whatever the view: the cursor's
+//           ray meets the ground once (pickGround; the pile does not stop it, so a growing pile never
+//           pulls the brush towards the camera), and from above that ground point the brush looks
+//           straight down onto the sculpt type's pile (its f = kSculptIso isosurface) or the ground
+//           (sculptLanding). There the stroke grows ONE cone primitive (scene/sculpt_pile.h): a vertical
+//           Segment whose isosurface is a cone at the type's angle of repose
+//           (DetailTypeDesc::angle_of_repose_deg), holding the material of all its stamps (each the
+//           volume of the old brush's ball, sculptStampVolume; weight kSculptPileWeight * max(1,
+//           strength)). A stamp every radius / 3 of travel over the ground starts a new cone there;
+//           while the brush is held still, every kSculptHoldInterval_s the current cone takes one more
+//           stamp's volume in place (the same primitive, Document::setPrimitive), so a held brush is one
+//           primitive that grows as a cone, selected, moved, deleted and re-weighted as a unit, and the
+//           whole stroke is one undo step. (A dragged stroke leaves one cone per radius / 3 of travel.)
 //   Erase   per painted type: a point at the surface under the brush with weight
 //           -kEraseWeight * strength * m_i, radius = brush radius: it cancels painted and sculpted density (and the file's) under the brush. We chose
 //           negative points over deleting the primitives whose centres are under the brush because it
@@ -33,6 +40,7 @@
 #include "field/bounds.h"
 #include "field/ray_cast.h"
 #include "scene/document.h"
+#include "scene/sculpt_pile.h"
 
 namespace ug::editor {
 
@@ -41,9 +49,13 @@ const char* toolName(ToolKind tool);  // "select", "paint", "sculpt", "erase"
 
 constexpr double kSculptHoldInterval_s = 0.05;
 constexpr float kEraseWeight = 4.0f;
+// A pile's weight per unit of strength. The instancer keeps a candidate with probability min(1, density),
+// so the density's fall from 1 to 0 is a shell of loose, floating objects around the pile: with weight 1
+// the support reaches 2.2 times the isosurface's radius, with 4 only 1.41 times, and the inside is full
+// (f >= 1 inside 86 % of the isosurface's radius). 4 = kEraseWeight: an erase of the same strength
+// cancels a pile's core.
+constexpr float kSculptPileWeight = kEraseWeight;
 constexpr float kSculptIso = 0.5f;
-constexpr int kSculptSettleSamples = 12;
-constexpr float kSculptReposeSlope = 0.7f;  // tan(35 deg): gravel's angle of repose
 
 struct BrushSettings {
     float radius_m = 1.5f;        // > 0
@@ -79,10 +91,21 @@ SurfaceHit pickBrushSurface(const Document& doc, const BrushSettings& brush, con
 // A ray straight down onto world (x, y), from above everything (scripted strokes).
 Ray rayDownOnto(const Document& doc, glm::vec2 xy_m);
 
+// Where the Sculpt brush pours (see above): the ground under the ray, then straight down onto the `type`'s
+// pile there (or the ground). Does not depend on where the ray comes from, only on its ground point.
+SurfaceHit sculptLanding(const Document& doc, size_t type, const Ray& ray);
+
+// The sculpt type's pile around `centre_xy` (scene/sculpt_pile.h measurePile), from vertical columns on a
+// grid of `cell_m` within `search_radius_m`: the pile's surface (from top_z down) above the ground.
+// Replayed strokes report it (viewer.cpp "pile"), so tests judge the shape the user would see.
+PileMeasure measureSculptedPile(const Document& doc, size_t type, glm::vec2 centre_xy, float search_radius_m,
+                                float cell_m, float top_z);
+
 class BrushStroke {
   public:
     bool active() const { return doc_ != nullptr; }
     ToolKind tool() const { return tool_; }
+    size_t sculptType() const { return brush_.sculpt_type; }
     // Begins a stroke (Document::beginStroke) and stamps where the ray meets the surface. False with
     // *error when a stamp fails (the stroke stays open; end() closes it).
     bool begin(Document* doc, ToolKind tool, const BrushSettings& brush, const Ray& ray, double now_s,
@@ -95,13 +118,19 @@ class BrushStroke {
     int stamps() const { return stamps_; }
     // The union of the added primitives' supports (where the fields changed).
     const Bounds& changedBounds() const { return changed_; }
-    // Where each stamp landed (after settling), in order.
+    // Where each stamp landed, in order (sculpt: the base of the cone it grew).
     const std::vector<glm::vec3>& stampPoints() const { return points_; }
+    // Sculpt: the ids of the cones this stroke made (one per spot the brush was held or passed over).
+    const std::vector<uint64_t>& pileIds() const { return pile_ids_; }
 
   private:
     bool stamp(const SurfaceHit& hit, double now_s, std::string* error);
     SurfaceHit pick(const Ray& ray) const;
-    SurfaceHit settle(const SurfaceHit& held) const;
+    float pileWeight() const;   // kSculptPileWeight * max(1, strength)
+    float stampVolume() const;  // one stamp's material: the old brush's ball (weight max(1, strength))
+    float pileAngleDeg() const;  // the sculpt type's angle of repose
+    bool startPile(const SurfaceHit& landing, double now_s, std::string* error);
+    bool growPile(double now_s, std::string* error);
 
     Document* doc_ = nullptr;
     ToolKind tool_ = ToolKind::Paint;
@@ -111,6 +140,10 @@ class BrushStroke {
     int stamps_ = 0;
     Bounds changed_;
     std::vector<glm::vec3> points_;
+    // Sculpt: the cone being grown (pile_ids_.back()), its base and its material so far.
+    std::vector<uint64_t> pile_ids_;
+    glm::vec3 pile_base_{0.0f};
+    float pile_volume_m3_ = 0.0f;
 };
 
 // Select tool, dragging a user primitive: its skeleton follows the cursor on the horizontal plane through

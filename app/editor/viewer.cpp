@@ -19,7 +19,10 @@
 // Panels' actions add: export "ok", "error", "exported_instances", "export_seconds"; open and new "ok",
 // "error", "document" (their "before" is the replaced document's); set_visible "drawn_instances_before"/
 // "_after" (the renderer's instances drawn in the frame before and the frame after); move "id",
-// "from_center", "to_center", "moves"; ghost_tile "ghost_tile" (replay.h).
+// "from_center", "to_center", "moves"; ghost_tile "ghost_tile" (replay.h); sculpt strokes "pile" (pileRecord:
+// the pile's centroid, height, radius and volume around the first stamp's ground point, the cones it left)
+// and "user_primitives_before"/"_after" (the sculpt type's). Mouse sculpt strokes are kept in
+// ViewerResult::sculpt_strokes ("sculpt_strokes"), so a session driven by real input is judged the same way.
 #include "editor/viewer.h"
 
 #include <imgui.h>
@@ -59,6 +62,53 @@ using Clock = std::chrono::steady_clock;
 // How long a frame that made a stamp may wait for its incremental update before rendering.
 constexpr double kStampWaitBudgetMs = 15.0;
 using nlohmann::json;
+
+// A finished sculpt stroke's pile as the user would judge it (tools.h measureSculptedPile), around the
+// ground point of its first stamp, and how many primitives the stroke left (one per cone).
+json pileRecord(const Document& doc, const BrushStroke& st) {
+    const size_t type = st.sculptType();
+    const Bounds& b = st.changedBounds();
+    const glm::vec2 at(st.stampPoints().front());
+    const float search = std::max({b.hi.x - at.x, at.x - b.lo.x, b.hi.y - at.y, at.y - b.lo.y, 0.1f});
+    const PileMeasure m = measureSculptedPile(doc, type, at, search, search / 40.0f, b.hi.z + 0.1f);
+    const float angle =
+        type < doc.project().detail_types.size() ? doc.project().detail_types[type].angle_of_repose_deg : 35.0f;
+    return {{"found", m.found},
+            {"type", type},
+            {"ground_point", {at.x, at.y}},
+            {"centroid", {m.centroid_m.x, m.centroid_m.y}},
+            {"height", m.height_m},
+            {"radius", m.radius_m},
+            {"volume", m.volume_m3},
+            {"angle_of_repose_deg", angle},
+            {"stamps", st.stamps()},
+            {"primitives", st.pileIds().size()},
+            {"ids", st.pileIds()}};
+}
+
+// The pile as its instances show it: the sculpt type's instances whose origin lies within 1.25 pile radii
+// (horizontally) of the ground point: how many, their centroid, and the highest origin above the ground.
+json pileInstancesJson(const Document& doc, const InstanceStore& store, const json& pile) {
+    const size_t type = pile["type"].get<size_t>();
+    const glm::vec2 at(pile["ground_point"][0].get<float>(), pile["ground_point"][1].get<float>());
+    const float reach = 1.25f * pile["radius"].get<float>();
+    const CandidateSet& c = doc.ghostTile().candidates;
+    const float s = doc.ghostTile().settings.tile_size_m;
+    uint64_t count = 0;
+    glm::dvec2 sum(0.0);
+    float top = 0.0f;
+    store.forEach([&](uint64_t key, uint32_t id) {
+        if (c.type[id] != type) return;
+        const glm::vec3 o = tileOrigin(unpackTile(key), s) + c.position[id];
+        if (glm::length(glm::vec2(o) - at) > reach) return;
+        ++count;
+        sum += glm::dvec2(o.x, o.y);
+        const SurfaceHit ground = pickGround(doc, rayDownOnto(doc, glm::vec2(o)));
+        if (ground.hit) top = std::max(top, o.z - ground.point_m.z);
+    });
+    const glm::dvec2 centre = count ? sum / double(count) : glm::dvec2(at);
+    return {{"count", count}, {"centroid", {centre.x, centre.y}}, {"top", top}};
+}
 
 bool writeScreenshot(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba,
                      std::string* error) {
@@ -615,7 +665,10 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                         pending_stamps.push_back({doc->live().generation(), Clock::now(), -1});
                 }
             } else {
-                const SurfaceHit hit = pickBrushSurface(*doc, tools.brush, ray);
+                // The marker shows where the brush works: for Sculpt, where the material lands.
+                const SurfaceHit hit = tools.tool == ToolKind::Sculpt
+                                           ? sculptLanding(*doc, tools.brush.sculpt_type, ray)
+                                           : pickBrushSurface(*doc, tools.brush, ray);
                 if (hit.hit && mouse_free) addBrushMarker(*doc, hit.point_m, tools.brush.radius_m, &markers);
                 const int before = stroke.stamps();
                 std::string stroke_error;
@@ -628,7 +681,12 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 if (stroke.stamps() > before)
                     pending_stamps.push_back({doc->live().generation(), Clock::now(), -1});
             }
-            if (stroke.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) stroke.end();
+            if (stroke.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+                // The statistics keep each mouse sculpt stroke's pile (tests drive the mouse with xdotool).
+                if (stroke.tool() == ToolKind::Sculpt && !stroke.stampPoints().empty() && !options.stats_path.empty())
+                    result->sculpt_strokes.push_back(pileRecord(*doc, stroke));
+                stroke.end();
+            }
             if (move_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) move_drag.end();
         }
 
@@ -782,6 +840,10 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             box.hi += grow;
             replay.record["box"] = {{"min", {box.lo.x, box.lo.y, box.lo.z}}, {"max", {box.hi.x, box.hi.y, box.hi.z}}};
         };
+        auto recordPile = [&](const BrushStroke& st) {
+            replay.record["pile"] = pileRecord(*doc, st);
+            replay.record["user_primitives_after"] = doc->primitiveIds(st.sculptType()).size();
+        };
         // A type named by the script, or kNoType with *error set (the run fails: the script is wrong).
         constexpr size_t kNoType = SIZE_MAX;
         auto replayType = [&](const std::string& name) -> size_t {
@@ -789,6 +851,16 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             if (it != view.type_names.end()) return size_t(it - view.type_names.begin());
             *error = "replay: action " + std::to_string(replay.index) + ": no detail type '" + name + "'";
             return kNoType;
+        };
+        // A replayed brush's ray: straight down onto the point, or ("from_camera") the ray the mouse over
+        // that point's ground would cast from the current view.
+        auto strokeRay = [&](const ReplayAction& a, glm::vec2 xy) {
+            const Ray down = rayDownOnto(*doc, xy);
+            if (!a.from_camera) return down;
+            const SurfaceHit ground = pickGround(*doc, down);
+            const glm::vec3 eye = camera.eye();
+            const glm::vec3 to = ground.hit ? ground.point_m : glm::vec3(xy, 0.0f);
+            return Ray{eye, glm::normalize(to - eye)};
         };
         if (doc && have_result && replay.index < options.replay.size() && !replay.finishing) {
             const ReplayAction& a = options.replay[replay.index];
@@ -835,9 +907,11 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                     const ToolKind tool = a.kind == ReplayKind::PaintStroke    ? ToolKind::Paint
                                           : a.kind == ReplayKind::SculptStroke ? ToolKind::Sculpt
                                                                                : ToolKind::Erase;
+                    if (tool == ToolKind::Sculpt && brush.sculpt_type < view.type_names.size())
+                        replay.record["user_primitives_before"] = doc->primitiveIds(brush.sculpt_type).size();
                     replay.path = strokePath(a);
                     replay.step = 0;
-                    if (!stroke.begin(doc, tool, brush, rayDownOnto(*doc, replay.path[0]), 0.0, &op_error))
+                    if (!stroke.begin(doc, tool, brush, strokeRay(a, replay.path[0]), 0.0, &op_error))
                         messages.push_back(op_error);
                     if (stroke.stamps() > 0)
                         pending_stamps.push_back({doc->live().generation(), Clock::now(), int(replay.index)});
@@ -995,7 +1069,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 // sculpt stroke stamps at every step, whatever the frame rate.
                 const int before = stroke.stamps();
                 if (replay.step < replay.path.size() &&
-                    !stroke.drag(rayDownOnto(*doc, replay.path[replay.step]),
+                    !stroke.drag(strokeRay(a, replay.path[replay.step]),
                                  double(replay.step) * kSculptHoldInterval_s, &op_error))
                     messages.push_back(op_error);
                 if (stroke.stamps() > before)
@@ -1005,6 +1079,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                     json points = json::array();
                     for (const glm::vec3& p : stroke.stampPoints()) points.push_back({p.x, p.y, p.z});
                     replay.record["stamp_points"] = points;
+                    if (stroke.tool() == ToolKind::Sculpt && !stroke.stampPoints().empty())
+                        recordPile(stroke);
                     recordChangeBox(stroke.changedBounds());
                     stroke.end();
                     replay.finishing = true;
@@ -1128,6 +1204,10 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 r["ok"] = load_error.empty();
                 if (!load_error.empty()) r["error"] = load_error;
                 r["document"] = d.path();
+            }
+            if (r.contains("pile")) {
+                r["pile"]["instances"] = pileInstancesJson(d, *store, r["pile"]);
+                r["pile"]["instances_before"] = pileInstancesJson(d, before, r["pile"]);
             }
             if (r.contains("box")) {
                 auto corner = [&](const char* key) {
@@ -1259,6 +1339,7 @@ json viewerStatsJson(const ViewerResult& r, const LodSettings& lod) {
         {"stamp_to_frame_ms_p95", percentile(r.stamp_to_frame_ms, 0.95)},
         {"repack_ms_max", r.repack_ms_max},
         {"actions", r.actions},
+        {"sculpt_strokes", r.sculpt_strokes},
         {"messages", r.messages}};
 }
 

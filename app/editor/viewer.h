@@ -83,6 +83,8 @@ struct ViewerResult {
     double repack_ms_max = 0.0;             // the slowest CPU re-pack of a live result's tiles for the GPU
     double tile_update_ms_max = 0.0;  // the slowest incremental one (changed tiles re-packed and uploaded)
     nlohmann::json actions = nlohmann::json::array();  // per replay action (viewer.cpp, "Statistics")
+    // Mouse sculpt strokes, in order: each one's pile (viewer.cpp pileRecord) measured as it was released.
+    nlohmann::json sculpt_strokes = nlohmann::json::array();
     std::vector<std::string> messages;      // errors shown in the UI
 };
 

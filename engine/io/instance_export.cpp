@@ -5,10 +5,11 @@
 
 namespace ug {
 
-InstanceTransform instanceTransform(const GhostTile& tile, uint64_t tile_key, uint32_t j) {
+InstanceTransform instanceTransform(const GhostTile& tile, uint64_t tile_key, uint32_t j, float drop_m) {
     const CandidateSet& c = tile.candidates;
     InstanceTransform t;
     t.position = tileOrigin(unpackTile(tile_key), tile.settings.tile_size_m) + c.position[j];
+    t.position.z -= drop_m;
     t.rotation = c.rotation[j];
     t.scale = c.scale[j];
     return t;
@@ -39,9 +40,9 @@ bool exportInstancedScene(const std::string& path, const GhostTile& tile, const 
     const uint64_t total = store.instanceCount();
     uint64_t done = 0;
     bool cancelled = false;
-    store.forEach([&](uint64_t key, uint32_t j) {
+    forEachSettled(store, options.drops, [&](uint64_t key, uint32_t j, float drop_m) {
         if (cancelled) return;
-        scene.types[c.type[j]].instances.push_back(instanceTransform(tile, key, j));
+        scene.types[c.type[j]].instances.push_back(instanceTransform(tile, key, j, drop_m));
         if (options.progress && (++done & 0x3fff) == 0)
             cancelled = !options.progress(0.8f * float(done) / float(total));
     });

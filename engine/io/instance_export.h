@@ -11,6 +11,7 @@
 #include "field/height_field.h"
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instance_store.h"
+#include "instancer/settling.h"
 #include "io/gltf_scene_export.h"
 #include "mesh/detail_model.h"
 
@@ -25,10 +26,13 @@ struct InstanceExportOptions {
     // anything is written (error "<path>: cancelled"). The final write (writeSceneGltf) is one atomic step
     // and reports no progress.
     std::function<bool(float fraction)> progress;
+    // Settled drops of the store's instances (instancer/settling.h), or null: instances where their
+    // candidates are.
+    const SettledDrops* drops = nullptr;
 };
 
-// The world frame of candidate j in the tile with packed key tile_key.
-InstanceTransform instanceTransform(const GhostTile& tile, uint64_t tile_key, uint32_t j);
+// The world frame of candidate j in the tile with packed key tile_key, lowered by its settled drop.
+InstanceTransform instanceTransform(const GhostTile& tile, uint64_t tile_key, uint32_t j, float drop_m = 0.0f);
 
 // `terrain` may be null. `stats_json` is a JSON object stored in the scene's extras.
 bool exportInstancedScene(const std::string& path, const GhostTile& tile, const std::vector<DetailModel>& models,

@@ -343,7 +343,7 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
                                              std::to_string(kProjectFormatVersion) + "); update Undergrowth");
     if (!versionedKeys(r, doc, "", version,
                        {"format", "format_version", "name", "ghost_tile", "detail_types"},
-                       {"terrain", "extent", "instantiation"}))
+                       {"terrain", "extent", "instantiation", "settling"}))
         return false;
     Project p;
     p.source = source_name;
@@ -381,6 +381,19 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
             !positiveNumber(r, *it, "/instantiation", "chunk_size_m", &p.chunk_size_m, 1e6))
             return false;
     }
+    if (auto it = doc.find("settling"); it != doc.end()) {
+        SettleSettings& st = p.settling.settle;
+        st.enabled = true;  // the object's presence switches it on unless it says otherwise
+        float ground = 0.0f;
+        if (!r.expectObject(*it, "/settling") ||
+            !r.onlyKeys(*it, "/settling", {"enabled", "passes", "max_drop_m", "ground_z"}) ||
+            !r.boolean(*it, "/settling", "enabled", &st.enabled) ||
+            !r.integer(*it, "/settling", "passes", &st.passes, 1, kMaxSettlePasses) ||
+            !r.number(*it, "/settling", "max_drop_m", &st.max_drop_m, 0.0, kMaxSettleDropM) ||
+            !r.number(*it, "/settling", "ground_z", &ground, -1e6, 1e6))
+            return false;
+        if (it->contains("ground_z")) p.settling.ground_z = ground;
+    }
     if (!r.require(doc, "", "detail_types")) return false;
     const json& types = doc["detail_types"];
     if (!r.expectArray(types, "/detail_types")) return false;
@@ -396,7 +409,7 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
         const json& jt = types[t];
         if (!r.expectObject(jt, tp) ||
             !versionedKeys(r, jt, tp, version, {"name", "model", "candidates"},
-                           {"density", "subtract_terrain", "terrain_falloff_m", "instancing"}))
+                           {"density", "subtract_terrain", "terrain_falloff_m", "angle_of_repose_deg", "instancing"}))
             return false;
         DetailTypeDesc d;
         if (!r.string(jt, tp, "name", &d.model.name, true)) return false;
@@ -425,7 +438,8 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
             it != jt.end() && !readDensityField(r, *it, tp + "/density", has_terrain, &d.density))
             return false;
         if (!r.boolean(jt, tp, "subtract_terrain", &d.subtract_terrain) ||
-            !positiveNumber(r, jt, tp, "terrain_falloff_m", &d.terrain_falloff_m, 100.0))
+            !positiveNumber(r, jt, tp, "terrain_falloff_m", &d.terrain_falloff_m, 100.0) ||
+            !positiveNumber(r, jt, tp, "angle_of_repose_deg", &d.angle_of_repose_deg, 89.0))
             return false;
         if (auto it = jt.find("instancing");
             it != jt.end() && !readInstancing(r, *it, tp + "/instancing", has_terrain, &d.instancing))
@@ -581,6 +595,11 @@ std::string projectToJson(const Project& project) {
         doc["extent"] = {{"min", vec3Json(project.extent->lo)}, {"max", vec3Json(project.extent->hi)}};
     doc["instantiation"] = {{"seed", project.instantiation_seed},
                             {"chunk_size_m", jsonFloat(project.chunk_size_m)}};
+    const SettleSettings& st = project.settling.settle;
+    if (st.enabled || project.settling.ground_z) {
+        doc["settling"] = {{"enabled", st.enabled}, {"passes", st.passes}, {"max_drop_m", jsonFloat(st.max_drop_m)}};
+        if (project.settling.ground_z) doc["settling"]["ground_z"] = jsonFloat(*project.settling.ground_z);
+    }
     json types = json::array();
     for (const DetailTypeDesc& d : project.detail_types) {
         json model = {
@@ -621,6 +640,7 @@ std::string projectToJson(const Project& project) {
                        {"position", d.ghost.position == PositionMode::Jittered ? "jittered" : "uniform"}}},
                      {"subtract_terrain", d.subtract_terrain},
                      {"terrain_falloff_m", jsonFloat(d.terrain_falloff_m)},
+                     {"angle_of_repose_deg", jsonFloat(d.angle_of_repose_deg)},
                      {"instancing", instancingJson(d.instancing)}};
         if (d.density.root != kNoNode) type["density"] = densityFieldToJson(d.density);
         types.push_back(std::move(type));

@@ -17,6 +17,8 @@
 //    "extent": {"min": [x, y, z], "max": [x, y, z]},             (optional: derived when absent, see
 //                                                                 computeSceneExtent)
 //    "instantiation": {"seed": 1, "chunk_size_m": 8},            (optional; chunk: export chunking, > 0)
+//    "settling": {"enabled": true, "passes": 8, "max_drop_m": 0.5,  (optional; instancer/settling.h;
+//                 "ground_z": 0},                                    ground_z: the plane without a terrain)
 //    "detail_types": [{
 //        "name": "grass_tuft",
 //        "model": {"mesh": "../models/grass_tuft.glb", "scale", "y_up", "spheres", "anchors"},
@@ -24,6 +26,8 @@
 //        "density": <field node>,        (optional, default: 0 everywhere; grammar in field_json.h)
 //        "subtract_terrain": true,       (optional: remove the ground solid so details never sink; only
 //        "terrain_falloff_m": 0.05,       acts when the project has a terrain; falloff > 0)
+//        "angle_of_repose_deg": 35,      (optional: the steepest slope a sculpted pile of this type keeps,
+//                                         in (0, 89]; the sculpt brush grows cones this steep, tools.h)
 //        "instancing": {                 (optional)
 //            "strategy": "random" | "elevation" | "distance_to_boundary",   (default random)
 //            "layer_m": 0.02,                                                (> 0)
@@ -49,6 +53,7 @@
 #include "field/height_field.h"
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instancing_settings.h"
+#include "instancer/settling.h"
 #include "mesh/detail_model.h"
 
 namespace ug {
@@ -97,6 +102,9 @@ struct DetailTypeDesc {
     DensityField density;
     bool subtract_terrain = true;     // only acts when the project has a terrain
     float terrain_falloff_m = 0.05f;  // depth over which the ground solid reaches full weight, > 0
+    // The sculpt brush's piles of this type keep this slope (loose gravel ~35 deg), in (0, 89]: a vertical
+    // pile (90) has no cone, and the tangent grows without bound.
+    float angle_of_repose_deg = 35.0f;
     InstancingDesc instancing;
 };
 
@@ -109,9 +117,17 @@ struct TerrainDesc {
     std::string image_path;            // kind == Image: a PNG, as written (relative to the project file)
 };
 
+// Settling (instancer/settling.h) as the project sets it; the support is the terrain, or without one the
+// plane z = ground_z when given.
+struct SettlingDesc {
+    SettleSettings settle;                 // enabled false: instances stay where their candidates are
+    std::optional<float> ground_z;         // only without a terrain; absent: no ground plane
+};
+
 struct Project {
     std::string name;
     GhostTileSettings ghost_tile;
+    SettlingDesc settling;
     TerrainDesc terrain;
     std::optional<Bounds> extent;  // finite, lo < hi on every axis; absent: derived (computeSceneExtent)
     uint64_t instantiation_seed = 1;

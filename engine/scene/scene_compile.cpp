@@ -5,6 +5,8 @@
 // tree and the terrain").
 #include "scene/scene_compile.h"
 
+#include <limits>
+
 #include <algorithm>
 #include <cmath>
 #include <numbers>
@@ -215,6 +217,17 @@ bool compileScene(const Project& project, std::shared_ptr<const HeightField> ter
                         std::string("required because the derived extent is flat along ") + "xyz"[a]);
     *out = std::move(scene);
     return true;
+}
+
+SettleInput settleInput(const Project& project, const std::shared_ptr<const HeightField>& terrain,
+                        const GhostTile& tile, const std::vector<DetailModel>& models) {
+    SettleInput in;
+    in.tile = &tile;
+    for (const DetailModel& m : models) in.models.push_back(&m);
+    in.settings = project.settling.settle;
+    in.support.terrain = terrain.get();
+    in.support.ground_z = project.settling.ground_z ? *project.settling.ground_z : -std::numeric_limits<float>::infinity();
+    return in;
 }
 
 }  // namespace ug

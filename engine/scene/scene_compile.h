@@ -23,7 +23,9 @@
 
 #include "field/bounds.h"
 #include "field/height_field.h"
+#include "ghosttile/ghost_tile.h"
 #include "instancer/instancing_settings.h"
+#include "instancer/settling.h"
 #include "scene/project.h"
 
 namespace ug {
@@ -69,5 +71,11 @@ bool compileDetailType(const Project& project, size_t type_index,
 // The result may be empty (no density anywhere) or infinite (a field unbounded without a terrain to clip
 // it): compileScene reports both.
 Bounds computeSceneExtent(const Project& project, const CompiledScene& scene);
+
+// The settling pass's input for the project (instancer/settling.h): the project's settings, the terrain
+// as support (or the ground plane when the project gives ground_z, or none), `tile` and `models` (one per
+// type; kept by pointer, so they must outlive the result).
+SettleInput settleInput(const Project& project, const std::shared_ptr<const HeightField>& terrain,
+                        const GhostTile& tile, const std::vector<DetailModel>& models);
 
 }  // namespace ug

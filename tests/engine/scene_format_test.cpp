@@ -48,6 +48,7 @@ const char* kEverything = R"({
     {"name": "b", "model": {"mesh": "../models/leaf_oak.glb"},
      "density": {"point": {"center": [0, 0, 0], "radius": 2}},
      "terrain_falloff_m": 0.1,
+     "angle_of_repose_deg": 42.5,
      "instancing": {"strategy": "distance_to_boundary",
                     "orientation": {"direction": "gradient", "max_angle_deg": 180},
                     "size": {"target": {"field": {"blend": [{"point": {"center": [1, 0, 0], "radius": 1}},
@@ -121,6 +122,7 @@ void expectSameProject(const Project& a, const Project& b) {
         EXPECT_TRUE(sameStructure(da.density, db.density));
         EXPECT_EQ(da.subtract_terrain, db.subtract_terrain);
         EXPECT_EQ(da.terrain_falloff_m, db.terrain_falloff_m);
+        EXPECT_EQ(da.angle_of_repose_deg, db.angle_of_repose_deg);
         const InstancingDesc &x = da.instancing, &y = db.instancing;
         EXPECT_EQ(x.strategy, y.strategy);
         EXPECT_EQ(x.layer_m, y.layer_m);
@@ -181,6 +183,7 @@ TEST(SceneFormat, ParsesTheSettings) {
     EXPECT_EQ(a.instancing.size.tolerance, 0.1f);
     EXPECT_TRUE(a.subtract_terrain);  // the default with a terrain
     EXPECT_EQ(a.terrain_falloff_m, 0.05f);
+    EXPECT_EQ(a.angle_of_repose_deg, 35.0f);  // the default: loose gravel
 
     EXPECT_EQ(b.instancing.strategy, PriorityStrategy::DistanceToBoundary);
     EXPECT_EQ(b.instancing.layer_m, 0.02f);
@@ -192,6 +195,7 @@ TEST(SceneFormat, ParsesTheSettings) {
     EXPECT_EQ(b.instancing.size.scale_hi, 0.7f);
     EXPECT_EQ(b.instancing.size.tolerance, 0.0f);
     EXPECT_EQ(b.terrain_falloff_m, 0.1f);
+    EXPECT_EQ(b.angle_of_repose_deg, 42.5f);
 
     EXPECT_EQ(c.instancing.strategy, PriorityStrategy::Random);
     EXPECT_FALSE(c.instancing.orientation.enabled);
@@ -370,6 +374,10 @@ TEST(SceneFormat, ErrorsNameThePlaceAndTheReason) {
         {type(R"("subtract_terrain": "yes")"),
          "/detail_types/0/subtract_terrain: expected true or false, got a string"},
         {type(R"("terrain_falloff_m": 0)"), "/detail_types/0/terrain_falloff_m: must be > 0"},
+        {type(R"("angle_of_repose_deg": 0)"), "/detail_types/0/angle_of_repose_deg: must be > 0"},
+        {type(R"("angle_of_repose_deg": 90)"), "/detail_types/0/angle_of_repose_deg: 90 is out of range [0, 89]"},
+        {type(R"("angle_of_repose_deg": "steep")"),
+         "/detail_types/0/angle_of_repose_deg: expected a number, got a string"},
         {type(R"("instancing": {"strategy": "lowest"})"),
          "/detail_types/0/instancing/strategy: unknown strategy 'lowest' (random, elevation, "
          "distance_to_boundary)"},

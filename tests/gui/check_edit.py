@@ -7,9 +7,11 @@ usage: check_edit.py strokes STATS.json CLI_STATS.json     paint, sculpt, undo/r
        check_edit.py recovered PRE_KILL_STATS.json RECOVERED_STATS.json
        check_edit.py move STATS.json CLI_STATS.json           a painted disc dragged with the Select tool
        check_edit.py pile_paint STATS.json                    a held sculpt brush, paint onto the pile
+       check_edit.py piles STATS.json CLI_STATS.json ORIGINAL.json SAVED.json   held sculpt from three views
        check_edit.py driven ORIGINAL.json SAVED.json STATS.json CLI_STATS.json WORKDIR   driven_session.sh
 """
 import json
+import math
 import os
 import sys
 
@@ -145,6 +147,50 @@ def move(stats_path, cli_path):
           "back; saved file = CLI" % (mv["moves"], before, after))
 
 
+def cones(node):
+    """Sculpted piles in a saved density tree: vertical segments narrowing upwards (sculpt_pile.h). A
+    polyline is saved as segments too, so "segment" alone does not tell them apart."""
+    if isinstance(node, dict):
+        seg = node.get("segment")
+        found = 1 if (isinstance(seg, dict) and seg["a"][:2] == seg["b"][:2] and seg["b"][2] > seg["a"][2]
+                      and seg.get("end_radius", seg["radius"]) < seg["radius"]) else 0
+        return found + sum(cones(v) for v in node.values())
+    if isinstance(node, list):
+        return sum(cones(v) for v in node)
+    return 0
+
+
+def check_pile(a, xy, label, tolerance=0.2):
+    """A sculpt stroke's pile (viewer.cpp "pile", measured from the rock field's isosurface above the ground):
+    centred on the brush's ground point, as steep as the type's angle of repose, one primitive."""
+    pile = a["pile"]
+    assert pile["found"], (label, "no pile", pile)
+    off = math.hypot(pile["centroid"][0] - xy[0], pile["centroid"][1] - xy[1])
+    assert off < tolerance, (label, "pile centre %.3f m from the brush's ground point" % off, pile)
+    want = math.tan(math.radians(pile["angle_of_repose_deg"]))
+    ratio = pile["height"] / pile["radius"]
+    assert abs(ratio / want - 1.0) <= 0.25, (label, "height / radius %.3f, tan(repose) %.3f" % (ratio, want), pile)
+    # One unit: the stroke left one primitive (a cone grown in place), however many stamps it took.
+    assert pile["primitives"] == 1, (label, pile)
+    assert a["user_primitives_after"] - a["user_primitives_before"] == 1, (label, a["user_primitives_before"],
+                                                                          a["user_primitives_after"])
+    text = "%s: %d stamps -> 1 primitive, centre %.3f m off, h %.2f r %.2f h/r %.3f (tan %g = %.3f)" % (
+        label, a["stamps"], off, pile["height"], pile["radius"], ratio, pile["angle_of_repose_deg"], want)
+    if "instances" in pile:
+        # The rocks the pile made (none stood there before) sit on the same cone: centred on the ground
+        # point (the slopes' downhill pull of a cone's volume reaches 0.19 m here, hence 0.25 m), and the
+        # highest one about tan(repose) radii up.
+        inst, before = pile["instances"], pile["instances_before"]
+        assert before["count"] == 0 and inst["count"] > 30, (label, before, inst)
+        ioff = math.hypot(inst["centroid"][0] - xy[0], inst["centroid"][1] - xy[1])
+        assert ioff < max(tolerance, 0.25), (label, "the rocks' centre is %.3f m off" % ioff, inst)
+        itop = inst["top"] / pile["radius"]
+        assert abs(itop / want - 1.0) <= 0.25, (label, "highest rock / radius %.3f" % itop, inst)
+        text += "; %d rocks, their centre %.3f m off, the highest %.2f m up (%.3f radii)" % (
+            inst["count"], ioff, inst["top"], itop)
+    return text
+
+
 def pile_paint(stats_path):
     s = json.load(open(stats_path))
     sculpt = actions(s, "sculpt_stroke")[0]
@@ -152,20 +198,58 @@ def pile_paint(stats_path):
     pts = sculpt["stamp_points"]
     assert len(pts) == sculpt["stamps"] == 20, (len(pts), sculpt["stamps"])
     ground_z = pts[0][2]
-    # Held still, the brush builds a cone: stamps spread sideways (up to twice the radius) as well as up,
-    # and the top stays below what a column of 20 half-radius steps would reach.
-    spread = max(((p[0] + 6) ** 2 + (p[1] + 10) ** 2) ** 0.5 for p in pts)
-    top = max(p[2] for p in pts) - ground_z
-    assert 0.3 < spread <= 1.0 + 1e-3, ("held stamps should spread over the 2r disc", spread)
-    assert 0.3 < top < 2.5, ("pile height", top)
+    # Held still, every stamp feeds the same cone at the brush's ground point.
+    assert all(p == pts[0] for p in pts), ("held stamps should all land at the brush", pts)
+    out = check_pile(sculpt, (-6, -10), "held from above")
+    top = sculpt["pile"]["height"]
     # Paint with the pile as surface lands on the pile's top; without, on the ground under it.
     zp, zg = on_pile["stamp_points"][0][2], on_ground["stamp_points"][0][2]
     assert zp > ground_z + 0.3 and abs(zg - ground_z) < 0.05, (zp, zg, ground_z)
+    assert abs(zp - ground_z - top) < 0.1, ("paint should land on the pile's top", zp - ground_z, top)
     assert on_pile["inside_after"]["leaf_oak"] > on_pile["inside_before"]["leaf_oak"], on_pile
     assert on_pile["outside_before"] == on_pile["outside_after"], on_pile
-    print("pile %.2f m high, stamps spread %.2f m; paint lands %.2f m up on the pile (ground %.2f), leaves %d -> %d" % (
-        top, spread, zp - ground_z, zg - ground_z, on_pile["inside_before"]["leaf_oak"],
-        on_pile["inside_after"]["leaf_oak"]))
+    print("%s; paint lands %.2f m up on the pile (ground %.2f), leaves %d -> %d" % (
+        out, zp - ground_z, zg - ground_z, on_pile["inside_before"]["leaf_oak"], on_pile["inside_after"]["leaf_oak"]))
+
+
+def piles(stats_path, cli_path, original_path, saved_path):
+    """Held sculpt strokes from an oblique, a side and a top view (rays from the camera, replay.h
+    "from_camera"): the same cone under the brush from every view; one undo step; moved as a unit; saved."""
+    s = json.load(open(stats_path))
+    out = []
+    sculpts = actions(s, "sculpt_stroke")
+    assert len(sculpts) == 3, len(sculpts)
+    for a, xy, label in zip(sculpts, ((-6, -10), (3, -12), (-12, 4)), ("oblique", "side", "top")):
+        assert a["stamps"] == 40, (label, a["stamps"])
+        out.append(check_pile(a, xy, label))
+    heights = [a["pile"]["height"] for a in sculpts]
+    assert max(heights) < 1.2 * min(heights), ("the view changed the pile", heights)
+    # One undo step takes the whole stroke away (the exact set before it), redo brings it back.
+    undo, redo = actions(s, "undo")[0], actions(s, "redo")[0]
+    assert undo["ok"] and undo["instance_store_hash_after"] == sculpts[0]["instance_store_hash_before"], undo
+    assert undo["per_type_after"] == sculpts[0]["per_type_before"], undo
+    assert redo["ok"] and redo["instance_store_hash_after"] == sculpts[0]["instance_store_hash_after"], redo
+    out.append("one undo removes the whole %d-stamp stroke (exact set), redo restores it" % sculpts[0]["stamps"])
+    # The side pile moved by the Select tool as one primitive: its rocks go with it.
+    mv = actions(s, "move")[0]
+    assert mv["id"] in sculpts[1]["pile"]["ids"], (mv["id"], sculpts[1]["pile"])
+    dx = [b - a for a, b in zip(mv["from_center"], mv["to_center"])]
+    assert abs(dx[0] - 2.0) < 1e-3 and abs(dx[1]) < 1e-3, dx
+    assert mv["instance_store_hash_after"] != mv["instance_store_hash_before"], mv
+    out.append("the side pile moved by (2, 0) as one primitive")
+    # Saved and re-read: the rock density holds three cones (vertical, narrowing segments; the file had
+    # none), and the CLI makes the same instances.
+    rock = lambda doc: [t for t in doc["detail_types"] if t["name"] == "rock"][0]
+    original, saved = json.load(open(original_path)), json.load(open(saved_path))
+    before, after = cones(rock(original).get("density")), cones(rock(saved)["density"])
+    assert before == 0 and after == 3, (before, after)
+    assert rock(saved)["angle_of_repose_deg"] == 35, rock(saved)
+    cli = json.load(open(cli_path))
+    saved_a = actions(s, "save_as")[0]
+    assert saved_a["ok"] and cli["instances_per_type"] == saved_a["per_type_after"], (
+        cli["instances_per_type"], saved_a["per_type_after"])
+    out.append("saved: 3 cones, the CLI re-instantiates %d instances as the editor" % cli["instances"])
+    print("; ".join(out))
 
 
 def driven(original_path, saved_path, stats_path, cli_path, work):
@@ -182,15 +266,29 @@ def driven(original_path, saved_path, stats_path, cli_path, work):
                                                                   count(saved, "disc"))
     assert count(saved, "point") == count(original, "point"), ("the pile should be undone",
                                                                 count(original, "point"), count(saved, "point"))
+    assert cones(json.loads(saved)) == cones(json.loads(original)) == 0, ("the pile (a cone) should be undone",
+                                                                        cones(json.loads(saved)))
+    # The held sculpt (the mouse, from the 60-degree view): a cone at the rock's angle of repose under the
+    # cursor's ground point, one primitive, measured as it was released (before Ctrl+Z took it away).
+    strokes = s["sculpt_strokes"]
+    assert len(strokes) == 1, strokes
+    pile = strokes[0]
+    assert pile["stamps"] > 5, pile
+    # On sloping ground a cone's volume lies downhill of its apex (the meadow's slopes put the centroid of
+    # the default 1.5 m brush's 2.7 m pile ~0.3 m downhill), so a large pile gets 15 % of its radius.
+    held = check_pile({"pile": pile, "stamps": pile["stamps"], "user_primitives_before": 0,
+                       "user_primitives_after": 1}, pile["ground_point"], "mouse-held",
+                      max(0.2, 0.15 * pile["radius"]))
     cli = json.load(open(cli_path))
     assert cli["instances_per_type"] == s["instances_per_type"], (cli["instances_per_type"], s["instances_per_type"])
     shots = [f for f in os.listdir(work) if "-screenshot-" in f and f.endswith(".png")]
     assert len(shots) == 1, ("F12 should write one screenshot", os.listdir(work))
     w, h, _ = decode_png(os.path.join(work, shots[0]))
     assert (w, h) == (960, 540), (w, h)
+    print(held)
     print("mouse paint, a held stroke undone by Ctrl+Z, click-pick + Delete, F12, Ctrl+Q/Esc kept running, Ctrl+Q/Enter "
           "saved 1 user disc; the CLI re-instantiates %d instances as the editor" % cli["instances"])
 
 
 if __name__ == "__main__":
-    {"strokes": strokes, "diff": diff, "recovered": recovered, "move": move, "pile_paint": pile_paint, "driven": driven}[sys.argv[1]](*sys.argv[2:])
+    {"strokes": strokes, "diff": diff, "recovered": recovered, "move": move, "pile_paint": pile_paint, "piles": piles, "driven": driven}[sys.argv[1]](*sys.argv[2:])

@@ -127,6 +127,36 @@ else
   bad "edit meadow: select and drag: ${out:-$(tail -5 "$tmp/move.log")}"
 fi
 
+# ---- Sculpt from any view: held rock piles poured through the camera's rays ("from_camera") from an
+# oblique, a side and a top view land on the brush's ground point as cones at the rock's angle of repose,
+# each one primitive and one undo step; the oblique pile is photographed from the side; the side pile is
+# moved as a unit; the file is saved and re-instantiated by the CLI. ----
+cat >"$tmp/piles.json" <<EOF
+[{"frame": 1, "action": "view", "target": [-6, -10, 0], "distance": 8, "yaw_deg": -90, "pitch_deg": 30},
+ {"action": "sculpt_stroke", "type": "rock", "points": [[-6, -10]], "radius": 0.6, "steps": 40, "from_camera": true},
+ {"action": "view", "target": [-6, -10, 0.2], "distance": 5, "yaw_deg": 0, "pitch_deg": 4},
+ {"action": "screenshot", "path": "$tmp/pile_side.png", "overlays": false},
+ {"action": "screenshot", "path": "$tmp/pile_side_overlays.png", "overlays": true},
+ {"action": "undo"}, {"action": "redo"},
+ {"action": "view", "target": [3, -12, 0], "distance": 8, "yaw_deg": 0, "pitch_deg": 10},
+ {"action": "sculpt_stroke", "type": "rock", "points": [[3, -12]], "radius": 0.6, "steps": 40, "from_camera": true},
+ {"action": "view", "target": [-12, 4, 0], "distance": 8, "yaw_deg": -90, "pitch_deg": 89},
+ {"action": "sculpt_stroke", "type": "rock", "points": [[-12, 4]], "radius": 0.6, "steps": 40, "from_camera": true},
+ {"action": "move", "from": [3, -12], "to": [5, -12], "steps": 4},
+ {"action": "save_as", "path": "$tmp/saved/meadow_piles.json"},
+ {"action": "wait_idle"}]
+EOF
+if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$meadow" --frames 2 --size 640x360 --cache "$cache" \
+     --config "$config" --replay "$tmp/piles.json" --stats "$tmp/piles.stats.json" >"$tmp/piles.log" 2>&1 &&
+   "$bin" instantiate "$tmp/saved/meadow_piles.json" -o "$tmp/piles.glb" --stats "$tmp/piles.cli.json" \
+     --cache "$cache" >/dev/null 2>&1 &&
+   out="$(python3 "$root/tests/gui/check_edit.py" piles "$tmp/piles.stats.json" "$tmp/piles.cli.json" "$meadow" \
+          "$tmp/saved/meadow_piles.json" 2>&1)"; then
+  ok "edit meadow: held sculpt from oblique, side and top views ($out)"
+else
+  bad "edit meadow: sculpt from any view: ${out:-$(tail -5 "$tmp/piles.log")}"
+fi
+
 # ---- Ghost Tile panel: a replayed build of the rock pile with more rocks and another delta (replay.h,
 # "ghost_tile"), saved, undone and redone; then a type pointed at a corrupt model file and a count of 0 ----
 pile="$root/assets/scenes/rock_pile.json"

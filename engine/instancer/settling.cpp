@@ -1,0 +1,379 @@
+#include "instancer/settling.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <limits>
+#include <unordered_set>
+
+#include "core/parallel.h"
+#include "instancer/tile_coord.h"
+
+namespace ug {
+
+void SettledDrops::set(uint64_t tile_key, std::vector<uint16_t> drops) {
+    if (drops.empty()) drops_.erase(tile_key);
+    else drops_[tile_key] = std::move(drops);
+}
+
+uint64_t SettledDrops::byteSize() const {
+    uint64_t bytes = 0;
+    for (const auto& [key, d] : drops_) bytes += d.size() * sizeof(uint16_t);
+    return bytes;
+}
+
+bool validateSettleInput(const SettleInput& in, std::string* error) {
+    auto fail = [&](const std::string& what) {
+        if (error) *error = "settling: " + what;
+        return false;
+    };
+    if (!in.tile) return fail("no Ghost Tile");
+    if (in.models.size() != in.tile->candidates.typeCount()) return fail("one model per detail type is needed");
+    for (const DetailModel* m : in.models)
+        if (!m) return fail("a detail type has no model");
+    const SettleSettings& s = in.settings;
+    if (s.passes < 1 || s.passes > kMaxSettlePasses)
+        return fail("passes must be in [1, " + std::to_string(kMaxSettlePasses) + "]");
+    if (!std::isfinite(s.max_drop_m) || s.max_drop_m < 0.0f || s.max_drop_m > kMaxSettleDropM)
+        return fail("max_drop_m must be in [0, " + std::to_string(kMaxSettleDropM) + "]");
+    if (!in.support.terrain && std::isnan(in.support.ground_z)) return fail("ground_z is not a number");
+    return true;
+}
+
+namespace {
+
+struct Identity {
+    uint64_t tile;
+    uint32_t j;
+};
+
+// The instances of one computation (the whole store, or a window of it) and their world spheres.
+struct Window {
+    std::vector<Identity> id;
+    std::vector<uint32_t> sphere_begin;  // per instance; size + 1
+    std::vector<glm::vec3> center;       // unsettled, world
+    std::vector<float> radius;
+    std::vector<uint32_t> owner;
+    std::vector<float> instance_max_radius;  // per instance: its largest sphere
+    float max_radius = 0.0f;
+};
+
+void addInstance(const SettleInput& in, uint64_t tile_key, uint32_t j, Window* w) {
+    const CandidateSet& c = in.tile->candidates;
+    const DetailModel& m = *in.models[c.type[j]];
+    const glm::vec3 origin = tileOrigin(unpackTile(tile_key), in.tile->settings.tile_size_m) + c.position[j];
+    const uint32_t self = uint32_t(w->id.size());
+    w->id.push_back({tile_key, j});
+    const size_t first = w->center.size();
+    w->sphere_begin.push_back(uint32_t(first));
+    float largest = 0.0f;
+    for (const Sphere& s : m.spheres) {
+        w->center.push_back(origin + c.rotation[j] * (c.scale[j] * s.center));
+        w->radius.push_back(c.scale[j] * s.radius);
+        w->owner.push_back(self);
+        largest = std::max(largest, c.scale[j] * s.radius);
+    }
+    w->max_radius = std::max(w->max_radius, largest);
+    w->instance_max_radius.push_back(largest);
+    // An instance's spheres by ascending centre height (the pair search walks down from a height and stops
+    // early); their order inside one instance means nothing else.
+    std::vector<uint32_t> order(w->center.size() - first);
+    for (uint32_t k = 0; k < order.size(); ++k) order[k] = uint32_t(first) + k;
+    std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return w->center[x].z < w->center[y].z; });
+    std::vector<glm::vec3> centers(order.size());
+    std::vector<float> radii(order.size());
+    for (size_t k = 0; k < order.size(); ++k) {
+        centers[k] = w->center[order[k]];
+        radii[k] = w->radius[order[k]];
+    }
+    std::copy(centers.begin(), centers.end(), w->center.begin() + long(first));
+    std::copy(radii.begin(), radii.end(), w->radius.begin() + long(first));
+}
+
+// Sphere e (of instance b) lies below sphere a (of instance a): a fixed order whatever the window.
+bool below(const Window& w, uint32_t e, uint32_t a) {
+    if (w.center[e].z != w.center[a].z) return w.center[e].z < w.center[a].z;
+    const Identity& ie = w.id[w.owner[e]];
+    const Identity& ia = w.id[w.owner[a]];
+    if (ie.tile != ia.tile) return ie.tile < ia.tile;
+    if (ie.j != ia.j) return ie.j < ia.j;
+    return e < a;  // the same instance's spheres are never paired
+}
+
+struct Pair {
+    uint32_t lower;  // instance
+    float offset;    // clearance when the lower instance has not moved
+};
+
+// Sorted grid over the instances' bounding spheres in XY (same idea as analysis/xy_grid.h, kept local:
+// the engine's core does not depend on the measurements).
+class Columns {
+public:
+    Columns(const std::vector<glm::vec3>& points, float cell) : cell_(cell) {
+        std::vector<std::pair<uint64_t, uint32_t>> keyed(points.size());
+        for (size_t i = 0; i < keyed.size(); ++i) keyed[i] = {key(cellOf(points[i].x), cellOf(points[i].y)), uint32_t(i)};
+        std::sort(keyed.begin(), keyed.end());
+        for (size_t i = 0; i < keyed.size(); ++i) {
+            if (i == 0 || keyed[i].first != keyed[i - 1].first) {
+                keys_.push_back(keyed[i].first);
+                begin_.push_back(uint32_t(i));
+            }
+            items_.push_back(keyed[i].second);
+        }
+        begin_.push_back(uint32_t(items_.size()));
+    }
+    template <typename F>
+    void forEachNear(glm::vec3 p, float r, F&& f) const {
+        for (int64_t y = cellOf(p.y - r); y <= cellOf(p.y + r); ++y)
+            for (int64_t x = cellOf(p.x - r); x <= cellOf(p.x + r); ++x) {
+                auto it = std::lower_bound(keys_.begin(), keys_.end(), key(x, y));
+                if (it == keys_.end() || *it != key(x, y)) continue;
+                const size_t c = size_t(it - keys_.begin());
+                for (uint32_t k = begin_[c]; k < begin_[c + 1]; ++k) f(items_[k]);
+            }
+    }
+
+private:
+    int64_t cellOf(float v) const { return int64_t(std::floor(double(v) / double(cell_))); }
+    static uint64_t key(int64_t x, int64_t y) { return (uint64_t(uint32_t(int32_t(x))) << 32) | uint32_t(int32_t(y)); }
+    float cell_;
+    std::vector<uint64_t> keys_;
+    std::vector<uint32_t> begin_;
+    std::vector<uint32_t> items_;
+};
+
+uint16_t toUnits(float drop_m) {
+    const float u = std::floor(drop_m / kSettleQuantumM);  // down: never deeper than the contact
+    return u <= 0.0f ? 0 : u >= 65535.0f ? 65535 : uint16_t(u);
+}
+
+// The highest the support reaches under a disc (centre, radius) in XY: bilinear heights lie within the
+// range of their cells' samples.
+float supportTop(const RestSupport& support, glm::vec3 center, float radius) {
+    if (!support.terrain) return support.ground_z;
+    const glm::vec2 c(center);
+    return support.terrain->heightRange(c - radius, c + radius).y + 1e-4f;
+}
+
+float gapOf(const SettleInput& in) { return std::max(0.0f, in.tile->settings.delta_m); }
+
+// The passes over one window; drops[i] for instance i of the window.
+std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int threads) {
+    const size_t n = w.id.size();
+    std::vector<uint16_t> drops(n, 0);
+    if (n == 0) return drops;
+    const float gap = gapOf(in);
+    const float max_drop = in.settings.max_drop_m;
+    // Per instance: a bounding sphere and the height range of its sphere centres (broad phase).
+    std::vector<glm::vec3> bound_center(n);
+    std::vector<float> bound_radius(n), zlo(n), zhi(n);
+    float max_bound = 0.0f;
+    for (size_t i = 0; i < n; ++i) {
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        for (uint32_t a = w.sphere_begin[i]; a < w.sphere_begin[i + 1]; ++a) {
+            lo = glm::min(lo, w.center[a] - w.radius[a]);
+            hi = glm::max(hi, w.center[a] + w.radius[a]);
+            zlo[i] = a == w.sphere_begin[i] ? w.center[a].z : std::min(zlo[i], w.center[a].z);
+            zhi[i] = a == w.sphere_begin[i] ? w.center[a].z : std::max(zhi[i], w.center[a].z);
+        }
+        bound_center[i] = 0.5f * (lo + hi);
+        bound_radius[i] = 0.5f * glm::length(hi - lo);
+        max_bound = std::max(max_bound, bound_radius[i]);
+    }
+    const Columns columns(bound_center, std::max(2.0f * max_bound + gap, 1e-3f));
+
+    // Fixed per instance: the bound from the support and the max drop, and per lower neighbour the
+    // smallest clearance over their sphere pairs (drop_B adds to every pair of A and B alike).
+    std::vector<float> bound(n);
+    std::vector<std::vector<Pair>> pairs(n);
+    parallelFor(n, threads, 128, [&](size_t b, size_t e, int) {
+        for (size_t i = b; i < e; ++i) {
+            // Spheres come by ascending height: once even the largest sphere that high could not reach
+            // the highest ground under the instance sooner, the rest cannot either.
+            float limit = max_drop;
+            const float ground_top = supportTop(in.support, bound_center[i], bound_radius[i]);
+            for (uint32_t a = w.sphere_begin[i]; a < w.sphere_begin[i + 1] && limit > 0.0f; ++a) {
+                if (w.center[a].z - w.instance_max_radius[i] - ground_top >= limit) break;
+                limit = std::min(limit, std::max(0.0f, supportClearance(in.support, w.center[a], w.radius[a])));
+            }
+            bound[i] = limit;
+            std::vector<Pair>& mine = pairs[i];
+            columns.forEachNear(bound_center[i], bound_radius[i] + max_bound + gap, [&](uint32_t o) {
+                if (o == i || zlo[o] > zhi[i]) return;  // no sphere of o lies below one of i
+                const float dx = bound_center[i].x - bound_center[o].x, dy = bound_center[i].y - bound_center[o].y;
+                const float far = bound_radius[i] + bound_radius[o] + gap;
+                if (dx * dx + dy * dy >= far * far) return;
+                float best = std::numeric_limits<float>::infinity();
+                for (uint32_t a = w.sphere_begin[i]; a < w.sphere_begin[i + 1]; ++a) {
+                    const glm::vec3 ca = w.center[a];
+                    const float ra = w.radius[a];
+                    const float ax = ca.x - bound_center[o].x, ay = ca.y - bound_center[o].y;
+                    const float near = ra + bound_radius[o] + gap;
+                    if (ax * ax + ay * ay >= near * near || ca.z < zlo[o]) continue;
+                    // Down from the highest sphere of o below a: once even the widest pair could not
+                    // beat the best clearance found, the lower spheres cannot either.
+                    const uint32_t first = w.sphere_begin[o];
+                    uint32_t top = uint32_t(std::upper_bound(w.center.begin() + first, w.center.begin() + w.sphere_begin[o + 1],
+                                                             ca.z, [](float z, const glm::vec3& c) { return z < c.z; }) -
+                                            w.center.begin());
+                    const float widest = ra + w.instance_max_radius[o] + gap;
+                    for (uint32_t s = top; s-- > first;) {
+                        if (ca.z - w.center[s].z - widest >= best) break;
+                        if (!below(w, s, a)) continue;
+                        const float reach = ra + w.radius[s] + gap;
+                        const float hx = ca.x - w.center[s].x, hy = ca.y - w.center[s].y;
+                        const float h2 = hx * hx + hy * hy;
+                        if (h2 >= reach * reach) continue;
+                        best = std::min(best, ca.z - w.center[s].z - std::sqrt(reach * reach - h2));
+                    }
+                    // Spheres at exactly a's height are below it or not by the tie-break.
+                    for (uint32_t s = top; s < w.sphere_begin[o + 1] && w.center[s].z == ca.z; ++s) {
+                        if (!below(w, s, a)) continue;
+                        const float reach = ra + w.radius[s] + gap;
+                        const float hx = ca.x - w.center[s].x, hy = ca.y - w.center[s].y;
+                        const float h2 = hx * hx + hy * hy;
+                        if (h2 < reach * reach) best = std::min(best, -std::sqrt(reach * reach - h2));
+                    }
+                }
+                if (best <= max_drop) mine.push_back({o, best});  // beyond it: too far below to be reached
+            });
+        }
+    });
+
+    std::vector<uint16_t> next(n);
+    for (int pass = 0; pass < in.settings.passes; ++pass) {
+        std::atomic<bool> moved{false};
+        parallelFor(n, threads, 256, [&](size_t b, size_t e, int) {
+            bool any = false;
+            for (size_t i = b; i < e; ++i) {
+                float d = bound[i];
+                for (const Pair& p : pairs[i]) d = std::min(d, std::max(0.0f, p.offset + dropMetres(drops[p.lower])));
+                next[i] = toUnits(d);
+                any = any || next[i] != drops[i];
+            }
+            if (any) moved.store(true, std::memory_order_relaxed);
+        });
+        drops.swap(next);
+        if (!moved.load()) break;
+    }
+    return drops;
+}
+
+// Halo of one pass, in tiles: horizontally the pair reach, vertically the reach plus the largest drop.
+glm::ivec3 passHaloTiles(const SettleInput& in) {
+    float bound = 0.0f;
+    const CandidateSet& c = in.tile->candidates;
+    for (uint32_t t = 0; t < c.typeCount(); ++t) {
+        float scale = 0.0f;
+        for (uint32_t j = c.type_begin[t]; j < c.type_begin[t + 1]; ++j) scale = std::max(scale, c.scale[j]);
+        const DetailModel& m = *in.models[t];
+        for (const Sphere& s : m.spheres) bound = std::max(bound, scale * (glm::length(s.center) + s.radius));
+    }
+    const float s = in.tile->settings.tile_size_m;
+    const float reach = 2.0f * bound + gapOf(in);
+    const int xy = int(std::ceil(reach / s));
+    const int z = int(std::ceil((reach + in.settings.max_drop_m) / s));
+    return glm::ivec3(xy, xy, z);
+}
+
+}  // namespace
+
+void settleAll(const SettleInput& in, const InstanceStore& store, int threads, SettledDrops* out) {
+    out->clear();
+    Window w;
+    store.forEach([&](uint64_t tile, uint32_t j) { addInstance(in, tile, j, &w); });
+    w.sphere_begin.push_back(uint32_t(w.center.size()));
+    const std::vector<uint16_t> drops = settleWindow(in, w, threads);
+    size_t i = 0;
+    std::vector<uint32_t> ids;
+    for (size_t t = 0; t < store.tileCount(); ++t) {
+        store.tileIds(t, &ids);
+        out->set(store.tileKey(t), std::vector<uint16_t>(drops.begin() + long(i), drops.begin() + long(i + ids.size())));
+        i += ids.size();
+    }
+}
+
+float settleHaloMetres(const SettleInput& in) {
+    const glm::ivec3 h = passHaloTiles(in);
+    return float(std::max(h.x, h.z) * in.settings.passes + 1) * in.tile->settings.tile_size_m;
+}
+
+void settleUpdate(const SettleInput& in, const InstanceStore& store, std::span<const uint64_t> changed_tiles,
+                  int threads, SettledDrops* drops, std::vector<uint64_t>* touched) {
+    if (touched) touched->clear();
+    if (changed_tiles.empty()) return;
+    const glm::ivec3 affect = passHaloTiles(in) * in.settings.passes;  // drops that may change
+    const glm::ivec3 need = affect * 2;                                 // instances those depend on
+    std::vector<glm::ivec3> changed;
+    glm::ivec3 lo(std::numeric_limits<int>::max()), hi(std::numeric_limits<int>::min());
+    for (uint64_t k : changed_tiles) {
+        changed.push_back(unpackTile(k));
+        lo = glm::min(lo, changed.back());
+        hi = glm::max(hi, changed.back());
+    }
+    auto within = [&](const glm::ivec3& t, const glm::ivec3& halo) {
+        if (glm::any(glm::lessThan(t, lo - halo)) || glm::any(glm::greaterThan(t, hi + halo))) return false;
+        for (const glm::ivec3& c : changed) {
+            const glm::ivec3 d = glm::abs(t - c);
+            if (d.x <= halo.x && d.y <= halo.y && d.z <= halo.z) return true;
+        }
+        return false;
+    };
+    Window w;
+    std::vector<uint32_t> ids;
+    struct Span {
+        uint64_t tile;
+        size_t first, count;
+    };
+    std::vector<Span> keep;  // the affected tiles of the window, in store order
+    for (size_t t = 0; t < store.tileCount(); ++t) {
+        const glm::ivec3 coord = unpackTile(store.tileKey(t));
+        if (!within(coord, need)) continue;
+        store.tileIds(t, &ids);
+        if (within(coord, affect)) keep.push_back({store.tileKey(t), w.id.size(), ids.size()});
+        for (uint32_t j : ids) addInstance(in, store.tileKey(t), j, &w);
+    }
+    w.sphere_begin.push_back(uint32_t(w.center.size()));
+    const std::vector<uint16_t> result = settleWindow(in, w, threads);
+    // Tiles that lost all their instances are no longer in the store: drop their entries too.
+    for (uint64_t k : changed_tiles)
+        if (store.findTile(k) < 0) drops->erase(k);
+    for (const Span& s : keep) {
+        drops->set(s.tile, std::vector<uint16_t>(result.begin() + long(s.first), result.begin() + long(s.first + s.count)));
+        if (touched) touched->push_back(s.tile);
+    }
+    if (touched) {
+        for (uint64_t k : changed_tiles) touched->push_back(k);
+        std::sort(touched->begin(), touched->end());
+        touched->erase(std::unique(touched->begin(), touched->end()), touched->end());
+    }
+}
+
+void cropToRegion(const InstanceStore& store, const SettledDrops& drops, const GhostTile& tile, const Bounds& region,
+                  InstanceStore* out_store, SettledDrops* out_drops) {
+    out_store->clear();
+    out_drops->clear();
+    const CandidateSet& c = tile.candidates;
+    std::vector<uint32_t> ids, kept_ids;
+    std::vector<uint16_t> kept_drops;
+    for (size_t t = 0; t < store.tileCount(); ++t) {
+        const uint64_t key = store.tileKey(t);
+        store.tileIds(t, &ids);
+        const std::vector<uint16_t>* d = drops.tile(key);
+        const glm::vec3 origin = tileOrigin(unpackTile(key), tile.settings.tile_size_m);
+        kept_ids.clear();
+        kept_drops.clear();
+        for (size_t k = 0; k < ids.size(); ++k) {
+            const glm::vec3 p = origin + c.position[ids[k]];
+            if (!(region.lo.x <= p.x && p.x < region.hi.x && region.lo.y <= p.y && p.y < region.hi.y &&
+                  region.lo.z <= p.z && p.z < region.hi.z))
+                continue;
+            kept_ids.push_back(ids[k]);
+            kept_drops.push_back(d && k < d->size() ? (*d)[k] : 0);
+        }
+        out_store->appendTile(key, kept_ids);
+        if (!kept_ids.empty() && d) out_drops->set(key, kept_drops);
+    }
+}
+
+}  // namespace ug

@@ -1,0 +1,329 @@
+// Settling (instancer/settling.h): exact drops on hand-built stacks, an independent brute-force reference
+// of the same definition, no new overlaps, and the exactness properties the selection has (any thread
+// count, incremental = full, region = whole).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <map>
+#include <random>
+
+#include "analysis/placed_instances.h"
+#include "analysis/rest_metrics.h"
+#include "instancer/settling.h"
+#include "instancer_test_util.h"
+
+namespace ug {
+namespace {
+
+using test::InstancerFixture;
+
+// A one-type Ghost Tile whose candidates are exactly `positions` (tile space), unrotated, scale 1.
+GhostTile handTile(const std::vector<glm::vec3>& positions) {
+    GhostTile t;
+    t.settings.tile_size_m = 0.5f;
+    CandidateSet& c = t.candidates;
+    c.type_begin = {0, uint32_t(positions.size())};
+    for (const glm::vec3& p : positions) {
+        c.type.push_back(0);
+        c.position.push_back(p);
+        c.rotation.push_back(glm::quat(1.0f, 0.0f, 0.0f, 0.0f));
+        c.scale.push_back(1.0f);
+    }
+    return t;
+}
+
+TEST(Settling, AStackComesToRestOnTheGroundBallByBall) {
+    const DetailModel ball = test::sphereModel("ball", {{glm::vec3(0.0f), 0.05f}});
+    // In tile (0,0,0): a ball 15 cm above the ground, one 5 cm above it, and one to the side in the air.
+    const GhostTile tile = handTile({{0.2f, 0.2f, 0.2f}, {0.2f, 0.2f, 0.35f}, {0.4f, 0.2f, 0.3f}});
+    InstanceStore store;
+    const std::vector<uint32_t> ids = {0, 1, 2};
+    store.appendTile(packTile(glm::ivec3(0)), ids);
+    SettleInput in;
+    in.tile = &tile;
+    in.models = {&ball};
+    in.support.ground_z = 0.0f;
+    in.settings = {.enabled = true, .passes = 8, .max_drop_m = 1.0f};
+    std::string error;
+    ASSERT_TRUE(validateSettleInput(in, &error)) << error;
+    SettledDrops drops;
+    settleAll(in, store, 1, &drops);
+    const std::vector<uint16_t>* d = drops.tile(packTile(glm::ivec3(0)));
+    ASSERT_NE(d, nullptr);
+    ASSERT_EQ(d->size(), 3u);
+    EXPECT_NEAR(dropMetres((*d)[0]), 0.15f, 2e-4f);  // onto the ground
+    EXPECT_NEAR(dropMetres((*d)[1]), 0.20f, 2e-4f);  // onto the first, once it has fallen (two passes)
+    EXPECT_NEAR(dropMetres((*d)[2]), 0.25f, 2e-4f);  // 20 cm to the side of the stack: the ground
+    // Rounded down: never below the contact.
+    EXPECT_LE(dropMetres((*d)[0]), 0.15f + 1e-6f);
+
+    // One pass lets the upper ball fall only onto where the lower one was.
+    in.settings.passes = 1;
+    settleAll(in, store, 1, &drops);
+    EXPECT_NEAR(dropMetres((*drops.tile(packTile(glm::ivec3(0))))[1]), 0.05f, 2e-4f);
+    // A drop is capped.
+    in.settings = {.enabled = true, .passes = 8, .max_drop_m = 0.1f};
+    settleAll(in, store, 1, &drops);
+    EXPECT_NEAR(dropMetres((*drops.tile(packTile(glm::ivec3(0))))[0]), 0.1f, 2e-4f);
+}
+
+// The definition, evaluated directly: every sphere pair of every instance pair, no grid, no pruning.
+std::vector<float> bruteForceDrops(const SettleInput& in, const std::vector<test::InstanceKey>& keys) {
+    struct Item {
+        uint64_t tile;
+        uint32_t j;
+        std::vector<Sphere> spheres;
+    };
+    std::vector<Item> items;
+    for (const auto& [t, j] : keys)
+        items.push_back({t, j, test::worldSpheres(*in.tile, *in.models[in.tile->candidates.type[j]], t, j)});
+    const size_t n = items.size();
+    const float gap = std::max(0.0f, in.tile->settings.delta_m);
+    std::vector<float> limit(n, in.settings.max_drop_m);
+    for (size_t i = 0; i < n; ++i)
+        for (const Sphere& a : items[i].spheres)
+            limit[i] = std::min(limit[i], std::max(0.0f, supportClearance(in.support, a.center, a.radius)));
+    std::vector<float> drop(n, 0.0f), next(n);
+    for (int pass = 0; pass < in.settings.passes; ++pass) {
+        for (size_t i = 0; i < n; ++i) {
+            float d = limit[i];
+            for (size_t o = 0; o < n; ++o) {
+                if (o == i) continue;
+                for (const Sphere& a : items[i].spheres)
+                    for (const Sphere& e : items[o].spheres) {
+                        const bool lower = e.center.z < a.center.z ||
+                                           (e.center.z == a.center.z &&
+                                            std::make_pair(items[o].tile, items[o].j) < std::make_pair(items[i].tile, items[i].j));
+                        if (!lower) continue;
+                        const float reach = a.radius + e.radius + gap;
+                        const float h2 = (a.center.x - e.center.x) * (a.center.x - e.center.x) +
+                                         (a.center.y - e.center.y) * (a.center.y - e.center.y);
+                        if (h2 >= reach * reach) continue;
+                        const float offset = a.center.z - e.center.z - std::sqrt(reach * reach - h2);
+                        if (offset > in.settings.max_drop_m) continue;
+                        d = std::min(d, std::max(0.0f, offset + drop[o]));
+                    }
+            }
+            next[i] = dropMetres(uint16_t(std::min(65535.0f, std::max(0.0f, std::floor(d / kSettleQuantumM)))));
+        }
+        drop = next;
+    }
+    return drop;
+}
+
+struct PileScene {
+    InstancerFixture fx{-0.002f, 220, 60};
+    SettleInput settle;
+    PileScene() {
+        fx.input.types[0].field = InstancerFixture::field({makePoint({0.0f, 0.0f, 0.0f}, 0.9f, 4.0f)});
+        fx.input.types[0].strategy = PriorityStrategy::Elevation;
+        fx.input.types[0].layer_m = 0.03f;
+        fx.input.types[1].field = InstancerFixture::field({makeSegment({-0.8f, -0.3f, 0.0f}, {0.6f, 0.5f, 0.1f}, 0.4f, 2.0f)});
+        fx.input.types[1].strategy = PriorityStrategy::Elevation;
+        fx.input.types[1].layer_m = 0.03f;
+        fx.input.extent = Bounds{glm::vec3(-1.5f, -1.5f, 0.0f), glm::vec3(1.5f, 1.5f, 1.0f)};
+        settle.tile = &fx.tile;
+        settle.models = {&fx.models[0], &fx.models[1]};
+        settle.support.ground_z = 0.0f;
+        settle.settings = {.enabled = true, .passes = 6, .max_drop_m = 0.4f};
+    }
+    InstanceStore instantiate(int threads = 2) {
+        Instantiator inst;
+        std::string error;
+        EXPECT_TRUE(inst.setInput(fx.input, &error)) << error;
+        EXPECT_TRUE(inst.instantiateAll({.threads = threads}, nullptr, &error)) << error;
+        return inst.store();
+    }
+};
+
+TEST(Settling, MatchesTheDefinitionEvaluatedByBruteForceForAnyThreadCount) {
+    PileScene scene;
+    const InstanceStore store = scene.instantiate();
+    ASSERT_GT(store.instanceCount(), 100u);
+    SettledDrops one, two;
+    settleAll(scene.settle, store, 1, &one);
+    settleAll(scene.settle, store, 2, &two);
+    EXPECT_TRUE(one == two);
+    const std::vector<float> reference = bruteForceDrops(scene.settle, test::instancesOf(store));
+    size_t k = 0, moved = 0;
+    forEachSettled(store, &one, [&](uint64_t, uint32_t, float drop) {
+        EXPECT_EQ(drop, reference[k]) << "instance " << k;
+        moved += drop > 0.0f;
+        ++k;
+    });
+    EXPECT_EQ(k, reference.size());
+    EXPECT_GT(moved, k / 4);  // the pile really settled
+}
+
+TEST(Settling, CreatesNoOverlapAndLeavesNothingHovering) {
+    PileScene scene;
+    const InstanceStore store = scene.instantiate();
+    SettledDrops drops;
+    scene.settle.settings.passes = 32;  // enough for the whole pile to come down layer by layer
+    settleAll(scene.settle, store, 2, &drops);
+    const std::vector<PlacedInstance> before = placeInstances(store, scene.fx.tile);
+    const std::vector<PlacedInstance> after = placeInstances(store, scene.fx.tile, &drops);
+    const std::vector<const DetailModel*> models = {&scene.fx.models[0], &scene.fx.models[1]};
+    // Pairwise: settled spheres are no closer than the instances were allowed to be before (contact, or
+    // the interpenetration δ let them have already), up to the float rounding of the sums.
+    std::vector<std::vector<Sphere>> sb(before.size()), sa(after.size());
+    for (size_t i = 0; i < before.size(); ++i) {
+        placedSpheres(before[i], *models[before[i].type], &sb[i]);
+        placedSpheres(after[i], *models[after[i].type], &sa[i]);
+    }
+    auto gap = [](const std::vector<Sphere>& x, const std::vector<Sphere>& y) {
+        float g = std::numeric_limits<float>::infinity();
+        for (const Sphere& a : x)
+            for (const Sphere& b : y) g = std::min(g, glm::length(a.center - b.center) - a.radius - b.radius);
+        return g;
+    };
+    size_t checked = 0;
+    for (size_t i = 0; i < before.size(); ++i)
+        for (size_t o = i + 1; o < before.size(); ++o) {
+            if (glm::length(glm::vec2(before[i].position - before[o].position)) > 0.5f) continue;
+            const float g0 = gap(sb[i], sb[o]), g1 = gap(sa[i], sa[o]);
+            EXPECT_GE(g1, std::min(g0, 0.0f) - 1e-5f) << "instances " << i << " and " << o;
+            ++checked;
+        }
+    EXPECT_GT(checked, 1000u);
+    const RestReport rest_before = measureRest(before, models, scene.settle.support, 0.02f, 2);
+    const RestReport rest_after = measureRest(after, models, scene.settle.support, 0.02f, 2);
+    EXPECT_GT(rest_before.hovering_fraction, 0.2);
+    EXPECT_LE(rest_after.hovering_fraction, 0.02);
+}
+
+TEST(Settling, UpdateAfterAnEditEqualsSettlingTheNewStore) {
+    PileScene scene;
+    Instantiator inst;
+    std::string error;
+    ASSERT_TRUE(inst.setInput(scene.fx.input, &error)) << error;
+    ASSERT_TRUE(inst.instantiateAll({.threads = 2}, nullptr, &error)) << error;
+    SettledDrops live;
+    settleAll(scene.settle, inst.store(), 2, &live);
+    std::mt19937 rng(4);
+    std::uniform_real_distribution<float> uni(-0.8f, 0.8f);
+    std::vector<Primitive> prims = {makePoint({0.0f, 0.0f, 0.0f}, 0.9f, 4.0f)};
+    for (int edit = 0; edit < 12; ++edit) {
+        const Primitive added = makePoint({uni(rng), uni(rng), 0.0f}, 0.35f, 3.0f);
+        prims.push_back(added);
+        std::vector<InstanceTypeSettings> types = inst.input().types;
+        types[0].field = InstancerFixture::field(prims);
+        const Bounds dirty = primitiveBounds(added, nullptr);
+        std::vector<uint64_t> changed;
+        ASSERT_TRUE(inst.update(types, std::span<const Bounds>(&dirty, 1), {.threads = 2}, nullptr, &changed, &error))
+            << error;
+        std::vector<uint64_t> touched;
+        settleUpdate(scene.settle, inst.store(), changed, 2, &live, &touched);
+        SettledDrops full;
+        settleAll(scene.settle, inst.store(), 1, &full);
+        ASSERT_TRUE(live == full) << "after edit " << edit;
+        EXPECT_FALSE(touched.empty());
+    }
+}
+
+// A leaning chain of balls, each 9 cm beside and 1 cm above contact with the one before it: every ball
+// rests (after enough passes) on the one below, so a change at the foot reaches the top, 3.5 m away.
+struct Chain {
+    static constexpr int kBalls = 40;
+    DetailModel ball = test::sphereModel("ball", {{glm::vec3(0.0f), 0.05f}});
+    GhostTile tile;
+    std::vector<test::InstanceKey> keys;  // ball k = (tile of ball k, candidate k)
+    SettleInput settle;
+    Chain() {
+        std::vector<glm::vec3> world;
+        const float rise = std::sqrt(0.1f * 0.1f - 0.09f * 0.09f) + 0.01f;
+        for (int k = 0; k < kBalls; ++k) world.push_back({0.09f * float(k) + 0.01f, 0.2f, 0.06f + rise * float(k)});
+        std::vector<glm::vec3> local;
+        for (const glm::vec3& p : world) {
+            const glm::ivec3 t = tileOf(p, 0.5f);
+            local.push_back(p - tileOrigin(t, 0.5f));
+            keys.push_back({packTile(t), uint32_t(keys.size())});
+        }
+        tile = handTile(local);
+        settle.tile = &tile;
+        settle.models = {&ball};
+        settle.support.ground_z = 0.0f;
+        settle.settings = {.enabled = true, .passes = kBalls + 2, .max_drop_m = 1.0f};
+    }
+    InstanceStore store(int first) const {  // balls first.. (ids ascending per tile, tiles ascending)
+        std::map<uint64_t, std::vector<uint32_t>> per_tile;
+        for (int k = first; k < kBalls; ++k) per_tile[keys[size_t(k)].first].push_back(keys[size_t(k)].second);
+        InstanceStore s;
+        for (auto& [t, ids] : per_tile) s.appendTile(t, ids);
+        return s;
+    }
+};
+
+TEST(Settling, AChangeAtTheFootOfALongChainReachesItsTop) {
+    Chain chain;
+    const InstanceStore all = chain.store(0), without_foot = chain.store(1);
+    SettledDrops drops, expected;
+    settleAll(chain.settle, all, 1, &drops);
+    // Every ball came down by 1 cm per ball below it: the top one by 40 cm... capped by nothing here.
+    float top = 0.0f;
+    forEachSettled(all, &drops, [&](uint64_t, uint32_t j, float d) {
+        if (j == Chain::kBalls - 1) top = d;
+    });
+    EXPECT_NEAR(top, 0.06f - 0.05f + 0.01f * float(Chain::kBalls - 1), 0.01f);
+    settleAll(chain.settle, without_foot, 1, &expected);
+    const std::vector<uint64_t> changed = {chain.keys[0].first};
+    std::vector<uint64_t> touched;
+    settleUpdate(chain.settle, without_foot, changed, 1, &drops, &touched);
+    EXPECT_TRUE(drops == expected);
+    // A region job at the top of the chain needs the foot: its halo reaches it.
+    const Bounds region{glm::vec3(3.0f, 0.0f, -1.0f), glm::vec3(4.0f, 0.5f, 4.0f)};
+    const float halo = settleHaloMetres(chain.settle);
+    InstanceStore wide;
+    std::map<uint64_t, std::vector<uint32_t>> per_tile;
+    for (int k = 0; k < Chain::kBalls; ++k) {
+        const glm::vec3 p = tileOrigin(unpackTile(chain.keys[size_t(k)].first), 0.5f) +
+                            chain.tile.candidates.position[size_t(k)];
+        if (glm::all(glm::greaterThanEqual(p, region.lo - halo)) && glm::all(glm::lessThan(p, region.hi + halo)))
+            per_tile[chain.keys[size_t(k)].first].push_back(uint32_t(k));
+    }
+    for (auto& [t, ids] : per_tile) wide.appendTile(t, ids);
+    SettledDrops wide_drops, whole_drops;
+    settleAll(chain.settle, wide, 1, &wide_drops);
+    settleAll(chain.settle, all, 1, &whole_drops);
+    InstanceStore own, expected_store;
+    SettledDrops own_drops, expected_drops;
+    cropToRegion(wide, wide_drops, chain.tile, region, &own, &own_drops);
+    cropToRegion(all, whole_drops, chain.tile, region, &expected_store, &expected_drops);
+    EXPECT_GT(own.instanceCount(), 5u);
+    EXPECT_TRUE(own == expected_store);
+    EXPECT_TRUE(own_drops == expected_drops);
+}
+
+TEST(Settling, RegionJobsGrownByTheHaloMatchTheWhole) {
+    PileScene scene;
+    const InstanceStore whole = scene.instantiate();
+    SettledDrops whole_drops;
+    settleAll(scene.settle, whole, 2, &whole_drops);
+    const float halo = settleHaloMetres(scene.settle);
+    EXPECT_GT(halo, 0.0f);
+    const Bounds regions[] = {{glm::vec3(-1.5f, -1.5f, 0.0f), glm::vec3(0.1f, 0.2f, 1.0f)},
+                              {glm::vec3(0.1f, -1.5f, 0.0f), glm::vec3(1.5f, 0.2f, 1.0f)},
+                              {glm::vec3(-1.5f, 0.2f, 0.0f), glm::vec3(1.5f, 1.5f, 1.0f)}};
+    uint64_t total = 0;
+    for (const Bounds& r : regions) {
+        InstanceStore wide;
+        std::string error;
+        ASSERT_TRUE(instantiateRegion(scene.fx.input, Bounds{r.lo - halo, r.hi + halo}, {.threads = 2}, &wide, nullptr,
+                                      &error))
+            << error;
+        SettledDrops wide_drops;
+        settleAll(scene.settle, wide, 2, &wide_drops);
+        InstanceStore own, expected;
+        SettledDrops own_drops, expected_drops;
+        cropToRegion(wide, wide_drops, scene.fx.tile, r, &own, &own_drops);
+        cropToRegion(whole, whole_drops, scene.fx.tile, r, &expected, &expected_drops);
+        EXPECT_TRUE(own == expected);
+        EXPECT_TRUE(own_drops == expected_drops);
+        total += own.instanceCount();
+    }
+    EXPECT_EQ(total, whole.instanceCount());
+}
+
+}  // namespace
+}  // namespace ug
