@@ -98,7 +98,8 @@ nlohmann::json instanceStatsJson(const SceneJob& job, const InstanceStats& st, u
                           {"candidates", job.tile.stats.candidate_count},
                           {"pairs", job.tile.stats.pair_count},
                           {"tile_size_m", job.tile.settings.tile_size_m},
-                          {"delta_m", job.tile.settings.delta_m}}}};
+                          {"delta_m", job.tile.settings.delta_m},
+                          {"variants", job.tile.settings.variants}}}};
     if (region)
         j["region"] = {{"min", {region->lo.x, region->lo.y, region->lo.z}},
                        {"max", {region->hi.x, region->hi.y, region->hi.z}}};

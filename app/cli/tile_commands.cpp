@@ -43,7 +43,8 @@ nlohmann::json tileStatsJson(const SceneJob& job, const std::string& cache_path)
              {{"key", hex64(job.tile.key)},
               {"tile_size_m", job.tile.settings.tile_size_m},
               {"delta_m", job.tile.settings.delta_m},
-              {"candidates", st.candidate_count},
+              {"variants", job.tile.settings.variants},
+              {"candidates", st.candidate_count},  // all variants together
               {"pairs", st.pair_count},
               {"rho", st.rho},
               {"build_seconds", st.build_seconds},

@@ -79,6 +79,11 @@ bool validateGhostTileInput(const GhostTileInput& input, std::string* error) {
         *error = "ghost tile: delta_m must be finite and no larger than the tile, got " + std::to_string(s.delta_m);
         return false;
     }
+    if (s.variants < 1 || s.variants > kMaxTileVariants) {
+        *error = "ghost tile: variants must be in [1, " + std::to_string(kMaxTileVariants) + "], got " +
+                 std::to_string(s.variants);
+        return false;
+    }
     if (input.types.empty()) {
         *error = "ghost tile: no detail types";
         return false;
@@ -148,6 +153,13 @@ bool validateGhostTileInput(const GhostTileInput& input, std::string* error) {
                  std::to_string(kMaxCandidatesPerTile) + " per tile";
         return false;
     }
+    // The tile stores every variant: the limit (and the memory it bounds) is on the product.
+    if (total * s.variants > kMaxCandidatesPerTile) {
+        *error = "ghost tile: " + std::to_string(s.variants) + " variants x " + std::to_string(total) +
+                 " candidates = " + std::to_string(total * s.variants) + " candidates exceeds the limit of " +
+                 std::to_string(kMaxCandidatesPerTile) + " per tile; use fewer variants or fewer candidates";
+        return false;
+    }
     // A candidate may only reach the 26 neighbour tiles: objects larger than the tile would need more.
     if (2.0f * largest_radius + std::max(0.0f, s.delta_m) > s.tile_size_m) {
         *error = "ghost tile: the largest object (diameter " + std::to_string(2.0f * largest_radius) +
@@ -190,15 +202,20 @@ uint64_t ghostTileKey(const GhostTileInput& input) {
             h.add(m->bounds.radius);
         }
     }
+    // Only when it matters, so a single-variant tile keeps the key (and cache file name) it always had.
+    if (input.settings.variants != 1) h.add(input.settings.variants);
     return h.value();
 }
 
 bool generateCandidates(const GhostTileInput& input, CandidateSet* out, std::string* error) {
     if (!validateGhostTileInput(input, error)) return false;
     const float s = input.settings.tile_size_m;
+    const uint32_t variants = input.settings.variants;
     CandidateSet c;
+    c.variants = variants;
     c.type_begin.push_back(0);
-    for (const DetailTypeSettings& d : input.types) c.type_begin.push_back(c.type_begin.back() + d.candidate_count);
+    for (const DetailTypeSettings& d : input.types)
+        c.type_begin.push_back(c.type_begin.back() + variants * d.candidate_count);
     const uint32_t n = c.type_begin.back();
     c.type.resize(n);
     c.position.resize(n);
@@ -211,9 +228,13 @@ bool generateCandidates(const GhostTileInput& input, CandidateSet* out, std::str
         uint32_t g = 1;
         while (uint64_t(g) * g * g < d.candidate_count) ++g;
         const uint64_t cells = uint64_t(g) * g * g;
-        for (uint32_t j = 0; j < d.candidate_count; ++j) {
-            const uint32_t idx = c.type_begin[t] + j;
-            const uint64_t h = hashWords(input.settings.seed, t, j, 0x67686f7374ull);  // "ghost"
+        for (uint32_t k = 0; k < variants * d.candidate_count; ++k) {
+            const uint32_t v = k / d.candidate_count, j = k % d.candidate_count;
+            const uint32_t idx = c.type_begin[t] + k;
+            // Variant 0 keeps the single-variant hash (the same tile as before variants); the others
+            // re-hash it with their number, an independent draw of the same distribution.
+            uint64_t h = hashWords(input.settings.seed, t, j, 0x67686f7374ull);  // "ghost"
+            if (v > 0) h = hashWords(h, v, 0x76617269616e74ull);                  // "variant"
             glm::vec3 u(unitFloat(hashWords(h, 10)), unitFloat(hashWords(h, 11)), unitFloat(hashWords(h, 12)));
             glm::vec3 p;
             if (d.position == PositionMode::Jittered) {
@@ -315,6 +336,14 @@ bool buildGhostTile(const GhostTileInput& input, const BuildOptions& options, Gh
         if (options.progress) options.progress(f);
     };
 
+    // Variant of each candidate, for the offset-0 rule; empty (never read) with a single variant.
+    std::vector<uint8_t> variant_of;
+    const bool several_variants = cand.variants > 1;
+    if (several_variants) {
+        variant_of.resize(n);
+        for (uint32_t i = 0; i < n; ++i) variant_of[i] = uint8_t(cand.variantOf(i));
+    }
+
     // Spheres in tile space (offset 0), flattened: candidate i owns [sphere_begin[i], sphere_begin[i+1]).
     std::vector<uint32_t> sphere_begin(size_t(n) + 1, 0);
     for (uint32_t i = 0; i < n; ++i)
@@ -414,6 +443,9 @@ bool buildGhostTile(const GhostTileInput& input, const BuildOptions& options, Gh
                             const float r = bi.radius + ce.radius + delta_pos;
                             const glm::vec3 d = ce.center - bi.center;
                             if (glm::dot(d, d) > r * r) continue;
+                            // One tile holds one variant: two variants never meet at offset 0. Tested after
+                            // the bounds, on the few pairs that pass them, so one variant pays nothing.
+                            if (several_variants && v == kCenterOffset && variant_of[i] != variant_of[j]) continue;
                             const glm::vec3 shift = glm::vec3(offsetVector(v)) * s;
                             if (sphereSetsCollide(&spheres[sphere_begin[i]], sphere_begin[i + 1] - sphere_begin[i], bi,
                                                   &spheres[sphere_begin[j]], sphere_begin[j + 1] - sphere_begin[j],

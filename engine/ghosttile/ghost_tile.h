@@ -60,10 +60,17 @@ struct DetailTypeSettings {
     PositionMode position = PositionMode::Uniform;
 };
 
+// At most this many variants (GhostTileSettings::variants).
+constexpr uint32_t kMaxTileVariants = 64;
+
 struct GhostTileSettings {
     float tile_size_m = 0.5f;  // edge of the cubic tile; paper: 1-3x the largest object (~50 cm)
     float delta_m = 0.0f;      // collision threshold δ: d(A,B) <= δ collides; < 0 lets objects interpenetrate
     uint64_t seed = 7;
+    // Independent draws of every type's candidates held in one tile (DESIGN.md, "No period"); each tile of
+    // the world uses one of them (tileVariant() in instancer/instantiator.h), so an arrangement does not
+    // repeat one tile away. In [1, kMaxTileVariants]; 1 is the paper's single tile.
+    uint32_t variants = 1;
 };
 
 struct GhostTileInput {
@@ -72,16 +79,31 @@ struct GhostTileInput {
     std::vector<const DetailModel*> models;  // one per type, same order; not owned
 };
 
-// Candidates as structure of arrays, grouped by type: type t owns [type_begin[t], type_begin[t+1]).
+// Candidates as structure of arrays, grouped by type: type t owns [type_begin[t], type_begin[t+1]), which
+// holds `variants` equal sub-ranges, variant v of type t being [variantBegin(t, v), variantEnd(t, v)).
+// Grouping by type first keeps a type's candidates together for the per-type passes of the instantiator;
+// variant 0 of every type is the single-variant tile's candidates, bit for bit.
 struct CandidateSet {
     std::vector<uint32_t> type_begin;    // type count + 1 entries
     std::vector<uint16_t> type;          // per candidate
     std::vector<glm::vec3> position;     // tile space, in [0, s)^3
     std::vector<glm::quat> rotation;     // unit quaternions
     std::vector<float> scale;            // uniform scale
+    uint32_t variants = 1;               // every type range is a multiple of it
 
     uint32_t size() const { return uint32_t(type.size()); }
     uint32_t typeCount() const { return type_begin.empty() ? 0 : uint32_t(type_begin.size() - 1); }
+
+    // Candidates of one variant of type t (the type's candidate_count).
+    uint32_t perVariant(uint32_t t) const { return (type_begin[t + 1] - type_begin[t]) / variants; }
+    // Candidates of one variant, all types: what one tile of the world holds.
+    uint32_t perVariantSize() const { return size() / variants; }
+    uint32_t variantBegin(uint32_t t, uint32_t v) const { return type_begin[t] + v * perVariant(t); }
+    uint32_t variantEnd(uint32_t t, uint32_t v) const { return type_begin[t] + (v + 1) * perVariant(t); }
+    uint32_t variantOf(uint32_t id) const {
+        const uint32_t t = type[id];
+        return (id - type_begin[t]) / perVariant(t);
+    }
 };
 
 struct GhostTileStats {
@@ -102,7 +124,7 @@ struct GhostTile {
     GhostTileStats stats;
 };
 
-// Refused before any memory is taken: more candidates than this in one tile.
+// Refused before any memory is taken: more candidates than this in one tile (all variants together).
 constexpr uint32_t kMaxCandidatesPerTile = 1u << 20;
 // Refused during the build: a collision graph larger than this (bytes).
 constexpr uint64_t kMaxGraphBytes = 2ull << 30;
@@ -121,11 +143,14 @@ bool validateGhostTileInput(const GhostTileInput& input, std::string* error);
 uint64_t ghostTileKey(const GhostTileInput& input);
 
 // Generates candidates and the collision graph. Deterministic: the same input gives a bit-identical tile
-// for any thread count.
+// for any thread count. With several variants, the graph holds offset-0 edges only between candidates of
+// the same variant (a tile holds one variant) and, at the 26 other offsets, edges between any two variants
+// (a neighbour tile may hold any); every edge still has its mirror.
 bool buildGhostTile(const GhostTileInput& input, const BuildOptions& options, GhostTile* out,
                     std::string* error);
 
-// Only the candidate frames (step 1 of §4.2); exposed for tests and previews.
+// Only the candidate frames (step 1 of §4.2); exposed for tests and previews. Variant v of type t is an
+// independent draw seeded from (seed, t, v); variant 0 is the draw a single-variant tile makes.
 bool generateCandidates(const GhostTileInput& input, CandidateSet* out, std::string* error);
 
 // The collision predicate of §4.3 between sphere i of candidate A (at tile offset 0) and sphere j of

@@ -87,6 +87,7 @@ bool saveGhostTileCache(const std::string& path, const GhostTile& tile, std::str
     w.put(tile.settings.tile_size_m);
     w.put(tile.settings.delta_m);
     w.put(tile.settings.seed);
+    w.put(tile.settings.variants);
     const CandidateSet& c = tile.candidates;
     w.putArray(c.type_begin);
     w.putArray(c.type);
@@ -129,7 +130,8 @@ bool loadGhostTileCache(const std::string& path, uint64_t expected_key, GhostTil
     h.get(&payload_bytes);
     h.get(&checksum);
     if (version != kGhostTileCacheVersion) {
-        return fail("format version " + std::to_string(version) + ", expected " +
+        // Another version's file is not damaged, only out of date: "stale" makes it a stale rebuild.
+        return fail("stale format version " + std::to_string(version) + ", expected " +
                     std::to_string(kGhostTileCacheVersion));
     }
     if (header_bytes != kHeaderBytes) return fail("unexpected header size " + std::to_string(header_bytes));
@@ -153,11 +155,16 @@ bool loadGhostTileCache(const std::string& path, uint64_t expected_key, GhostTil
     std::vector<uint32_t> row_offsets;
     std::vector<uint8_t> stream;
     bool ok = r.get(&tile.settings.tile_size_m) && r.get(&tile.settings.delta_m) && r.get(&tile.settings.seed) &&
+              r.get(&tile.settings.variants) &&
               r.getArray(&c.type_begin, 65536) && r.getArray(&c.type, max_n) && r.getArray(&c.position, max_n) &&
               r.getArray(&c.rotation, max_n) && r.getArray(&c.scale, max_n) &&
               r.getArray(&row_offsets, max_n + 1) && r.getArray(&stream, kMaxGraphBytes) &&
               r.get(&tile.stats.build_seconds) && r.atEnd();
     if (!ok) return fail("payload does not match its declared layout");
+    if (tile.settings.variants < 1 || tile.settings.variants > kMaxTileVariants)
+        return fail("variants " + std::to_string(tile.settings.variants) + " out of range [1, " +
+                    std::to_string(kMaxTileVariants) + "]");
+    c.variants = tile.settings.variants;
     const uint32_t n = c.size();
     if (c.type_begin.size() < 2 || c.type_begin.front() != 0 || c.type_begin.back() != n ||
         c.position.size() != n || c.rotation.size() != n || c.scale.size() != n) {
@@ -167,6 +174,11 @@ bool loadGhostTileCache(const std::string& path, uint64_t expected_key, GhostTil
     // so the walk below stays inside the arrays.
     for (size_t t = 0; t + 1 < c.type_begin.size(); ++t)
         if (c.type_begin[t] > c.type_begin[t + 1]) return fail("candidate type ranges are not ordered");
+    // The instantiator cuts every type range into `variants` equal parts.
+    for (size_t t = 0; t + 1 < c.type_begin.size(); ++t)
+        if ((c.type_begin[t + 1] - c.type_begin[t]) % c.variants != 0)
+            return fail("candidate type " + std::to_string(t) + " does not split into " + std::to_string(c.variants) +
+                        " variants");
     for (size_t t = 0; t + 1 < c.type_begin.size(); ++t) {
         for (uint32_t i = c.type_begin[t]; i < c.type_begin[t + 1]; ++i)
             if (c.type[i] != t) return fail("candidate " + std::to_string(i) + " is filed under the wrong type");

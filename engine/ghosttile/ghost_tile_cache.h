@@ -16,7 +16,8 @@
 
 namespace ug {
 
-constexpr uint32_t kGhostTileCacheVersion = 1;
+// 2: GhostTileSettings::variants after the seed. A file of another version is refused as stale and rebuilt.
+constexpr uint32_t kGhostTileCacheVersion = 2;
 
 // Writes atomically: a temporary file in the same folder, flushed, then renamed over `path`.
 bool saveGhostTileCache(const std::string& path, const GhostTile& tile, std::string* error);

@@ -66,6 +66,10 @@ bool verifyGhostTileAgainstInput(const GhostTile& tile, const GhostTileInput& in
                              std::to_string(input.settings.delta_m) + " m");
     if (s.seed != input.settings.seed)
         return fail(why, "seed " + std::to_string(s.seed) + ", the scene asks for " + std::to_string(input.settings.seed));
+    if (s.variants != input.settings.variants || tile.candidates.variants != input.settings.variants)
+        return fail(why, "variants " + std::to_string(s.variants) + " (candidates: " +
+                             std::to_string(tile.candidates.variants) + "), the scene asks for " +
+                             std::to_string(input.settings.variants));
 
     CandidateSet expected;
     if (!generateCandidates(input, &expected, why)) return false;
@@ -119,6 +123,8 @@ bool verifyGhostTileAgainstInput(const GhostTile& tile, const GhostTileInput& in
         if (glm::dot(d, d) > r * r) return false;  // conservative: padded bounds enclose every sphere
         return candidatesCollide(spheres[i], spheres[j], shift, delta);
     };
+    // A tile holds one variant, so the graph has no offset-0 edge between two variants.
+    auto sameVariant = [&](uint32_t i, uint32_t j) { return c.variants == 1 || c.variantOf(i) == c.variantOf(j); };
     const uint32_t rows = std::min(n, kVerifiedRows);
     std::vector<uint32_t> stored, derived;
     for (uint32_t k = 0; k < rows; ++k) {
@@ -128,7 +134,8 @@ bool verifyGhostTileAgainstInput(const GhostTile& tile, const GhostTileInput& in
         g.forEachNeighbor(i, [&](uint32_t j, uint32_t v) { stored.push_back(j * kOffsetCount + v); });
         for (uint32_t j = 0; j < n; ++j)
             for (uint32_t v = 0; v < kOffsetCount; ++v)
-                if (!(j == i && v == kCenterOffset) && collide(i, j, v)) derived.push_back(j * kOffsetCount + v);
+                if (!(v == kCenterOffset && (j == i || !sameVariant(i, j))) && collide(i, j, v))
+                    derived.push_back(j * kOffsetCount + v);
         if (stored != derived)
             return fail(why, "collision graph row " + std::to_string(i) + " has " + std::to_string(stored.size()) +
                                  " edges, the sphere sets give " + std::to_string(derived.size()));
@@ -148,6 +155,9 @@ bool verifyGhostTileAgainstInput(const GhostTile& tile, const GhostTileInput& in
                 if (bad.empty() && !collide(i, j, v))
                     bad = "collision graph edge " + std::to_string(i) + " - " + std::to_string(j) +
                           " does not collide on the scene's sphere sets";
+                if (bad.empty() && v == kCenterOffset && !sameVariant(i, j))
+                    bad = "collision graph edge " + std::to_string(i) + " - " + std::to_string(j) +
+                          " joins two variants in the same tile";
                 ++next;
             }
             ++rank;

@@ -16,13 +16,13 @@ constexpr uint32_t kVerifiedRows = 24;
 constexpr uint32_t kVerifiedEdges = 2048;
 
 // Checks, in this order, and stops at the first disagreement (the message says which value differs):
-//  - the settings (tile size, δ, seed) equal the input's, bit for bit;
+//  - the settings (tile size, δ, seed, variants) equal the input's, bit for bit;
 //  - the candidate frames equal a fresh generateCandidates(input), bit for bit: type ranges and counts,
 //    finite positions in the tile, unit quaternions and scales in range all follow from that;
 //  - the collision graph has one row per candidate and is symmetric (every edge (i, j, v) has its mirror
 //    (j, i, -v); checked in O(E) with an order-independent hash of the two edge multisets);
 //  - kVerifiedRows rows and kVerifiedEdges edges agree with the collision predicate on the input's
-//    sphere sets (spheresCollide, exactly as the build decides).
+//    sphere sets (spheresCollide, exactly as the build decides; no offset-0 edge between two variants).
 // The input must be valid (validateGhostTileInput).
 bool verifyGhostTileAgainstInput(const GhostTile& tile, const GhostTileInput& input, std::string* why);
 

@@ -200,6 +200,11 @@ bool validateInput(const InstancerInput& in, std::string* error) {
                         std::to_string(int64_t(double(kTileCoordLimit) * s)) + " m (" +
                         std::to_string(kTileCoordLimit) + " tiles of " + std::to_string(s) + " m)");
     if (gt.graph.nodeCount() != gt.candidates.size()) return fail("instancer: the Ghost Tile's graph is inconsistent");
+    const uint32_t variants = gt.candidates.variants;
+    if (variants < 1 || variants > kMaxTileVariants) return fail("instancer: the Ghost Tile's variant count is out of range");
+    for (uint32_t i = 0; i < type_count; ++i)
+        if ((gt.candidates.type_begin[i + 1] - gt.candidates.type_begin[i]) % variants != 0)
+            return fail("instancer: the Ghost Tile's candidates do not split into its variants");
     for (uint32_t i = 0; i < type_count; ++i) {
         const std::string where = "detail type " + std::to_string(i) + " ('" +
                                   (in.models[i] ? in.models[i]->name : std::string("?")) + "'): ";
@@ -263,9 +268,12 @@ void Instantiator::Engine::computeTile(TileState* ts, const std::vector<const Ti
     const uint64_t tile_key = ts->key;
     ts->alive.clear();
     ts->priority.clear();
+    // The tile holds one variant: the other variants' candidates are never alive here, so the resolver,
+    // which looks neighbours up by candidate id (TileState::find), never sees them.
+    const uint32_t variant = tileVariant(input.seed, tile_key, c.variants);
 
     for (uint32_t i = 0; i < c.typeCount(); ++i) {
-        const uint32_t begin = c.type_begin[i], end = c.type_begin[i + 1];
+        const uint32_t begin = c.variantBegin(i, variant), end = c.variantEnd(i, variant);
         const TypeRuntime& rt = runtime[i];
         const InstanceTypeSettings& settings = input.types[i];
         if (!rt.field || !parents[i]) continue;  // nothing of this type can live here: not even tested
@@ -414,11 +422,13 @@ bool Instantiator::Engine::enumerateAndCompute(const Bounds& box_in, const Insta
     const int threads = resolveThreadCount(options.threads);
     const size_t type_count = input.types.size();
 
-    // Worst case per planned tile: every candidate alive (13 bytes each), the tile's own state and its
-    // place in the plan. The budget is a tile count, checked while planning: pass 1 holds no per-tile
-    // memory, so a world too dense for the budget is refused before anything large is allocated.
+    // Worst case per planned tile: every candidate of its variant alive (13 bytes each), the alive bitset
+    // and ranks (over all variants' ids), the tile's own state and its place in the plan. The budget is a
+    // tile count, checked while planning: pass 1 holds no per-tile memory, so a world too dense for the
+    // budget is refused before anything large is allocated.
+    const uint32_t per_variant = input.tile->candidates.perVariantSize();
     const uint64_t per_tile =
-        sizeof(TileState) + sizeof(glm::ivec3) + 2 * ((prep.n + 63) / 64) * 8 + uint64_t(prep.n) * 13;
+        sizeof(TileState) + sizeof(glm::ivec3) + 2 * ((prep.n + 63) / 64) * 8 + uint64_t(per_variant) * 13;
     const uint64_t max_tiles = options.max_memory_bytes / per_tile;
 
     // The tiles of one block that may hold an alive candidate, given each type's positive bounds in the
@@ -481,7 +491,7 @@ bool Instantiator::Engine::enumerateAndCompute(const Bounds& box_in, const Insta
     if (over_budget.load() || tile_total > max_tiles) {
         if (error)
             *error = "instancer: the scene needs more than " + std::to_string(max_tiles * per_tile >> 20) +
-                     " MiB (at least " + std::to_string(tile_total) + " tiles of " + std::to_string(prep.n) +
+                     " MiB (at least " + std::to_string(tile_total) + " tiles of " + std::to_string(per_variant) +
                      " candidates, up to " + std::to_string(per_tile) + " bytes each), more than the allowed " +
                      std::to_string(options.max_memory_bytes >> 20) +
                      " MiB; shrink the extent or the fields, or cut the world into --region jobs";

@@ -1,6 +1,7 @@
 // The instantiator (Ghost Tile §5, redefined as a pure function in DESIGN.md "Instantiation as a pure
 // function"): which candidates of the infinite grid of Ghost Tiles become objects.
 //
+//  0. Each tile t holds one Ghost Tile variant, tileVariant(seed, t): only its candidates are looked at.
 //  1. A tile-candidate c = (tile t, candidate j of type i) is ALIVE when its origin lies in the scene
 //     extent, f_i > 0 at every anchor (§5.1 culling), u(seed, t, j) < min(1, mean of f_i at its anchors)
 //     (§5.3 acceptance), and the orientation and size constraints accept it (§5.3 "Control").
@@ -31,6 +32,7 @@
 #include <string>
 #include <vector>
 
+#include "core/hash.h"
 #include "field/bounds.h"
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instance_store.h"
@@ -121,6 +123,15 @@ private:
 // instantiateAll()'s. Errors: an empty, inverted or non-finite region.
 bool instantiateRegion(const InstancerInput& input, const Bounds& region, const InstanceOptions& options,
                        InstanceStore* out, InstanceStats* stats, std::string* error);
+
+// The Ghost Tile variant a tile of the world holds (DESIGN.md, "No period"): a hash of the instancing seed
+// and the packed tile, so it is a pure function like everything else here. Only that variant's candidates
+// can be alive in the tile; exporters, metrics and tests use this to know which ones a tile may hold.
+constexpr uint64_t kTileVariantStream = 0x76617269616e74ull;  // "variant"
+inline uint32_t tileVariant(uint64_t seed, uint64_t tile_key, uint32_t variants) {
+    if (variants <= 1) return 0;
+    return uint32_t(hashWords(seed, tile_key, kTileVariantStream) % variants);
+}
 
 // True when key a = (priority_a, tile_a, j_a) comes before b: a wins a collision against b.
 inline bool keyBefore(uint64_t priority_a, uint64_t tile_a, uint32_t j_a, uint64_t priority_b, uint64_t tile_b,

@@ -78,7 +78,7 @@ bool sameModelSource(const DetailModelSource& a, const DetailModelSource& b) {
 
 bool operator==(const GhostTileSpec& a, const GhostTileSpec& b) {
     if (a.settings.tile_size_m != b.settings.tile_size_m || a.settings.delta_m != b.settings.delta_m ||
-        a.settings.seed != b.settings.seed || a.models.size() != b.models.size() || a.types.size() != b.types.size())
+        a.settings.seed != b.settings.seed || a.settings.variants != b.settings.variants || a.models.size() != b.models.size() || a.types.size() != b.types.size())
         return false;
     for (size_t t = 0; t < a.models.size(); ++t)
         if (!sameModelSource(a.models[t], b.models[t])) return false;

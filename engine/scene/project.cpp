@@ -349,11 +349,22 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
     p.source = source_name;
     if (!r.string(doc, "", "name", &p.name)) return false;
     if (auto it = doc.find("ghost_tile"); it != doc.end()) {
-        if (!r.expectObject(*it, "/ghost_tile") || !r.onlyKeys(*it, "/ghost_tile", {"tile_size_m", "delta_m", "seed"}) ||
+        if (!r.expectObject(*it, "/ghost_tile") ||
+            !r.onlyKeys(*it, "/ghost_tile", {"tile_size_m", "delta_m", "seed", "variants"}) ||
             !r.number(*it, "/ghost_tile", "tile_size_m", &p.ghost_tile.tile_size_m, 1e-4, 1000.0) ||
             !r.number(*it, "/ghost_tile", "delta_m", &p.ghost_tile.delta_m, -10.0, 10.0) ||
             !r.integer(*it, "/ghost_tile", "seed", &p.ghost_tile.seed, 0, UINT64_MAX))
             return false;
+        // Optional (default 1) in format 2: a file without it means what it always meant.
+        if (auto v = it->find("variants"); v != it->end()) {
+            if (!v->is_number_unsigned() || v->get<uint64_t>() < 1 || v->get<uint64_t>() > kMaxTileVariants) {
+                std::string got = v->dump();
+                if (got.size() > 40) got = got.substr(0, 40) + "...";
+                return r.fail("/ghost_tile/variants",
+                              "expected an integer in [1, " + std::to_string(kMaxTileVariants) + "], got " + got);
+            }
+            p.ghost_tile.variants = uint32_t(v->get<uint64_t>());
+        }
     }
     if (auto it = doc.find("terrain"); it != doc.end() && !readTerrain(r, *it, "/terrain", &p.terrain))
         return false;
@@ -415,6 +426,14 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
             return r.fail(tp + "/candidates/count", "the detail types' candidates add up to " +
                                                         std::to_string(total_candidates) + ", more than the limit of " +
                                                         std::to_string(kMaxCandidatesPerTile) + " per Ghost Tile");
+        // The tile stores every variant of every type.
+        const uint64_t variants = p.ghost_tile.variants;
+        if (total_candidates * variants > kMaxCandidatesPerTile)
+            return r.fail(tp + "/candidates/count",
+                          "the detail types' candidates add up to " + std::to_string(total_candidates) + ", times " +
+                              std::to_string(variants) + " variants (/ghost_tile/variants) " +
+                              std::to_string(total_candidates * variants) + ", more than the limit of " +
+                              std::to_string(kMaxCandidatesPerTile) + " per Ghost Tile");
         if (auto it = jt.find("density");
             it != jt.end() && !readDensityField(r, *it, tp + "/density", has_terrain, &d.density))
             return false;
@@ -568,6 +587,9 @@ std::string projectToJson(const Project& project) {
     doc["ghost_tile"] = {{"tile_size_m", jsonFloat(project.ghost_tile.tile_size_m)},
                          {"delta_m", jsonFloat(project.ghost_tile.delta_m)},
                          {"seed", project.ghost_tile.seed}};
+    // Written only when set, so a single-variant project saves exactly as before and older builds of
+    // format 2 (which refuse unknown keys) still read it.
+    if (project.ghost_tile.variants != 1) doc["ghost_tile"]["variants"] = project.ghost_tile.variants;
     if (project.terrain.kind != TerrainKind::None) doc["terrain"] = terrainJson(project.terrain);
     if (project.extent)
         doc["extent"] = {{"min", vec3Json(project.extent->lo)}, {"max", vec3Json(project.extent->hi)}};

@@ -8,7 +8,8 @@
 //
 //   {"format": "undergrowth-project", "format_version": 2,          (1 is still read: no terrain, no
 //    "name": "meadow",                                               density, default instancing)
-//    "ghost_tile": {"tile_size_m": 0.5, "delta_m": -0.002, "seed": 7},
+//    "ghost_tile": {"tile_size_m": 0.5, "delta_m": -0.002, "seed": 7, "variants": 4},
+//                                                  (variants: optional, 1..64, default 1; see ghost_tile.h)
 //    "terrain": {"procedural": {"origin": [x, y], "cell_size_m", "width", "height", "seed", "octaves",
 //                               "base_height_m", "amplitude_m", "feature_size_m", "lacunarity", "gain"}}
 //            or {"image": {"path": "ground.png", "origin": [x, y], "cell_size_m", "min_height_m",

@@ -63,9 +63,10 @@ def forge_cache(src, dst, what):
     assert data[:8] == b"UGGHOST\0", "not a cache"
     assert hash_bytes(bytes(data[HEADER:])) == struct.unpack_from("<Q", data, 32)[0], "checksum re-implementation"
     payload = HEADER
-    # Payload layout (ghost_tile_cache.cpp): f32 tile size, f32 delta, u64 seed, then arrays (u64 count + items):
-    # type_begin u32, type u16, position vec3, rotation quat, scale f32, ...
-    off = payload + 4 + 4 + 8
+    # Payload layout (ghost_tile_cache.cpp, format 2): f32 tile size, f32 delta, u64 seed, u32 variants, then
+    # arrays (u64 count + items): type_begin u32, type u16, position vec3, rotation quat, scale f32, ...
+    assert struct.unpack_from("<I", data, 8)[0] == 2, "cache format version"
+    off = payload + 4 + 4 + 8 + 4
     arrays = {}
     for name, size in (("type_begin", 4), ("type", 2), ("position", 12), ("rotation", 16), ("scale", 4)):
         count = struct.unpack_from("<Q", data, off)[0]

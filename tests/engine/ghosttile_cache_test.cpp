@@ -43,6 +43,8 @@ void expectSameTile(const GhostTile& a, const GhostTile& b) {
     EXPECT_EQ(a.key, b.key);
     EXPECT_EQ(a.settings.tile_size_m, b.settings.tile_size_m);
     EXPECT_EQ(a.settings.delta_m, b.settings.delta_m);
+    EXPECT_EQ(a.settings.variants, b.settings.variants);
+    EXPECT_EQ(a.candidates.variants, b.candidates.variants);
     EXPECT_EQ(a.candidates.type_begin, b.candidates.type_begin);
     EXPECT_EQ(a.candidates.type, b.candidates.type);
     EXPECT_EQ(a.candidates.position, b.candidates.position);
@@ -263,6 +265,57 @@ TEST_F(ForgedCache, InventedPairsAreRefused) {
     expectRefused(forged, "collision graph");
 }
 
+TEST_F(CacheFixture, VariantsRoundTripAndAreVerified) {
+    input.settings.variants = 3;
+    GhostTile tile, back;
+    std::string error, note;
+    ASSERT_TRUE(buildGhostTile(input, {}, &tile, &error)) << error;
+    ASSERT_EQ(tile.candidates.size(), 450u);
+    const std::string path = (dir / "v.ugt").string();
+    ASSERT_TRUE(saveGhostTileCache(path, tile, &error)) << error;
+    ASSERT_TRUE(loadGhostTileCache(path, tile.key, &back, &error)) << error;
+    expectSameTile(tile, back);
+    // Through loadOrBuild: built, then loaded after passing the check against the scene (graph rows with
+    // the variant rule included).
+    CacheOutcome outcome;
+    ASSERT_TRUE(loadOrBuildGhostTile(dir.string(), input, {}, &back, &outcome, &note, &error)) << error;
+    EXPECT_EQ(outcome, CacheOutcome::BuiltMissing);
+    ASSERT_TRUE(loadOrBuildGhostTile(dir.string(), input, {}, &back, &outcome, &note, &error)) << error;
+    EXPECT_EQ(outcome, CacheOutcome::Loaded) << note;
+    expectSameTile(tile, back);
+    // A variant count the type ranges do not divide into is refused by the loader itself.
+    GhostTile forged = tile;
+    forged.settings.variants = 4;  // 450 candidates: not 4 equal parts
+    ASSERT_TRUE(saveGhostTileCache(path, forged, &error)) << error;
+    EXPECT_FALSE(loadGhostTileCache(path, tile.key, &back, &error));
+    EXPECT_NE(error.find("variants"), std::string::npos) << error;
+    forged.settings.variants = 0;
+    ASSERT_TRUE(saveGhostTileCache(path, forged, &error)) << error;
+    EXPECT_FALSE(loadGhostTileCache(path, tile.key, &back, &error));
+    EXPECT_NE(error.find("variants"), std::string::npos) << error;
+}
+
+TEST_F(CacheFixture, OtherFormatVersionIsAStaleRebuild) {
+    GhostTile first, second;
+    CacheOutcome outcome;
+    std::string note, error;
+    ASSERT_TRUE(loadOrBuildGhostTile(dir.string(), input, {}, &first, &outcome, &note, &error)) << error;
+    const fs::path path = ghostTileCachePath(dir.string(), ghostTileKey(input));
+    auto bytes = bytesOf(path);
+    bytes[8] = uint8_t(kGhostTileCacheVersion - 1);  // what the build before variants wrote
+    writeBytes(path, bytes);
+    ASSERT_TRUE(loadOrBuildGhostTile(dir.string(), input, {}, &second, &outcome, &note, &error)) << error;
+    EXPECT_EQ(outcome, CacheOutcome::BuiltStale) << note;
+    EXPECT_NE(note.find("format version"), std::string::npos) << note;
+    expectSameTile(first, second);
+}
+
+TEST_F(ForgedCache, OtherVariantCountIsRefused) {
+    GhostTile forged = good;
+    forged.settings.variants = 2;  // 150 candidates split in two: structurally fine, not the scene's tile
+    expectRefused(forged, "variants");
+}
+
 TEST_F(CacheFixture, TileWithoutCollidingPairsRoundTrips) {
     // One small candidate in a large tile: no pairs, so the graph's stream is an empty array on disk.
     input.settings.tile_size_m = 5.0f;
@@ -290,6 +343,9 @@ TEST_F(CacheFixture, ChangedInputsChangeTheKey) {
     EXPECT_NE(ghostTileKey(changed), base);
     changed = input;
     changed.types[0].candidate_count++;
+    EXPECT_NE(ghostTileKey(changed), base);
+    changed = input;
+    changed.settings.variants = 2;
     EXPECT_NE(ghostTileKey(changed), base);
 }
 

@@ -23,12 +23,12 @@ struct InstancerFixture {
     GhostTile tile;
     InstancerInput input;
 
-    explicit InstancerFixture(float delta_m = 0.0f, uint32_t blobs = 150, uint32_t rods = 100) {
+    explicit InstancerFixture(float delta_m = 0.0f, uint32_t blobs = 150, uint32_t rods = 100, uint32_t variants = 1) {
         models.push_back(blobModel(6, 0.12f, 3));
         models.back().name = "blob";
         models.push_back(rodModel(5, 0.1f, 0.025f));
         GhostTileInput gi;
-        gi.settings = {.tile_size_m = 0.5f, .delta_m = delta_m, .seed = 11};
+        gi.settings = {.tile_size_m = 0.5f, .delta_m = delta_m, .seed = 11, .variants = variants};
         gi.types.push_back({.name = "blob", .candidate_count = blobs, .scale_min = 0.8f, .scale_max = 1.2f});
         DetailTypeSettings rod{.name = "rod", .candidate_count = rods, .scale_min = 0.9f, .scale_max = 1.1f};
         gi.types.push_back(rod);

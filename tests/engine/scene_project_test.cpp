@@ -1,6 +1,7 @@
 // The project file: round trip, and errors that name the file, the place and the reason.
 #include <gtest/gtest.h>
 
+#include "scene/ghost_tile_job.h"
 #include "scene/project.h"
 
 namespace ug {
@@ -42,6 +43,28 @@ TEST(Project, ParsesEveryFieldAndRoundTrips) {
     EXPECT_EQ(projectToJson(back), projectToJson(p));
 }
 
+TEST(Project, GhostTileVariantsRoundTripAndDefaultToOne) {
+    Project p;
+    std::string error;
+    ASSERT_TRUE(parseProject(kGood, "t.json", &p, &error)) << error;
+    EXPECT_EQ(p.ghost_tile.variants, 1u);
+    // A single-variant project saves without the key, exactly as before variants existed.
+    EXPECT_EQ(projectToJson(p).find("variants"), std::string::npos);
+    std::string text = kGood;
+    const std::string seed = "\"seed\": 9}";
+    ASSERT_NE(text.find(seed), std::string::npos);
+    text.replace(text.find(seed), seed.size(), "\"seed\": 9, \"variants\": 4}");
+    ASSERT_TRUE(parseProject(text, "v.json", &p, &error)) << error;
+    EXPECT_EQ(p.ghost_tile.variants, 4u);
+    EXPECT_EQ(ghostTileSpec(p).settings.variants, 4u);
+    const std::string saved = projectToJson(p);
+    EXPECT_NE(saved.find("\"variants\": 4"), std::string::npos) << saved;
+    Project back;
+    ASSERT_TRUE(parseProject(saved, "back.json", &back, &error)) << error;
+    EXPECT_EQ(back.ghost_tile.variants, 4u);
+    EXPECT_EQ(projectToJson(back), saved);
+}
+
 TEST(Project, ErrorsNameTheFileThePlaceAndTheReason) {
     struct Case {
         std::string text;
@@ -69,6 +92,16 @@ TEST(Project, ErrorsNameTheFileThePlaceAndTheReason) {
          "/ghost_tile/tile_size_m: expected a number, got a string"},
         {head + R"("ghost_tile": {"tile_size_m": -1}, "detail_types": [)" + rock + "]}",
          "/ghost_tile/tile_size_m: -1 is out of range"},
+        {head + R"("ghost_tile": {"variants": 0}, "detail_types": [)" + rock + "]}",
+         "s.json: /ghost_tile/variants: expected an integer in [1, 64], got 0"},
+        {head + R"("ghost_tile": {"variants": 65}, "detail_types": [)" + rock + "]}",
+         "/ghost_tile/variants: expected an integer in [1, 64], got 65"},
+        {head + R"("ghost_tile": {"variants": 2.5}, "detail_types": [)" + rock + "]}",
+         "/ghost_tile/variants: expected an integer in [1, 64], got 2.5"},
+        {head + R"("ghost_tile": {"variants": "four"}, "detail_types": [)" + rock + "]}",
+         "/ghost_tile/variants: expected an integer in [1, 64], got \"four\""},
+        {head + R"("ghost_tile": {"variants": 64}, "detail_types": [{"name": "rock", "model": {"mesh": "r.glb"}, "candidates": {"count": 20000}}]})",
+         "/detail_types/0/candidates/count: the detail types' candidates add up to 20000, times 64 variants"},
         {head + R"("detail_types": [{"name": "rock", "model": {}}]})", "/detail_types/0/model/mesh: missing"},
         {head + R"("detail_types": [{"name": "rock", "model": {"mesh": "r.glb"}, "candidates": {"count": -3}}]})",
          "/detail_types/0/candidates/count: expected a non-negative integer"},

