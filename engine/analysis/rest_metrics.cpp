@@ -6,7 +6,7 @@
 #include <limits>
 #include <memory>
 
-#include "analysis/xy_grid.h"
+#include "core/xy_grid.h"
 #include "core/parallel.h"
 #include "mesh/triangle_bvh.h"
 

@@ -9,6 +9,7 @@
 
 #include "field/density_field.h"
 #include "field/direction_field.h"
+#include "field/height_field.h"
 
 namespace ug {
 
@@ -39,12 +40,22 @@ struct SizeConstraint {
     float tolerance = 0.25f;  // >= 0
 };
 
+// Candidates that would sink into the ground: rejected like a constraint (issue "piles that rest": half of
+// the beaver dam's grass tufts reached more than 2 cm below the terrain they were exported with). A
+// candidate is kept when none of its lowest collision spheres reaches more than max_sink_m below the
+// terrain under its centre. Off without a terrain.
+struct SinkConstraint {
+    std::shared_ptr<const HeightField> terrain;  // null: off
+    float max_sink_m = 0.02f;                    // >= 0
+};
+
 struct InstanceTypeSettings {
     std::shared_ptr<const DensityField> field;  // f_i (solids already subtracted); null = nowhere
     PriorityStrategy strategy = PriorityStrategy::Random;
     float layer_m = 0.02f;  // Elevation / DistanceToBoundary: thickness of one priority layer, > 0
     OrientationConstraint orientation;
     SizeConstraint size;
+    SinkConstraint sink;
 };
 
 }  // namespace ug

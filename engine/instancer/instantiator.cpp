@@ -54,7 +54,11 @@ struct Prepared {
     std::vector<glm::vec3> z_axis;        // R_j * +Z
     std::vector<float> reach;             // per type: the farthest anchor from its candidate's origin
     float max_reach = 0.0f;
+    // The sink test's spheres: per candidate its kSinkSpheres lowest (by bottom), relative to its origin.
+    std::vector<glm::vec4> low_spheres;   // xyz centre offset, w radius; kSinkSpheres per candidate
 };
+
+constexpr uint32_t kSinkSpheres = 4;
 
 Prepared prepare(const InstancerInput& in) {
     Prepared p;
@@ -74,6 +78,13 @@ Prepared prepare(const InstancerInput& in) {
         }
         p.anchor_begin.push_back(uint32_t(p.anchors.size()));
         p.z_axis[j] = c.rotation[j] * glm::vec3(0.0f, 0.0f, 1.0f);
+        std::vector<glm::vec4> spheres;
+        for (const Sphere& sp : m.spheres)
+            spheres.push_back(glm::vec4(c.rotation[j] * (c.scale[j] * sp.center), c.scale[j] * sp.radius));
+        std::stable_sort(spheres.begin(), spheres.end(),
+                         [](const glm::vec4& a, const glm::vec4& b) { return a.z - a.w < b.z - b.w; });
+        for (uint32_t k = 0; k < kSinkSpheres; ++k)
+            p.low_spheres.push_back(k < spheres.size() ? spheres[k] : (spheres.empty() ? glm::vec4(0.0f) : spheres[0]));
     }
     // Pad against rounding in the world-space sums: reach only decides which boxes to look at.
     for (float& r : p.reach) r = r * 1.001f + 1e-4f;
@@ -221,6 +232,8 @@ bool validateInput(const InstancerInput& in, std::string* error) {
                 return fail(where + "orientation min_cos must be in [-1, 1]");
             if (!validate(t.orientation.direction, &e)) return fail(where + "orientation: " + e);
         }
+        if (t.sink.terrain && !(std::isfinite(t.sink.max_sink_m) && t.sink.max_sink_m >= 0.0f))
+            return fail(where + "max_sink_m must be finite and >= 0");
         if (t.size.enabled) {
             if (!std::isfinite(t.size.tolerance) || t.size.tolerance < 0.0f)
                 return fail(where + "size tolerance must be finite and >= 0");
@@ -354,6 +367,18 @@ void Instantiator::Engine::computeTile(TileState* ts, const std::vector<const Ti
             if (settings.size.enabled) {
                 const float target = evaluateSize(settings.size.target, rt.size_uses_list ? &list : nullptr, o);
                 if (!(std::fabs(c.scale[j] / target - 1.0f) <= settings.size.tolerance)) {
+                    ++ts->constraint_rejected;
+                    continue;
+                }
+            }
+            if (settings.sink.terrain) {
+                const HeightField& ground = *settings.sink.terrain;
+                bool sunk = false;
+                for (uint32_t low = 0; low < kSinkSpheres && !sunk; ++low) {
+                    const glm::vec4 sp = prep.low_spheres[size_t(j) * kSinkSpheres + low];
+                    sunk = ground.sample(o.x + sp.x, o.y + sp.y) - (o.z + sp.z - sp.w) > settings.sink.max_sink_m;
+                }
+                if (sunk) {
                     ++ts->constraint_rejected;
                     continue;
                 }

@@ -7,6 +7,7 @@
 #include <unordered_set>
 
 #include "core/parallel.h"
+#include "core/xy_grid.h"
 #include "instancer/tile_coord.h"
 
 namespace ug {
@@ -114,43 +115,6 @@ struct Pair {
     float offset;    // clearance when the lower instance has not moved
 };
 
-// Sorted grid over the instances' bounding spheres in XY (same idea as analysis/xy_grid.h, kept local:
-// the engine's core does not depend on the measurements).
-class Columns {
-public:
-    Columns(const std::vector<glm::vec3>& points, float cell) : cell_(cell) {
-        std::vector<std::pair<uint64_t, uint32_t>> keyed(points.size());
-        for (size_t i = 0; i < keyed.size(); ++i) keyed[i] = {key(cellOf(points[i].x), cellOf(points[i].y)), uint32_t(i)};
-        std::sort(keyed.begin(), keyed.end());
-        for (size_t i = 0; i < keyed.size(); ++i) {
-            if (i == 0 || keyed[i].first != keyed[i - 1].first) {
-                keys_.push_back(keyed[i].first);
-                begin_.push_back(uint32_t(i));
-            }
-            items_.push_back(keyed[i].second);
-        }
-        begin_.push_back(uint32_t(items_.size()));
-    }
-    template <typename F>
-    void forEachNear(glm::vec3 p, float r, F&& f) const {
-        for (int64_t y = cellOf(p.y - r); y <= cellOf(p.y + r); ++y)
-            for (int64_t x = cellOf(p.x - r); x <= cellOf(p.x + r); ++x) {
-                auto it = std::lower_bound(keys_.begin(), keys_.end(), key(x, y));
-                if (it == keys_.end() || *it != key(x, y)) continue;
-                const size_t c = size_t(it - keys_.begin());
-                for (uint32_t k = begin_[c]; k < begin_[c + 1]; ++k) f(items_[k]);
-            }
-    }
-
-private:
-    int64_t cellOf(float v) const { return int64_t(std::floor(double(v) / double(cell_))); }
-    static uint64_t key(int64_t x, int64_t y) { return (uint64_t(uint32_t(int32_t(x))) << 32) | uint32_t(int32_t(y)); }
-    float cell_;
-    std::vector<uint64_t> keys_;
-    std::vector<uint32_t> begin_;
-    std::vector<uint32_t> items_;
-};
-
 uint16_t toUnits(float drop_m) {
     const float u = std::floor(drop_m / kSettleQuantumM);  // down: never deeper than the contact
     return u <= 0.0f ? 0 : u >= 65535.0f ? 65535 : uint16_t(u);
@@ -189,7 +153,7 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
         bound_radius[i] = 0.5f * glm::length(hi - lo);
         max_bound = std::max(max_bound, bound_radius[i]);
     }
-    const Columns columns(bound_center, std::max(2.0f * max_bound + gap, 1e-3f));
+    const XyGrid columns(std::span<const glm::vec3>(bound_center), std::max(2.0f * max_bound + gap, 1e-3f));
 
     // Fixed per instance: the bound from the support and the max drop, and per lower neighbour the
     // smallest clearance over their sphere pairs (drop_B adds to every pair of A and B alike).
@@ -207,7 +171,7 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
             }
             bound[i] = limit;
             std::vector<Pair>& mine = pairs[i];
-            columns.forEachNear(bound_center[i], bound_radius[i] + max_bound + gap, [&](uint32_t o) {
+            columns.forEachNear(glm::vec2(bound_center[i]), bound_radius[i] + max_bound + gap, [&](uint32_t o) {
                 if (o == i || zlo[o] > zhi[i]) return;  // no sphere of o lies below one of i
                 const float dx = bound_center[i].x - bound_center[o].x, dy = bound_center[i].y - bound_center[o].y;
                 const float far = bound_radius[i] + bound_radius[o] + gap;

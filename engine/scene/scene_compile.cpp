@@ -125,6 +125,7 @@ bool compileDetailType(const Project& project, size_t type_index,
         if (!std::isfinite(d.terrain_falloff_m) || !(d.terrain_falloff_m > 0.0f))
             return fail(error, project, tp + "/terrain_falloff_m", "must be finite and > 0");
         subtractSolids(field.get(), {makeTerrainSolid(0, d.terrain_falloff_m)});
+        s.sink.terrain = terrain;  // what keeps details out of the ground also keeps them from sinking in
     }
     s.field = field;
 

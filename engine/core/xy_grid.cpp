@@ -1,4 +1,4 @@
-#include "analysis/xy_grid.h"
+#include "core/xy_grid.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,6 +1,6 @@
-// A uniform grid over the XY plane for "which points lie near this column" queries (the measurements of
-// engine/analysis look straight down). Built once over a fixed set of points: cells are sorted keys with
-// ranges into one index array, so a query is a few binary searches and no hashing.
+// A uniform grid over the XY plane for "which points lie near this column" queries: settling and the
+// measurements of engine/analysis look straight down. Built once over a fixed set of points: cells are
+// sorted keys with ranges into one index array, so a query is a few binary searches and no hashing.
 #pragma once
 
 #include <cstdint>
