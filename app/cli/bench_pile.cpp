@@ -7,15 +7,32 @@
 
 #include "cli/bench.h"
 #include "cli/scene_metrics.h"
+#include "scene/sculpt_pile.h"
 
 namespace ug::cli {
 
 namespace {
 
+// The rock pile's rocks in a pile the Sculpt tool builds when held for 40 stamps (brush radius 0.6 m,
+// strength 1) on flat ground: one cone at the rocks' angle of repose (scene/sculpt_pile.h, with the tool's
+// pile weight 4 and isosurface 0.5), the twigs' density removed.
+bool sculptedPile(SceneJob* job, std::string* error) {
+    DetailTypeDesc& rock = job->project.detail_types[0];
+    const PileCone cone = pileConeForVolume(glm::vec3(0.0f), 40.0f * sculptStampVolume(0.6f, 1.0f, 0.5f),
+                                            rock.angle_of_repose_deg);
+    rock.density = makeBlendField({pileConePrimitive(cone, 4.0f, 0.5f)});
+    subtractSolids(&rock.density, {makeHalfSpace(glm::vec3(0.0f, 0.0f, -0.02f), glm::vec3(0.0f, 0.0f, 1.0f), 0.02f, 10000.0f)});
+    for (size_t t = 1; t < job->project.detail_types.size(); ++t) job->project.detail_types[t].density = DensityField{};
+    return compileScene(job->project, job->compiled.terrain, &job->compiled, error);
+}
+
 bool instantiateScene(const BenchContext& ctx, const std::string& scene, SceneJob* job, InstanceStore* store,
                       SettledDrops* drops, double* settle_seconds, std::string* error) {
-    if (!loadSceneJob(ctx.assets_dir + "/scenes/" + scene + ".json", ctx.cache_dir, ctx.threads, true, job, error))
+    const bool sculpted = scene == "sculpted";
+    if (!loadSceneJob(ctx.assets_dir + "/scenes/" + (sculpted ? std::string("rock_pile") : scene) + ".json",
+                      ctx.cache_dir, ctx.threads, true, job, error))
         return false;
+    if (sculpted && !sculptedPile(job, error)) return false;
     Instantiator inst;
     InstanceStats st;
     if (!inst.setInput(instancerInput(*job, job->project.instantiation_seed), error) ||
@@ -51,7 +68,8 @@ bool benchPile(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string
         const char* scene;
         const char* pile_type;  // the type whose packing is reported, or null
     };
-    const Case cases[] = {{"rock_pile", "rock"}, {"stone_hut", "flat_stone"}, {"meadow", nullptr}, {"beaver_dam", nullptr}};
+    const Case cases[] = {{"rock_pile", "rock"},   {"sculpted", "rock"},       {"stone_hut", "flat_stone"},
+                          {"meadow", nullptr},     {"beaver_dam", nullptr}};
     for (const Case& c : cases) {
         SceneJob job;
         InstanceStore store;
