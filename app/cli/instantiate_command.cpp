@@ -111,9 +111,9 @@ int runInstantiateCommand(int argc, char** argv) {
     std::string error;
     const char* usage =
         "usage: undergrowth instantiate SCENE.json -o OUT.glb|OUT.gltf [--stats FILE] [--seed N] [--threads N]\n"
-        "       [--region xmin,ymin,zmin,xmax,ymax,zmax] [--cache DIR] [--plain-nodes] [--chunk METRES]";
+        "       [--region xmin,ymin,zmin,xmax,ymax,zmax] [--cache DIR] [--plain-nodes] [--chunk METRES] [--measure]";
     if (!parseArgs(argc, argv, 2, {"-o", "--out", "--stats", "--seed", "--threads", "--region", "--cache", "--chunk"},
-                   {"--plain-nodes"}, &args, &error) ||
+                   {"--plain-nodes", "--measure"}, &args, &error) ||
         args.positional.size() != 1)
         return fail(error.empty() ? usage : error + "\n" + usage, 2);
     const std::string out = args.has("-o") ? args.get("-o") : args.get("--out");
@@ -208,8 +208,8 @@ int runInstantiateCommand(int argc, char** argv) {
                              {"max_drop_m", settle.settings.max_drop_m},
                              {"seconds", settle_seconds},
                              {"bytes", drops.byteSize()}};
-    // The rest, packing and tiling measurements cost about as much as the instantiation: only on request.
-    if (args.has("--stats"))
+    // The rest, packing and tiling measurements cost more than the instantiation on big scenes: on request.
+    if (args.has("--measure"))
         stats["measurements"] =
             sceneMetricsJson(measureScene(job, store, settle.settings.enabled ? &drops : nullptr, threads));
     InstanceExportOptions export_options;

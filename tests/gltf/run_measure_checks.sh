@@ -19,7 +19,7 @@ rm -rf "$out"
 mkdir -p "$out"
 failures=0
 for scene in rock_pile stone_hut; do
-  if ! "$bin" instantiate "$root/assets/scenes/$scene.json" -o "$out/$scene.glb" --stats "$out/$scene.json" \
+  if ! "$bin" instantiate "$root/assets/scenes/$scene.json" -o "$out/$scene.glb" --stats "$out/$scene.json" --measure \
        --cache "$out/cache" >/dev/null 2>"$out/$scene.log"; then
     echo "measure checks: FAILED: instantiate $scene" >&2; cat "$out/$scene.log" >&2
     failures=$((failures + 1)); continue
