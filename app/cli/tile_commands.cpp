@@ -133,6 +133,14 @@ int runMainJob(int argc, char** argv) {
     const nlohmann::json istats = instanceStatsJson(job, ist, seed, resolveThreadCount(threads), nullptr);
     InstanceExportOptions export_options;
     export_options.chunk_size_m = job.project.chunk_size_m;
+    // Settled like `instantiate` and the editor, so the main job's export rests where they show it.
+    const SettleInput settle = settleInput(job.project, job.compiled.terrain, job.tile, job.models);
+    SettledDrops drops;
+    if (settle.settings.enabled) {
+        if (!validateSettleInput(settle, &error)) return fail("run", scene + ": " + error);
+        settleAll(settle, inst.store(), threads, &drops);
+        export_options.drops = &drops;
+    }
     if (!exportInstancedScene(scene_path, job.tile, job.models, inst.store(), job.compiled.terrain.get(),
                               job.compiled.extent, export_options, istats.dump(), &error) ||
         !writeTextFileAtomically(scene_stats_path, istats.dump(2) + "\n", &error))
