@@ -173,9 +173,8 @@ int runInstantiateCommand(int argc, char** argv) {
             return fail(scene + ": --region does not overlap the scene extent");
         // Settled drops depend on the selection a little beyond the region: instantiate that much more,
         // settle, then keep the region's own instances (settling.h, "Locality").
-        const Bounds wide = settle.settings.enabled ? Bounds{region.lo - settleHaloMetres(settle),
-                                                             region.hi + settleHaloMetres(settle)}
-                                                    : region;
+        const float halo = settle.settings.enabled ? settleHaloMetres(settle) : 0.0f;
+        const Bounds wide{region.lo - halo, region.hi + halo};
         ok = instantiateRegion(input, wide, options, &store, &st, &error);
     } else {
         Instantiator inst;
