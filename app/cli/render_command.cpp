@@ -37,6 +37,12 @@ int fail(const std::string& message, int code = 1) {
 }
 int usageError(const std::string& message) { return fail(message + "\n" + kUsage, 2); }
 
+std::string numberText(double v) {
+    char text[32];
+    std::snprintf(text, sizeof(text), "%g", v);
+    return text;
+}
+
 // Six finite numbers: target x, y, z, distance (> 0), yaw and pitch in degrees (pitch within the orbit
 // camera's +-89).
 bool parseCamera(const std::string& text, editor::OrbitCamera* camera, std::string* error) {
@@ -62,11 +68,11 @@ bool parseCamera(const std::string& text, editor::OrbitCamera* camera, std::stri
         return false;
     }
     if (!(v[3] > 0.0 && v[3] <= 1.0e5)) {
-        *error = "--camera: the distance must be in (0, 100000] metres, got " + std::to_string(v[3]);
+        *error = "--camera: the distance must be in (0, 100000] metres, got " + numberText(v[3]);
         return false;
     }
     if (std::abs(v[5]) > 89.0) {
-        *error = "--camera: the pitch must be in [-89, 89] degrees, got " + std::to_string(v[5]);
+        *error = "--camera: the pitch must be in [-89, 89] degrees, got " + numberText(v[5]);
         return false;
     }
     camera->target = glm::vec3(float(v[0]), float(v[1]), float(v[2]));
