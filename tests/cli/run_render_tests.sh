@@ -75,6 +75,20 @@ if render_ok meadow "$root/assets/scenes/meadow.json" -o "$tmp/sub/meadow.png" -
   else bad "render meadow: $out"; fi
 fi
 
+# The fallback: the default display with a pbuffer (UG_EGL=pbuffer skips the surfaceless platform; Mesa's
+# default display is made surfaceless by EGL_PLATFORM, having no X server to reach), the same picture. With
+# no platform that works (the default display is X11 and there is no DISPLAY): one message, exit 1.
+if UG_EGL=pbuffer EGL_PLATFORM=surfaceless nodisplay "$bin" render "$pile" -o "$tmp/pbuffer.png" --size 333x197 \
+     --cache "$cache" >"$tmp/pbuffer.log" 2>&1 && grep -q "EGL pbuffer" "$tmp/pbuffer.log"; then
+  cmp -s "$tmp/pile.png" "$tmp/pbuffer.png" && ok "render pbuffer: the same picture as surfaceless" ||
+    bad "render pbuffer: the picture differs from the surfaceless one"
+else
+  bad "render pbuffer: not the pbuffer path: $(cat "$tmp/pbuffer.log")"
+fi
+expect_fail "no EGL context" 1 "cannot render without a display: no OpenGL 4.3 core context" -- \
+  env -u DISPLAY -u WAYLAND_DISPLAY -u EGL_PLATFORM UG_EGL=pbuffer "$bin" render "$pile" -o "$tmp/none.png" --cache "$cache"
+[ ! -e "$tmp/none.png" ] && ok "no EGL context: no picture" || bad "no EGL context: a picture was written"
+
 # 3. Bad command lines exit 2 with the usage; a missing or malformed scene exits 1 naming the file.
 expect_fail "no -o" 2 "missing -o PICTURE.png" -- nodisplay "$bin" render "$pile"
 expect_fail "no scene" 2 "usage: undergrowth render" -- nodisplay "$bin" render -o "$tmp/x.png"

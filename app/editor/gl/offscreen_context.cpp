@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 
 #include <dlfcn.h>
@@ -92,7 +93,10 @@ OffscreenStatus OffscreenContext::open(std::string* error) {
     std::string surfaceless_error;
     // Client extensions (EGL 1.5 or EGL_EXT_client_extensions): null when there are none.
     const char* client = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-    if (hasExtension(client, "EGL_MESA_platform_surfaceless") && hasExtension(client, "EGL_EXT_platform_base")) {
+    const char* forced = std::getenv("UG_EGL");
+    if (forced && std::strcmp(forced, "pbuffer") == 0) {
+        surfaceless_error = "skipped (UG_EGL=pbuffer)";
+    } else if (hasExtension(client, "EGL_MESA_platform_surfaceless") && hasExtension(client, "EGL_EXT_platform_base")) {
         EGLDisplay display = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr)) {
             display_ = display;

@@ -9,8 +9,9 @@
 //   if (!target.create(1280, 720, &error)) ...;
 //   target.bind();  renderer.render(camera, 1280, 720, lod);  target.readPixels(&rgba);
 //
-// libEGL is loaded at run time by libepoxy, which aborts the process when it is missing; open() looks for
-// it first so a machine without it gets a message instead.
+// UG_EGL=pbuffer skips the surfaceless platform (for a driver whose surfaceless path misbehaves; the
+// tests use it to run the fallback). libEGL is loaded at run time by libepoxy, which aborts the process
+// when it is missing; open() looks for it first so a machine without it gets a message instead.
 #pragma once
 
 #include <cstdint>
