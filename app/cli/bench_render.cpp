@@ -9,8 +9,10 @@
 // (viewer.cpp); the target is DESIGN.md's "brush stamp -> frame showing it, llvmpipe: p95 <= 50 ms".
 // editor.stamp_upload_tiles_p50: tiles whose resident slots a live result of that stroke re-uploaded.
 // Both need the editor's window: without a display they are left out (and the section says so).
+#include <array>
 #include <cstdio>
 #include <cstdlib>
+#include <string>
 
 #include "cli/bench.h"
 #include "editor/offscreen_render.h"

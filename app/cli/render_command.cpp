@@ -3,6 +3,7 @@
 // drawn by the editor's renderer from the editor's default view (or --camera); the PNG is the viewport the
 // editor would show, without its UI.
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>

@@ -101,7 +101,7 @@ constexpr const char* kEditorNextSteps =
     "  look around   middle drag or Alt+left drag orbits, Shift pans, wheel zooms; Home frames the scene,\n"
     "                1 / 3 / 7 front / side / top view\n"
     "  paint         B, then left drag: adds the Tools window's detail types under the brush\n"
-    "  sculpt        S, then left drag or hold: pours a pile (of the Tools window's type) that grows as you hold\n"
+    "  sculpt        S, then left drag or hold: pours a pile of the Tools window's pile type, growing as you hold\n"
     "  erase         E, then left drag; select with Q (click, drag to move, X or Delete removes)\n"
     "  undo / redo   Ctrl+Z / Ctrl+Shift+Z; Ctrl+S saves the scene; F12 takes a screenshot\n"
     "  export        the Export window writes glTF (EXT_mesh_gpu_instancing)\n"
