@@ -26,7 +26,6 @@
 #include "editor/viewer.h"
 
 #include <imgui.h>
-#include <stb_image_write.h>
 
 #include <algorithm>
 #include <chrono>
@@ -40,6 +39,7 @@
 
 #include "core/atomic_file.h"
 #include "core/hash.h"
+#include "editor/default_view.h"
 #include "editor/document_loader.h"
 #include "editor/export_job.h"
 #include "editor/gl/renderer.h"
@@ -49,6 +49,7 @@
 #include "editor/orbit_camera.h"
 #include "editor/panels.h"
 #include "editor/render_data.h"
+#include "editor/screenshot.h"
 #include "editor/tools.h"
 #include "instancer/instance_query.h"
 #include "instancer/tile_coord.h"
@@ -110,41 +111,9 @@ json pileInstancesJson(const Document& doc, const InstanceStore& store, const js
     return {{"count", count}, {"centroid", {centre.x, centre.y}}, {"top", top}};
 }
 
-bool writeScreenshot(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba,
-                     std::string* error) {
-    // RGB: the default framebuffer of a 24-bit visual has no meaningful alpha.
-    std::vector<uint8_t> rgb(size_t(width) * size_t(height) * 3);
-    for (size_t i = 0, n = size_t(width) * size_t(height); i < n; ++i) {
-        rgb[i * 3 + 0] = rgba[i * 4 + 0];
-        rgb[i * 3 + 1] = rgba[i * 4 + 1];
-        rgb[i * 3 + 2] = rgba[i * 4 + 2];
-    }
-    std::error_code ec;
-    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-    if (!stbi_write_png(path.c_str(), width, height, 3, rgb.data(), width * 3)) {
-        *error = path + ": cannot write the screenshot";
-        return false;
-    }
-    return true;
-}
-
-// What "frame all" frames: the cells that hold instances once they are in (a scene's extent is often a
-// conservative bound much larger than what fills), else the terrain's surface when there is one, else
-// the extent.
+// What "frame all" frames (default_view.h).
 Bounds framingBounds(const EditorScene& s, const ResidentTiles* instances) {
-    if (instances && !instances->tile_coord.empty()) {
-        const float size = instances->tile_size_m;
-        Bounds b{glm::vec3(1e30f), glm::vec3(-1e30f)};
-        for (const glm::ivec3& t : instances->tile_coord) {
-            b.lo = glm::min(b.lo, glm::vec3(t) * size);
-            b.hi = glm::max(b.hi, glm::vec3(t + 1) * size);
-        }
-        return b;
-    }
-    if (!s.has_terrain) return s.doc->compiled().extent;
-    const Bounds3 b = meshBounds(s.terrain);
-    return Bounds{b.min, b.max};
+    return editor::framingBounds(s.doc->compiled().extent, s.has_terrain ? &s.terrain : nullptr, instances);
 }
 
 json perTypeJson(const std::vector<std::string>& names, const std::vector<uint64_t>& counts) {
