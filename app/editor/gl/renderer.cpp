@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <cstdlib> // TEMPLOOK
 
 #include <epoxy/gl.h>
 #include <glm/gtc/type_ptr.hpp>
@@ -51,7 +52,7 @@ Renderer::~Renderer() {
     releaseScene();
     releaseTargets();
     for (ShaderProgram* p : {&sky_, &terrain_, &detail_, &impostor_, &grid_, &marker_, &hull_, &shadow_detail_,
-                             &shadow_terrain_, &ambient_occlusion_, &composite_})
+                             &ambient_occlusion_, &composite_})
         destroyProgram(p);
     if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
     if (marker_vao_) glDeleteVertexArrays(1, &marker_vao_);
@@ -87,7 +88,6 @@ bool Renderer::init(const std::string& dir, std::string* error) {
         !loadProgram(dir, "instanced_detail.vert", "shadow_depth.frag",
                      {"u_view_proj", "u_tile_size_m", "u_drop_unit_m", "u_eye", "u_lod_diameter_px", "u_impostor_px"},
                      &shadow_detail_, error) ||
-        !loadProgram(dir, "terrain.vert", "shadow_depth.frag", {"u_view_proj"}, &shadow_terrain_, error) ||
         !loadProgram(dir, "screen_pass.vert", "ambient_occlusion.frag",
                      {"u_depth", "u_near_far", "u_tan_half_fov", "u_ao_radius_m"}, &ambient_occlusion_, error) ||
         !loadProgram(dir, "screen_pass.vert", "composite.frag", {"u_color", "u_depth", "u_ao", "u_ao_strength"},
@@ -95,6 +95,10 @@ bool Renderer::init(const std::string& dir, std::string* error) {
         return false;
     glGenBuffers(1, &indirect_.id);
     glGenBuffers(1, &shadow_indirect_.id);
+    if (const char* t = std::getenv("UG_LOOK_TMP")) {  // TEMPLOOK
+        look_.shadows = !std::strstr(t, "noshadow");
+        look_.ambient_occlusion = !std::strstr(t, "noao");
+    }
     glGenVertexArrays(1, &empty_vao_);
     glGenVertexArrays(1, &marker_vao_);
     glGenBuffers(1, &marker_buffer_);
@@ -234,12 +238,12 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
     for (const DetailLodMesh& m : *meshes) reach = std::max(reach, m.radius_m * m.scale_max);
     ao_radius_m_ = std::clamp(1.2f * reach, 0.03f, 2.0f);
     has_scene_ = true;
-    draws_dirty_ = shadow_draws_dirty_ = true;
+    draws_dirty_ = shadow_draws_dirty_ = shadow_map_dirty_ = true;
 }
 
 void Renderer::uploadTiles(const ResidentTiles* tiles, const TileUploads& uploads) {
     tiles_ = tiles;
-    draws_dirty_ = shadow_draws_dirty_ = true;
+    draws_dirty_ = shadow_draws_dirty_ = shadow_map_dirty_ = true;
     upload_tiles_ = uploads.tiles_uploaded;
     upload_bytes_ = uploads.bytes_uploaded;
     if (!tiles) return;
@@ -261,7 +265,10 @@ void Renderer::uploadTiles(const ResidentTiles* tiles, const TileUploads& upload
 }
 
 void Renderer::setTypeVisible(size_t type, bool visible) {
-    if (type < types_.size()) types_[type].visible = visible;
+    if (type < types_.size() && types_[type].visible != visible) {
+        types_[type].visible = visible;
+        shadow_map_dirty_ = true;
+    }
 }
 
 void Renderer::setMarkers(const MarkerGeometry& m) {
@@ -392,7 +399,16 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
         glDrawBuffer(GL_NONE);
         glReadBuffer(GL_NONE);
         shadow_px_ = px;
+        shadow_map_dirty_ = true;
     }
+    shadow_texture_ = frame.texture;
+    shadow_offset_m_ = 1.5f * frame.texel_m;
+    shadow_valid_ = true;
+    // A still view of an unchanged scene keeps last frame's map: the sun does not move. (The eye and the
+    // LOD settings choose which instances are meshes, hence casters.)
+    const bool same_lod = lod.lod1_px == last_lod_.lod1_px && lod.lod2_px == last_lod_.lod2_px &&
+                          lod.impostor_px == last_lod_.impostor_px;
+    if (!shadow_map_dirty_ && same_lod && eye == last_shadow_eye_ && frame.view_proj == last_shadow_view_proj_) return;
     glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
     glViewport(0, 0, px, px);
     glClear(GL_DEPTH_BUFFER_BIT);
@@ -400,13 +416,8 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
     // acne without detaching the shadow from the object's foot.
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.5f, 2.0f);
-    if (terrain_index_count_ > 0) {
-        glUseProgram(shadow_terrain_.id);
-        glUniformMatrix4fv(loc(shadow_terrain_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(frame.view_proj));
-        glBindVertexArray(terrain_vao_);
-        glDrawElements(GL_TRIANGLES, GLsizei(terrain_index_count_), GL_UNSIGNED_INT, nullptr);
-        stats_.shadow_triangles += terrain_index_count_ / 3;
-    }
+    // The terrain receives shadows but casts none: on llvmpipe its triangles would fill every texel of
+    // the map each time it is drawn, and the sun term already darkens slopes turned away from it.
     if (tiles_ && meshes_) {
         // The casters: the tiles the sun's box holds, as meshes where the camera draws meshes (the same
         // impostor switch, so a shadow belongs to what is drawn) but one mesh level coarser sooner: a
@@ -422,7 +433,6 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
             params.eye = eye;
             params.pixels_per_radian = float(height) / cam.fov_y_rad;
             uploadDraws(params, caster_lod, &shadow_draws_, &shadow_indirect_);
-            last_shadow_view_proj_ = frame.view_proj;
             shadow_draws_dirty_ = false;
         }
         glUseProgram(shadow_detail_.id);
@@ -433,9 +443,9 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
         drawMeshLods(shadow_detail_, shadow_draws_, shadow_indirect_, float(height) / cam.fov_y_rad, caster_lod, true);
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
-    shadow_texture_ = frame.texture;
-    shadow_offset_m_ = 1.5f * frame.texel_m;
-    shadow_valid_ = true;
+    last_shadow_view_proj_ = frame.view_proj;
+    last_shadow_eye_ = eye;
+    shadow_map_dirty_ = false;
 }
 
 void Renderer::ensureSceneTarget(int width, int height) {

@@ -21,6 +21,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -125,7 +126,7 @@ private:
     void setLighting(const ShaderProgram& program, const glm::vec3& eye, float fog_density) const;
 
     ShaderProgram sky_, terrain_, detail_, impostor_, grid_, marker_, hull_;
-    ShaderProgram shadow_detail_, shadow_terrain_, ambient_occlusion_, composite_;
+    ShaderProgram shadow_detail_, ambient_occlusion_, composite_;
     ViewportLook look_;
     // The shadow map (a depth texture with compare mode) and its framebuffer; the offscreen scene target.
     unsigned shadow_fbo_ = 0, shadow_depth_ = 0;
@@ -140,7 +141,9 @@ private:
     IndirectDraws shadow_draws_;
     IndirectBuffer indirect_, shadow_indirect_;
     glm::mat4 last_shadow_view_proj_{0.0f};
+    glm::vec3 last_shadow_eye_{NAN};
     bool shadow_draws_dirty_ = true;
+    bool shadow_map_dirty_ = true;  // the casters changed since the map was drawn
     unsigned marker_vao_ = 0, marker_buffer_ = 0;
     uint32_t marker_hull_vertices_ = 0, marker_line_vertices_ = 0, marker_points_ = 0, marker_dots_ = 0;
     unsigned empty_vao_ = 0;
