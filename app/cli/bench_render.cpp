@@ -1,9 +1,9 @@
-// bench section "render": the meadow's default view at 1280 x 720 in a real window (DESIGN.md quality
+// bench section "render": the meadow's default view at 1280 x 720 in a window (docs/architecture.md quality
 // bars: frame <= 40 ms and <= 150k triangles on llvmpipe). Runs only where a display is available
 // (DISPLAY set and a window opens, e.g. under xvfb-run); elsewhere it adds no rows and says so.
 // editor.stamp_to_frame_p95_ms: a replayed paint stroke of 40 stamps across the meadow (rock, 1.5 m brush,
 // a stamp every 0.5 m), each timed from the edit to the end of the first frame showing its instances
-// (viewer.cpp); the target is DESIGN.md's "brush stamp -> frame showing it, llvmpipe: p95 <= 50 ms".
+// (viewer.cpp); target: docs/architecture.md "brush stamp -> frame showing it, llvmpipe"; this row: <= 50 ms.
 // editor.stamp_upload_tiles_p50: tiles whose resident slots a live result of that stroke re-uploaded.
 #include <cstdio>
 #include <cstdlib>
