@@ -1,12 +1,12 @@
 // bench section "render": the default view (the editor's opening view, default_view.h) of the meadow and
-// of the rock pile at 1280 x 720, median frame time with glFinish every frame (DESIGN.md quality bars:
+// of the rock pile at 1280 x 720, median frame time with glFinish every frame (docs/architecture.md quality bars:
 // frame <= 40 ms and <= 150k triangles on llvmpipe). Where a window opens (DISPLAY set, e.g. under
 // xvfb-run) the frames are the editor's own (events, UI, render, swap: viewer.cpp); without a display the
 // same renderer draws the same view offscreen (EGL, editor/offscreen_render.h: render + glFinish, no UI and
 // no swap, so a little less), and each row's note says which path it came from.
 // editor.stamp_to_frame_p95_ms: a replayed paint stroke of 40 stamps across the meadow (rock, 1.5 m brush,
 // a stamp every 0.5 m), each timed from the edit to the end of the first frame showing its instances
-// (viewer.cpp); the target is DESIGN.md's "brush stamp -> frame showing it, llvmpipe: p95 <= 50 ms".
+// (viewer.cpp); target: docs/architecture.md "brush stamp -> frame showing it, llvmpipe"; this row: <= 50 ms.
 // editor.stamp_upload_tiles_p50: tiles whose resident slots a live result of that stroke re-uploaded.
 // Both need the editor's window: without a display they are left out (and the section says so).
 #include <array>

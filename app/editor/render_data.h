@@ -4,7 +4,7 @@
 // (frustum culling and LOD choice per tile, one command per visible tile and type, grouped by type and LOD
 // for one multi-draw each).
 //
-// GPU instance format (8 bytes, DESIGN.md "Rendering"): an instance is (tile t, candidate j, settled drop
+// GPU instance format (8 bytes, docs/architecture.md "Rendering"): an instance is (tile t, candidate j, drop
 // d), packed as
 //   x = uint16(t.x) | uint16(t.y) << 16,   y = uint9(t.z) | j << 9 | c << 25
 // so t.x and t.y must lie in [-32768, 32767] (±16 km with 0.5 m tiles), t.z in [-256, 255] (±128 m), a

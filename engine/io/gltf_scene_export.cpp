@@ -1,4 +1,4 @@
-// glTF 2.0 scene export (DESIGN.md, "Files and interfaces").
+// glTF 2.0 scene export (docs/architecture.md "Files and interfaces").
 //
 // The JSON is built with nlohmann::json and the GLB container is assembled here, rather than through
 // tinygltf's writer: a scene of ~2M instances is ~80 MB of instance attributes, and tinygltf's writer

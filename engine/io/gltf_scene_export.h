@@ -1,4 +1,4 @@
-// glTF 2.0 export of an instantiated scene (DESIGN.md, "Files and interfaces"):
+// glTF 2.0 export of an instantiated scene (docs/architecture.md "Files and interfaces"):
 //   - one mesh per detail type, with a simple PBR material from the model's base colour;
 //   - its instances through EXT_mesh_gpu_instancing (TRANSLATION, ROTATION, SCALE accessors), split into
 //     spatial chunks (one node per type and chunk) so engines can cull;

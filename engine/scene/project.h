@@ -1,6 +1,6 @@
 // The project (scene) document: what the user edits and saves. It stores the terrain's recipe, models by
 // path, seeds, density primitives and instantiation settings, never instances, so a project stays a few
-// kilobytes however many objects it makes (DESIGN.md, "what users of the peers complain about").
+// kilobytes however many objects it makes (docs/architecture.md "what users of the peers complain about").
 // scene_compile.h turns it into what the instantiator runs on.
 //
 // File: JSON. Relative paths inside a project are relative to the project file's folder. Reading is

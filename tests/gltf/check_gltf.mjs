@@ -1,5 +1,5 @@
 #!/usr/bin/env node
-// Independent check of a glTF export (DESIGN.md: "we write the standard extension, chunked, and check it
+// An independent export check (docs/architecture.md: "we write the standard extension, chunked, and check it
 // with independent readers, since the Khronos validator does not check that extension").
 //
 //   node check_gltf.mjs FILE [--expect-instances N] [--expect-detail-instances N] [--expect-types K]

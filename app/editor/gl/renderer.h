@@ -1,4 +1,4 @@
-// The viewport renderer (DESIGN.md "Rendering"): sky, terrain or a ground grid, and the details by
+// The viewport renderer (docs/architecture.md "Rendering"): sky, terrain or a ground grid, and the details by
 // instancing. The Ghost Tile's candidate frames are uploaded once (an SSBO, 32 bytes a candidate); each
 // detail type has one vertex/index buffer holding its mesh LODs and one resident instance buffer of 8-byte
 // packed (tile, candidate) instances (render_data.h) in which every tile owns a slot. A live result
