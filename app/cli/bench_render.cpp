@@ -1,6 +1,6 @@
 // bench section "render": the default view (the editor's opening view, default_view.h) of the meadow and
-// of the rock pile at 1280 x 720, median frame time with glFinish every frame (docs/architecture.md quality bars:
-// frame <= 40 ms and <= 150k triangles on llvmpipe). Where a window opens (DISPLAY set, e.g. under
+// of the rock pile at 1280 x 720, median frame time with glFinish every frame (docs/architecture.md
+// quality bars: frame <= 40 ms and <= 150k triangles on llvmpipe). Where a window opens (DISPLAY set, e.g. under
 // xvfb-run) the frames are the editor's own (events, UI, render, swap: viewer.cpp); without a display the
 // same renderer draws the same view offscreen (EGL, editor/offscreen_render.h: render + glFinish, no UI and
 // no swap, so a little less), and each row's note says which path it came from.

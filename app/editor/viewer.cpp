@@ -116,6 +116,11 @@ Bounds framingBounds(const EditorScene& s, const ResidentTiles* instances) {
     return editor::framingBounds(s.doc->compiled().extent, s.has_terrain ? &s.terrain : nullptr, instances);
 }
 
+// The view a scene opens on (default_view.h); Home frames everything (framingBounds).
+Bounds openingBounds(const EditorScene& s, const ResidentTiles& instances) {
+    return editor::openingBounds(s.doc->compiled().extent, s.has_terrain ? &s.terrain : nullptr, &instances, s.meshes);
+}
+
 json perTypeJson(const std::vector<std::string>& names, const std::vector<uint64_t>& counts) {
     json j = json::object();
     for (size_t i = 0; i < names.size(); ++i) j[names[i]] = i < counts.size() ? counts[i] : 0;
@@ -411,7 +416,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 if (inst_view.update_ms.size() >= InstantiationView::kUpdateHistory)
                     inst_view.update_ms.erase(inst_view.update_ms.begin());
                 inst_view.update_ms.push_back(float(live.stats.seconds * 1e3));
-                if (!have_result && !camera_moved) frameBounds(framingBounds(*scene, &instances), &camera);
+                if (!have_result && !camera_moved) frameBounds(openingBounds(*scene, instances), &camera);
                 have_result = true;
             }
         }
