@@ -5,6 +5,8 @@
 // tree and the terrain").
 #include "scene/scene_compile.h"
 
+#include "mesh/terrain_mesh.h"
+
 #include <limits>
 
 #include <algorithm>
@@ -229,6 +231,32 @@ SettleInput settleInput(const Project& project, const std::shared_ptr<const Heig
     in.support.terrain = terrain.get();
     in.support.ground_z = project.settling.ground_z ? *project.settling.ground_z : -std::numeric_limits<float>::infinity();
     return in;
+}
+
+SceneMaterials compileSceneMaterials(const Project& project, const std::vector<DetailModel>& models) {
+    SceneMaterials out;
+    std::vector<SurfaceMaterial> baked;  // the textured ones so far, to share identical textures
+    auto resolve = [&](const Material& m, glm::vec3 surface_color) {
+        Material flat = m;
+        flat.texture = TextureKind::None;  // resolved without baking; the texture is found or baked below
+        SurfaceMaterial s = resolveMaterial(flat, surface_color);
+        s.texture_kind = m.texture;
+        if (m.texture == TextureKind::None) return s;
+        for (const SurfaceMaterial& b : baked)
+            if (b.texture_kind == m.texture && b.alpha_cutout == m.alpha_cutout && b.base_color == s.base_color) {
+                s.texture = b.texture;
+                return s;
+            }
+        s = resolveMaterial(m, surface_color);
+        baked.push_back(s);
+        return s;
+    };
+    out.types.reserve(project.detail_types.size());
+    for (size_t t = 0; t < project.detail_types.size(); ++t)
+        out.types.push_back(resolve(project.detail_types[t].material,
+                                    t < models.size() ? models[t].mesh.base_color : TriangleMesh{}.base_color));
+    out.terrain = resolve(project.terrain.material, kTerrainColor);
+    return out;
 }
 
 }  // namespace ug
