@@ -5,14 +5,15 @@
 // tree and the terrain").
 #include "scene/scene_compile.h"
 
-#include "mesh/terrain_mesh.h"
-
 #include <limits>
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <utility>
+
+#include "material/procedural_texture.h"
+#include "mesh/terrain_mesh.h"
 
 namespace ug {
 
@@ -235,10 +236,18 @@ SettleInput settleInput(const Project& project, const std::shared_ptr<const Heig
 
 SceneMaterials compileSceneMaterials(const Project& project, const std::vector<DetailModel>& models) {
     SceneMaterials out;
-    std::vector<SurfaceMaterial> baked;  // the textured ones so far, to share identical textures
+    // The detail map is the slow part (tens of ms) and depends only on the kind and the cut-out; the
+    // bake per colour is cheap. Identical baked textures are shared, not copied.
+    struct DetailMap {
+        TextureKind kind;
+        bool cutout;
+        TextureImage image;
+    };
+    std::vector<DetailMap> maps;
+    std::vector<SurfaceMaterial> baked;
     auto resolve = [&](const Material& m, glm::vec3 surface_color) {
         Material flat = m;
-        flat.texture = TextureKind::None;  // resolved without baking; the texture is found or baked below
+        flat.texture = TextureKind::None;  // resolveMaterial would bake; the texture is found or made below
         SurfaceMaterial s = resolveMaterial(flat, surface_color);
         s.texture_kind = m.texture;
         if (m.texture == TextureKind::None) return s;
@@ -247,7 +256,13 @@ SceneMaterials compileSceneMaterials(const Project& project, const std::vector<D
                 s.texture = b.texture;
                 return s;
             }
-        s = resolveMaterial(m, surface_color);
+        auto map = std::find_if(maps.begin(), maps.end(),
+                                [&](const DetailMap& d) { return d.kind == m.texture && d.cutout == m.alpha_cutout; });
+        if (map == maps.end()) {
+            maps.push_back({m.texture, m.alpha_cutout, makeDetailMap(m.texture, m.alpha_cutout)});
+            map = maps.end() - 1;
+        }
+        s.texture = std::make_shared<const TextureImage>(bakeTexture(map->image, s.base_color));
         baked.push_back(s);
         return s;
     };

@@ -81,9 +81,11 @@ SettleInput settleInput(const Project& project, const std::shared_ptr<const Heig
                         const GhostTile& tile, const std::vector<DetailModel>& models);
 
 // Every detail type's material resolved against its model's base colour, and the terrain's against
-// kTerrainColor, with their textures baked (material/procedural_texture.h); identical textures (same
-// kind, cut-out and colour) are baked once and shared. `models` is loadProjectModels' result (one per
-// type); a missing model resolves against the default mesh colour. About 10 ms per distinct texture.
+// kTerrainColor, with their textures baked (material/procedural_texture.h): the same bytes as
+// resolveMaterial gives, but each kind's detail map is made once and identical textures (same kind,
+// cut-out and colour) are shared. `models` is loadProjectModels' result (one per type); a missing model
+// resolves against the default mesh colour. Cost: 5-110 ms per distinct kind (256 x 256, measured on
+// the loaded 2-core build machine; rock is the slowest), about 1 ms per further colour.
 SceneMaterials compileSceneMaterials(const Project& project, const std::vector<DetailModel>& models);
 
 }  // namespace ug
