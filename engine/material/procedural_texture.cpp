@@ -107,13 +107,14 @@ Texel leafTexel(float u, float v, int, int, int, bool cutout, uint64_t seed) {
 }
 
 Texel barkTexel(float u, float v, int, int, int, bool, uint64_t seed) {
-    // Fibres: a lattice much finer across (u) than along (v).
-    const float fibre = periodicFbm(u, v, 48, 3, 3, hashWords(seed, 1));
+    // Fibres along u: a lattice much finer across (v) than along (u). In the box projection u follows X
+    // on the sides facing Y and Z, so a branch modelled along X (the starter twig) gets fibres along it.
+    const float fibre = periodicFbm(u, v, 3, 48, 3, hashWords(seed, 1));
     float value = 0.78f + 0.44f * fibre;
     // Furrows: dark valleys where a coarse, also elongated noise crosses its middle.
-    const float furrow = std::fabs(periodicFbm(u, v, 8, 1, 3, hashWords(seed, 2)) - 0.5f);
+    const float furrow = std::fabs(periodicFbm(u, v, 1, 8, 3, hashWords(seed, 2)) - 0.5f);
     if (furrow < 0.09f) value *= 0.5f + 0.5f * (furrow / 0.09f);
-    const float drift = 0.06f * (periodicNoise(u, v, 3, 1, hashWords(seed, 3)) - 0.5f);
+    const float drift = 0.06f * (periodicNoise(u, v, 1, 3, hashWords(seed, 3)) - 0.5f);
     return {value * glm::vec3(1.0f + drift, 1.0f, 1.0f - drift)};
 }
 

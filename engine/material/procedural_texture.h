@@ -15,7 +15,8 @@
 //   leaf    a midrib along u through the tile's corner (u = v = 0: a leaf model centred on its origin,
 //           long along X, with texture_scale_m = its length, gets the midrib on its own), with lateral
 //           veins; as a cut-out, the alpha is one leaf outline per repeat, centred on that corner;
-//   bark    fibres along v, darker furrows between plates;
+//   bark    fibres along u (so along X on the Y- and Z-facing sides of a box-projected branch modelled
+//           along X, like the starter twig), darker furrows between plates;
 //   grass   blade streaks along v with per-blade shade; as a cut-out, thin gaps between blades;
 //   ground  soil with small pebbles and grit;
 //   hay     crossing straw streaks (steep diagonals) with dark gaps.

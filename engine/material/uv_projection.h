@@ -8,7 +8,8 @@
 //   if |n.z| >= |n.x| and |n.z| >= |n.y|:  uv = (p.x, p.y) / s     (ties go to Z, then X)
 //   else if |n.x| >= |n.y|:                uv = (p.y, p.z) / s
 //   else:                                  uv = (p.x, p.z) / s
-// so on the sides v follows Z (bark fibres and grass blades run up the model). The terrain always takes
+// so on the sides v follows Z (grass blades run up the model) and u follows X on the sides facing Y
+// and Z (bark fibres run along a branch modelled along X). The terrain always takes
 // uv = (world x, world y) / s. No flip: v = 0 is the image's first row in glTF and, uploading the rows
 // in memory order, t = 0 in GL.
 #pragma once
