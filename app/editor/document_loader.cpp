@@ -48,7 +48,10 @@ void DocumentLoader::work() {
             return failWith(request_.scene_path + ": terrain mesh: " + error);
         s.has_terrain = true;
     }
-    s.meshes = buildTypeMeshes(doc.models(), doc.ghostTile().candidates);
+    // The materials bake their textures (a few hundred ms): here, off the UI thread.
+    const SceneMaterials looks = doc.materials();
+    s.meshes = buildTypeMeshes(doc.models(), doc.ghostTile().candidates, &looks);
+    s.terrain_material = looks.terrain;
     phase_.store(LoadPhase::Ready, std::memory_order_release);
 }
 

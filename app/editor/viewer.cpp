@@ -219,6 +219,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
     ResidentTiles instances;  // the tiles as the GPU holds them
     TileUploads uploads;      // what the latest live result changed in them
     std::shared_ptr<const InstanceStore> store;  // the result on screen
+    std::shared_ptr<const SettledDrops> drops;   // and its settled drops (null: the scene does not settle)
     uint64_t shown_generation = 0;
     bool have_result = false;
     std::string asking_recovery;  // a path whose recovery dialog is open
@@ -349,9 +350,10 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         Document& doc = *scene->doc;
         scene_tile_generation = doc.tileGeneration();
         const CandidateSet& c = doc.ghostTile().candidates;
-        scene->meshes = buildTypeMeshes(doc.models(), c);
+        const SceneMaterials looks = doc.materials();
+        scene->meshes = buildTypeMeshes(doc.models(), c, &looks);
         renderer.setScene(doc.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr, &scene->meshes, c,
-                          doc.ghostTile().settings.tile_size_m);
+                          doc.ghostTile().settings.tile_size_m, &scene->terrain_material);
         // What is on screen indexes the old tile's candidates: nothing is shown until the new result.
         instances = ResidentTiles{};
         store = std::make_shared<const InstanceStore>();
@@ -402,6 +404,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                     std::max(result->repack_ms_max,
                              std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
                 store = live.store;
+                drops = live.drops;
                 shown_generation = live.generation;
                 view.instances = instances.instanceCount();
                 view.instances_per_type = instances.instances_per_type;
@@ -449,6 +452,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             renderer.clearScene();
             if (scene) scene->doc->close();
             store.reset();
+            drops.reset();
             instances = ResidentTiles{};
             primitive_markers_key = PrimitiveMarkersKey{};  // a new document may come at the old one's address
             have_result = false;
@@ -461,7 +465,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             Document& doc = *scene->doc;
             renderer.setScene(doc.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr,
                               &scene->meshes, doc.ghostTile().candidates,
-                              doc.ghostTile().settings.tile_size_m);
+                              doc.ghostTile().settings.tile_size_m, &scene->terrain_material);
             if (!camera_moved) frameBounds(framingBounds(*scene, nullptr), &camera);
             view.scene = doc.path();
             view.type_names.clear();
@@ -726,7 +730,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                              {"seed", doc->project().instantiation_seed},
                              {"instances", store->instanceCount()},
                              {"instances_per_type", perTypeJson(view.type_names, perTypeCounts(*store, c))}};
-            export_job = std::make_unique<ExportJob>(*doc, store, export_settings, stats.dump());
+            export_job = std::make_unique<ExportJob>(*doc, store, drops, export_settings, stats.dump());
             export_result.clear();
         }
         if (requests.cancel_export && export_job) export_job->cancel();
