@@ -93,8 +93,7 @@ bool Renderer::init(const std::string& dir, std::string* error) {
                      &shadow_detail_, error) ||
         !loadProgram(dir, "screen_pass.vert", "ambient_occlusion.frag",
                      {"u_depth", "u_near_far", "u_tan_half_fov", "u_ao_radius_m"}, &ambient_occlusion_, error) ||
-        !loadProgram(dir, "screen_pass.vert", "composite.frag", {"u_color", "u_depth", "u_ao", "u_ao_strength"},
-                     &composite_, error))
+        !loadProgram(dir, "screen_pass.vert", "composite.frag", {"u_color", "u_ao"}, &composite_, error))
         return false;
     glGenBuffers(1, &indirect_.id);
     glGenBuffers(1, &shadow_indirect_.id);
@@ -358,9 +357,11 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
     glBindTexture(GL_TEXTURE_2D, shadow_valid_ ? shadow_depth_ : 0);
     glActiveTexture(GL_TEXTURE0);
 
-    // The scene into the offscreen target: the composite reads its depth for the occlusion.
-    ensureSceneTarget(width, height);
-    glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
+    // With ambient occlusion, the scene goes into the offscreen target (the occlusion reads its depth) and
+    // is composited onto the caller's framebuffer; without, straight onto it (no extra full-screen pass).
+    const bool occlusion = has_scene_ && look_.ambient_occlusion;
+    if (occlusion) ensureSceneTarget(width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, occlusion ? scene_fbo_ : unsigned(target_fbo));
     glViewport(0, 0, width, height);
     glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -414,7 +415,8 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
     ++stats_.draw_calls;
     glDepthMask(GL_TRUE);
 
-    composite(unsigned(target_fbo), width, height, cam);
+    drawHulls(view_proj);
+    if (occlusion) composite(unsigned(target_fbo), width, height, cam);
     drawOverlays(view_proj);
     glBindVertexArray(0);
 }
@@ -527,7 +529,6 @@ void Renderer::ensureSceneTarget(int width, int height) {
 }
 
 void Renderer::composite(unsigned target_fbo, int width, int height, const OrbitCamera& cam) {
-    const bool occlusion = has_scene_ && look_.ambient_occlusion;
     glDisable(GL_CULL_FACE);
     glActiveTexture(GL_TEXTURE2);
     glBindTexture(GL_TEXTURE_2D, scene_color_);
@@ -537,7 +538,7 @@ void Renderer::composite(unsigned target_fbo, int width, int height, const Orbit
     glBindTexture(GL_TEXTURE_2D, ao_texture_);
     glActiveTexture(GL_TEXTURE0);
     glBindVertexArray(empty_vao_);
-    if (occlusion) {
+    {
         glBindFramebuffer(GL_FRAMEBUFFER, ao_fbo_);
         glViewport(0, 0, (width + 1) / 2, (height + 1) / 2);
         glDisable(GL_DEPTH_TEST);
@@ -554,23 +555,24 @@ void Renderer::composite(unsigned target_fbo, int width, int height, const Orbit
     }
     glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
     glViewport(0, 0, width, height);
-    // Depth is written (gl_FragDepth) for every pixel, so the test must pass everywhere.
-    glDepthFunc(GL_ALWAYS);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
     glUseProgram(composite_.id);
     glUniform1i(loc(composite_, "u_color"), 2);
-    glUniform1i(loc(composite_, "u_depth"), 3);
     glUniform1i(loc(composite_, "u_ao"), 4);
-    glUniform1f(loc(composite_, "u_ao_strength"), occlusion ? 1.0f : 0.0f);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     ++stats_.draw_calls;
-    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_DEPTH_TEST);
 }
 
-void Renderer::drawOverlays(const glm::mat4& view_proj) {
+void Renderer::drawHulls(const glm::mat4& view_proj) {
     // Hulls: translucent over the scene, depth-tested so the ground and details in front hide them, no
     // depth write so hulls behind hulls and the skeletons inside still show. Both faces: the inside of a
-    // hull the camera is in still tints the view.
+    // hull the camera is in still tints the view. Drawn where the scene's depth is (the offscreen target
+    // when there is one), so the composite needs to carry no depth.
     if (marker_hull_vertices_ > 0) {
+        glDisable(GL_CULL_FACE);
         glEnable(GL_BLEND);
         glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
         glDepthMask(GL_FALSE);
@@ -583,7 +585,9 @@ void Renderer::drawOverlays(const glm::mat4& view_proj) {
         glDisable(GL_BLEND);
         glDepthMask(GL_TRUE);
     }
+}
 
+void Renderer::drawOverlays(const glm::mat4& view_proj) {
     // Overlays last, without depth: a skeleton inside the pile it makes must stay visible.
     if (marker_line_vertices_ + marker_points_ + marker_dots_ > 0) {
         glDisable(GL_DEPTH_TEST);

@@ -15,8 +15,8 @@
 // map (shadow_frame.h: fitted to what the camera sees; the casters culled for the sun's view with the
 // camera's LOD choice, impostors cast none); the scene is drawn into an offscreen colour + depth target,
 // then composited onto the caller's framebuffer with screen-space ambient occlusion (ambient_occlusion.frag
-// at half resolution, blurred by composite.frag),
-// depth included, before hulls and overlays. render() draws into whatever framebuffer is bound when it is
+// at half resolution, blurred by composite.frag); the hulls go into the offscreen target before that (they
+// are depth-tested against the scene), the overlays onto the caller's framebuffer after it. render() draws into whatever framebuffer is bound when it is
 // called and leaves it bound.
 #pragma once
 
@@ -131,6 +131,7 @@ private:
     void drawMeshLods(const ShaderProgram& program, const IndirectDraws& draws, const IndirectBuffer& buffer,
                       float pixels_per_radian, const LodSettings& lod, bool shadow);
     void composite(unsigned target_fbo, int width, int height, const OrbitCamera& cam);
+    void drawHulls(const glm::mat4& view_proj);
     void drawOverlays(const glm::mat4& view_proj);
     void setLighting(const ShaderProgram& program, const glm::vec3& eye, float fog_density) const;
 
