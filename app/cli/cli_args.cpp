@@ -1,8 +1,10 @@
 #include "cli/cli_args.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <sstream>
 
 #include <unistd.h>
 
@@ -69,6 +71,27 @@ bool parseSize(const std::string& option, const std::string& text, long lo, long
     }
     *width = int(w);
     *height = int(h);
+    return true;
+}
+
+bool parseNumberList(const std::string& option, const std::string& text, std::vector<double>* out, std::string* error) {
+    out->clear();
+    std::stringstream ss(text);
+    std::string item;
+    while (std::getline(ss, item, ',')) {
+        size_t used = 0;
+        double d = 0.0;
+        try {
+            d = std::stod(item, &used);
+        } catch (...) {
+            used = 0;
+        }
+        if (used == 0 || used != item.size() || !std::isfinite(d)) {
+            *error = option + ": '" + item + "' is not a finite number";
+            return false;
+        }
+        out->push_back(d);
+    }
     return true;
 }
 

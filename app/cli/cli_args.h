@@ -31,6 +31,10 @@ bool parseInt(const std::string& option, const std::string& text, long lo, long 
 bool parseSize(const std::string& option, const std::string& text, long lo, long hi, int* width, int* height,
                std::string* error);
 
+// "a,b,c,...": comma-separated finite numbers (each consumed whole); the error names the option and the
+// item. The count is the caller's to check.
+bool parseNumberList(const std::string& option, const std::string& text, std::vector<double>* out, std::string* error);
+
 // The assets folder: $UG_ASSETS, else <exe>/../assets or <exe>/../../assets, else the source tree's.
 std::string assetsDir();
 

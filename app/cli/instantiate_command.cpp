@@ -31,22 +31,7 @@ int fail(const std::string& message, int code = 1) {
 // "xmin,ymin,zmin,xmax,ymax,zmax": six finite numbers with min < max on every axis.
 bool parseRegion(const std::string& text, Bounds* out, std::string* error) {
     std::vector<double> v;
-    std::stringstream ss(text);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-        size_t used = 0;
-        double d = 0.0;
-        try {
-            d = std::stod(item, &used);
-        } catch (...) {
-            used = 0;
-        }
-        if (used == 0 || used != item.size() || !std::isfinite(d)) {
-            *error = "--region: '" + item + "' is not a finite number";
-            return false;
-        }
-        v.push_back(d);
-    }
+    if (!parseNumberList("--region", text, &v, error)) return false;
     if (v.size() != 6) {
         *error = "--region: expected xmin,ymin,zmin,xmax,ymax,zmax (6 numbers), got " + std::to_string(v.size());
         return false;

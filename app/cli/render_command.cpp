@@ -48,22 +48,7 @@ std::string numberText(double v) {
 // camera's +-89).
 bool parseCamera(const std::string& text, editor::OrbitCamera* camera, std::string* error) {
     std::vector<double> v;
-    std::stringstream ss(text);
-    std::string item;
-    while (std::getline(ss, item, ',')) {
-        size_t used = 0;
-        double d = 0.0;
-        try {
-            d = std::stod(item, &used);
-        } catch (...) {
-            used = 0;
-        }
-        if (used == 0 || used != item.size() || !std::isfinite(d)) {
-            *error = "--camera: '" + item + "' is not a finite number";
-            return false;
-        }
-        v.push_back(d);
-    }
+    if (!parseNumberList("--camera", text, &v, error)) return false;
     if (v.size() != 6 || text.empty() || text.back() == ',') {
         *error = "--camera: expected tx,ty,tz,distance,yaw_deg,pitch_deg (6 numbers), got '" + text + "'";
         return false;
