@@ -1,7 +1,7 @@
 #version 430 core
 // ambient_occlusion: screen-space ambient occlusion where surfaces meet (a rock on the ground, rocks in a
-// pile, grass at its base), at half resolution (a quarter of the pixels: llvmpipe's budget); composite.frag
-// blurs it back up. The occlusion of a pixel: 8 samples on a disc of u_ao_radius_m around it (projected,
+// pile, grass at its base), at half resolution (a quarter of the pixels: llvmpipe's budget); ao_blur.frag
+// smooths it, composite.frag applies it. The occlusion of a pixel: 8 samples on a disc of u_ao_radius_m around it (projected,
 // a golden-angle spiral turned per pixel by a 4 x 4 pattern that the blur's 4 x 4 footprint averages
 // out); a sample occludes by how far it rises above the pixel's tangent plane (the normal comes from the
 // depth of the nearer neighbours, so silhouettes do not smear), fading out beyond the radius so a far

@@ -55,7 +55,7 @@ Renderer::~Renderer() {
     releaseScene();
     releaseTargets();
     for (ShaderProgram* p : {&sky_, &terrain_, &detail_, &impostor_, &grid_, &marker_, &hull_, &shadow_detail_,
-                             &ambient_occlusion_, &composite_})
+                             &ambient_occlusion_, &ao_blur_, &composite_})
         destroyProgram(p);
     if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
     if (marker_vao_) glDeleteVertexArrays(1, &marker_vao_);
@@ -93,6 +93,7 @@ bool Renderer::init(const std::string& dir, std::string* error) {
                      &shadow_detail_, error) ||
         !loadProgram(dir, "screen_pass.vert", "ambient_occlusion.frag",
                      {"u_depth", "u_near_far", "u_tan_half_fov", "u_ao_radius_m"}, &ambient_occlusion_, error) ||
+        !loadProgram(dir, "screen_pass.vert", "ao_blur.frag", {"u_ao"}, &ao_blur_, error) ||
         !loadProgram(dir, "screen_pass.vert", "composite.frag", {"u_color", "u_ao"}, &composite_, error))
         return false;
     glGenBuffers(1, &indirect_.id);
@@ -137,11 +138,12 @@ void Renderer::releaseScene() {
 }
 
 void Renderer::releaseTargets() {
-    GLuint fbos[] = {shadow_fbo_, scene_fbo_, ao_fbo_};
-    glDeleteFramebuffers(3, fbos);
-    GLuint textures[] = {shadow_depth_, scene_color_, scene_depth_, ao_texture_};
-    glDeleteTextures(4, textures);
-    shadow_fbo_ = scene_fbo_ = ao_fbo_ = shadow_depth_ = scene_color_ = scene_depth_ = ao_texture_ = 0;
+    GLuint fbos[] = {shadow_fbo_, scene_fbo_, ao_fbo_[0], ao_fbo_[1]};
+    glDeleteFramebuffers(4, fbos);
+    GLuint textures[] = {shadow_depth_, scene_color_, scene_depth_, ao_texture_[0], ao_texture_[1]};
+    glDeleteTextures(5, textures);
+    shadow_fbo_ = scene_fbo_ = shadow_depth_ = scene_color_ = scene_depth_ = 0;
+    ao_fbo_[0] = ao_fbo_[1] = ao_texture_[0] = ao_texture_[1] = 0;
     shadow_px_ = scene_w_ = scene_h_ = 0;
 }
 
@@ -158,7 +160,8 @@ unsigned Renderer::uploadTexture(const std::shared_ptr<const TextureImage>& imag
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, image->width, image->height, GL_RGBA, GL_UNSIGNED_BYTE, image->rgba.data());
     glGenerateMipmap(GL_TEXTURE_2D);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    // Bilinear within the nearest mip level: trilinear filtering doubles llvmpipe's cost per lookup.
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
@@ -497,9 +500,9 @@ void Renderer::ensureSceneTarget(int width, int height) {
     height = std::max(height, 1);
     if (scene_fbo_ && width == scene_w_ && height == scene_h_) return;
     if (!scene_fbo_) glGenFramebuffers(1, &scene_fbo_);
-    if (!ao_fbo_) glGenFramebuffers(1, &ao_fbo_);
-    GLuint textures[] = {scene_color_, scene_depth_, ao_texture_};
-    glDeleteTextures(3, textures);
+    if (!ao_fbo_[0]) glGenFramebuffers(2, ao_fbo_);
+    GLuint textures[] = {scene_color_, scene_depth_, ao_texture_[0], ao_texture_[1]};
+    glDeleteTextures(4, textures);
     glGenTextures(1, &scene_color_);
     glBindTexture(GL_TEXTURE_2D, scene_color_);
     glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, width, height);
@@ -513,16 +516,18 @@ void Renderer::ensureSceneTarget(int width, int height) {
     glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, scene_color_, 0);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, scene_depth_, 0);
-    // The occlusion at half resolution, filtered (the composite's blur reads it bilinearly).
-    glGenTextures(1, &ao_texture_);
-    glBindTexture(GL_TEXTURE_2D, ao_texture_);
-    glTexStorage2D(GL_TEXTURE_2D, 1, GL_R8, (width + 1) / 2, (height + 1) / 2);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    glBindFramebuffer(GL_FRAMEBUFFER, ao_fbo_);
-    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, ao_texture_, 0);
+    // The occlusion at half resolution, raw and blurred, filtered (both are read bilinearly).
+    glGenTextures(2, ao_texture_);
+    for (int k = 0; k < 2; ++k) {
+        glBindTexture(GL_TEXTURE_2D, ao_texture_[k]);
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_R8, (width + 1) / 2, (height + 1) / 2);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glBindFramebuffer(GL_FRAMEBUFFER, ao_fbo_[k]);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, ao_texture_[k], 0);
+    }
     glBindTexture(GL_TEXTURE_2D, 0);
     scene_w_ = width;
     scene_h_ = height;
@@ -530,38 +535,41 @@ void Renderer::ensureSceneTarget(int width, int height) {
 
 void Renderer::composite(unsigned target_fbo, int width, int height, const OrbitCamera& cam) {
     glDisable(GL_CULL_FACE);
-    glActiveTexture(GL_TEXTURE2);
-    glBindTexture(GL_TEXTURE_2D, scene_color_);
+    glDisable(GL_DEPTH_TEST);
+    glDepthMask(GL_FALSE);
+    glBindVertexArray(empty_vao_);
+    // The occlusion (half resolution) from the scene's depth, then blurred at half resolution.
     glActiveTexture(GL_TEXTURE3);
     glBindTexture(GL_TEXTURE_2D, scene_depth_);
     glActiveTexture(GL_TEXTURE4);
-    glBindTexture(GL_TEXTURE_2D, ao_texture_);
+    glBindTexture(GL_TEXTURE_2D, ao_texture_[0]);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, scene_color_);
+    glActiveTexture(GL_TEXTURE5);
+    glBindTexture(GL_TEXTURE_2D, ao_texture_[1]);
     glActiveTexture(GL_TEXTURE0);
-    glBindVertexArray(empty_vao_);
-    {
-        glBindFramebuffer(GL_FRAMEBUFFER, ao_fbo_);
-        glViewport(0, 0, (width + 1) / 2, (height + 1) / 2);
-        glDisable(GL_DEPTH_TEST);
-        glUseProgram(ambient_occlusion_.id);
-        glUniform1i(loc(ambient_occlusion_, "u_depth"), 3);
-        const float near_m = std::max(cam.distance_m * 0.01f, 0.005f), far_m = cam.distance_m * 100.0f + 100.0f;
-        glUniform2f(loc(ambient_occlusion_, "u_near_far"), near_m, far_m);
-        const float tan_half = std::tan(0.5f * cam.fov_y_rad);
-        glUniform2f(loc(ambient_occlusion_, "u_tan_half_fov"), tan_half * cam.aspect, tan_half);
-        glUniform1f(loc(ambient_occlusion_, "u_ao_radius_m"), ao_radius_m_);
-        glDrawArrays(GL_TRIANGLES, 0, 3);
-        ++stats_.draw_calls;
-        glEnable(GL_DEPTH_TEST);
-    }
+    glBindFramebuffer(GL_FRAMEBUFFER, ao_fbo_[0]);
+    glViewport(0, 0, (width + 1) / 2, (height + 1) / 2);
+    glUseProgram(ambient_occlusion_.id);
+    glUniform1i(loc(ambient_occlusion_, "u_depth"), 3);
+    const float near_m = std::max(cam.distance_m * 0.01f, 0.005f), far_m = cam.distance_m * 100.0f + 100.0f;
+    glUniform2f(loc(ambient_occlusion_, "u_near_far"), near_m, far_m);
+    const float tan_half = std::tan(0.5f * cam.fov_y_rad);
+    glUniform2f(loc(ambient_occlusion_, "u_tan_half_fov"), tan_half * cam.aspect, tan_half);
+    glUniform1f(loc(ambient_occlusion_, "u_ao_radius_m"), ao_radius_m_);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindFramebuffer(GL_FRAMEBUFFER, ao_fbo_[1]);
+    glUseProgram(ao_blur_.id);
+    glUniform1i(loc(ao_blur_, "u_ao"), 4);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    // The colour, darkened, onto the caller's framebuffer.
     glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
     glViewport(0, 0, width, height);
-    glDisable(GL_DEPTH_TEST);
-    glDepthMask(GL_FALSE);
     glUseProgram(composite_.id);
     glUniform1i(loc(composite_, "u_color"), 2);
-    glUniform1i(loc(composite_, "u_ao"), 4);
+    glUniform1i(loc(composite_, "u_ao"), 5);
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    ++stats_.draw_calls;
+    stats_.draw_calls += 3;
     glDepthMask(GL_TRUE);
     glEnable(GL_DEPTH_TEST);
 }

@@ -15,7 +15,7 @@
 // map (shadow_frame.h: fitted to what the camera sees; the casters culled for the sun's view with the
 // camera's LOD choice, impostors cast none); the scene is drawn into an offscreen colour + depth target,
 // then composited onto the caller's framebuffer with screen-space ambient occlusion (ambient_occlusion.frag
-// at half resolution, blurred by composite.frag); the hulls go into the offscreen target before that (they
+// at half resolution, blurred by ao_blur.frag, applied by composite.frag); the hulls go into the offscreen target before that (they
 // are depth-tested against the scene), the overlays onto the caller's framebuffer after it. render() draws into whatever framebuffer is bound when it is
 // called and leaves it bound.
 #pragma once
@@ -136,7 +136,7 @@ private:
     void setLighting(const ShaderProgram& program, const glm::vec3& eye, float fog_density) const;
 
     ShaderProgram sky_, terrain_, detail_, impostor_, grid_, marker_, hull_;
-    ShaderProgram shadow_detail_, ambient_occlusion_, composite_;
+    ShaderProgram shadow_detail_, ambient_occlusion_, ao_blur_, composite_;
     ViewportLook look_;
     // The shadow map (a depth texture with compare mode) and its framebuffer; the offscreen scene target.
     unsigned shadow_fbo_ = 0, shadow_depth_ = 0;
@@ -145,7 +145,7 @@ private:
     float shadow_offset_m_ = 0.0f;
     bool shadow_valid_ = false;
     unsigned scene_fbo_ = 0, scene_color_ = 0, scene_depth_ = 0;
-    unsigned ao_fbo_ = 0, ao_texture_ = 0;  // half resolution
+    unsigned ao_fbo_[2] = {0, 0}, ao_texture_[2] = {0, 0};  // half resolution: raw, blurred
     int scene_w_ = 0, scene_h_ = 0;
     float ao_radius_m_ = 0.1f;
     IndirectDraws shadow_draws_;
