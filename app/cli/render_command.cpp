@@ -25,10 +25,11 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: undergrowth render SCENE.json -o PICTURE.png [--camera tx,ty,tz,distance,yaw_deg,pitch_deg]\n"
-    "       [--size WxH] [--threads N] [--cache DIR]\n"
+    "       [--size WxH] [--threads N] [--cache DIR] [--no-shadows] [--no-ao]\n"
     "  --size: each side in [16, 16384], at most 67,108,864 pixels (8192 x 8192); default 1280x720\n"
     "  --camera: orbit target (metres), distance (metres, > 0), yaw (degrees; -90 looks from -Y) and\n"
-    "            pitch (degrees above the horizon, in [-89, 89]); default: the editor's opening view";
+    "            pitch (degrees above the horizon, in [-89, 89]); default: the editor's opening view\n"
+    "  --no-shadows, --no-ao: leave out the sun's shadows, the ambient occlusion (faster on llvmpipe)";
 constexpr long kMaxSide = 16384;
 constexpr long kMaxPixels = 8192L * 8192L;  // 256 MiB of RGBA: beyond this a picture is a mistake
 
@@ -73,7 +74,8 @@ bool parseCamera(const std::string& text, editor::OrbitCamera* camera, std::stri
 int runRenderCommand(int argc, char** argv) {
     Args args;
     std::string error;
-    if (!parseArgs(argc, argv, 2, {"-o", "--out", "--camera", "--size", "--threads", "--cache"}, {}, &args, &error))
+    if (!parseArgs(argc, argv, 2, {"-o", "--out", "--camera", "--size", "--threads", "--cache"},
+                   {"--no-shadows", "--no-ao"}, &args, &error))
         return usageError(error);
     if (args.positional.size() != 1)
         return usageError(args.positional.empty() ? "missing SCENE" : "one SCENE only, got " +
@@ -86,6 +88,8 @@ int runRenderCommand(int argc, char** argv) {
     editor::OffscreenRenderOptions options;
     options.scene_path = args.positional[0];
     options.cache_dir = args.get("--cache", "out/cache");
+    options.look.shadows = !args.has("--no-shadows");
+    options.look.ambient_occlusion = !args.has("--no-ao");
     if (args.has("--size")) {
         if (!parseSize("--size", args.get("--size"), 16, kMaxSide, &options.width, &options.height, &error))
             return usageError(error);

@@ -38,6 +38,7 @@ OffscreenRenderStatus renderSceneOffscreen(const OffscreenRenderOptions& options
     result->load_seconds = snap.load_seconds;
     result->instantiate_seconds = snap.instantiate_seconds;
     result->instances = snap.tiles.instanceCount();
+    renderer.setLook(options.look);
     renderer.setScene(snap.extent(), snap.terrain(), &snap.scene.meshes, snap.candidates(), snap.tileSize(),
                       &snap.scene.terrain_material);
     renderer.uploadTiles(&snap.tiles, snap.uploads);

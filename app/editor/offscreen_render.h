@@ -28,6 +28,7 @@ struct OffscreenRenderOptions {
     std::optional<OrbitCamera> camera;  // none: the default view (default_view.h); its aspect is replaced
     int frames = 1;  // frames rendered and timed (each ends with glFinish); the picture is the last one's
     LodSettings lod;
+    ViewportLook look;
 };
 
 struct OffscreenRenderResult {

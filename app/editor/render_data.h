@@ -69,6 +69,14 @@ struct LodSettings {
     float impostor_px = 10.0f;
 };
 
+// How the viewport lights the scene (the Render panel's toggles, `edit` and `render` --no-shadows and
+// --no-ao). View state, never saved with a scene.
+struct ViewportLook {
+    bool shadows = true;            // the sun's shadow map
+    bool ambient_occlusion = true;  // screen-space, where surfaces meet
+    int shadow_map_px = 2048;
+};
+
 // One detail type's mesh at every mesh LOD: one vertex array, the LODs' index ranges one after the other.
 struct DetailLodMesh {
     std::string name;

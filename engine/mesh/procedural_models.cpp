@@ -394,6 +394,33 @@ TriangleMesh makePineNeedles(uint64_t seed) {
     return finish(&b, {0.10f, 0.24f, 0.10f});
 }
 
+TriangleMesh makeHayWisp(uint64_t seed) {
+    seed = hashWords(seed, 111);
+    Builder b;
+    // Loose straws lying across each other: long, thin, nearly flat, each crossing the middle at its own
+    // heading and height, bowed a little (hay as it falls from a fork, not a bundle tied at one end).
+    const int straws = 14;
+    for (int k = 0; k < straws; ++k) {
+        const float heading = kPi * (float(k) + rnd(seed, 13, uint64_t(k), 0.0f, 0.9f)) / float(straws);
+        const float length_m = rnd(seed, 14, uint64_t(k), 0.13f, 0.19f);
+        const float rise = rnd(seed, 15, uint64_t(k), -0.18f, 0.18f);
+        const float bow = rnd(seed, 16, uint64_t(k), -0.012f, 0.012f);
+        const glm::vec3 offset(rnd(seed, 17, uint64_t(k), -0.012f, 0.012f), rnd(seed, 18, uint64_t(k), -0.012f, 0.012f),
+                               rnd(seed, 19, uint64_t(k), 0.0f, 0.014f));
+        const glm::vec3 along(std::cos(heading), std::sin(heading), rise), side(-std::sin(heading), std::cos(heading), 0);
+        std::vector<glm::vec3> line;
+        std::vector<float> radii;
+        const int points = 6;
+        for (int i = 0; i < points; ++i) {
+            const float s = float(i) / float(points - 1) - 0.5f;
+            line.push_back(offset + length_m * s * along + bow * (1.0f - 4.0f * s * s) * side);
+            radii.push_back(0.0011f);
+        }
+        addTube(&b, line, radii, 4);
+    }
+    return finish(&b, {0.62f, 0.52f, 0.24f});
+}
+
 TriangleMesh makeScannedRock(uint32_t target_triangles, uint64_t seed) {
     seed = hashWords(seed, 110);
     const uint32_t target = std::clamp<uint32_t>(target_triangles, 20u, 50'000'000u);
@@ -470,7 +497,8 @@ TriangleMesh makeScannedRock(uint32_t target_triangles, uint64_t seed) {
 
 const std::vector<std::string>& starterAssetNames() {
     static const std::vector<std::string> names = {"rock",      "flat_stone", "pebble",   "leaf_oak",    "leaf_birch",
-                                                   "twig",      "grass_tuft", "mushroom", "pine_needles"};
+                                                   "twig",      "grass_tuft", "mushroom", "pine_needles",
+                                                   "hay_wisp"};
     return names;
 }
 
@@ -479,7 +507,8 @@ bool makeStarterAsset(const std::string& name, uint64_t seed, TriangleMesh* out)
     static const std::pair<const char*, Maker> makers[] = {
         {"rock", makeRock},         {"flat_stone", makeFlatStone}, {"pebble", makePebble},
         {"leaf_oak", makeOakLeaf},  {"leaf_birch", makeBirchLeaf}, {"twig", makeTwig},
-        {"grass_tuft", makeGrassTuft}, {"mushroom", makeMushroom}, {"pine_needles", makePineNeedles}};
+        {"grass_tuft", makeGrassTuft}, {"mushroom", makeMushroom}, {"pine_needles", makePineNeedles},
+        {"hay_wisp", makeHayWisp}};
     for (const auto& [n, make] : makers)
         if (name == n) {
             *out = make(seed);

@@ -24,6 +24,7 @@ TriangleMesh makeTwig(uint64_t seed);          // ~30 cm, tapered, two side bran
 TriangleMesh makeGrassTuft(uint64_t seed);     // ~10 cm tall clump of curved tapered blades, green
 TriangleMesh makeMushroom(uint64_t seed);      // ~10 cm, stem + domed cap, tan-red
 TriangleMesh makePineNeedles(uint64_t seed);   // ~8 cm bundle of thin needles from a sheath, dark green
+TriangleMesh makeHayWisp(uint64_t seed);       // ~18 cm, loose straws lying across each other, straw yellow
 
 // A "scanned" boulder for performance work, like what photogrammetry gives artists: about 1 m across,
 // a lumpy ellipsoid with mid-scale knobs, fine bumps and per-vertex scan noise, as a uniformly
@@ -36,7 +37,7 @@ TriangleMesh makePineNeedles(uint64_t seed);   // ~8 cm bundle of thin needles f
 TriangleMesh makeScannedRock(uint32_t target_triangles, uint64_t seed);
 
 // The starter set, in a fixed order: rock, flat_stone, pebble, leaf_oak, leaf_birch, twig, grass_tuft,
-// mushroom, pine_needles.
+// mushroom, pine_needles, hay_wisp.
 const std::vector<std::string>& starterAssetNames();
 
 // The generator for `name` (one of starterAssetNames()); false for an unknown name.

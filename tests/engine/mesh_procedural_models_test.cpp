@@ -12,7 +12,8 @@ TEST(ProceduralModels, AreClosedOutwardCentredAndModest) {
     const std::map<std::string, std::pair<float, float>> size_range_m = {
         {"rock", {0.10f, 0.15f}},     {"flat_stone", {0.12f, 0.18f}}, {"pebble", {0.03f, 0.05f}},
         {"leaf_oak", {0.08f, 0.13f}}, {"leaf_birch", {0.07f, 0.12f}}, {"twig", {0.25f, 0.35f}},
-        {"grass_tuft", {0.07f, 0.13f}}, {"mushroom", {0.08f, 0.15f}}, {"pine_needles", {0.06f, 0.10f}}};
+        {"grass_tuft", {0.07f, 0.13f}}, {"mushroom", {0.08f, 0.15f}}, {"pine_needles", {0.06f, 0.10f}},
+        {"hay_wisp", {0.15f, 0.25f}}};
     for (const std::string& name : starterAssetNames()) {
         SCOPED_TRACE(name);
         TriangleMesh m;

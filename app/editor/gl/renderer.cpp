@@ -4,7 +4,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
-#include <cstdlib> // TEMPLOOK
 
 #include <epoxy/gl.h>
 #include <glm/gtc/type_ptr.hpp>
@@ -98,10 +97,7 @@ bool Renderer::init(const std::string& dir, std::string* error) {
         return false;
     glGenBuffers(1, &indirect_.id);
     glGenBuffers(1, &shadow_indirect_.id);
-    if (const char* t = std::getenv("UG_LOOK_TMP")) {  // TEMPLOOK
-        look_.shadows = !std::strstr(t, "noshadow");
-        look_.ambient_occlusion = !std::strstr(t, "noao");
-    }
+
     glGenVertexArrays(1, &empty_vao_);
     glGenVertexArrays(1, &marker_vao_);
     glGenBuffers(1, &marker_buffer_);

@@ -58,13 +58,6 @@ struct RenderStats {
     uint64_t tiles_resident = 0;
 };
 
-// How the viewport lights the scene (the Render panel's toggles). View state, never saved with a scene.
-struct ViewportLook {
-    bool shadows = true;
-    bool ambient_occlusion = true;
-    int shadow_map_px = 2048;
-};
-
 class Renderer {
 public:
     Renderer() = default;
