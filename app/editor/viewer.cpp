@@ -50,6 +50,7 @@
 #include "editor/panels.h"
 #include "editor/render_data.h"
 #include "editor/tools.h"
+#include "editor/window_title.h"
 #include "instancer/instance_query.h"
 #include "instancer/tile_coord.h"
 
@@ -175,6 +176,15 @@ std::string timeText(int64_t unix_s) {
     char buffer[64] = "";
     std::strftime(buffer, sizeof(buffer), "%Y-%m-%d %H:%M:%S", std::localtime(&t));
     return buffer;
+}
+
+json vec3Json(glm::vec3 v) { return {v.x, v.y, v.z}; }
+
+// Where a world point lands on screen, in pixels from the top left (NaN behind the eye).
+glm::vec2 projectToPixel(const glm::mat4& view_proj, float width, float height, glm::vec3 p) {
+    const glm::vec4 c = view_proj * glm::vec4(p, 1.0f);
+    if (c.w <= 0.0f) return glm::vec2(NAN);
+    return {(c.x / c.w * 0.5f + 0.5f) * width, (0.5f - c.y / c.w * 0.5f) * height};
 }
 
 // A stamp waiting for the frame that shows it.
@@ -338,7 +348,51 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
     const auto start_time = Clock::now();
     auto last_frame_end = start_time;
 
+    // ---- what the viewport shows, for the statistics (ViewerResult::viewport) ----
+    int last_fb_w = options.width, last_fb_h = options.height;
+    glm::vec2 cursor_px(NAN);  // framebuffer pixels; NaN until the pointer is in the window
+    struct BrushProbe {
+        bool drawn = false;
+        bool on_pile = false;
+        glm::vec3 center{0.0f};
+        glm::vec2 ring_center_px{0.0f};  // the ring's centre (its vertices' mean) on screen
+    } brush_probe;
+    // The ground's height under a world XY on the current document (the camera stays above it).
+    auto groundZ = [&](glm::vec2 xy) { return scene ? groundHeightAt(*scene->doc, xy) : -1.0e30f; };
+    auto viewportJson = [&] {
+        json v;
+        const glm::vec3 eye = camera.eye();
+        v["camera"] = {{"target", vec3Json(camera.target)},
+                       {"eye", vec3Json(eye)},
+                       {"distance", camera.distance_m},
+                       {"yaw_deg", glm::degrees(camera.yaw_rad)},
+                       {"pitch_deg", glm::degrees(camera.pitch_rad)}};
+        if (scene) v["eye_ground_z"] = groundZ(glm::vec2(eye));
+        v["framebuffer"] = {last_fb_w, last_fb_h};
+        if (std::isfinite(cursor_px.x)) {
+            v["cursor_px"] = {cursor_px.x, cursor_px.y};
+            if (scene) {
+                const Ray ray = rayThroughPixel(camera.viewProjection(), float(last_fb_w), float(last_fb_h), cursor_px);
+                const SurfaceHit g = pickGround(*scene->doc, ray);
+                if (g.hit) v["ground_under_cursor"] = vec3Json(g.point_m);
+            }
+        }
+        v["brush"] = {{"drawn", brush_probe.drawn}};
+        if (brush_probe.drawn) {
+            v["brush"]["center"] = vec3Json(brush_probe.center);
+            v["brush"]["on_pile"] = brush_probe.on_pile;
+            v["brush"]["ring_center_px"] = {brush_probe.ring_center_px.x, brush_probe.ring_center_px.y};
+        }
+        v["tool"] = toolName(tools.tool);
+        v["brush_radius"] = tools.brush.radius_m;
+        v["statistics_scene"] = view.scene;
+        v["imgui_wants_keyboard"] = ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard;
+        return v;
+    };
+
     auto fillDocumentResult = [&] {
+        result->viewport = viewportJson();
+        result->window_title = window.title();
         if (!scene) return;
         Document& doc = *scene->doc;
         result->document_path = doc.path();
@@ -488,7 +542,10 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             renderer.setScene(doc.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr,
                               &scene->meshes, doc.ghostTile().candidates,
                               doc.ghostTile().settings.tile_size_m);
-            if (!camera_moved) frameBounds(framingBounds(*scene, nullptr), &camera);
+            // Every document opens framed, as on startup (a camera left where the last scene was would show
+            // nothing of this one); the first result frames it again by the cells that fill.
+            camera_moved = false;
+            frameBounds(framingBounds(*scene, nullptr), &camera);
             view.scene = doc.path();
             view.type_names.clear();
             for (const DetailLodMesh& m : scene->meshes) view.type_names.push_back(m.name);
@@ -585,7 +642,13 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         // edits dropped) when the new one is ready, and is editable again if that load fails.
         Document* doc = scene && !loader ? scene->doc.get() : nullptr;
         const ImGuiIO& io = ImGui::GetIO();
-        const glm::mat4 view_proj = camera.viewProjection();
+        last_fb_w = fb_w;
+        last_fb_h = fb_h;
+        cursor_px = ImGui::IsMousePosValid() ? glm::vec2(io.MousePos.x * io.DisplayFramebufferScale.x,
+                                                         io.MousePos.y * io.DisplayFramebufferScale.y)
+                                             : glm::vec2(NAN);
+        // The mouse moving or clicking in the viewport takes the keyboard back from a panel's field.
+        if (!scripted) giveKeyboardBackToViewport();
         if (scene && !scripted) {
             Bounds selection;
             Primitive selected_prim;
@@ -594,9 +657,21 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             // Terrain kinds reach everywhere in XY: nothing sensible to frame.
             for (int a = 0; a < 3; ++a)
                 if (!std::isfinite(selection.lo[a]) || !std::isfinite(selection.hi[a])) selection = Bounds{};
+            // The wheel zooms toward the ground under the cursor.
+            glm::vec3 pivot(0.0f);
+            bool has_pivot = false;
+            if (io.MouseWheel != 0.0f && std::isfinite(cursor_px.x)) {
+                const SurfaceHit g = pickGround(
+                    *scene->doc, rayThroughPixel(camera.viewProjection(), float(fb_w), float(fb_h), cursor_px));
+                has_pivot = g.hit;
+                pivot = g.point_m;
+            }
             camera_moved |= navigate(&camera, framingBounds(*scene, have_result ? &instances : nullptr),
-                                     float(fb_h), &selection);
+                                     float(fb_h), &selection, has_pivot ? &pivot : nullptr);
+            keepEyeAboveGround(&camera, groundZ);
         }
+        // After navigation: the brush ring and picking use this frame's camera, not the last one's.
+        const glm::mat4 view_proj = camera.viewProjection();
         MenuView menu;
         menu.has_document = doc != nullptr;
         menu.dirty = doc && doc->isDirty();
@@ -646,6 +721,7 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         }
 
         markers.clear();
+        brush_probe.drawn = false;
         // Mouse tools: not while a panel has the mouse, Alt is held (Alt + left drag orbits) or a replay
         // stroke is running.
         const bool replay_stroke = replay.started && !replay.finishing;
@@ -672,7 +748,15 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 const SurfaceHit hit = tools.tool == ToolKind::Sculpt
                                            ? sculptLanding(*doc, tools.brush.sculpt_type, ray)
                                            : pickBrushSurface(*doc, tools.brush, ray);
-                if (hit.hit && mouse_free) addBrushMarker(*doc, hit.point_m, tools.brush.radius_m, &markers);
+                if (hit.hit && mouse_free) {
+                    const size_t first = markers.lines.size();
+                    addBrushMarker(*doc, hit.point_m, tools.brush.radius_m, !hit.on_pile, &markers);
+                    glm::vec3 sum(0.0f);
+                    for (size_t i = first; i < markers.lines.size(); ++i) sum += markers.lines[i].position;
+                    const glm::vec3 ring_centre = sum / float(std::max<size_t>(1, markers.lines.size() - first));
+                    brush_probe = {true, hit.on_pile, hit.point_m,
+                                   projectToPixel(view_proj, float(fb_w), float(fb_h), ring_centre)};
+                }
                 const int before = stroke.stamps();
                 std::string stroke_error;
                 bool ok = true;
@@ -833,6 +917,10 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         }
         drawMessages(&messages);
         if (doc != (scene ? scene->doc.get() : nullptr)) doc = nullptr;  // replaced this frame
+        // The title and the Statistics panel follow the document's path and unsaved state every frame, so
+        // an open, an edit, an undo back to the saved state, Save and Save As all show at once.
+        if (scene) view.scene = scene->doc->path().empty() ? "untitled" : scene->doc->path();
+        window.setTitle(windowTitle(scene ? scene->doc->path() : "", scene && scene->doc->isDirty(), scene != nullptr));
 
         // ---- replay: start or advance the current action ----
         // Where an action's edits changed the fields, grown by twice the largest object reach (collisions at
@@ -1103,16 +1191,23 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 std::this_thread::sleep_for(std::chrono::microseconds(250));
         }
         if (!takeLiveResult()) return ViewerStatus::Failed;
-        if (tools.show_markers && doc && have_result && (screenshot_request_path.empty() || screenshot_overlays)) {
-            const PrimitiveMarkersKey key{doc, doc->live().generation(), doc->tileGeneration(), tools.selected,
-                                          render_settings.hulls};
-            if (!(key == primitive_markers_key)) {
-                primitive_markers.clear();
-                addPrimitiveMarkers(*doc, scene->meshes, tools.selected, &primitive_markers);
-                if (render_settings.hulls) addPrimitiveHulls(*doc, scene->meshes, tools.selected, &primitive_markers);
-                primitive_markers_key = key;
+        // The camera never goes below the ground, whatever moved it (navigation, a replayed view, framing).
+        if (scene) keepEyeAboveGround(&camera, groundZ);
+        // The skeleton overlays (Window > Skeleton overlays) and the Render panel's overlays (tile grid,
+        // anchors, sphere sets) are separate toggles: one does not hide the others.
+        if (doc && have_result && (screenshot_request_path.empty() || screenshot_overlays)) {
+            if (tools.show_markers) {
+                const PrimitiveMarkersKey key{doc, doc->live().generation(), doc->tileGeneration(), tools.selected,
+                                              render_settings.hulls};
+                if (!(key == primitive_markers_key)) {
+                    primitive_markers.clear();
+                    addPrimitiveMarkers(*doc, scene->meshes, tools.selected, &primitive_markers);
+                    if (render_settings.hulls)
+                        addPrimitiveHulls(*doc, scene->meshes, tools.selected, &primitive_markers);
+                    primitive_markers_key = key;
+                }
+                markers.append(primitive_markers);
             }
-            markers.append(primitive_markers);
             const float r = render_settings.overlay_radius_m;
             const CandidateSet& c = doc->ghostTile().candidates;
             if (render_settings.tile_grid) addTileOverlay(instances, camera.target, r, &markers);
@@ -1157,6 +1252,9 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
                 }
             }
             screenshot_request_path.clear();
+            // F12 in an interactive run with --stats also rewrites the statistics (a driven session reads
+            // the viewport's state after each step).
+            if (screenshot_requested && !scripted) writeInteractiveStats();
         }
         window.renderUi();
         if (!ui_screenshot_path.empty()) {
@@ -1203,7 +1301,14 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
             const ReplayKind kind = options.replay[replay.index].kind;
             if (kind == ReplayKind::Export) r.update(export_record);
             if (kind == ReplayKind::SetVisible) r["drawn_instances_after"] = renderer.stats().instances_drawn;
+            if (kind == ReplayKind::View) {
+                r["eye"] = vec3Json(camera.eye());
+                r["target"] = vec3Json(camera.target);
+                r["eye_ground_z"] = groundZ(glm::vec2(camera.eye()));
+            }
             if (kind == ReplayKind::Open || kind == ReplayKind::New) {
+                r["camera_target"] = vec3Json(camera.target);
+                r["camera_eye"] = vec3Json(camera.eye());
                 r["ok"] = load_error.empty();
                 if (!load_error.empty()) r["error"] = load_error;
                 r["document"] = d.path();
@@ -1343,7 +1448,9 @@ json viewerStatsJson(const ViewerResult& r, const LodSettings& lod) {
         {"repack_ms_max", r.repack_ms_max},
         {"actions", r.actions},
         {"sculpt_strokes", r.sculpt_strokes},
-        {"messages", r.messages}};
+        {"messages", r.messages},
+        {"viewport", r.viewport},
+        {"window_title", r.window_title}};
 }
 
 }  // namespace ug::editor
