@@ -62,6 +62,9 @@ using Clock = std::chrono::steady_clock;
 
 // How long a frame that made a stamp may wait for its incremental update before rendering.
 constexpr double kStampWaitBudgetMs = 15.0;
+// The share of the Statistics window's bar that opening a document's files takes (DocumentLoader::progress);
+// its first instantiation takes the rest.
+constexpr float kOpenShare = 0.25f;
 using nlohmann::json;
 
 // A finished sculpt stroke's pile as the user would judge it (tools.h measureSculptedPile), around the
@@ -386,6 +389,8 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         v["tool"] = toolName(tools.tool);
         v["brush_radius"] = tools.brush.radius_m;
         v["statistics_scene"] = view.scene;
+        v["statistics_status"] = view.status;
+        v["statistics_progress"] = view.progress;
         v["imgui_wants_keyboard"] = ImGui::GetCurrentContext() && ImGui::GetIO().WantCaptureKeyboard;
         return v;
     };
@@ -627,9 +632,22 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         // Long background jobs show in the Statistics window too, whichever panel started them.
         view.pending = loader != nullptr || ghost_job != nullptr || export_job != nullptr ||
                        (scene && (!settled || !have_result));
-        view.progress = ghost_job ? ghost_job->progress() : export_job ? export_job->progress() : settled ? 1.0f : 0.0f;
+        // Opening a document: the loader's stages are the first quarter of the bar, its first full
+        // instantiation (seconds on a big field) the rest; later, a full run's own progress (a seed or a
+        // strategy change; an incremental update is short and shows as done).
+        const bool first_result = scene && !have_result;
+        const float open_progress =
+            loader ? kOpenShare * loader->progress()
+                   : kOpenShare + (1.0f - kOpenShare) * (scene ? scene->doc->live().fullRunProgress() : 0.0f);
+        view.progress = ghost_job    ? ghost_job->progress()
+                        : export_job ? export_job->progress()
+                        : settled    ? 1.0f
+                        : loader || first_result ? open_progress
+                        : scene                  ? scene->doc->live().fullRunProgress()
+                                                 : 0.0f;
         view.status = loader         ? "loading scene\xE2\x80\xA6"
                       : !scene       ? "no document"
+                      : first_result ? "instantiating\xE2\x80\xA6"
                       : ghost_job    ? "building the Ghost Tile\xE2\x80\xA6"
                       : export_job   ? "exporting glTF\xE2\x80\xA6"
                       : view.pending ? "pending\xE2\x80\xA6"
