@@ -26,7 +26,6 @@
 #include "editor/viewer.h"
 
 #include <imgui.h>
-#include <stb_image_write.h>
 
 #include <algorithm>
 #include <chrono>
@@ -41,6 +40,7 @@
 #include "core/atomic_file.h"
 #include "core/hash.h"
 #include "editor/document_loader.h"
+#include "editor/background_jobs.h"
 #include "editor/export_job.h"
 #include "editor/gl/renderer.h"
 #include "editor/gl/window.h"
@@ -49,6 +49,7 @@
 #include "editor/orbit_camera.h"
 #include "editor/panels.h"
 #include "editor/render_data.h"
+#include "editor/session_stats.h"
 #include "editor/tools.h"
 #include "editor/window_title.h"
 #include "instancer/instance_query.h"
@@ -66,72 +67,6 @@ constexpr double kStampWaitBudgetMs = 15.0;
 // its first instantiation takes the rest.
 constexpr float kOpenShare = 0.25f;
 using nlohmann::json;
-
-// A finished sculpt stroke's pile as the user would judge it (tools.h measureSculptedPile), around the
-// ground point of its first stamp, and how many primitives the stroke left (one per cone).
-json pileRecord(const Document& doc, const BrushStroke& st) {
-    const size_t type = st.sculptType();
-    const Bounds& b = st.changedBounds();
-    const glm::vec2 at(st.stampPoints().front());
-    const float search = std::max({b.hi.x - at.x, at.x - b.lo.x, b.hi.y - at.y, at.y - b.lo.y, 0.1f});
-    const PileMeasure m = measureSculptedPile(doc, type, at, search, search / 40.0f, b.hi.z + 0.1f);
-    const float angle =
-        type < doc.project().detail_types.size() ? doc.project().detail_types[type].angle_of_repose_deg : 35.0f;
-    return {{"found", m.found},
-            {"type", type},
-            {"ground_point", {at.x, at.y}},
-            {"centroid", {m.centroid_m.x, m.centroid_m.y}},
-            {"height", m.height_m},
-            {"radius", m.radius_m},
-            {"volume", m.volume_m3},
-            {"angle_of_repose_deg", angle},
-            {"stamps", st.stamps()},
-            {"primitives", st.pileIds().size()},
-            {"ids", st.pileIds()}};
-}
-
-// The pile as its instances show it: the sculpt type's instances whose origin lies within 1.25 pile radii
-// (horizontally) of the ground point: how many, their centroid, and the highest origin above the ground.
-json pileInstancesJson(const Document& doc, const InstanceStore& store, const json& pile) {
-    const size_t type = pile["type"].get<size_t>();
-    const glm::vec2 at(pile["ground_point"][0].get<float>(), pile["ground_point"][1].get<float>());
-    const float reach = 1.25f * pile["radius"].get<float>();
-    const CandidateSet& c = doc.ghostTile().candidates;
-    const float s = doc.ghostTile().settings.tile_size_m;
-    uint64_t count = 0;
-    glm::dvec2 sum(0.0);
-    float top = 0.0f;
-    store.forEach([&](uint64_t key, uint32_t id) {
-        if (c.type[id] != type) return;
-        const glm::vec3 o = tileOrigin(unpackTile(key), s) + c.position[id];
-        if (glm::length(glm::vec2(o) - at) > reach) return;
-        ++count;
-        sum += glm::dvec2(o.x, o.y);
-        const SurfaceHit ground = pickGround(doc, rayDownOnto(doc, glm::vec2(o)));
-        if (ground.hit) top = std::max(top, o.z - ground.point_m.z);
-    });
-    const glm::dvec2 centre = count ? sum / double(count) : glm::dvec2(at);
-    return {{"count", count}, {"centroid", {centre.x, centre.y}}, {"top", top}};
-}
-
-bool writeScreenshot(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba,
-                     std::string* error) {
-    // RGB: the default framebuffer of a 24-bit visual has no meaningful alpha.
-    std::vector<uint8_t> rgb(size_t(width) * size_t(height) * 3);
-    for (size_t i = 0, n = size_t(width) * size_t(height); i < n; ++i) {
-        rgb[i * 3 + 0] = rgba[i * 4 + 0];
-        rgb[i * 3 + 1] = rgba[i * 4 + 1];
-        rgb[i * 3 + 2] = rgba[i * 4 + 2];
-    }
-    std::error_code ec;
-    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-    if (!stbi_write_png(path.c_str(), width, height, 3, rgb.data(), width * 3)) {
-        *error = path + ": cannot write the screenshot";
-        return false;
-    }
-    return true;
-}
 
 // What "frame all" frames: the cells that hold instances once they are in (a scene's extent is often a
 // conservative bound much larger than what fills), else the terrain's surface when there is one, else
@@ -151,43 +86,11 @@ Bounds framingBounds(const EditorScene& s, const ResidentTiles* instances) {
     return Bounds{b.min, b.max};
 }
 
-json perTypeJson(const std::vector<std::string>& names, const std::vector<uint64_t>& counts) {
-    json j = json::object();
-    for (size_t i = 0; i < names.size(); ++i) j[names[i]] = i < counts.size() ? counts[i] : 0;
-    return j;
-}
-
-std::vector<uint64_t> perTypeCounts(const InstanceStore& store, const CandidateSet& candidates) {
-    std::vector<uint64_t> counts(candidates.typeCount(), 0);
-    store.forEach([&](uint64_t, uint32_t id) { ++counts[candidates.type[id]]; });
-    return counts;
-}
-
-// How far an instance's collision spheres reach from its origin, at most, over all types.
-float largestReach(const Document& doc) {
-    const CandidateSet& c = doc.ghostTile().candidates;
-    float reach = 0.0f;
-    for (size_t i = 0; i < doc.models().size() && i < c.typeCount(); ++i) {
-        const DetailModel& m = doc.models()[i];
-        reach = std::max(reach, candidateScaleMax(c, i) * (glm::length(m.bounds.center) + m.bounds.radius));
-    }
-    return reach;
-}
-
 std::string timeText(int64_t unix_s) {
     const std::time_t t = std::time_t(unix_s);
     char buffer[64] = "";
     std::strftime(buffer, sizeof(buffer), "%Y-%m-%d %H:%M:%S", std::localtime(&t));
     return buffer;
-}
-
-json vec3Json(glm::vec3 v) { return {v.x, v.y, v.z}; }
-
-// Where a world point lands on screen, in pixels from the top left (NaN behind the eye).
-glm::vec2 projectToPixel(const glm::mat4& view_proj, float width, float height, glm::vec3 p) {
-    const glm::vec4 c = view_proj * glm::vec4(p, 1.0f);
-    if (c.w <= 0.0f) return glm::vec2(NAN);
-    return {(c.x / c.w * 0.5f + 0.5f) * width, (0.5f - c.y / c.w * 0.5f) * height};
 }
 
 // A stamp waiting for the frame that shows it.
@@ -566,65 +469,16 @@ ViewerStatus runViewer(const ViewerOptions& options, ViewerResult* result, std::
         }
         // A finished Ghost Tile job: applied (one undo step) or reported; the old tile stayed in use until now.
         if (ghost_job && ghost_job->finished()) {
-            std::unique_ptr<GhostTileJob> job = std::move(ghost_job);
             const bool for_replay = ghost_job_action >= 0 && size_t(ghost_job_action) == replay.index;
-            json outcome = {{"job_seconds", 0.0}};
-            std::string apply_error;
-            if (!scene || ghost_job_doc != scene->doc.get()) {
-                ghost_panel.last_outcome = "the document changed: build dropped";
-            } else if (job->state() == GhostTileJobState::Done) {
-                GhostTileBuild build = job->take();
-                const double seconds = build.seconds;
-                const CacheOutcome cache = build.outcome;
-                if (scene->doc->applyGhostTile(std::move(build), &apply_error)) {
-                    char text[160];
-                    std::snprintf(text, sizeof(text), "applied: %s in %.2f s", cacheOutcomeName(cache), seconds);
-                    ghost_panel.last_outcome = text;
-                    const GhostTileStats& st = scene->doc->ghostTile().stats;
-                    outcome = {{"ok", true},
-                               {"job_seconds", seconds},
-                               {"cache", cacheOutcomeName(cache)},
-                               {"candidates", st.candidate_count},
-                               {"pairs", st.pair_count},
-                               {"rho", st.rho},
-                               {"build_seconds", st.build_seconds},
-                               {"graph_bytes", st.graph_bytes},
-                               {"bytes_per_pair", st.bytes_per_pair}};
-                } else {
-                    messages.push_back("Ghost Tile: " + apply_error);
-                    ghost_panel.last_outcome = "failed: " + apply_error;
-                    outcome = {{"ok", false}, {"error", apply_error}};
-                }
-            } else if (job->state() == GhostTileJobState::Failed) {
-                messages.push_back("Ghost Tile build failed: " + job->error());
-                ghost_panel.last_outcome = "failed: " + job->error();
-                outcome = {{"ok", false}, {"error", job->error()}};
-            } else {
-                ghost_panel.last_outcome = "cancelled";
-                outcome = {{"ok", false}, {"cancelled", true}};
-            }
-            if (for_replay) replay.record["ghost_tile"] = outcome;
+            Document* started_on = scene && ghost_job_doc == scene->doc.get() ? scene->doc.get() : nullptr;
+            json outcome = finishGhostTileJob(std::move(ghost_job), started_on, &ghost_panel, &messages);
+            if (for_replay) replay.record["ghost_tile"] = std::move(outcome);
         }
         ghost_panel.running = ghost_job != nullptr;
         ghost_panel.progress = ghost_job ? ghost_job->progress() : 0.0f;
         if (!takeLiveResult()) return ViewerStatus::Failed;
         if (export_job && export_job->finished()) {
-            const ExportJob& j = *export_job;
-            export_record = json{{"ok", j.stage() == ExportStage::Done},
-                                 {"path", j.settings().path},
-                                 {"exported_instances", j.instances()},
-                                 {"export_seconds", j.seconds()}};
-            if (j.stage() == ExportStage::Done) {
-                char text[64];
-                std::snprintf(text, sizeof(text), " in %.2f s", j.seconds());
-                export_result =
-                    "wrote " + std::to_string(j.instances()) + " instances to " + j.settings().path + text;
-                view.last_message = export_result;
-            } else {
-                export_result = j.error();
-                export_record["error"] = j.error();
-                if (j.stage() == ExportStage::Failed) messages.push_back(j.error());
-            }
+            export_record = finishExportJob(*export_job, &export_result, &view.last_message, &messages);
             export_job.reset();
         }
         const bool settled = scene && have_result && !scene->doc->live().pending() &&
