@@ -12,9 +12,10 @@ void printUsage() {
         "Undergrowth — entangled details for natural scenes\n"
         "\n"
         "usage:\n"
-        "  undergrowth run [SCENE] [--out DIR] [--threads N]\n"
-        "      the main job on SCENE (default: the bundled assets/scenes/default.json), headless;\n"
-        "      writes statistics, a preview and the Ghost Tile cache under DIR (default: out)\n"
+        "  undergrowth run [SCENE] [--out DIR] [--threads N] [--headless] [--frames N] [--screenshot OUT.png]\n"
+        "      SCENE (default: the bundled assets/scenes/default.json) in the editor when a display is there;\n"
+        "      without one, or with --headless, the main job: the scene, its statistics, a tile preview and the\n"
+        "      Ghost Tile cache under DIR (default: out); --frames/--screenshot: a scripted editor run (as edit)\n"
         "  undergrowth instantiate SCENE -o OUT.glb|OUT.gltf [--stats FILE] [--seed N] [--threads N]\n"
         "                          [--region xmin,ymin,zmin,xmax,ymax,zmax] [--plain-nodes] [--chunk M] [--cache DIR]\n"
         "                          [--measure]\n"
@@ -27,6 +28,10 @@ void printUsage() {
         "      open the editor's window on SCENE (needs a display; exit 1 without one); --replay runs a script of\n"
         "      tool actions; --frames N then renders N frames once the script is done and the instances settled,\n"
         "      writes the screenshot and statistics, and exits\n"
+        "  undergrowth render SCENE -o PICTURE.png [--camera tx,ty,tz,distance,yaw_deg,pitch_deg] [--size WxH]\n"
+        "                     [--threads N] [--cache DIR]\n"
+        "      a picture of the settled scene from the editor's opening view (or --camera), without any display\n"
+        "      (EGL); --size defaults to 1280x720\n"
         "  undergrowth build-tile SCENE [--cache DIR] [--stats FILE] [--threads N]\n"
         "      build (or load from the verified cache) the scene's Ghost Tile and print its statistics\n"
         "  undergrowth bench [--quick] [--json FILE] [--threads N] [--filter NAME]\n"
@@ -46,6 +51,7 @@ int main(int argc, char** argv) {
     if (command == "run") return ug::cli::runMainJob(argc, argv);
     if (command == "instantiate") return ug::cli::runInstantiateCommand(argc, argv);
     if (command == "edit") return ug::cli::runEditCommand(argc, argv);
+    if (command == "render") return ug::cli::runRenderCommand(argc, argv);
     if (command == "build-tile") return ug::cli::runBuildTileCommand(argc, argv);
     if (command == "bench") return ug::cli::runBenchCommand(argc, argv);
     if (command == "make-assets") return ug::cli::runMakeAssetsCommand(argc, argv);

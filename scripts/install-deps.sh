@@ -7,6 +7,7 @@ packages=(
   build-essential cmake pkg-config git
   libglm-dev nlohmann-json3-dev libtinygltf-dev libopenmesh-dev libmeshoptimizer-dev libstb-dev
   libglfw3-dev libimgui-dev libgl-dev libepoxy-dev
+  libegl-dev libegl1 libegl-mesa0 libgl1-mesa-dri  # undergrowth render: EGL without a display
   libgtest-dev
   xvfb xauth xdotool
   nodejs npm

@@ -1,5 +1,7 @@
 #!/usr/bin/env bash
-# README command 1: install what is missing, build Release, run the main job on the bundled default scene.
+# README command 1: install what is missing, build Release, then open the editor on the bundled default
+# scene when a display is there (DISPLAY or WAYLAND_DISPLAY), else run the headless main job on it.
+# Arguments pass through: scripts/run.sh --headless runs the job even with a display.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh

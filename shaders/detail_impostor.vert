@@ -1,12 +1,18 @@
 #version 430 core
 // detail_impostor: the far representation, one point sprite per instance (GL_POINTS, no triangles),
-// centred on the instance's bounding-box centre, as wide on screen as the model's mean projected size.
-// Beyond the impostor distance an object covers a few pixels, where a square of its colour and light
+// centred on the instance's bounding-box centre, showing the model's silhouette from this elevation
+// (impostor.frag: render_data.h silhouettes, blended between the 0, 30, 60 and 90 degree masks), so a far
+// field covers the screen exactly as much as its meshes would. A sprite under two pixels is one pixel
+// drawn with the probability of the silhouette's area (render_data.h coverage_m2, hashed per instance):
+// the expected coverage stays the same.
+// Beyond the impostor distance an object covers a few pixels, where a disc of its colour and light
 // reads the same as its mesh and costs llvmpipe a fraction of a triangle.
 // Interface: a_instance (2, per vertex here: one vertex per instance), as instanced_detail.vert;
 // buffer 0 = candidate frames; u_view_proj, u_tile_size_m, u_color, u_center (model space),
-// u_half_size_m, u_point_scale (pixels per metre at unit depth), u_to_eye (unit, toward the camera),
-// plus lighting.glsl's; out v_lit, the display colour.
+// u_coverage_m2, u_sprite_radius_m, u_layer_first, u_upness, u_point_scale (pixels per metre at unit
+// depth), u_to_eye (unit, toward the camera),
+// u_lod_diameter_px, u_impostor_px (the switch, as instanced_detail.vert), plus lighting.glsl's; out
+// v_lit, the display colour.
 layout(location = 2) in uvec2 a_instance;
 
 struct CandidateFrame {
@@ -20,10 +26,17 @@ uniform float u_tile_size_m;
 uniform float u_drop_unit_m;
 uniform vec3 u_color;
 uniform vec3 u_center;
-uniform float u_half_size_m;
+uniform vec4 u_coverage_m2;
+uniform float u_sprite_radius_m;
+uniform int u_layer_first;  // the type's first silhouette layer
+uniform float u_upness;
+uniform float u_lod_diameter_px;
+uniform float u_impostor_px;
 uniform float u_point_scale;
 uniform vec3 u_to_eye;
 out vec3 v_lit;
+flat out int v_layer;    // the silhouette layer below this elevation (-1: a plain pixel)
+out float v_layer_mix;   // toward the next layer up
 
 vec3 rotate(vec4 q, vec3 v) {
     vec3 t = 2.0 * cross(q.xyz, v);
@@ -37,19 +50,58 @@ void main() {
     float drop = float(a_instance.y >> 25) * u_drop_unit_m;
     CandidateFrame f = u_frames[(a_instance.y >> 9) & 0xffffu];
     float scale = f.position_scale.w;
-    vec3 world = vec3(tile) * u_tile_size_m + f.position_scale.xyz + rotate(f.rotation, scale * u_center) -
-                 vec3(0.0, 0.0, drop);
-    // The model's +Z as the normal (a leaf's face, a tuft's up), turned toward the eye: the sprite is lit
-    // like the object's dominant facet.
-    vec3 n = rotate(f.rotation, vec3(0.0, 0.0, 1.0));
-    n = dot(n, u_to_eye) < 0.0 ? -n : n;
     uint h = (a_instance.x * 2654435761u) ^ ((a_instance.y & 0x1ffffffu) * 2246822519u);  // not the drop: stable colours
     h ^= h >> 15;
     h *= 2246822519u;
     h ^= h >> 13;
+    vec3 origin_undropped = vec3(tile) * u_tile_size_m + f.position_scale.xyz;
+    float px = u_lod_diameter_px / max(distance(origin_undropped, u_eye), 1e-3);
+    if (px >= u_impostor_px * (1.0 + 0.6 * float((h >> 10) & 1023u) / 1024.0)) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);  // drawn as a mesh (instanced_detail.vert)
+        gl_PointSize = 1.0;
+        return;
+    }
+    vec3 world = vec3(tile) * u_tile_size_m + f.position_scale.xyz + rotate(f.rotation, scale * u_center) -
+                 vec3(0.0, 0.0, drop);
+    // Lit like its faces on average, not like a flat lawn: the model's +Z (a leaf's face, a tuft's up)
+    // weighted by how flat its faces are (u_upness, render_data.h), and four upright faces around it
+    // (a tuft's blades, a rock's sides) for the rest; every normal turned toward the eye, as the mesh's
+    // two-sided sheets are (lit_surface.frag).
     vec3 albedo = u_color * (0.9 + 0.2 * float(h & 1023u) / 1023.0);
-    // Lit once per point (lighting.glsl), not per pixel: a sprite is one colour anyway.
-    v_lit = toDisplay(shadeSurface(albedo, n, world));
+    vec3 up = rotate(f.rotation, vec3(0.0, 0.0, 1.0));
+    vec3 across = rotate(f.rotation, vec3(1.0, 0.0, 0.0));
+    vec3 along = cross(up, across);
+    float visibility = sunVisibility(world, up);
+    vec3 flat_lit = shadeSurfaceLit(albedo, dot(up, u_to_eye) < 0.0 ? -up : up, world, visibility);
+    vec3 upright_lit = vec3(0.0);
+    for (int k = 0; k < 4; ++k) {
+        vec3 side = (k & 1) == 0 ? across : along;
+        side = (k & 2) == 0 ? side : -side;
+        if (dot(side, u_to_eye) < 0.0) side = -side;
+        upright_lit += 0.25 * shadeSurfaceLit(albedo, side, world, visibility);
+    }
+    v_lit = toDisplay(mix(upright_lit, flat_lit, u_upness));
     gl_Position = u_view_proj * vec4(world, 1.0);
-    gl_PointSize = max(1.0, 2.0 * scale * u_half_size_m * u_point_scale / max(gl_Position.w, 1e-4));
+    // The silhouette area from this elevation, in pixels.
+    vec3 to_eye = u_eye - world;
+    float e = clamp(asin(clamp(abs(to_eye.z) / max(length(to_eye), 1e-6), 0.0, 1.0)) / 0.5235988, 0.0, 2.999);
+    int k = int(e);
+    float cover_m2 = mix(u_coverage_m2[k], u_coverage_m2[k + 1], e - float(k)) * scale * scale;
+    float px_per_m = u_point_scale / max(gl_Position.w, 1e-4);
+    float area_px = cover_m2 * px_per_m * px_per_m;
+    float sprite_px = 2.0 * u_sprite_radius_m * scale * px_per_m;
+    if (sprite_px < 2.0) {
+        // One pixel, kept with the probability of the silhouette's area in pixels.
+        if (float((h >> 20) & 1023u) / 1024.0 >= area_px) {
+            gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+            gl_PointSize = 1.0;
+            return;
+        }
+        v_layer = -1;
+        gl_PointSize = 1.0;
+        return;
+    }
+    v_layer = u_layer_first + k;
+    v_layer_mix = e - float(k);
+    gl_PointSize = min(sprite_px, 255.0);
 }

@@ -26,5 +26,5 @@ void main() {
     vec3 lit = shadeSurface(albedo, vec3(0.0, 0.0, 1.0), v_world);
     vec3 to_point = v_world - u_eye;
     float fade = smoothstep(u_fade_m.x, u_fade_m.y, length(to_point));
-    o_color = vec4(toDisplay(mix(lit, skyColor(normalize(to_point)), fade)), 1.0);
+    o_color = vec4(toDisplay(mix(lit, skyColor(normalize(to_point)), fade)), g_ambient_share);
 }

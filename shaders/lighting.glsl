@@ -1,10 +1,24 @@
 // The light model every surface shares (inserted after each fragment shader's #version line):
 //   hemisphere ambient (sky from above, warm ground bounce from below), one directional sun, and a haze
 //   that thickens with distance toward the sky's horizon colour. Linear RGB in, display (gamma 2) out.
-// Interface: u_sun_dir (unit, toward the sun), u_eye (world), u_fog_density (1/m).
+// The sun is shadowed through a shadow map (renderer.cpp's shadow pass, shadow_frame.h's view), filtered
+// by percentage-closer filtering: 4 hardware-compared bilinear taps (each a 2x2 PCF on Mesa), so edges
+// are soft over about 3 texels.
+// Interface: u_sun_dir (unit, toward the sun), u_eye (world), u_fog_density (1/m); u_shadow_map (a depth
+// texture with compare mode), u_shadow_texture (world -> shadow texture coordinates and depth),
+// u_shadow_strength (0: no shadow map; 1: full), u_shadow_offset_m (the lookup moves this far along the
+// normal: no self-shadowing acne on surfaces that face the sun at a grazing angle).
+// shadeSurface also leaves in g_ambient_share the share of the light it returned that is sky and bounce
+// light, which the ambient occlusion pass darkens most (composite.frag).
 uniform vec3 u_sun_dir;
 uniform vec3 u_eye;
 uniform float u_fog_density;
+uniform sampler2DShadow u_shadow_map;
+uniform mat4 u_shadow_texture;
+uniform float u_shadow_strength;
+uniform float u_shadow_offset_m;
+
+float g_ambient_share = 1.0;
 
 const vec3 kZenith = vec3(0.16, 0.33, 0.72);
 const vec3 kHorizon = vec3(0.60, 0.72, 0.86);
@@ -24,14 +38,35 @@ vec3 skyColor(vec3 dir) {
     return c + kSunColor * (0.25 * s8 + 1.5 * s64 * s64 * s64 * s64);
 }
 
-vec3 shadeSurface(vec3 albedo, vec3 n, vec3 world) {
-    float ndl = max(dot(n, u_sun_dir), 0.0);
+// 1 where the sun reaches `world`, 0 in full shadow.
+float sunVisibility(vec3 world, vec3 n) {
+    if (u_shadow_strength <= 0.0) return 1.0;
+    vec4 s = u_shadow_texture * vec4(world + n * u_shadow_offset_m, 1.0);
+    vec3 t = s.xyz / s.w;
+    if (any(lessThan(t, vec3(0.0))) || any(greaterThan(t, vec3(1.0)))) return 1.0;  // outside the map: lit
+    vec2 texel = 1.0 / vec2(textureSize(u_shadow_map, 0));
+    float lit = texture(u_shadow_map, vec3(t.xy + vec2(-0.75, -0.25) * texel, t.z)) +
+                texture(u_shadow_map, vec3(t.xy + vec2(0.25, -0.75) * texel, t.z)) +
+                texture(u_shadow_map, vec3(t.xy + vec2(0.75, 0.25) * texel, t.z)) +
+                texture(u_shadow_map, vec3(t.xy + vec2(-0.25, 0.75) * texel, t.z));
+    return 1.0 - u_shadow_strength * (1.0 - 0.25 * lit);
+}
+
+// shadeSurface with the sun's visibility given (the impostors light several normals at one point).
+vec3 shadeSurfaceLit(vec3 albedo, vec3 n, vec3 world, float visibility) {
+    float ndl = max(dot(n, u_sun_dir), 0.0) * visibility;
     vec3 ambient = mix(kGroundBounce, kSkyLight, 0.5 + 0.5 * n.z);
-    vec3 c = albedo * (ambient + 1.1 * kSunColor * ndl);
+    vec3 direct = 1.1 * kSunColor * ndl;
+    g_ambient_share = dot(ambient, vec3(1.0)) / max(dot(ambient + direct, vec3(1.0)), 1e-6);
+    vec3 c = albedo * (ambient + direct);
     vec3 to_point = world - u_eye;
     float d = length(to_point);
     float fog = 1.0 - exp(-d * u_fog_density);
     return mix(c, skyColor(to_point / max(d, 1e-6)), clamp(fog, 0.0, 1.0));
+}
+
+vec3 shadeSurface(vec3 albedo, vec3 n, vec3 world) {
+    return shadeSurfaceLit(albedo, n, world, dot(n, u_sun_dir) > 0.0 ? sunVisibility(world, n) : 0.0);
 }
 
 // Gamma 2 (sqrt) rather than 2.2: within a few levels of sRGB in the mid-tones, and much cheaper per pixel.

@@ -9,5 +9,7 @@ void main() {
     vec3 n = normalize(v_normal);
     // Thin sheets (leaves, blades) are seen from both sides: light the side that faces the viewer.
     if (!gl_FrontFacing) n = -n;
-    o_color = vec4(toDisplay(shadeSurface(v_color, n, v_world)), 1.0);
+    vec3 lit = shadeSurface(v_color, n, v_world);
+    // Alpha carries the ambient share to the ambient occlusion pass (composite.frag).
+    o_color = vec4(toDisplay(lit), g_ambient_share);
 }

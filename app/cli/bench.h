@@ -24,7 +24,7 @@ bool benchInstancer(const BenchContext& ctx, std::vector<BenchRow>* rows, std::s
 bool benchModels(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 // Rest, packing and tiling of the sample scenes (pile.*, tiling.*): measurements, not timings.
 bool benchPile(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
-// Needs a display (DISPLAY set and a window that opens); without one it adds no rows and prints a note.
+// In the editor's window where one opens, else offscreen (EGL); the editor.stamp_* rows need the window.
 bool benchRender(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 
 }  // namespace ug::cli

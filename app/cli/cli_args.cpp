@@ -57,6 +57,21 @@ bool parseInt(const std::string& option, const std::string& text, long lo, long 
     return true;
 }
 
+bool parseSize(const std::string& option, const std::string& text, long lo, long hi, int* width, int* height,
+               std::string* error) {
+    const size_t x = text.find('x');
+    long w = 0, h = 0;
+    if (x == std::string::npos || !parseInt(option, text.substr(0, x), lo, hi, &w, error) ||
+        !parseInt(option, text.substr(x + 1), lo, hi, &h, error)) {
+        *error = option + ": expected WIDTHxHEIGHT, each in [" + std::to_string(lo) + ", " + std::to_string(hi) +
+                 "], got '" + text + "'";
+        return false;
+    }
+    *width = int(w);
+    *height = int(h);
+    return true;
+}
+
 std::string assetsDir() {
     namespace fs = std::filesystem;
     if (const char* env = std::getenv("UG_ASSETS"); env && *env) return env;

@@ -27,6 +27,10 @@ bool parseArgs(int argc, char** argv, int first, const std::set<std::string>& wi
 // Parses a whole integer in [lo, hi]; the error names the option.
 bool parseInt(const std::string& option, const std::string& text, long lo, long hi, long* out, std::string* error);
 
+// "1280x720": two whole numbers in [lo, hi]; the error names the option and the accepted range.
+bool parseSize(const std::string& option, const std::string& text, long lo, long hi, int* width, int* height,
+               std::string* error);
+
 // The assets folder: $UG_ASSETS, else <exe>/../assets or <exe>/../../assets, else the source tree's.
 std::string assetsDir();
 

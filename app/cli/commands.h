@@ -4,11 +4,14 @@
 
 namespace ug::cli {
 
-int runMainJob(int argc, char** argv);        // undergrowth run [SCENE] [--out DIR] [--threads N]
+// undergrowth run [SCENE] [--out DIR] [--threads N] [--headless] [--frames N] [--screenshot PNG]: the editor
+// on SCENE when a display is there (and not --headless), else the headless main job.
+int runMainJob(int argc, char** argv);
 int runBuildTileCommand(int argc, char** argv);  // undergrowth build-tile SCENE [--cache DIR] [--stats FILE]
 int runMakeAssetsCommand(int argc, char** argv);  // undergrowth make-assets [--out DIR]
 int runBenchCommand(int argc, char** argv);      // undergrowth bench [--quick] [--json FILE]
 int runInstantiateCommand(int argc, char** argv);  // undergrowth instantiate SCENE -o OUT.glb [...]
 int runEditCommand(int argc, char** argv);       // undergrowth edit SCENE [--frames N] [--screenshot PNG] [...]
+int runRenderCommand(int argc, char** argv);     // undergrowth render SCENE -o PICTURE.png [...]: no display needed
 
 }  // namespace ug::cli

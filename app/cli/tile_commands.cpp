@@ -1,7 +1,9 @@
-// `run` (the main job on a scene) and `build-tile`: load the project, its models and the Ghost Tile
-// (from the verified cache, or built and cached), then write what the job produced and say where.
+// `run` (command 1: the editor on a scene when there is a display, else the main job) and `build-tile`:
+// load the project, its models and the Ghost Tile (from the verified cache, or built and cached), then
+// write what the job produced and say where.
 #include <chrono>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 
 #include <nlohmann/json.hpp>
@@ -10,12 +12,14 @@
 #include "cli/commands.h"
 #include "cli/scene_job.h"
 #include "core/parallel.h"
+#include "editor/viewer.h"
 #include "io/instance_export.h"
 #include "core/atomic_file.h"
 #include "core/hash.h"
 #include "ghosttile/ghost_tile_cache.h"
 #include "io/gltf_mesh_io.h"
 #include "mesh/procedural_models.h"
+#include "scene/document.h"
 #include "scene/project.h"
 
 namespace ug::cli {
@@ -91,17 +95,83 @@ bool parseThreads(const Args& args, int* threads, std::string* error) {
     return true;
 }
 
+// What the editor does, for someone who just ran command 1 (main_menu.cpp, navigation.cpp, tools.h).
+constexpr const char* kEditorNextSteps =
+    "Opening the editor on %s. What to do next:\n"
+    "  look around   middle drag or Alt+left drag orbits, Shift pans, wheel zooms; Home frames the scene,\n"
+    "                1 / 3 / 7 front / side / top view\n"
+    "  paint         B, then left drag: adds the Tools window's detail types under the brush\n"
+    "  sculpt        S, then left drag or hold: pours a pile of the Tools window's pile type, growing as you hold\n"
+    "  erase         E, then left drag; select with Q (click, drag to move, X or Delete removes)\n"
+    "  undo / redo   Ctrl+Z / Ctrl+Shift+Z; Ctrl+S saves the scene; F12 takes a screenshot\n"
+    "  export        the Export window writes glTF (EXT_mesh_gpu_instancing)\n"
+    "  without a display: undergrowth run --headless (the batch job), undergrowth render SCENE -o PICTURE.png\n";
+
+bool displayAvailable() {
+    for (const char* name : {"DISPLAY", "WAYLAND_DISPLAY"})
+        if (const char* v = std::getenv(name); v && *v) return true;
+    return false;
+}
+
+// The editor on the scene (as `undergrowth edit`). Returns the exit code, or -1 when no window could be
+// opened or the editor failed (the caller then runs the headless job, which reports a bad scene itself).
+int runEditorOnScene(const std::string& scene, const std::string& cache_dir, int threads, long frames,
+                     const std::string& screenshot) {
+    std::printf(kEditorNextSteps, scene.c_str());
+    std::fflush(stdout);
+    editor::ViewerOptions options;
+    options.scene_path = scene;
+    options.cache_dir = cache_dir;
+    options.threads = threads;
+    options.config_dir = defaultConfigDir();
+    options.frames = int(frames);
+    options.finish_each_frame = frames > 0;
+    options.screenshot_path = screenshot;
+    editor::ViewerResult result;
+    std::string error;
+    if (editor::runViewer(options, &result, &error) != editor::ViewerStatus::Ok) {
+        std::fprintf(stderr, "undergrowth run: note: the editor did not open (%s); running the headless job instead\n",
+                     error.c_str());
+        return -1;
+    }
+    if (!result.screenshot.empty()) std::fprintf(stderr, "run: wrote %s\n", result.screenshot.c_str());
+    for (const std::string& m : result.messages) std::fprintf(stderr, "run: message: %s\n", m.c_str());
+    return 0;
+}
+
+int runHeadlessJob(const std::string& scene, const std::string& out_dir, int threads);
+
 }  // namespace
 
 int runMainJob(int argc, char** argv) {
+    const char* usage =
+        "usage: undergrowth run [SCENE] [--out DIR] [--threads N] [--headless] [--frames N] [--screenshot OUT.png]";
     Args args;
     std::string error;
-    if (!parseArgs(argc, argv, 2, {"--out", "--threads"}, {}, &args, &error) || args.positional.size() > 1)
-        return fail("run", error.empty() ? "usage: undergrowth run [SCENE] [--out DIR] [--threads N]" : error, 2);
+    if (!parseArgs(argc, argv, 2, {"--out", "--threads", "--frames", "--screenshot"}, {"--headless"}, &args, &error) ||
+        args.positional.size() > 1)
+        return fail("run", error.empty() ? usage : error + "\n" + usage, 2);
     int threads = 0;
     if (!parseThreads(args, &threads, &error)) return fail("run", error, 2);
+    long frames = 0;
+    if (args.has("--frames") && !parseInt("--frames", args.get("--frames"), 1, 1000000, &frames, &error))
+        return fail("run", error, 2);
     const std::string scene = args.positional.empty() ? assetsDir() + "/scenes/default.json" : args.positional[0];
     const std::string out_dir = args.get("--out", "out");
+    const std::string cache_dir = (fs::path(out_dir) / "cache").string();
+    if (!args.has("--headless") && displayAvailable()) {
+        const int code = runEditorOnScene(scene, cache_dir, threads, frames, args.get("--screenshot"));
+        if (code >= 0) return code;
+    }
+    return runHeadlessJob(scene, out_dir, threads);
+}
+
+namespace {
+
+// The main job without a display: the Ghost Tile (statistics, preview, cache) and the scene instantiated,
+// settled and exported.
+int runHeadlessJob(const std::string& scene, const std::string& out_dir, int threads) {
+    std::string error;
     std::error_code ec;
     fs::create_directories(out_dir, ec);
     if (ec) return fail("run", out_dir + ": cannot create the output folder: " + ec.message());
@@ -153,6 +223,8 @@ int runMainJob(int argc, char** argv) {
                 cache_path.c_str());
     return 0;
 }
+
+}  // namespace
 
 int runBuildTileCommand(int argc, char** argv) {
     Args args;

@@ -39,9 +39,10 @@
 
 namespace ug::editor {
 
-// What "frame all" frames (viewer.cpp): the cells that hold instances once they are in, else the
-// terrain's surface when there is one, else the extent.
+// What "frame all" (Home) frames, and the view a scene opens on, for the session's scene (viewer.cpp,
+// over default_view.h).
 Bounds framingBounds(const EditorScene& s, const ResidentTiles* instances);
+Bounds openingBounds(const EditorScene& s, const ResidentTiles& instances);
 
 class EditorSession {
 public:

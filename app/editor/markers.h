@@ -1,4 +1,4 @@
-// Overlay geometry, GL-free: the user primitives drawn as their skeletons (DESIGN.md "Rendering": density
+// Overlay geometry, GL-free: user primitives as their skeletons (docs/architecture.md "Rendering": density
 // primitives drawn as their skeletons) and the brush outline, as plain line and point lists the renderer
 // uploads and draws over the scene.
 //   point    a dot at the centre and a circle of radius R in the horizontal plane (the support's outline)

@@ -1,5 +1,7 @@
 #include "editor/render_data.h"
 
+#include "editor/coverage.h"
+
 #include <algorithm>
 #include <cassert>
 #include <cmath>
@@ -57,21 +59,52 @@ DetailLodMesh buildDetailLods(const DetailModel& model, float scale_max) {
     std::vector<uint32_t> lod0(mesh.indices.size());
     meshopt_optimizeVertexCache(lod0.data(), mesh.indices.data(), mesh.indices.size(), vertex_count);
 
-    // LOD 1: topology-preserving simplification; the error bound (relative to the mesh extent) stops it
-    // before the silhouette changes at the distances where LOD 1 is used (about 30-90 px on screen).
-    std::vector<uint32_t> lod1(lod0.size());
-    const size_t target1 = std::max<size_t>(3, (lod0.size() / 3) / 5 * 3);
-    lod1.resize(meshopt_simplify(lod1.data(), lod0.data(), lod0.size(), positions, vertex_count, sizeof(glm::vec3),
-                                 target1, 0.02f, 0, nullptr));
-    if (lod1.size() < 3) lod1 = lod0;
-    meshopt_optimizeVertexCache(lod1.data(), lod1.data(), lod1.size(), vertex_count);
+    // Honest levels: a simplification whose silhouette differs from the model's by more than
+    // kLodCoverageTolerance at some elevation (a tuft whose blades collapsed, a leaf reduced to a sliver)
+    // would thin the field out at the distances it is used. Each level tries coarse to fine and keeps the
+    // first faithful result, else the finer level (the grass tuft: its blades are thinner than any error
+    // bound that saves triangles, so it keeps its mesh and relies on the impostors).
+    const CoverageProfile c0 = measureCoverage(out.positions, lod0.data(), lod0.size());
+    auto faithful = [&](const std::vector<uint32_t>& lod) {
+        if (lod.size() < 3) return false;
+        const CoverageProfile c = measureCoverage(out.positions, lod.data(), lod.size());
+        for (int e = 0; e < kCoverageElevations; ++e)
+            if (std::abs(c.area_m2[size_t(e)] - c0.area_m2[size_t(e)]) > kLodCoverageTolerance * c0.area_m2[size_t(e)])
+                return false;
+        return true;
+    };
 
-    // LOD 2: the sloppy simplifier ignores topology, which thin multi-part models (grass blades, leaf
-    // sheets) need to get down to a couple of dozen triangles; used at 10-30 px.
-    std::vector<uint32_t> lod2(lod1.size());
-    lod2.resize(meshopt_simplifySloppy(lod2.data(), lod1.data(), lod1.size(), positions, vertex_count,
-                                       sizeof(glm::vec3), 24 * 3, 0.2f, nullptr));
-    if (lod2.size() < 3) lod2 = lod1;
+    // LOD 1: topology-preserving simplification to 20-50 % of the triangles, with an error bound
+    // (relative to the mesh extent) that stops it before the silhouette changes at 30-90 px on screen.
+    std::vector<uint32_t> lod1 = lod0;
+    for (const auto& [fraction, error_bound] : {std::pair{0.2f, 0.02f}, std::pair{0.35f, 0.01f}, std::pair{0.5f, 0.005f}}) {
+        std::vector<uint32_t> trial(lod0.size());
+        const size_t target = std::max<size_t>(3, size_t(float(lod0.size() / 3) * fraction) * 3);
+        trial.resize(meshopt_simplify(trial.data(), lod0.data(), lod0.size(), positions, vertex_count, sizeof(glm::vec3),
+                                      target, error_bound, 0, nullptr));
+        if (!faithful(trial)) continue;
+        meshopt_optimizeVertexCache(trial.data(), trial.data(), trial.size(), vertex_count);
+        lod1 = std::move(trial);
+        break;
+    }
+
+    // LOD 2: the sloppy simplifier ignores topology, which thin multi-part models (leaf sheets) need to
+    // get down to a few dozen triangles; used at 10-30 px.
+    std::vector<uint32_t> lod2 = lod1;
+    for (size_t triangles : {24, 48, 96}) {
+        if (triangles * 3 >= lod1.size()) break;
+        std::vector<uint32_t> trial(lod1.size());
+        trial.resize(meshopt_simplifySloppy(trial.data(), lod1.data(), lod1.size(), positions, vertex_count,
+                                            sizeof(glm::vec3), triangles * 3, 0.2f, nullptr));
+        if (!faithful(trial)) continue;
+        lod2 = std::move(trial);
+        break;
+    }
+    out.coverage_m2 = c0.area_m2;
+    out.silhouettes = silhouetteMasks(out.positions, lod0.data(), lod0.size());
+    // Heavier than kImpostorBudgetTriangles at its coarsest: hand over to the sprite earlier, by the
+    // square root of the excess (a sprite's pixels grow with the square of the switch size).
+    out.impostor_scale = std::clamp(std::sqrt(float(lod2.size() / 3) / float(kImpostorBudgetTriangles)), 1.0f, 4.0f);
 
     for (int lod = 0; lod < kMeshLodCount; ++lod) {
         const std::vector<uint32_t>& src = lod == 0 ? lod0 : lod == 1 ? lod1 : lod2;
@@ -80,17 +113,17 @@ DetailLodMesh buildDetailLods(const DetailModel& model, float scale_max) {
         out.indices.insert(out.indices.end(), src.begin(), src.end());
     }
 
-    Bounds3 b = meshBounds(mesh);
-    out.center = 0.5f * (b.min + b.max);
-    float area = 0.0f;
+    double area = 0.0, up = 0.0;
     for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
         const glm::vec3& a = mesh.positions[mesh.indices[t]];
-        area += 0.5f * glm::length(glm::cross(mesh.positions[mesh.indices[t + 1]] - a, mesh.positions[mesh.indices[t + 2]] - a));
+        const glm::vec3 n = glm::cross(mesh.positions[mesh.indices[t + 1]] - a, mesh.positions[mesh.indices[t + 2]] - a);
+        area += double(glm::length(n));
+        up += double(std::abs(n.z));
     }
+    out.upness = area > 0.0 ? float(up / area) : 1.0f;
+    Bounds3 b = meshBounds(mesh);
+    out.center = 0.5f * (b.min + b.max);
     for (const glm::vec3& p : mesh.positions) out.radius_m = std::max(out.radius_m, glm::length(p));
-    // Cauchy: a convex body's mean projected area is a quarter of its surface area; the starter models
-    // are closed sheets or near-convex solids, so the square of that area is a fair far-away stand-in.
-    out.impostor_half_size_m = 0.5f * std::sqrt(area / 4.0f);
     return out;
 }
 
@@ -329,6 +362,16 @@ bool boxOutside(const std::array<glm::vec4, 6>& planes, const glm::vec3& lo, con
 
 }  // namespace
 
+uint32_t instanceHash(PackedInstance packed) {
+    // The shaders' hash (instanced_detail.vert, detail_impostor.vert), bit for bit; the drop code is left
+    // out so settling never changes an instance's colour or LOD.
+    uint32_t h = (packed.x * 2654435761u) ^ ((packed.y & 0x1ffffffu) * 2246822519u);
+    h ^= h >> 15;
+    h *= 2246822519u;
+    h ^= h >> 13;
+    return h >> 10;
+}
+
 void buildIndirectDraws(const ResidentTiles& in, const std::vector<DetailLodMesh>& meshes, const ViewParams& view,
                         const LodSettings& lod, IndirectDraws* out) {
     const uint32_t types = in.type_count;
@@ -371,16 +414,20 @@ void buildIndirectDraws(const ResidentTiles& in, const std::vector<DetailLodMesh
             const uint32_t n = in.count[t * types + i];
             if (n == 0) continue;
             const uint32_t offset = in.slot[t * types + i].offset;
-            const float px = diameter_px_at_1m[i] / distance;
-            const int level = px >= lod.lod1_px ? 0 : px >= lod.lod2_px ? 1 : px >= lod.impostor_px ? 2 : kImpostorLod;
-            out->groups[i][size_t(level)].instances += n;
-            if (level == kImpostorLod) {
+            // The instances' origins lie in the cell, so their sizes on screen lie between these two.
+            const float px_near = diameter_px_at_1m[i] / distance;
+            const float px_far = diameter_px_at_1m[i] / (distance + 2.0f * half_diagonal);
+            const float impostor_px = meshes[i].impostorPx(lod);
+            if (px_far < impostor_px * (1.0f + kImpostorBand)) {  // some may be impostors (drawnAsMesh)
+                out->groups[i][kImpostorLod].instances += n;
                 if (out->points.size() > points_first && out->points.back().first + out->points.back().count == offset)
                     out->points.back().count += n;
                 else
                     out->points.push_back({n, 1, offset, 0});
-                continue;
             }
+            if (px_near < impostor_px) continue;  // none is a mesh
+            const int level = px_near >= lod.lod1_px ? 0 : px_near >= lod.lod2_px ? 1 : 2;
+            out->groups[i][size_t(level)].instances += n;
             auto& dst = out->scratch[size_t(level)];
             if (!dst.empty() && dst.back().base_instance + dst.back().instance_count == offset) {
                 dst.back().instance_count += n;

@@ -4,7 +4,7 @@
 // (frustum culling and LOD choice per tile, one command per visible tile and type, grouped by type and LOD
 // for one multi-draw each).
 //
-// GPU instance format (8 bytes, DESIGN.md "Rendering"): an instance is (tile t, candidate j, settled drop
+// GPU instance format (8 bytes, docs/architecture.md "Rendering"): an instance is (tile t, candidate j, drop
 // d), packed as
 //   x = uint16(t.x) | uint16(t.y) << 16,   y = uint9(t.z) | j << 9 | c << 25
 // so t.x and t.y must lie in [-32768, 32767] (±16 km with 0.5 m tiles), t.z in [-256, 255] (±128 m), a
@@ -24,6 +24,7 @@
 
 #include <glm/glm.hpp>
 
+#include "editor/coverage.h"
 #include "editor/tile_slots.h"
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instance_store.h"
@@ -58,6 +59,15 @@ float packedDropUnit(bool settling, float max_drop_m);
 // The code of a drop: rounded down to a step, at most kPackedDropSteps.
 uint32_t packedDropCode(float drop_m, float drop_unit_m);
 
+// Where LODs switch: by the size an object of the type covers on screen, in pixels (the bounding
+// diameter at its largest scale). Below `impostor_px` a type is drawn as impostors, through a band in
+// which instances switch one by one (drawnAsMesh) rather than a whole ring of tiles at once.
+struct LodSettings {
+    float lod1_px = 90.0f;
+    float lod2_px = 30.0f;
+    float impostor_px = 10.0f;
+};
+
 // One detail type's mesh at every mesh LOD: one vertex array, the LODs' index ranges one after the other.
 struct DetailLodMesh {
     std::string name;
@@ -69,7 +79,22 @@ struct DetailLodMesh {
     std::array<uint32_t, kMeshLodCount> index_count{};
     float radius_m = 0.0f;                   // bounding radius about the model origin
     glm::vec3 center{0.0f};                  // bounding box centre (the impostor's centre)
-    float impostor_half_size_m = 0.0f;       // half the side of a square with the mean projected area
+    // The model's silhouette area at scale 1 seen from 0, 30, 60 and 90 degrees of elevation (coverage.h):
+    // an impostor is a disc of that area, so far details cover the screen as their meshes would.
+    std::array<float, 4> coverage_m2{};
+    // The area-weighted mean |n.z| of the model's faces: 1 for a flat leaf, about 0.5 for a rock, near 0
+    // for a tuft of upright blades. The impostor is lit with a normal tilted that far from the model's up
+    // toward the viewer, so a far tuft is as dark as its blades, not lit like a lawn seen from above.
+    float upness = 1.0f;
+    // The impostor sprite: silhouettes from 0, 30, 60 and 90 degrees (coverage.h, azimuth 0), across a
+    // square of side 2 sprite_radius_m around sprite_centre (model space, scale 1).
+    SilhouetteMasks silhouettes;
+    // Where this type switches to impostors, as a multiple of LodSettings::impostor_px: above 1 for a
+    // model whose coarsest faithful mesh is still heavy (a grass tuft keeps ~1,000 triangles, since its
+    // blades are thinner than any simplification that saves triangles), so it hands over to its
+    // silhouette sprite while the sprite is still large enough to show the blades.
+    float impostor_scale = 1.0f;
+    float impostorPx(const LodSettings& lod) const { return lod.impostor_px * impostor_scale; }
     float scale_max = 1.0f;                  // the type's largest candidate scale
 
     uint32_t triangles(int lod) const {
@@ -79,7 +104,10 @@ struct DetailLodMesh {
 
 // Builds LOD 0 (the model, vertex-cache optimised), LOD 1 (meshopt_simplify to ~20 % of the triangles
 // with a 2 % error bound) and LOD 2 (meshopt_simplifySloppy to ~24 triangles): simplification never
-// fails, a mesh that cannot shrink keeps its previous level.
+// fails, a mesh that cannot shrink keeps its previous level, and so does a level whose silhouette area
+// (coverage.h) differs from the model's by more than kLodCoverageTolerance at any elevation.
+constexpr float kLodCoverageTolerance = 0.2f;
+constexpr uint32_t kImpostorBudgetTriangles = 100;
 DetailLodMesh buildDetailLods(const DetailModel& model, float scale_max);
 
 // The largest scale among a type's candidates, at least 1 (a type without candidates: 1).
@@ -142,13 +170,17 @@ bool updateResidentTiles(const InstanceStore& store, const SettledDrops* drops, 
                          const std::vector<uint64_t>& changed_keys, ResidentTiles* out, TileUploads* uploads,
                          std::string* error);
 
-// Where LODs switch: by the size an object of the type covers on screen, in pixels (the bounding
-// diameter at its largest scale). Below `impostor_px` a type is drawn as impostors.
-struct LodSettings {
-    float lod1_px = 90.0f;
-    float lod2_px = 30.0f;
-    float impostor_px = 10.0f;
-};
+
+// The mesh-to-impostor switch, per instance: an instance whose bounding diameter covers `px` pixels is
+// drawn as a mesh when px >= impostor_px (1 + kImpostorBand u), u in [0, 1) hashed from the instance
+// (instanceHash), so across the band the share of meshes falls smoothly from 1 to 0. The vertex shaders
+// (instanced_detail.vert, detail_impostor.vert) evaluate the same rule on the same hash; a tile is drawn
+// in both representations when its instances' sizes reach into the band (buildIndirectDraws), and each
+// shader then drops the instances that belong to the other.
+constexpr float kImpostorBand = 0.6f;
+uint32_t instanceHash(PackedInstance packed);
+inline float instanceHashUnit(PackedInstance packed) { return float(instanceHash(packed) & 1023u) / 1024.0f; }
+inline bool drawnAsMesh(float px, float impostor_px, float u) { return px >= impostor_px * (1.0f + kImpostorBand * u); }
 
 struct ViewParams {
     glm::mat4 view_proj{1.0f};

@@ -91,7 +91,7 @@ bool EditorSession::takeLiveResult() {
             if (inst_view.update_ms.size() >= InstantiationView::kUpdateHistory)
                 inst_view.update_ms.erase(inst_view.update_ms.begin());
             inst_view.update_ms.push_back(float(live.stats.seconds * 1e3));
-            if (!have_result && !camera_moved) frameBounds(framingBounds(*scene, &instances), &camera);
+            if (!have_result && !camera_moved) frameBounds(openingBounds(*scene, instances), &camera);
             have_result = true;
         }
     }

@@ -13,6 +13,7 @@
 #include "core/hash.h"
 #include "editor/background_jobs.h"
 #include "editor/navigation.h"
+#include "editor/screenshot.h"
 #include "editor/session_stats.h"
 #include "editor/window_title.h"
 #include "instancer/instance_query.h"

@@ -1,7 +1,5 @@
 #include "editor/session_stats.h"
 
-#include <stb_image_write.h>
-
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -58,25 +56,6 @@ json pileInstancesJson(const Document& doc, const InstanceStore& store, const js
     });
     const glm::dvec2 centre = count ? sum / double(count) : glm::dvec2(at);
     return {{"count", count}, {"centroid", {centre.x, centre.y}}, {"top", top}};
-}
-
-bool writeScreenshot(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba,
-                     std::string* error) {
-    // RGB: the default framebuffer of a 24-bit visual has no meaningful alpha.
-    std::vector<uint8_t> rgb(size_t(width) * size_t(height) * 3);
-    for (size_t i = 0, n = size_t(width) * size_t(height); i < n; ++i) {
-        rgb[i * 3 + 0] = rgba[i * 4 + 0];
-        rgb[i * 3 + 1] = rgba[i * 4 + 1];
-        rgb[i * 3 + 2] = rgba[i * 4 + 2];
-    }
-    std::error_code ec;
-    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
-    if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-    if (!stbi_write_png(path.c_str(), width, height, 3, rgb.data(), width * 3)) {
-        *error = path + ": cannot write the screenshot";
-        return false;
-    }
-    return true;
 }
 
 json perTypeJson(const std::vector<std::string>& names, const std::vector<uint64_t>& counts) {

@@ -1,6 +1,6 @@
 // Statistics of the editor's session (viewer.h ViewerResult, the --stats file): what a replay action or a
-// mouse stroke left, measured the way check_edit.py and check_panels.py judge them, and the screenshot
-// writer. GL-free: every function reads a Document, an InstanceStore or pixels already read back.
+// mouse stroke left, measured the way check_edit.py and check_panels.py judge them. GL-free: every function
+// reads a Document or an InstanceStore.
 #pragma once
 
 #include <cstdint>
@@ -34,10 +34,5 @@ float largestReach(const Document& doc);
 nlohmann::json vec3Json(glm::vec3 v);
 // Where a world point lands on screen, in pixels from the top left (NaN behind the eye).
 glm::vec2 projectToPixel(const glm::mat4& view_proj, float width, float height, glm::vec3 p);
-
-// An RGB PNG of an RGBA8 read-back, rows top-down (gl::Renderer::readPixels); creates the folder.
-// false: *error names the path.
-bool writeScreenshot(const std::string& path, int width, int height, const std::vector<uint8_t>& rgba,
-                     std::string* error);
 
 }  // namespace ug::editor

@@ -29,28 +29,21 @@
 #include <algorithm>
 
 #include "core/hash.h"
+#include "editor/default_view.h"
 #include "editor/editor_session.h"
 
 namespace ug::editor {
 
 using nlohmann::json;
 
-// What "frame all" frames: the cells that hold instances once they are in (a scene's extent is often a
-// conservative bound much larger than what fills), else the terrain's surface when there is one, else
-// the extent.
+// What "frame all" frames (default_view.h).
 Bounds framingBounds(const EditorScene& s, const ResidentTiles* instances) {
-    if (instances && !instances->tile_coord.empty()) {
-        const float size = instances->tile_size_m;
-        Bounds b{glm::vec3(1e30f), glm::vec3(-1e30f)};
-        for (const glm::ivec3& t : instances->tile_coord) {
-            b.lo = glm::min(b.lo, glm::vec3(t) * size);
-            b.hi = glm::max(b.hi, glm::vec3(t + 1) * size);
-        }
-        return b;
-    }
-    if (!s.has_terrain) return s.doc->compiled().extent;
-    const Bounds3 b = meshBounds(s.terrain);
-    return Bounds{b.min, b.max};
+    return editor::framingBounds(s.doc->compiled().extent, s.has_terrain ? &s.terrain : nullptr, instances);
+}
+
+// The view a scene opens on (default_view.h); Home frames everything (framingBounds).
+Bounds openingBounds(const EditorScene& s, const ResidentTiles& instances) {
+    return editor::openingBounds(s.doc->compiled().extent, s.has_terrain ? &s.terrain : nullptr, &instances, s.meshes);
 }
 
 double percentile(std::vector<double> v, double q) {

@@ -1,4 +1,4 @@
-// How instances rest and pack (issue "piles that rest"; DESIGN.md "Plausible rest and no visible tile").
+// How instances rest and pack ("piles that rest"; docs/architecture.md "Plausible rest and no visible tile").
 // Measured on world frames (placed_instances.h) with the models' collision spheres and meshes, so the same
 // numbers come out of `undergrowth bench`, `instantiate --stats` and a test that reads an export back.
 //

@@ -2,7 +2,7 @@
 //
 // Random numbers in Undergrowth never come from a generator's state: a value is a pure function of
 // (seed, a, b, c), so the same candidate in the same tile gets the same number whatever thread, batch or
-// order computed it (DESIGN.md, "Instantiation as a pure function").
+// order computed it (docs/architecture.md "Instantiation as a pure function").
 #pragma once
 
 #include <cstddef>

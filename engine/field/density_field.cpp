@@ -2,7 +2,7 @@
 // and Boolean operators as described in [WGG99]. Finally, density fields are modified by computing the
 // difference with the other solid objects in the scene such as the tree and the terrain").
 //
-// Beyond the paper: DESIGN.md makes instantiation a pure function, which needs field values that do not
+// Beyond the paper: docs/architecture.md makes instantiation a pure function, so field values must not
 // depend on who evaluated them. Hence:
 //   - one evaluation routine (evalPoint) behind every public entry point, scalar or batched, full or per
 //     tile, value only or with gradient (a template flag only adds the gradient arithmetic);

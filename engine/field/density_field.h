@@ -19,7 +19,7 @@
 //                 nothing to remove, so the solids are not even evaluated)
 //   An operator with no children is 0.
 //
-// Exactness (DESIGN.md, "Instantiation as a pure function"): a value does not depend on who computed it.
+// Exactness (docs/architecture.md "Instantiation as a pure function"): no value depends on who computed it.
 // evaluate(), evaluateWithGradient(), evaluateBatch() with or without a tile list all run the same code
 // and return the same bits for the same point (the w of evaluateWithGradient equals evaluate()). A tile
 // list leaves out primitives whose support misses its box; they are exactly +0 there, sums skip them

@@ -20,7 +20,7 @@
 // |              |                                                               | h + thickness, else the gap   |
 // | TerrainSolid | height_field, radius_m                                        | see below                     |
 //
-// TerrainSolid is the ground as a solid, to subtract from detail fields (DESIGN.md "solids subtract so
+// TerrainSolid: the ground as a solid to subtract from details (docs/architecture.md "solids subtract so
 // details never sink"): full weight at depth >= radius_m below the surface, falling to exactly 0 at the
 // surface z = h(x, y) and above (d = max(0, z - (h - R)) with the kernel restricted to z < h). Give it a
 // weight larger than any detail field value (kSolidWeight) and put it on the subtracted side of a

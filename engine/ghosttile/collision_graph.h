@@ -5,7 +5,7 @@
 // Storage (compressed sparse rows): row i lists its edges as keys k = j * 27 + offsetIndex(v), sorted
 // ascending, delta-encoded as LEB128 varints. Rows of a dense tile hold thousands of keys spread over
 // 27 #N possible values, so most deltas fit in one byte: both directions of a colliding pair cost about
-// 2 bytes, against the paper's ≈4.8 bytes per pair and our target of ≤ 4 (DESIGN.md, Quality bars).
+// 2 bytes, against the paper's ≈4.8 bytes per pair and our target, ≤ 4 (docs/architecture.md "Quality bars").
 #pragma once
 
 #include <cstdint>

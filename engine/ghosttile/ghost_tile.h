@@ -67,7 +67,7 @@ struct GhostTileSettings {
     float tile_size_m = 0.5f;  // edge of the cubic tile; paper: 1-3x the largest object (~50 cm)
     float delta_m = 0.0f;      // collision threshold δ: d(A,B) <= δ collides; < 0 lets objects interpenetrate
     uint64_t seed = 7;
-    // Independent draws of every type's candidates held in one tile (DESIGN.md, "No period"); each tile of
+    // Independent draws of every type's candidates in a tile (docs/architecture.md "No period"); each tile of
     // the world uses one of them (tileVariant() in instancer/instantiator.h), so an arrangement does not
     // repeat one tile away. In [1, kMaxTileVariants]; 1 is the paper's single tile.
     uint32_t variants = 1;

@@ -1,4 +1,4 @@
-// The instantiator (Ghost Tile §5, redefined as a pure function in DESIGN.md "Instantiation as a pure
+// The instantiator (Ghost Tile §5, made a pure function in docs/architecture.md "Instantiation as a pure
 // function"): which candidates of the infinite grid of Ghost Tiles become objects.
 //
 //  0. Each tile t holds one Ghost Tile variant, tileVariant(seed, t): only its candidates are looked at.
@@ -127,7 +127,7 @@ private:
 bool instantiateRegion(const InstancerInput& input, const Bounds& region, const InstanceOptions& options,
                        InstanceStore* out, InstanceStats* stats, std::string* error);
 
-// The Ghost Tile variant a tile of the world holds (DESIGN.md, "No period"): a hash of the instancing seed
+// The Ghost Tile variant of a world tile (docs/architecture.md "No period"): a hash of the instancing seed
 // and the packed tile, so it is a pure function like everything else here. Only that variant's candidates
 // can be alive in the tile; exporters, metrics and tests use this to know which ones a tile may hold.
 constexpr uint64_t kTileVariantStream = 0x76617269616e74ull;  // "variant"

@@ -1,4 +1,4 @@
-// Settling (DESIGN.md "Plausible rest and no visible tile"): after the selection, every instance falls
+// Settling (docs/architecture.md "Plausible rest and no visible tile"): after selection, each instance falls
 // straight down until one of its collision spheres touches the support (terrain or ground plane) or a
 // sphere of another instance below it, by at most max_drop_m. The paper leaves instances where their
 // candidates were ("our method does not guarantee consistent contact points"); measured on our exports, a

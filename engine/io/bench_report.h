@@ -1,7 +1,7 @@
 // Benchmark rows, printed as a table and written as JSON:
 //   {"results": [{"name", "value", "unit", "target", "paper"}, ...], "machine": {...}}
 // "target" is our goal as text ("<= 2"), "paper" the figure the papers report for the same work (or
-// null); both let a reader judge a row without opening DESIGN.md.
+// null); both let a reader judge a row without opening docs/architecture.md.
 #pragma once
 
 #include <optional>

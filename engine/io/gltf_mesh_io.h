@@ -5,7 +5,7 @@
 //   if (!loadGltfMesh("assets/models/rock.glb", &mesh, &error)) { report(error); }
 //   convertYUpToZUp(&mesh);  // glTF files are Y up; the engine is Z up
 //
-// Scene export with instancing lives elsewhere (DESIGN.md, "Files and interfaces"); this file only
+// Scene export with instancing lives elsewhere (docs/architecture.md "Files and interfaces"); this file only
 // moves single meshes in and out.
 #pragma once
 

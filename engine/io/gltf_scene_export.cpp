@@ -1,4 +1,4 @@
-// glTF 2.0 scene export (DESIGN.md, "Files and interfaces").
+// glTF 2.0 scene export (docs/architecture.md "Files and interfaces").
 //
 // The JSON is built with nlohmann::json and the GLB container is assembled here, rather than through
 // tinygltf's writer: a scene of ~2M instances is ~80 MB of instance attributes, and tinygltf's writer
@@ -18,8 +18,11 @@
 #include <unordered_set>
 
 #include <nlohmann/json.hpp>
+#include <stb_image_write.h>
 
 #include "core/atomic_file.h"
+#include "core/hash.h"
+#include "material/uv_projection.h"
 
 namespace ug {
 namespace {
@@ -34,6 +37,9 @@ constexpr int kComponentFloat = 5126;
 constexpr int kTargetArrayBuffer = 34962;
 constexpr int kTargetElementArrayBuffer = 34963;
 constexpr int kModeTriangles = 4;
+constexpr int kFilterLinear = 9729;
+constexpr int kFilterLinearMipmapLinear = 9987;
+constexpr int kWrapRepeat = 10497;
 constexpr const char* kInstancingExtension = "EXT_mesh_gpu_instancing";
 // glTF forbids the largest value of the index type (primitive restart), so uint16 holds 65,535 vertices.
 constexpr size_t kMaxUint16Vertices = 65535;
@@ -104,6 +110,36 @@ bool chunkOf(glm::vec3 p, double chunk_size_m, int32_t* ix, int32_t* iy) {
     return true;
 }
 
+bool validMaterial(const SurfaceMaterial& m, std::string* why) {
+    for (int c = 0; c < 3; ++c)
+        if (!(m.base_color[c] >= 0.0f && m.base_color[c] <= 1.0f)) {
+            *why = "base_color must be in [0, 1] (got " + formatFloat(m.base_color[c]) + ")";
+            return false;
+        }
+    if (!(m.roughness >= 0.0f && m.roughness <= 1.0f)) {
+        *why = "roughness must be in [0, 1] (got " + formatFloat(m.roughness) + ")";
+        return false;
+    }
+    if (!(m.tint_variation >= 0.0f && m.tint_variation <= 1.0f)) {
+        *why = "tint_variation must be in [0, 1] (got " + formatFloat(m.tint_variation) + ")";
+        return false;
+    }
+    if (m.texture) {
+        if (!(std::isfinite(m.texture_scale_m) && m.texture_scale_m > 0.0f)) {
+            *why = "texture_scale_m must be finite and > 0 (got " + formatFloat(m.texture_scale_m) + ")";
+            return false;
+        }
+        const TextureImage& t = *m.texture;
+        if (t.width < 1 || t.height < 1 || t.width > 16384 || t.height > 16384 ||
+            t.rgba.size() != size_t(t.width) * size_t(t.height) * 4) {
+            *why = "texture is " + std::to_string(t.width) + " x " + std::to_string(t.height) + " with " +
+                   std::to_string(t.rgba.size()) + " bytes (expected 4 per pixel, sides in [1, 16384])";
+            return false;
+        }
+    }
+    return true;
+}
+
 // Everything the caller can get wrong, checked before any allocation proportional to the scene.
 bool validateScene(const SceneExport& scene, std::string* why) {
     if (!(std::isfinite(scene.chunk_size_m) && scene.chunk_size_m > 0.0f)) {
@@ -134,6 +170,10 @@ bool validateScene(const SceneExport& scene, std::string* why) {
         std::string mesh_why;
         if (!validateMesh(*type.mesh, &mesh_why)) {
             *why = where + ": mesh: " + mesh_why;
+            return false;
+        }
+        if (type.material && !validMaterial(*type.material, &mesh_why)) {
+            *why = where + ": material: " + mesh_why;
             return false;
         }
         for (size_t s = 0; s < type.collision_spheres.size(); ++s) {
@@ -180,6 +220,10 @@ bool validateScene(const SceneExport& scene, std::string* why) {
             *why = "terrain mesh: " + mesh_why;
             return false;
         }
+        if (scene.terrain_material && !validMaterial(*scene.terrain_material, &mesh_why)) {
+            *why = "terrain material: " + mesh_why;
+            return false;
+        }
     }
     return true;
 }
@@ -193,6 +237,9 @@ class GltfBuilder {
     Json meshes = Json::array();
     Json nodes = Json::array();
     Json scene_nodes = Json::array();
+    Json images = Json::array();
+    Json samplers = Json::array();
+    Json textures = Json::array();
     std::vector<unsigned char> bin;
 
     // Grows the buffer by `size` bytes (zeroed), first padding it to a multiple of 4 (every accessor
@@ -229,26 +276,74 @@ class GltfBuilder {
         return int(accessors.size() - 1);
     }
 
+    // The texture index of `image` (a PNG in its own buffer view), writing it on first use; identical
+    // images (same size and bytes) share one. False when PNG encoding fails.
+    bool textureOf(const TextureImage& image, int* texture) {
+        const uint64_t key = hashBytes(image.rgba.data(), image.rgba.size()) ^ hashWords(uint64_t(image.width), uint64_t(image.height));
+        for (const WrittenTexture& w : written_)
+            if (w.key == key && w.image->width == image.width && w.image->height == image.height &&
+                w.image->rgba == image.rgba) {
+                *texture = w.texture;
+                return true;
+            }
+        std::vector<unsigned char> png;
+        auto sink = [](void* context, void* data, int size) {
+            auto* out = static_cast<std::vector<unsigned char>*>(context);
+            out->insert(out->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+        };
+        if (!stbi_write_png_to_func(sink, &png, image.width, image.height, 4, image.rgba.data(), image.width * 4) ||
+            png.empty())
+            return false;
+        const int view = addView(append(png.data(), png.size()), png.size(), 0);
+        images.push_back({{"bufferView", view}, {"mimeType", "image/png"}});
+        if (samplers.empty())
+            samplers.push_back({{"magFilter", kFilterLinear},
+                                {"minFilter", kFilterLinearMipmapLinear},
+                                {"wrapS", kWrapRepeat},
+                                {"wrapT", kWrapRepeat}});
+        textures.push_back({{"sampler", 0}, {"source", int(images.size() - 1)}});
+        *texture = int(textures.size() - 1);
+        written_.push_back({key, &image, *texture});
+        return true;
+    }
+
+    enum class UvRule { Box, PlanarXy };
+
     // One mesh with one triangle primitive and its own material; the mesh is engine space (Z up) and has
-    // passed validateMesh. Returns the mesh index.
-    int addMesh(const std::string& name, const TriangleMesh& source, Json extras) {
-        std::vector<glm::vec3> positions(source.positions.size()), normals;
-        for (size_t i = 0; i < positions.size(); ++i) positions[i] = toYUp(source.positions[i]);
-        if (source.normals.size() == source.positions.size()) {
-            normals = source.normals;
-        } else {
-            TriangleMesh copy;
-            copy.positions = source.positions;
-            copy.indices = source.indices;
-            computeNormals(&copy);
-            normals = std::move(copy.normals);
+    // passed validateMesh, the material (optional) validMaterial. Returns the mesh index, or -1 when a
+    // texture could not be encoded.
+    int addMesh(const std::string& name, const TriangleMesh& input, Json extras, const SurfaceMaterial* material,
+                UvRule uv_rule) {
+        // Normals first, on the whole mesh, so vertices split for the uvs keep smooth normals.
+        TriangleMesh with_normals;
+        const TriangleMesh* source = &input;
+        if (input.normals.size() != input.positions.size()) {
+            with_normals.positions = input.positions;
+            with_normals.indices = input.indices;
+            with_normals.base_color = input.base_color;
+            computeNormals(&with_normals);
+            source = &with_normals;
         }
-        for (glm::vec3& n : normals) {
+        const bool textured = material && material->texture;
+        TriangleMesh split;
+        std::vector<glm::vec2> uvs;
+        if (textured) {
+            if (uv_rule == UvRule::Box) {
+                boxProjectMesh(*source, material->texture_scale_m, &split, &uvs);
+                source = &split;
+            } else {
+                uvs.reserve(source->positions.size());
+                for (const glm::vec3& p : source->positions) uvs.push_back(planarXyUv(p, material->texture_scale_m));
+            }
+        }
+        std::vector<glm::vec3> positions(source->positions.size()), normals(source->normals.size());
+        for (size_t i = 0; i < positions.size(); ++i) positions[i] = toYUp(source->positions[i]);
+        for (size_t i = 0; i < normals.size(); ++i) {
+            const glm::vec3 n = source->normals[i];
             // The validator requires unit normals; a caller's zero or denormal normal gets "up".
             const float len = glm::length(n);
-            n = (std::isfinite(len) && len > 1e-20f) ? toYUp(n / len) : glm::vec3(0.0f, 1.0f, 0.0f);
+            normals[i] = (std::isfinite(len) && len > 1e-20f) ? toYUp(n / len) : glm::vec3(0.0f, 1.0f, 0.0f);
         }
-
         glm::vec3 lo = positions[0], hi = positions[0];
         for (const glm::vec3& p : positions) {
             lo = glm::min(lo, p);
@@ -261,27 +356,58 @@ class GltfBuilder {
                                         Json::array({lo.x, lo.y, lo.z}), Json::array({hi.x, hi.y, hi.z}));
         const int nrm_view = addView(append(normals.data(), vertex_bytes), vertex_bytes, kTargetArrayBuffer);
         const int nrm_acc = addAccessor(nrm_view, 0, kComponentFloat, normals.size(), "VEC3");
+        int uv_acc = -1;
+        if (textured) {
+            const size_t bytes = uvs.size() * sizeof(glm::vec2);
+            const int view = addView(append(uvs.data(), bytes), bytes, kTargetArrayBuffer);
+            uv_acc = addAccessor(view, 0, kComponentFloat, uvs.size(), "VEC2");
+        }
 
         int idx_acc = -1;
         if (positions.size() <= kMaxUint16Vertices) {
-            std::vector<uint16_t> small(source.indices.begin(), source.indices.end());
+            std::vector<uint16_t> small(source->indices.begin(), source->indices.end());
             const size_t bytes = small.size() * 2;
             const int view = addView(append(small.data(), bytes), bytes, kTargetElementArrayBuffer);
             idx_acc = addAccessor(view, 0, kComponentUnsignedShort, small.size(), "SCALAR");
         } else {
-            const size_t bytes = source.indices.size() * 4;
-            const int view = addView(append(source.indices.data(), bytes), bytes, kTargetElementArrayBuffer);
-            idx_acc = addAccessor(view, 0, kComponentUnsignedInt, source.indices.size(), "SCALAR");
+            const size_t bytes = source->indices.size() * 4;
+            const int view = addView(append(source->indices.data(), bytes), bytes, kTargetElementArrayBuffer);
+            idx_acc = addAccessor(view, 0, kComponentUnsignedInt, source->indices.size(), "SCALAR");
         }
 
-        const glm::vec3 color = glm::clamp(source.base_color, 0.0f, 1.0f);
-        materials.push_back({{"name", name},
-                             {"pbrMetallicRoughness",
-                              {{"baseColorFactor", {color.x, color.y, color.z, 1.0f}},
-                               {"metallicFactor", 0.0},
-                               {"roughnessFactor", 0.9}}}});
+        if (!material) {
+            const glm::vec3 color = glm::clamp(input.base_color, 0.0f, 1.0f);
+            materials.push_back({{"name", name},
+                                 {"pbrMetallicRoughness",
+                                  {{"baseColorFactor", {color.x, color.y, color.z, 1.0f}},
+                                   {"metallicFactor", 0.0},
+                                   {"roughnessFactor", 0.9}}}});
+        } else {
+            // A textured material's texture already holds base colour x detail (sRGB), so the factor is 1.
+            const glm::vec3 color = textured ? glm::vec3(1.0f) : material->base_color;
+            Json pbr = {{"baseColorFactor", {color.x, color.y, color.z, 1.0f}},
+                        {"metallicFactor", 0.0},
+                        {"roughnessFactor", material->roughness}};
+            if (textured) {
+                int texture = -1;
+                if (!textureOf(*material->texture, &texture)) return -1;
+                pbr["baseColorTexture"] = {{"index", texture}, {"texCoord", 0}};
+            }
+            Json mat = {{"name", name}, {"pbrMetallicRoughness", std::move(pbr)}};
+            if (material->alpha_cutout && textured) {
+                mat["alphaMode"] = "MASK";
+                mat["alphaCutoff"] = 0.5;
+                mat["doubleSided"] = true;  // cut-out blades and leaves are seen from both sides
+            }
+            mat["extras"] = {{"texture", textureKindName(material->texture_kind)},
+                             {"texture_scale_m", material->texture_scale_m},
+                             {"tint_variation", material->tint_variation}};
+            materials.push_back(std::move(mat));
+        }
 
-        Json primitive = {{"attributes", {{"POSITION", pos_acc}, {"NORMAL", nrm_acc}}},
+        Json attributes = {{"POSITION", pos_acc}, {"NORMAL", nrm_acc}};
+        if (uv_acc >= 0) attributes["TEXCOORD_0"] = uv_acc;
+        Json primitive = {{"attributes", std::move(attributes)},
                           {"indices", idx_acc},
                           {"material", int(materials.size() - 1)},
                           {"mode", kModeTriangles}};
@@ -295,6 +421,14 @@ class GltfBuilder {
         nodes.push_back(std::move(node));
         return int(nodes.size() - 1);
     }
+
+  private:
+    struct WrittenTexture {
+        uint64_t key;
+        const TextureImage* image;  // the caller's, alive for the whole export
+        int texture;
+    };
+    std::vector<WrittenTexture> written_;
 };
 
 // A chunk node's translation: the chunk's XY centre at engine z = 0, in Y-up file axes.
@@ -455,7 +589,9 @@ bool writeSceneGltf(const std::string& path, const SceneExport& scene, std::stri
     bool instanced_nodes = false;
     const double chunk_size_m = scene.chunk_size_m;
     for (const ExportDetailType& type : scene.types) {
-        const int mesh = doc.addMesh(type.name, *type.mesh, meshExtras(type, scene.delta_m));
+        const int mesh = doc.addMesh(type.name, *type.mesh, meshExtras(type, scene.delta_m), type.material,
+                                     GltfBuilder::UvRule::Box);
+        if (mesh < 0) return fail(error, path, "detail type '" + type.name + "': could not encode its texture as PNG");
         if (scene.use_instancing_extension) {
             addInstancedType(&doc, type, mesh, chunk_size_m);
             instanced_nodes = instanced_nodes || !type.instances.empty();
@@ -464,7 +600,9 @@ bool writeSceneGltf(const std::string& path, const SceneExport& scene, std::stri
         }
     }
     if (scene.terrain) {
-        const int mesh = doc.addMesh("terrain", *scene.terrain, nullptr);
+        const int mesh = doc.addMesh("terrain", *scene.terrain, nullptr, scene.terrain_material,
+                                     GltfBuilder::UvRule::PlanarXy);
+        if (mesh < 0) return fail(error, path, "terrain: could not encode its texture as PNG");
         doc.scene_nodes.push_back(doc.addNode({{"name", "terrain"}, {"mesh", mesh}}));
     }
     doc.bin.resize((doc.bin.size() + 3) & ~size_t(3));  // the GLB BIN chunk must be 4-byte aligned
@@ -486,6 +624,11 @@ bool writeSceneGltf(const std::string& path, const SceneExport& scene, std::stri
     if (!doc.buffer_views.empty()) root["bufferViews"] = std::move(doc.buffer_views);
     if (!doc.accessors.empty()) root["accessors"] = std::move(doc.accessors);
     if (!doc.materials.empty()) root["materials"] = std::move(doc.materials);
+    if (!doc.textures.empty()) {
+        root["textures"] = std::move(doc.textures);
+        root["images"] = std::move(doc.images);
+        root["samplers"] = std::move(doc.samplers);
+    }
     if (!doc.meshes.empty()) root["meshes"] = std::move(doc.meshes);
     if (!doc.nodes.empty()) root["nodes"] = std::move(doc.nodes);
     Json gltf_scene = {{"name", "Undergrowth"}};

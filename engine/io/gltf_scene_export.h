@@ -1,5 +1,7 @@
-// glTF 2.0 export of an instantiated scene (DESIGN.md, "Files and interfaces"):
-//   - one mesh per detail type, with a simple PBR material from the model's base colour;
+// glTF 2.0 export of an instantiated scene (docs/architecture.md "Files and interfaces"):
+//   - one mesh per detail type, with a PBR material: the type's SurfaceMaterial when given (base colour,
+//     roughness, a baked procedural texture as an embedded PNG, alpha cut-out), else the model's base
+//     colour;
 //   - its instances through EXT_mesh_gpu_instancing (TRANSLATION, ROTATION, SCALE accessors), split into
 //     spatial chunks (one node per type and chunk) so engines can cull;
 //   - or, with use_instancing_extension = false, one plain node per instance (viewers without it);
@@ -13,7 +15,16 @@
 // What the file holds, exactly (readers and tests rely on it):
 //   - meshes: one per detail type, named after it, in `types` order, then "terrain" when given. POSITION
 //     and NORMAL float VEC3 (POSITION with min/max), indices uint16 when the mesh has at most 65,535
-//     vertices, else uint32; material "<type>" (metallic 0, roughness 0.9, single-sided).
+//     vertices, else uint32; material "<type>" (metallic 0, roughness 0.9, single-sided) when the type
+//     has no SurfaceMaterial. With one: baseColorFactor = its base colour and roughnessFactor its
+//     roughness; with a texture, baseColorFactor is [1, 1, 1, 1] and baseColorTexture the baked texture
+//     (which already holds base colour x detail, sRGB), the primitive gets TEXCOORD_0 (float VEC2, the box
+//     projection of material/uv_projection.h in engine model space, so vertices on edges between
+//     projection axes are split), and the material's extras hold {"texture", "texture_scale_m",
+//     "tint_variation"}; alpha_cutout adds alphaMode MASK, alphaCutoff 0.5 and doubleSided. The terrain
+//     likewise, with uv = world (x, y) / texture_scale_m.
+//   - textures: each distinct image (same size and bytes) is written once, as a PNG in its own buffer
+//     view (mimeType image/png), with one sampler: REPEAT in both directions, linear, mipmapped.
 //   - chunks: instance i of a type belongs to chunk (ix, iy) = (floor(x / chunk_size_m),
 //     floor(y / chunk_size_m)) of its engine-space position. Each non-empty (type, chunk) gets one node
 //     named "<type>/chunk_<ix>_<iy>" whose translation is the chunk's XY centre (engine z = 0, converted
@@ -34,6 +45,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/quaternion.hpp>
 
+#include "material/material.h"
 #include "mesh/detail_model.h"
 #include "mesh/triangle_mesh.h"
 
@@ -55,11 +67,13 @@ struct ExportDetailType {
     const TriangleMesh* mesh = nullptr;        // model space, Z up (DetailModel::mesh); not owned
     std::vector<Sphere> collision_spheres;     // model space, Z up
     std::vector<InstanceTransform> instances;  // engine space
+    const SurfaceMaterial* material = nullptr;  // null: the mesh's base colour, roughness 0.9; not owned
 };
 
 struct SceneExport {
     std::vector<ExportDetailType> types;
     const TriangleMesh* terrain = nullptr;  // world space, Z up; optional; not owned
+    const SurfaceMaterial* terrain_material = nullptr;  // null: the terrain mesh's base colour; not owned
     float delta_m = 0.0f;                   // the Ghost Tile's δ, written in every detail mesh's extras
     float chunk_size_m = 8.0f;              // edge of the square XY chunks instances are grouped by, > 0
     bool use_instancing_extension = true;   // false: one plain node per instance
@@ -71,7 +85,8 @@ struct SceneExport {
 // delta_m not finite and >= 0; scene_extras_json not a JSON object; a type with an empty or duplicate
 // name, a null or invalid mesh (TriangleMesh validateMesh), a non-finite or non-positive sphere; an
 // instance with a non-finite value, a non-unit rotation or a non-positive scale (the reason names the
-// type and the instance index); an invalid terrain mesh; a result over the 4 GiB glTF limit.
+// type and the instance index); an invalid terrain mesh; a material with a value out of its range or a
+// texture whose size does not match its bytes; a result over the 4 GiB glTF limit.
 bool writeSceneGltf(const std::string& path, const SceneExport& scene, std::string* error);
 
 }  // namespace ug

@@ -24,6 +24,11 @@ bool exportInstancedScene(const std::string& path, const GhostTile& tile, const 
                             std::to_string(c.typeCount()) + " detail types";
         return false;
     }
+    if (options.materials && options.materials->types.size() != models.size()) {
+        if (error) *error = path + ": " + std::to_string(options.materials->types.size()) + " materials for " +
+                            std::to_string(models.size()) + " detail types";
+        return false;
+    }
     SceneExport scene;
     scene.delta_m = tile.settings.delta_m;
     scene.chunk_size_m = options.chunk_size_m;
@@ -34,6 +39,7 @@ bool exportInstancedScene(const std::string& path, const GhostTile& tile, const 
         scene.types[i].name = models[i].name;
         scene.types[i].mesh = &models[i].mesh;
         scene.types[i].collision_spheres = models[i].spheres;
+        if (options.materials) scene.types[i].material = &options.materials->types[i];
     }
     // Gathering is most of the work before the write: 0.8 of the reported fraction, polled every 16k
     // instances (a callback per instance would cost more than the transform).
@@ -61,6 +67,7 @@ bool exportInstancedScene(const std::string& path, const GhostTile& tile, const 
             return false;
         }
         scene.terrain = &terrain_mesh;
+        if (options.materials) scene.terrain_material = &options.materials->terrain;
     }
     if (stopped(0.9f)) return false;
     return writeSceneGltf(path, scene, error);

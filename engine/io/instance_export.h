@@ -13,6 +13,7 @@
 #include "instancer/instance_store.h"
 #include "instancer/settling.h"
 #include "io/gltf_scene_export.h"
+#include "material/material.h"
 #include "mesh/detail_model.h"
 
 namespace ug {
@@ -29,6 +30,9 @@ struct InstanceExportOptions {
     // Settled drops of the store's instances (instancer/settling.h), or null: instances where their
     // candidates are.
     const SettledDrops* drops = nullptr;
+    // The scene's materials (scene_compile.h, compileSceneMaterials), or null: every mesh with its own
+    // base colour, untextured (the look before materials). Types: one per model, same order.
+    const SceneMaterials* materials = nullptr;
 };
 
 // The world frame of candidate j in the tile with packed key tile_key, lowered by its settled drop.

@@ -107,6 +107,10 @@ public:
     const TileAssets& tileAssets() const { return assets_; }
     const std::shared_ptr<const HeightField>& terrain() const { return terrain_; }
     const CompiledScene& compiled() const { return compiled_; }
+    // Every surface's look now (compileSceneMaterials on project() and models()): one SurfaceMaterial per
+    // detail type and the terrain's, textures baked. Computed on each call (a few hundred ms for the
+    // default scene's five kinds): call it when the project or tileGeneration() changes, not per frame.
+    SceneMaterials materials() const { return compileSceneMaterials(project_, models()); }
     CacheOutcome cacheOutcome() const { return assets_.outcome; }
     // Changes whenever the Ghost Tile and models are swapped (a build applied, its undo or redo): candidate
     // frames, models and meshes derived from them must be made again.

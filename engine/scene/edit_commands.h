@@ -1,4 +1,4 @@
-// The editor's edits of a project, as undoable commands (issue 4, "Document"; DESIGN.md "Editor").
+// The editor's edits of a project, as undoable commands (issue 4, "Document"; docs/architecture.md "Editor").
 //
 // Editable density. A detail type's density stays the project's DensityField (the file format does not
 // change); what the editor adds, moves and deletes are the primitive children of its root Blend, the
@@ -17,7 +17,7 @@
 // Exactness: a field's values depend only on the tree (operators and children in order), not on where its
 // primitives sit in the arrays (density_field.h). Every operation here keeps the root's child order, and
 // an undo puts a primitive back at the position it came from, so undo gives back the same values bit for
-// bit, hence the same instances (DESIGN.md, "undo is cheap and exact").
+// bit, hence the same instances (docs/architecture.md "undo is cheap and exact").
 //
 // Commands mutate an EditTarget and report an EditEffect: which types' settings changed (to recompile),
 // where their fields changed (dirty bounds: old ∪ new support of what changed; infinite for terrain

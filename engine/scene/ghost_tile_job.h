@@ -1,4 +1,4 @@
-// Building a new Ghost Tile off the UI thread (issue 4, "Ghost Tile panel"; DESIGN.md: long jobs run in the
+// Ghost Tile builds off the UI thread (issue 4 "Ghost Tile panel"; docs/architecture.md: long jobs run in the
 // background with a progress bar and can be cancelled, the UI never freezes).
 //
 //   GhostTileSpec spec = ghostTileSpec(doc.project());      // what the panel edits, as a pending copy

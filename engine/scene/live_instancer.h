@@ -14,7 +14,7 @@
 // Coalescing: while the worker runs one job, later submissions merge into one pending job (the newest
 // settings, the union of the dirty regions), so a fast stroke never builds a backlog: the worker always
 // starts from the newest state. Correctness does not depend on timing: the instantiator's update() is
-// exact (DESIGN.md, "incremental = full"), and the state it starts from differs from the pending settings
+// exact (docs/architecture.md "incremental = full"), and its starting state differs from the pending settings
 // only inside the merged dirty region. A pending reset() (new extent, seed or strategy) supersedes
 // everything queued, and a full run in progress is cancelled by a newer reset() (updates are short and
 // are not cancelled; a stroke never starves behind a reset because updates never cancel a full run).

@@ -10,6 +10,7 @@
 #include "scene/field_json.h"
 #include "scene/json_parse.h"
 #include "scene/json_reader.h"
+#include "scene/material_json.h"
 
 namespace ug {
 
@@ -78,8 +79,11 @@ bool versionedKeys(JsonReader& r, const json& j, const std::string& p, int versi
 
 bool readTerrain(JsonReader& r, const json& j, const std::string& p, TerrainDesc* t) {
     if (!r.expectObject(j, p)) return false;
-    if (j.size() != 1 || !(j.contains("procedural") || j.contains("image")))
-        return r.fail(p, "expected {\"procedural\": {...}} or {\"image\": {...}}");
+    const size_t shapes = j.size() - (j.contains("material") ? 1 : 0);
+    if (shapes != 1 || !(j.contains("procedural") || j.contains("image")))
+        return r.fail(p, "expected {\"procedural\": {...}} or {\"image\": {...}}, and optionally \"material\"");
+    if (auto m = j.find("material"); m != j.end() && !readMaterial(r, *m, p + "/material", &t->material))
+        return false;
     if (auto it = j.find("procedural"); it != j.end()) {
         const std::string pp = p + "/procedural";
         ProceduralTerrainDesc& d = t->procedural;
@@ -409,7 +413,8 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
         const json& jt = types[t];
         if (!r.expectObject(jt, tp) ||
             !versionedKeys(r, jt, tp, version, {"name", "model", "candidates"},
-                           {"density", "subtract_terrain", "terrain_falloff_m", "angle_of_repose_deg", "instancing"}))
+                           {"density", "subtract_terrain", "terrain_falloff_m", "angle_of_repose_deg", "instancing",
+                            "material"}))
             return false;
         DetailTypeDesc d;
         if (!r.string(jt, tp, "name", &d.model.name, true)) return false;
@@ -444,6 +449,8 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
         if (auto it = jt.find("instancing");
             it != jt.end() && !readInstancing(r, *it, tp + "/instancing", has_terrain, &d.instancing))
             return false;
+        if (auto it = jt.find("material"); it != jt.end() && !readMaterial(r, *it, tp + "/material", &d.material))
+            return false;
         p.detail_types.push_back(std::move(d));
     }
     *out = std::move(p);
@@ -469,7 +476,7 @@ json vec2Json(glm::vec2 v) {
     return json::array({jsonFloat(v.x), jsonFloat(v.y)});
 }
 
-json terrainJson(const TerrainDesc& t) {
+json terrainShapeJson(const TerrainDesc& t) {
     if (t.kind == TerrainKind::Procedural) {
         const ProceduralTerrainDesc& d = t.procedural;
         return {{"procedural",
@@ -492,6 +499,12 @@ json terrainJson(const TerrainDesc& t) {
               {"cell_size_m", jsonFloat(d.cell_size_m)},
               {"min_height_m", jsonFloat(d.min_height_m)},
               {"max_height_m", jsonFloat(d.max_height_m)}}}};
+}
+
+json terrainJson(const TerrainDesc& t) {
+    json out = terrainShapeJson(t);
+    if (t.material != Material{}) out["material"] = materialToJson(t.material);
+    return out;
 }
 
 json instancingJson(const InstancingDesc& d) {
@@ -643,6 +656,7 @@ std::string projectToJson(const Project& project) {
                      {"angle_of_repose_deg", jsonFloat(d.angle_of_repose_deg)},
                      {"instancing", instancingJson(d.instancing)}};
         if (d.density.root != kNoNode) type["density"] = densityFieldToJson(d.density);
+        if (d.material != Material{}) type["material"] = materialToJson(d.material);
         types.push_back(std::move(type));
     }
     doc["detail_types"] = types;

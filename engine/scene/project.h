@@ -1,6 +1,6 @@
 // The project (scene) document: what the user edits and saves. It stores the terrain's recipe, models by
 // path, seeds, density primitives and instantiation settings, never instances, so a project stays a few
-// kilobytes however many objects it makes (DESIGN.md, "what users of the peers complain about").
+// kilobytes however many objects it makes (docs/architecture.md "what users of the peers complain about").
 // scene_compile.h turns it into what the instantiator runs on.
 //
 // File: JSON. Relative paths inside a project are relative to the project file's folder. Reading is
@@ -14,6 +14,8 @@
 //                               "base_height_m", "amplitude_m", "feature_size_m", "lacunarity", "gain"}}
 //            or {"image": {"path": "ground.png", "origin": [x, y], "cell_size_m", "min_height_m",
 //                          "max_height_m"}},                     (optional; see height_field.h for meanings)
+//               either may add "material": <material>          (the ground's look; default kTerrainColor,
+//                                                                untextured; uv = world XY / texture_scale_m)
 //    "extent": {"min": [x, y, z], "max": [x, y, z]},             (optional: derived when absent, see
 //                                                                 computeSceneExtent)
 //    "instantiation": {"seed": 1, "chunk_size_m": 8},            (optional; chunk: export chunking, > 0)
@@ -28,6 +30,7 @@
 //        "terrain_falloff_m": 0.05,       acts when the project has a terrain; falloff > 0)
 //        "angle_of_repose_deg": 35,      (optional: the steepest slope a sculpted pile of this type keeps,
 //                                         in (0, 89]; the sculpt brush grows cones this steep, tools.h)
+//        "material": <material>,         (optional: the look; never changes what is instantiated)
 //        "instancing": {                 (optional)
 //            "strategy": "random" | "elevation" | "distance_to_boundary",   (default random)
 //            "layer_m": 0.02,                                                (> 0)
@@ -36,6 +39,11 @@
 //            "size": {"target": 1.2 (> 0) | {"field": <field node>, "value_lo": 0, "value_hi": 1,
 //                                              "scale_lo": 1, "scale_hi": 1},
 //                     "tolerance": 0.25 (>= 0)}}}, ...]}
+//
+// <material> is {"base_color": [r, g, b] (linear, each in [0, 1]; absent: the model's own colour),
+//   "roughness": 0..1 (0.9), "texture": "none" | "rock" | "leaf" | "bark" | "grass" | "ground" | "hay"
+//   ("none"), "texture_scale_m": metres per repeat in [0.001, 1000] (0.2), "tint_variation": 0..1 (0),
+//   "alpha_cutout": false}, every key optional (scene/material_json.h, material/material.h).
 //
 // An orientation or size object switches that constraint on. "gradient" means the gradient of the
 // type's own compiled density (Ghost Tile Fig. 17 right); a size ramp maps its field's values
@@ -54,6 +62,7 @@
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instancing_settings.h"
 #include "instancer/settling.h"
+#include "material/material.h"
 #include "mesh/detail_model.h"
 
 namespace ug {
@@ -106,6 +115,7 @@ struct DetailTypeDesc {
     // pile (90) has no cone, and the tangent grows without bound.
     float angle_of_repose_deg = 35.0f;
     InstancingDesc instancing;
+    Material material;  // the look only: instantiation never reads it
 };
 
 enum class TerrainKind : uint8_t { None, Procedural, Image };
@@ -115,6 +125,7 @@ struct TerrainDesc {
     ProceduralTerrainDesc procedural;  // kind == Procedural
     HeightFieldImageDesc image;        // kind == Image
     std::string image_path;            // kind == Image: a PNG, as written (relative to the project file)
+    Material material;                 // the ground's look (kind != None); base colour absent: kTerrainColor
 };
 
 // Settling (instancer/settling.h) as the project sets it; the support is the terrain, or without one the
@@ -145,7 +156,8 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
 // trees from their roots (field_json.h: unreachable nodes are dropped, a polyline comes back as the Union
 // of its segments); parseProject(projectToJson(p)) gives back p's settings and fields with the same
 // primitives, nodes and values, bit for bit. Disabled orientation / size constraints are left out (their
-// settings come back as defaults).
+// settings come back as defaults), and so are materials equal to the default Material (a project
+// without materials saves exactly as before).
 std::string projectToJson(const Project& project);
 bool saveProject(const std::string& path, const Project& project, std::string* error);  // atomic
 

@@ -12,6 +12,9 @@
 #include <numbers>
 #include <utility>
 
+#include "material/procedural_texture.h"
+#include "mesh/terrain_mesh.h"
+
 namespace ug {
 
 namespace {
@@ -229,6 +232,46 @@ SettleInput settleInput(const Project& project, const std::shared_ptr<const Heig
     in.support.terrain = terrain.get();
     in.support.ground_z = project.settling.ground_z ? *project.settling.ground_z : -std::numeric_limits<float>::infinity();
     return in;
+}
+
+SceneMaterials compileSceneMaterials(const Project& project, const std::vector<DetailModel>& models) {
+    SceneMaterials out;
+    // The detail map is the slow part (tens of ms) and depends only on the kind and the cut-out; the
+    // bake per colour is cheap. Identical baked textures are shared, not copied.
+    struct DetailMap {
+        TextureKind kind;
+        bool cutout;
+        TextureImage image;
+    };
+    std::vector<DetailMap> maps;
+    std::vector<SurfaceMaterial> baked;
+    auto resolve = [&](const Material& m, glm::vec3 surface_color) {
+        Material flat = m;
+        flat.texture = TextureKind::None;  // resolveMaterial would bake; the texture is found or made below
+        SurfaceMaterial s = resolveMaterial(flat, surface_color);
+        s.texture_kind = m.texture;
+        if (m.texture == TextureKind::None) return s;
+        for (const SurfaceMaterial& b : baked)
+            if (b.texture_kind == m.texture && b.alpha_cutout == m.alpha_cutout && b.base_color == s.base_color) {
+                s.texture = b.texture;
+                return s;
+            }
+        auto map = std::find_if(maps.begin(), maps.end(),
+                                [&](const DetailMap& d) { return d.kind == m.texture && d.cutout == m.alpha_cutout; });
+        if (map == maps.end()) {
+            maps.push_back({m.texture, m.alpha_cutout, makeDetailMap(m.texture, m.alpha_cutout)});
+            map = maps.end() - 1;
+        }
+        s.texture = std::make_shared<const TextureImage>(bakeTexture(map->image, s.base_color));
+        baked.push_back(s);
+        return s;
+    };
+    out.types.reserve(project.detail_types.size());
+    for (size_t t = 0; t < project.detail_types.size(); ++t)
+        out.types.push_back(resolve(project.detail_types[t].material,
+                                    t < models.size() ? models[t].mesh.base_color : TriangleMesh{}.base_color));
+    out.terrain = resolve(project.terrain.material, kTerrainColor);
+    return out;
 }
 
 }  // namespace ug

@@ -8,6 +8,7 @@
 //   if (!loadTerrain(project, &terrain, &error)) ...        // once; the slow part for a big image
 //   CompiledScene scene;
 //   if (!compileScene(project, terrain, &scene, &error)) ...
+//   SceneMaterials looks = compileSceneMaterials(project, models);   // what the surfaces look like
 //   // after the user edits detail type 2:
 //   if (!compileDetailType(project, 2, terrain, &scene.types[2], &error)) ...
 //
@@ -26,6 +27,7 @@
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instancing_settings.h"
 #include "instancer/settling.h"
+#include "material/material.h"
 #include "scene/project.h"
 
 namespace ug {
@@ -77,5 +79,13 @@ Bounds computeSceneExtent(const Project& project, const CompiledScene& scene);
 // type; kept by pointer, so they must outlive the result).
 SettleInput settleInput(const Project& project, const std::shared_ptr<const HeightField>& terrain,
                         const GhostTile& tile, const std::vector<DetailModel>& models);
+
+// Every detail type's material resolved against its model's base colour, and the terrain's against
+// kTerrainColor, with their textures baked (material/procedural_texture.h): the same bytes as
+// resolveMaterial gives, but each kind's detail map is made once and identical textures (same kind,
+// cut-out and colour) are shared. `models` is loadProjectModels' result (one per type); a missing model
+// resolves against the default mesh colour. Cost: 5-110 ms per distinct kind (256 x 256, measured on
+// the loaded 2-core build machine; rock is the slowest), about 1 ms per further colour.
+SceneMaterials compileSceneMaterials(const Project& project, const std::vector<DetailModel>& models);
 
 }  // namespace ug

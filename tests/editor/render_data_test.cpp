@@ -233,9 +233,20 @@ std::vector<DetailLodMesh> testMeshes() {
 
 uint32_t c_type(uint32_t candidate) { return candidate < 3 ? 0 : 1; }
 
+// The view a draw is judged from: the vertex shaders drop the instances of a command that belong to the
+// other representation (render_data.h drawnAsMesh); this is that rule, from the instance's own origin.
+struct ShaderView {
+    const CandidateSet* candidates = nullptr;
+    glm::vec3 eye{0.0f};
+    float pixels_per_radian = 0.0f;
+    float impostor_px = 0.0f;
+};
+
 // What a set of commands draws, read through the mirror as the GPU would: (type, key, candidate) -> times.
+// With a ShaderView, each instance counts only in the representation the shaders give it.
 std::map<std::tuple<uint32_t, uint64_t, uint32_t>, int> drawn(const ResidentTiles& r, const IndirectDraws& d,
-                                                             const std::vector<DetailLodMesh>& meshes) {
+                                                             const std::vector<DetailLodMesh>& meshes,
+                                                             const ShaderView* shader = nullptr) {
     std::map<std::tuple<uint32_t, uint64_t, uint32_t>, int> out;
     for (uint32_t type = 0; type < r.type_count; ++type)
         for (int level = 0; level < kLodCount; ++level) {
@@ -262,6 +273,14 @@ std::map<std::tuple<uint32_t, uint64_t, uint32_t>, int> drawn(const ResidentTile
                     uint32_t j = 0;
                     unpackInstance(r.types[type].mirror[i], &tile, &j);
                     EXPECT_EQ(c_type(j), type);
+                    if (shader) {
+                        const glm::vec3 origin = glm::vec3(tile) * r.tile_size_m + shader->candidates->position[j];
+                        const float px = 2.0f * meshes[type].radius_m * meshes[type].scale_max *
+                                         shader->pixels_per_radian / glm::length(origin - shader->eye);
+                        const float u = float((instanceHash(r.types[type].mirror[i])) & 1023u) / 1024.0f;
+                        const bool mesh = px >= shader->impostor_px * (1.0f + kImpostorBand * u);
+                        if (mesh != (level != kImpostorLod)) continue;
+                    }
                     ++out[{type, packTile(tile), j}];
                 }
             }
@@ -306,7 +325,8 @@ TEST(IndirectDraws, EveryVisibleInstanceOnceAndCulledTilesAbsent) {
     ASSERT_GT(d.tiles_culled, 0u);
     ASSERT_GT(d.tiles_visible, 0u);
 
-    const auto counts = drawn(r, d, meshes);
+    const ShaderView shader{&c, view.eye, view.pixels_per_radian, 20.0f};
+    const auto counts = drawn(r, d, meshes, &shader);
     std::set<uint64_t> drawn_tiles;
     for (const auto& [key, times] : counts) {
         EXPECT_EQ(times, 1) << "an instance drawn " << times << " times";
@@ -335,6 +355,11 @@ TEST(IndirectDraws, EveryVisibleInstanceOnceAndCulledTilesAbsent) {
     }
     // Merging works: fewer commands than visible (tile, type) ranges.
     EXPECT_LT(d.commandCount(), visible_instances);
+    // The switch is per instance across a band, not per tile: the commands of some tiles run in both
+    // representations (each instance kept by one of them, as checked above).
+    size_t in_both = 0;
+    for (const auto& [key, times] : drawn(r, d, meshes)) in_both += times == 2 ? 1 : 0;
+    EXPECT_GT(in_both, 0u) << "no tile is drawn in both representations: the band is missing";
 }
 
 }  // namespace

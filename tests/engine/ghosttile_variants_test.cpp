@@ -1,4 +1,4 @@
-// Ghost Tile variants (DESIGN.md "No period"): several independent draws of each type's candidates in one
+// Tile variants (docs/architecture.md "No period"): independent draws of each type's candidates, several per
 // tile, with the collision graph between a tile's own variant (offset 0) and any variant of its neighbours.
 #include <gtest/gtest.h>
 

@@ -565,6 +565,27 @@ std::string sceneV1() {
 )";
 }
 
+// Materials on the terrain and on two types (one a cut-out), every key of the material object used.
+std::string sceneMaterials() {
+    return R"({"format": "undergrowth-project", "format_version": 2, "name": "materials",
+ "ghost_tile": {"tile_size_m": 0.3, "delta_m": -0.001, "seed": 7},
+ "terrain": {"procedural": {"origin": [-2, -2], "cell_size_m": 0.5, "width": 9, "height": 9, "seed": 11,
+                            "octaves": 3, "amplitude_m": 0.3, "feature_size_m": 2},
+             "material": {"base_color": [0.33, 0.26, 0.18], "roughness": 1, "texture": "ground", "texture_scale_m": 0.5}},
+ "instantiation": {"seed": 1, "chunk_size_m": 2},
+ "detail_types": [
+  {"name": "cube", "model": {"mesh": "data/cube.obj", "y_up": false, "spheres": {"max_spheres": 8, "surface_samples": 200}},
+   "material": {"base_color": [0.36, 0.33, 0.29], "roughness": 0.85, "texture": "rock", "texture_scale_m": 0.12,
+                "tint_variation": 0.35, "alpha_cutout": false},
+   "candidates": {"count": 25, "scale": [0.8, 1.3]},
+   "density": {"terrain_layer": {"thickness": 0.05, "radius": 0.1, "weight": 0.8}}},
+  {"name": "tetra", "model": {"mesh": "data/tetra.ply", "y_up": false, "spheres": {"max_spheres": 8, "surface_samples": 200}},
+   "material": {"texture": "leaf", "texture_scale_m": 0.1, "alpha_cutout": true},
+   "candidates": {"count": 15, "position": "jittered"},
+   "density": {"terrain_layer": {"thickness": 0.03, "radius": 0.05, "weight": 0.5}}}]}
+)";
+}
+
 std::string sceneProcedural() {
     return std::string(R"({"format": "undergrowth-project", "format_version": 2, "name": "procedural",
  "ghost_tile": {"tile_size_m": 0.3, "delta_m": -0.001, "seed": 7},
@@ -746,6 +767,7 @@ int makeCorpus(const std::string& root_arg) {
     write(data, "terrain16.png", png({5, 5, 16, 0}));
     write(sc, "v1_minimal.json", sceneV1());
     write(sc, "procedural_terrain.json", sceneProcedural());
+    write(sc, "materials.json", sceneMaterials());
     write(sc, "image_terrain_size_ramp.json", sceneImage());
     write(sc, "all_nodes_authored.json", sceneAllNodes());
     write(sc, "default_fit_derived_extent.json", sceneFit());

@@ -1,8 +1,9 @@
 #!/usr/bin/env node
-// Independent check of a glTF export (DESIGN.md: "we write the standard extension, chunked, and check it
+// An independent export check (docs/architecture.md: "we write the standard extension, chunked, and check it
 // with independent readers, since the Khronos validator does not check that extension").
 //
 //   node check_gltf.mjs FILE [--expect-instances N] [--expect-detail-instances N] [--expect-types K]
+//                            [--expect-images N] [--expect-textured-materials N]
 //   (detail instances: copies of meshes that carry collision_spheres extras, i.e. without the terrain)
 //
 // 1. The Khronos glTF-Validator: any error fails the check (its messages are printed). Warnings are
@@ -17,8 +18,12 @@
 //      types            = meshes whose extras hold "collision_spheres".
 //    Every instance rotation (extension or node) must be a unit quaternion and every instance value
 //    finite.
+// 3. Materials (check_materials.mjs): every baseColorTexture read back as a PNG that decodes to the size
+//    glTF-Transform reports, repeating, on primitives with TEXCOORD_0, cut-out exactly when alphaMode is
+//    MASK; images = distinct images, textured_materials = materials with a baseColorTexture.
 // Prints one JSON line: {"file", "errors", "warnings", "warning_codes", "infos", "info_codes",
-// "instances", "detail_instances", "instanced_nodes", "plain_nodes", "meshes", "types"}. (The validator
+// "instances", "detail_instances", "instanced_nodes", "plain_nodes", "meshes", "types", "materials",
+// "textured_materials", "cutout_materials", "images"}. (The validator
 // does not know EXT_mesh_gpu_instancing: expect the infos UNSUPPORTED_EXTENSION, and UNUSED_OBJECT for
 // the instance accessors only the extension refers to.) Exit 0 when all checks pass, 1 otherwise (the
 // reasons on stderr), 2 on a bad command line.
@@ -30,22 +35,28 @@ import validator from 'gltf-validator';
 import { NodeIO } from '@gltf-transform/core';
 import { ALL_EXTENSIONS } from '@gltf-transform/extensions';
 
+import { checkMaterials } from './check_materials.mjs';
+
 const kUnitTolerance = 1e-4;  // float32 quaternions normalized by a writer are within ~1e-7
 
 function usage(message) {
-    console.error(`check_gltf: ${message}\nusage: node check_gltf.mjs FILE [--expect-instances N] [--expect-detail-instances N] [--expect-types K]`);
+    console.error(`check_gltf: ${message}\nusage: node check_gltf.mjs FILE [--expect-instances N] [--expect-detail-instances N] [--expect-types K] [--expect-images N] [--expect-textured-materials N]`);
     process.exit(2);
 }
 
 function parseArgs(argv) {
-    const args = { file: null, expectInstances: null, expectTypes: null, expectDetailInstances: null };
+    const args = { file: null, expectInstances: null, expectTypes: null, expectDetailInstances: null,
+                   expectImages: null, expectTexturedMaterials: null };
     for (let i = 0; i < argv.length; ++i) {
         const a = argv[i];
-        if (a === '--expect-instances' || a === '--expect-types' || a === '--expect-detail-instances') {
+        if (a === '--expect-instances' || a === '--expect-types' || a === '--expect-detail-instances' ||
+            a === '--expect-images' || a === '--expect-textured-materials') {
             const value = argv[++i];
             if (value === undefined || !/^\d+$/.test(value)) usage(`${a} needs a non-negative integer`);
             if (a === '--expect-instances') args.expectInstances = Number(value);
             else if (a === '--expect-detail-instances') args.expectDetailInstances = Number(value);
+            else if (a === '--expect-images') args.expectImages = Number(value);
+            else if (a === '--expect-textured-materials') args.expectTexturedMaterials = Number(value);
             else args.expectTypes = Number(value);
         } else if (a.startsWith('--')) {
             usage(`unknown option ${a}`);
@@ -167,6 +178,7 @@ async function main() {
     try {
         const document = isGlb ? await io.readBinary(new Uint8Array(bytes)) : await io.read(file);
         counts = countInstances(document, problems);
+        Object.assign(counts, checkMaterials(document, problems));
     } catch (e) {
         problems.push(`glTF-Transform could not read the file: ${e.message}`);
     }
@@ -177,6 +189,10 @@ async function main() {
         problems.push(`${counts.detail_instances} detail instances, expected ${args.expectDetailInstances}`);
     if (counts && args.expectTypes !== null && counts.types !== args.expectTypes)
         problems.push(`${counts.types} detail types, expected ${args.expectTypes}`);
+    if (counts && args.expectImages !== null && counts.images !== args.expectImages)
+        problems.push(`${counts.images} images, expected ${args.expectImages}`);
+    if (counts && args.expectTexturedMaterials !== null && counts.textured_materials !== args.expectTexturedMaterials)
+        problems.push(`${counts.textured_materials} textured materials, expected ${args.expectTexturedMaterials}`);
 
     console.log(JSON.stringify({ file: path.basename(file), errors: issues.numErrors, warnings: issues.numWarnings,
                                  warning_codes: warningCodes, infos: issues.numInfos, info_codes: codes(2),

@@ -5,7 +5,8 @@
 #
 # 1. installs the pinned checkers (setup.sh) and checks that check_gltf.mjs rejects bad files (self_test.mjs);
 # 2. runs WRITER (write_sample_export) into OUT_DIR and checks every sample it lists with
-#    check_gltf.mjs --expect-instances N --expect-types K;
+#    check_gltf.mjs --expect-instances N --expect-types K (and, for the samples with materials,
+#    --expect-images I --expect-textured-materials M);
 # 3. checks extra files given as UG_GLTF_EXTRA="file1.glb:count1 file2.gltf:count2" (paths without spaces;
 #    count = every mesh copy the file draws, as check_gltf.mjs counts "instances").
 # Fails (never skips) when node is missing. Exit 0 only when every check passed.
@@ -36,9 +37,13 @@ node "$here/self_test.mjs" || fail "check_gltf.mjs self test"
 rm -rf "$out"
 mkdir -p "$out"
 if listing="$("$writer" "$out")"; then
-  while read -r file count types; do
+  while read -r file count types images textured; do
     [ -n "$file" ] || continue
-    node "$here/check_gltf.mjs" "$out/$file" --expect-instances "$count" --expect-types "$types" || fail "$file"
+    extra=()
+    [ -n "$images" ] && extra+=(--expect-images "$images")
+    [ -n "$textured" ] && extra+=(--expect-textured-materials "$textured")
+    node "$here/check_gltf.mjs" "$out/$file" --expect-instances "$count" --expect-types "$types" "${extra[@]}" ||
+      fail "$file"
   done <<<"$listing"
   [ -n "$listing" ] || fail "the writer listed no samples"
 else

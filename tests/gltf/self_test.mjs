@@ -1,8 +1,10 @@
 #!/usr/bin/env node
 // The checker's own test: a check that never fails proves nothing. Writes small files with glTF-Transform
 // (an instanced node with unit rotations, the same with a non-unit rotation, a plain node, and a hand-made
-// JSON file the validator must reject) and runs check_gltf.mjs on each, expecting its verdict.
+// JSON file the validator must reject, and textured materials right and wrong) and runs check_gltf.mjs on
+// each, expecting its verdict.
 import { spawnSync } from 'node:child_process';
+import zlib from 'node:zlib';
 import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import os from 'node:os';
 import path from 'node:path';
@@ -31,6 +33,53 @@ async function writeInstanced(file, rotations) {
     scene.addChild(doc.createNode('instanced').setMesh(mesh).setExtension('EXT_mesh_gpu_instancing', instanced));
     scene.addChild(doc.createNode('plain').setMesh(mesh).setTranslation([5, 0, 0]));
     await new NodeIO().registerExtensions([EXTMeshGPUInstancing]).write(file, doc);
+}
+
+// A w x h RGBA PNG, every row with filter 0 (the checker's decoder is the other side of this).
+function crc32(bytes) {
+    let c = ~0;
+    for (const b of bytes) {
+        c ^= b;
+        for (let k = 0; k < 8; ++k) c = (c >>> 1) ^ (0xedb88320 & -(c & 1));
+    }
+    return ~c >>> 0;
+}
+function chunk(type, data) {
+    const head = Buffer.alloc(8);
+    head.writeUInt32BE(data.length, 0);
+    head.write(type, 4, 'latin1');
+    const crc = Buffer.alloc(4);
+    crc.writeUInt32BE(crc32(Buffer.concat([head.subarray(4), data])), 0);
+    return Buffer.concat([head, data, crc]);
+}
+function pngBytes(w, h, alpha) {
+    const ihdr = Buffer.alloc(13);
+    ihdr.writeUInt32BE(w, 0);
+    ihdr.writeUInt32BE(h, 4);
+    ihdr[8] = 8;
+    ihdr[9] = 6;
+    const raw = Buffer.alloc(h * (1 + w * 4), 200);
+    for (let y = 0; y < h; ++y) {
+        raw[y * (1 + w * 4)] = 0;
+        for (let x = 0; x < w; ++x) raw[y * (1 + w * 4) + 1 + x * 4 + 3] = alpha(x, y);
+    }
+    return new Uint8Array(Buffer.concat([Buffer.from([137, 80, 78, 71, 13, 10, 26, 10]), chunk('IHDR', ihdr),
+                                         chunk('IDAT', zlib.deflateSync(raw)), chunk('IEND', Buffer.alloc(0))]));
+}
+
+async function writeTextured(file, { uv, mask, holes }) {
+    const doc = new Document();
+    const buffer = doc.createBuffer();
+    const acc = (type, values) => doc.createAccessor().setType(type).setArray(new Float32Array(values)).setBuffer(buffer);
+    const texture = doc.createTexture('t').setMimeType('image/png')
+        .setImage(pngBytes(8, 4, (x, y) => (holes && x === y ? 0 : 255)));
+    const material = doc.createMaterial('m').setBaseColorTexture(texture).setAlphaMode(mask ? 'MASK' : 'OPAQUE');
+    material.getBaseColorTextureInfo().setWrapS(10497).setWrapT(10497);
+    const prim = doc.createPrimitive().setMaterial(material)
+        .setAttribute('POSITION', acc('VEC3', [0, 0, 0, 1, 0, 0, 0, 1, 0]));
+    if (uv) prim.setAttribute('TEXCOORD_0', acc('VEC2', [0, 0, 1, 0, 0, 1]));
+    doc.createScene().addChild(doc.createNode('n').setMesh(doc.createMesh('textured').addPrimitive(prim)));
+    await new NodeIO().write(file, doc);
 }
 
 function check(file, args) {
@@ -68,6 +117,18 @@ try {
     expect('validator error', check(invalid, []), 1, 'validator error');
 
     expect('missing file', check(path.join(dir, 'missing.glb'), []), 1, 'cannot read');
+
+    const textured = path.join(dir, 'textured.glb');
+    await writeTextured(textured, { uv: true, mask: true, holes: true });
+    expect('textured material', check(textured, ['--expect-images', '1', '--expect-textured-materials', '1']), 0,
+           '"textured_materials":1');
+    expect('textured material, wrong image count', check(textured, ['--expect-images', '2']), 1, 'expected 2');
+    const no_uv = path.join(dir, 'no_uv.glb');
+    await writeTextured(no_uv, { uv: false, mask: false, holes: false });
+    expect('texture without TEXCOORD_0', check(no_uv, []), 1, 'without TEXCOORD_0');
+    const opaque_holes = path.join(dir, 'opaque_holes.glb');
+    await writeTextured(opaque_holes, { uv: true, mask: false, holes: true });
+    expect('cut-out texture drawn opaque', check(opaque_holes, []), 1, 'has cut-out pixels');
 } finally {
     rmSync(dir, { recursive: true, force: true });
 }

@@ -4,7 +4,9 @@
 //
 // creates DIR if needed, writes the samples, and prints one line per file: "<file name> <instances>
 // <types>", where <instances> is every mesh copy the file draws (detail instances, plus one for a
-// terrain) as check_gltf.mjs counts them, and <types> the number of detail types.
+// terrain) as check_gltf.mjs counts them, and <types> the number of detail types; the samples with
+// materials add "<images> <textured materials>": the distinct texture images the file must hold and the
+// materials with a baseColorTexture.
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -15,6 +17,7 @@
 #include "core/hash.h"
 #include "field/height_field.h"
 #include "io/gltf_scene_export.h"
+#include "material/material.h"
 #include "mesh/procedural_models.h"
 #include "mesh/terrain_mesh.h"
 
@@ -46,7 +49,19 @@ struct Sample {
     bool extension = true;
     bool terrain = false;
     size_t per_type = 0;
+    bool materials = false;
 };
+
+Material makeMaterial(glm::vec3 color, TextureKind texture, float scale_m, float tint, bool cutout) {
+    Material m;
+    m.base_color = color;
+    m.roughness = 0.8f;
+    m.texture = texture;
+    m.texture_scale_m = scale_m;
+    m.tint_variation = tint;
+    m.alpha_cutout = cutout;
+    return m;
+}
 
 }  // namespace
 
@@ -63,7 +78,17 @@ int main(int argc, char** argv) {
         return 1;
     }
 
-    const std::vector<std::string> names = {"rock", "leaf_oak", "twig"};
+    // The material samples add a pebble with the rock's material (the same image, written once) and put a
+    // cut-out leaf, bark and a ground texture on the terrain: 4 distinct images, 5 textured materials.
+    const std::vector<std::string> names = {"rock", "leaf_oak", "twig", "pebble"};
+    const size_t plain_types = 3;  // the samples without materials keep their first three types
+    const glm::vec3 stone(0.36f, 0.33f, 0.29f);
+    const std::vector<Material> looks = {
+        makeMaterial(stone, TextureKind::Rock, 0.12f, 0.35f, false),
+        makeMaterial({0.42f, 0.24f, 0.08f}, TextureKind::Leaf, 0.103f, 0.4f, true),
+        makeMaterial({0.25f, 0.17f, 0.10f}, TextureKind::Bark, 0.08f, 0.25f, false),
+        makeMaterial(stone, TextureKind::Rock, 0.05f, 0.4f, false),
+    };
     std::vector<TriangleMesh> meshes(names.size());
     for (size_t t = 0; t < names.size(); ++t) {
         if (!makeStarterAsset(names[t], kStarterAssetSeed, &meshes[t])) {
@@ -85,11 +110,20 @@ int main(int argc, char** argv) {
         return 1;
     }
 
+    std::vector<SurfaceMaterial> surfaces;
+    for (size_t t = 0; t < names.size(); ++t) surfaces.push_back(resolveMaterial(looks[t], meshes[t].base_color));
+    const SurfaceMaterial ground_look =
+        resolveMaterial(makeMaterial(kTerrainColor, TextureKind::Ground, 0.5f, 0.0f, false), kTerrainColor);
+    const size_t images = 4, textured_materials = 5;
+
     const Sample samples[] = {
         {"instanced.glb", true, false, 2000},
         {"instanced.gltf", true, false, 700},
         {"plain_nodes.glb", false, false, 150},
         {"with_terrain.glb", true, true, 500},
+        {"materials.glb", true, true, 400, true},
+        {"materials.gltf", true, true, 120, true},
+        {"materials_plain_nodes.glb", false, true, 60, true},
     };
     for (const Sample& sample : samples) {
         SceneExport scene;
@@ -97,14 +131,17 @@ int main(int argc, char** argv) {
         scene.chunk_size_m = 8.0f;
         scene.use_instancing_extension = sample.extension;
         scene.terrain = sample.terrain ? &ground : nullptr;
+        if (sample.materials) scene.terrain_material = &ground_look;
+        const size_t type_count = sample.materials ? names.size() : plain_types;
         scene.scene_extras_json =
             R"({"sample": ")" + sample.file + R"(", "generator": "write_sample_export"})";
-        for (size_t t = 0; t < names.size(); ++t) {
+        for (size_t t = 0; t < type_count; ++t) {
             ExportDetailType type;
             type.name = names[t];
             type.mesh = &meshes[t];
             type.collision_spheres = {{glm::vec3(0.0f), 0.05f}};
             type.instances = scatter(sample.per_type, 20.0f, 100 + t);
+            if (sample.materials) type.material = &surfaces[t];
             scene.types.push_back(std::move(type));
         }
         const std::string path = dir + "/" + sample.file;
@@ -112,8 +149,10 @@ int main(int argc, char** argv) {
             std::fprintf(stderr, "%s\n", error.c_str());
             return 1;
         }
-        std::printf("%s %zu %zu\n", sample.file.c_str(),
-                    sample.per_type * names.size() + (sample.terrain ? 1 : 0), names.size());
+        std::printf("%s %zu %zu", sample.file.c_str(), sample.per_type * type_count + (sample.terrain ? 1 : 0),
+                    type_count);
+        if (sample.materials) std::printf(" %zu %zu", images, textured_materials);
+        std::printf("\n");
     }
     return 0;
 }

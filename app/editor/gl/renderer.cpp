@@ -4,9 +4,12 @@
 #include <chrono>
 #include <cmath>
 #include <cstring>
+#include <cstdlib> // TEMPLOOK
 
 #include <epoxy/gl.h>
 #include <glm/gtc/type_ptr.hpp>
+
+#include "editor/shadow_frame.h"
 
 namespace ug::editor::gl {
 
@@ -21,23 +24,41 @@ struct GpuCandidateFrame {
 };
 static_assert(sizeof(GpuCandidateFrame) == 32);
 
+// The shadow map's texture unit (unit 0 is left to the material textures).
+constexpr GLint kShadowUnit = 1;
+constexpr GLint kSilhouetteUnit = 5;
+
 GLint loc(const ShaderProgram& p, const char* name) { return glGetUniformLocation(p.id, name); }
 
-void setLighting(const ShaderProgram& p, const glm::vec3& eye, float fog_density) {
-    glUniform3fv(loc(p, "u_sun_dir"), 1, glm::value_ptr(kSunDir));
-    glUniform3fv(loc(p, "u_eye"), 1, glm::value_ptr(eye));
-    glUniform1f(loc(p, "u_fog_density"), fog_density);
+// The type's bounding diameter on screen at 1 m, as buildIndirectDraws computes it for the LOD choice.
+float lodDiameterPx(const DetailLodMesh& m, float pixels_per_radian) {
+    return 2.0f * m.radius_m * m.scale_max * pixels_per_radian;
 }
 
 }  // namespace
 
+void Renderer::setLighting(const ShaderProgram& p, const glm::vec3& eye, float fog_density) const {
+    glUniform3fv(loc(p, "u_sun_dir"), 1, glm::value_ptr(kSunDir));
+    glUniform3fv(loc(p, "u_eye"), 1, glm::value_ptr(eye));
+    glUniform1f(loc(p, "u_fog_density"), fog_density);
+    // Unused uniforms are optimised away (location -1), which glUniform ignores.
+    glUniform1i(loc(p, "u_shadow_map"), kShadowUnit);
+    glUniformMatrix4fv(loc(p, "u_shadow_texture"), 1, GL_FALSE, glm::value_ptr(shadow_texture_));
+    glUniform1f(loc(p, "u_shadow_strength"), shadow_valid_ ? 1.0f : 0.0f);
+    glUniform1f(loc(p, "u_shadow_offset_m"), shadow_offset_m_);
+}
+
 Renderer::~Renderer() {
     releaseScene();
-    for (ShaderProgram* p : {&sky_, &terrain_, &detail_, &impostor_, &grid_, &marker_, &hull_}) destroyProgram(p);
+    releaseTargets();
+    for (ShaderProgram* p : {&sky_, &terrain_, &detail_, &impostor_, &grid_, &marker_, &hull_, &shadow_detail_,
+                             &ambient_occlusion_, &composite_})
+        destroyProgram(p);
     if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
     if (marker_vao_) glDeleteVertexArrays(1, &marker_vao_);
     if (marker_buffer_) glDeleteBuffers(1, &marker_buffer_);
-    if (indirect_buffer_) glDeleteBuffers(1, &indirect_buffer_);
+    for (IndirectBuffer* b : {&indirect_, &shadow_indirect_})
+        if (b->id) glDeleteBuffers(1, &b->id);
 }
 
 bool Renderer::init(const std::string& dir, std::string* error) {
@@ -49,20 +70,35 @@ bool Renderer::init(const std::string& dir, std::string* error) {
     if (!loadProgram(dir, "sky.vert", "sky.frag", {"u_view_to_world", "u_tan_half_fov", "u_sun_dir"}, &sky_, error) ||
         !loadProgram(dir, "terrain.vert", "lit_surface.frag", with({"u_view_proj", "u_color"}, true), &terrain_, error) ||
         !loadProgram(dir, "instanced_detail.vert", "lit_surface.frag",
-                     with({"u_view_proj", "u_tile_size_m", "u_drop_unit_m", "u_color"}, true), &detail_, error) ||
-        !loadProgram(dir, "detail_impostor.vert", "flat_color.frag",
-                     with({"u_view_proj", "u_tile_size_m", "u_drop_unit_m", "u_color", "u_center", "u_half_size_m",
-                           "u_point_scale",
-                           "u_to_eye"},
+                     with({"u_view_proj", "u_tile_size_m", "u_drop_unit_m", "u_color", "u_lod_diameter_px",
+                           "u_impostor_px"},
+                          true),
+                     &detail_, error) ||
+        !loadProgram(dir, "detail_impostor.vert", "impostor.frag",
+                     with({"u_view_proj", "u_tile_size_m", "u_drop_unit_m", "u_color", "u_center", "u_coverage_m2",
+                           "u_point_scale", "u_to_eye", "u_lod_diameter_px", "u_impostor_px", "u_upness",
+                           "u_sprite_radius_m", "u_layer_first", "u_silhouettes"},
                           true),
                      &impostor_, error) ||
         !loadProgram(dir, "ground_grid.vert", "ground_grid.frag",
                      with({"u_view_proj", "u_grid_center", "u_grid_half_m", "u_ground_z", "u_cell_m", "u_fade_m"}, true), &grid_,
                      error) ||
         !loadProgram(dir, "skeleton_marker.vert", "flat_color.frag", {"u_view_proj", "u_point_size"}, &marker_, error) ||
-        !loadProgram(dir, "skeleton_marker.vert", "primitive_hull.frag", {"u_view_proj", "u_alpha"}, &hull_, error))
+        !loadProgram(dir, "skeleton_marker.vert", "primitive_hull.frag", {"u_view_proj", "u_alpha"}, &hull_, error) ||
+        !loadProgram(dir, "instanced_detail.vert", "shadow_depth.frag",
+                     {"u_view_proj", "u_tile_size_m", "u_drop_unit_m", "u_eye", "u_lod_diameter_px", "u_impostor_px"},
+                     &shadow_detail_, error) ||
+        !loadProgram(dir, "screen_pass.vert", "ambient_occlusion.frag",
+                     {"u_depth", "u_near_far", "u_tan_half_fov", "u_ao_radius_m"}, &ambient_occlusion_, error) ||
+        !loadProgram(dir, "screen_pass.vert", "composite.frag", {"u_color", "u_depth", "u_ao", "u_ao_strength"},
+                     &composite_, error))
         return false;
-    glGenBuffers(1, &indirect_buffer_);
+    glGenBuffers(1, &indirect_.id);
+    glGenBuffers(1, &shadow_indirect_.id);
+    if (const char* t = std::getenv("UG_LOOK_TMP")) {  // TEMPLOOK
+        look_.shadows = !std::strstr(t, "noshadow");
+        look_.ambient_occlusion = !std::strstr(t, "noao");
+    }
     glGenVertexArrays(1, &empty_vao_);
     glGenVertexArrays(1, &marker_vao_);
     glGenBuffers(1, &marker_buffer_);
@@ -88,9 +124,20 @@ void Renderer::releaseScene() {
     GLuint buffers[] = {terrain_vertices_, terrain_indices_, candidate_buffer_};
     glDeleteBuffers(3, buffers);
     terrain_vao_ = terrain_vertices_ = terrain_indices_ = candidate_buffer_ = 0;
+    if (silhouette_array_) glDeleteTextures(1, &silhouette_array_);
+    silhouette_array_ = 0;
     terrain_index_count_ = 0;
     has_scene_ = false;
     tiles_ = nullptr;
+}
+
+void Renderer::releaseTargets() {
+    GLuint fbos[] = {shadow_fbo_, scene_fbo_, ao_fbo_};
+    glDeleteFramebuffers(3, fbos);
+    GLuint textures[] = {shadow_depth_, scene_color_, scene_depth_, ao_texture_};
+    glDeleteTextures(4, textures);
+    shadow_fbo_ = scene_fbo_ = ao_fbo_ = shadow_depth_ = scene_color_ = scene_depth_ = ao_texture_ = 0;
+    shadow_px_ = scene_w_ = scene_h_ = 0;
 }
 
 void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const std::vector<DetailLodMesh>* meshes,
@@ -161,13 +208,42 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
         }
         glBindVertexArray(0);
     }
+    // The impostors' silhouettes: one R8 array, four layers (elevations) per type, mipmapped (the sprites
+    // shrink to a few pixels; impostor.frag reads the mask as a coverage).
+    const int res = meshes->empty() ? 0 : (*meshes)[0].silhouettes.resolution;
+    bool same_resolution = res > 0;
+    for (const DetailLodMesh& m : *meshes) same_resolution = same_resolution && m.silhouettes.resolution == res;
+    if (same_resolution) {
+        glGenTextures(1, &silhouette_array_);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, silhouette_array_);
+        const GLsizei layers = GLsizei(meshes->size() * kCoverageElevations);
+        const int levels = int(std::floor(std::log2(float(res)))) + 1;
+        glTexStorage3D(GL_TEXTURE_2D_ARRAY, levels, GL_R8, res, res, layers);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        for (size_t i = 0; i < meshes->size(); ++i)
+            for (int e = 0; e < kCoverageElevations; ++e)
+                glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, GLint(i * kCoverageElevations + size_t(e)), res, res, 1, GL_RED,
+                                GL_UNSIGNED_BYTE, (*meshes)[i].silhouettes.mask[size_t(e)].data());
+        glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
+        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
+    }
+
+    // The occlusion radius: a little over the largest detail's reach, so a pile's crevices and an object's
+    // foot on the ground darken, but a whole hillside does not.
+    float reach = 0.0f;
+    for (const DetailLodMesh& m : *meshes) reach = std::max(reach, m.radius_m * m.scale_max);
+    ao_radius_m_ = std::clamp(1.2f * reach, 0.03f, 2.0f);
     has_scene_ = true;
-    draws_dirty_ = true;
+    draws_dirty_ = shadow_draws_dirty_ = shadow_map_dirty_ = true;
 }
 
 void Renderer::uploadTiles(const ResidentTiles* tiles, const TileUploads& uploads) {
     tiles_ = tiles;
-    draws_dirty_ = true;
+    draws_dirty_ = shadow_draws_dirty_ = shadow_map_dirty_ = true;
     upload_tiles_ = uploads.tiles_uploaded;
     upload_bytes_ = uploads.bytes_uploaded;
     if (!tiles) return;
@@ -189,7 +265,10 @@ void Renderer::uploadTiles(const ResidentTiles* tiles, const TileUploads& upload
 }
 
 void Renderer::setTypeVisible(size_t type, bool visible) {
-    if (type < types_.size()) types_[type].visible = visible;
+    if (type < types_.size() && types_[type].visible != visible) {
+        types_[type].visible = visible;
+        shadow_map_dirty_ = true;
+    }
 }
 
 void Renderer::setMarkers(const MarkerGeometry& m) {
@@ -215,9 +294,8 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
     stats_.tiles_uploaded = upload_tiles_;
     stats_.bytes_uploaded = upload_bytes_;
     stats_.tiles_resident = tiles_ ? tiles_->tileCount() : 0;
-    glViewport(0, 0, width, height);
-    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    GLint target_fbo = 0;
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_fbo);
     OrbitCamera cam = camera;
     cam.aspect = float(std::max(width, 1)) / float(std::max(height, 1));
     const glm::mat4 view = cam.view();
@@ -231,6 +309,19 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
     glDepthMask(GL_TRUE);
     glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
+
+    shadow_valid_ = false;
+    if (has_scene_ && look_.shadows) shadowPass(cam, eye, height, lod);
+    glActiveTexture(GL_TEXTURE0 + kShadowUnit);
+    glBindTexture(GL_TEXTURE_2D, shadow_valid_ ? shadow_depth_ : 0);
+    glActiveTexture(GL_TEXTURE0);
+
+    // The scene into the offscreen target: the composite reads its depth for the occlusion.
+    ensureSceneTarget(width, height);
+    glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
+    glViewport(0, 0, width, height);
+    glClearColor(0.0f, 0.0f, 0.0f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 
     if (!has_scene_) {
         // Nothing loaded yet: the sky alone.
@@ -279,14 +370,168 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
     glBindVertexArray(empty_vao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     ++stats_.draw_calls;
-    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
 
+    composite(unsigned(target_fbo), width, height, cam);
+    drawOverlays(view_proj);
+    glBindVertexArray(0);
+}
+
+void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int height, const LodSettings& lod) {
+    const int px = std::clamp(look_.shadow_map_px, 256, 8192);
+    const ShadowFrame frame = fitShadowFrame(cam, extent_, kSunDir, px);
+    if (!frame.valid) return;
+    if (shadow_px_ != px) {
+        if (!shadow_fbo_) glGenFramebuffers(1, &shadow_fbo_);
+        if (shadow_depth_) glDeleteTextures(1, &shadow_depth_);
+        glGenTextures(1, &shadow_depth_);
+        glBindTexture(GL_TEXTURE_2D, shadow_depth_);
+        glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT24, px, px);
+        // Hardware comparison with bilinear filtering: each lookup is a 2x2 percentage-closer filter.
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
+        glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, shadow_depth_, 0);
+        glDrawBuffer(GL_NONE);
+        glReadBuffer(GL_NONE);
+        shadow_px_ = px;
+        shadow_map_dirty_ = true;
+    }
+    shadow_texture_ = frame.texture;
+    shadow_offset_m_ = 1.5f * frame.texel_m;
+    shadow_valid_ = true;
+    // A still view of an unchanged scene keeps last frame's map: the sun does not move. (The eye and the
+    // LOD settings choose which instances are meshes, hence casters.)
+    const bool same_lod = lod.lod1_px == last_lod_.lod1_px && lod.lod2_px == last_lod_.lod2_px &&
+                          lod.impostor_px == last_lod_.impostor_px;
+    if (!shadow_map_dirty_ && same_lod && eye == last_shadow_eye_ && frame.view_proj == last_shadow_view_proj_) return;
+    glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
+    glViewport(0, 0, px, px);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    // Slope-scaled offset in the map plus a normal offset at lookup (lighting.glsl) keep lit faces free of
+    // acne without detaching the shadow from the object's foot.
+    glEnable(GL_POLYGON_OFFSET_FILL);
+    glPolygonOffset(1.5f, 2.0f);
+    // The terrain receives shadows but casts none: on llvmpipe its triangles would fill every texel of
+    // the map each time it is drawn, and the sun term already darkens slopes turned away from it.
+    if (tiles_ && meshes_) {
+        // The casters: the tiles the sun's box holds, as meshes where the camera draws meshes (the same
+        // impostor switch, so a shadow belongs to what is drawn) but one mesh level coarser sooner: a
+        // shadow a few texels across does not show the difference, and llvmpipe pays per vertex. Only
+        // when the box or the tiles moved.
+        LodSettings caster_lod = lod;
+        caster_lod.lod1_px *= 2.0f;
+        caster_lod.lod2_px *= 2.0f;
+        if (shadow_draws_dirty_ || frame.view_proj != last_shadow_view_proj_ || lod.lod1_px != last_lod_.lod1_px ||
+            lod.lod2_px != last_lod_.lod2_px || lod.impostor_px != last_lod_.impostor_px) {
+            ViewParams params;
+            params.view_proj = frame.view_proj;
+            params.eye = eye;
+            params.pixels_per_radian = float(height) / cam.fov_y_rad;
+            uploadDraws(params, caster_lod, &shadow_draws_, &shadow_indirect_);
+            shadow_draws_dirty_ = false;
+        }
+        glUseProgram(shadow_detail_.id);
+        glUniformMatrix4fv(loc(shadow_detail_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(frame.view_proj));
+        glUniform1f(loc(shadow_detail_, "u_tile_size_m"), tile_size_m_);
+        glUniform1f(loc(shadow_detail_, "u_drop_unit_m"), tiles_->drop_unit_m);
+        glUniform3fv(loc(shadow_detail_, "u_eye"), 1, glm::value_ptr(eye));
+        drawMeshLods(shadow_detail_, shadow_draws_, shadow_indirect_, float(height) / cam.fov_y_rad, caster_lod, true);
+    }
+    glDisable(GL_POLYGON_OFFSET_FILL);
+    last_shadow_view_proj_ = frame.view_proj;
+    last_shadow_eye_ = eye;
+    shadow_map_dirty_ = false;
+}
+
+void Renderer::ensureSceneTarget(int width, int height) {
+    width = std::max(width, 1);
+    height = std::max(height, 1);
+    if (scene_fbo_ && width == scene_w_ && height == scene_h_) return;
+    if (!scene_fbo_) glGenFramebuffers(1, &scene_fbo_);
+    if (!ao_fbo_) glGenFramebuffers(1, &ao_fbo_);
+    GLuint textures[] = {scene_color_, scene_depth_, ao_texture_};
+    glDeleteTextures(3, textures);
+    glGenTextures(1, &scene_color_);
+    glBindTexture(GL_TEXTURE_2D, scene_color_);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_RGBA8, width, height);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glGenTextures(1, &scene_depth_);
+    glBindTexture(GL_TEXTURE_2D, scene_depth_);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT24, width, height);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glBindFramebuffer(GL_FRAMEBUFFER, scene_fbo_);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, scene_color_, 0);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, scene_depth_, 0);
+    // The occlusion at half resolution, filtered (the composite's blur reads it bilinearly).
+    glGenTextures(1, &ao_texture_);
+    glBindTexture(GL_TEXTURE_2D, ao_texture_);
+    glTexStorage2D(GL_TEXTURE_2D, 1, GL_R8, (width + 1) / 2, (height + 1) / 2);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+    glBindFramebuffer(GL_FRAMEBUFFER, ao_fbo_);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, ao_texture_, 0);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    scene_w_ = width;
+    scene_h_ = height;
+}
+
+void Renderer::composite(unsigned target_fbo, int width, int height, const OrbitCamera& cam) {
+    const bool occlusion = has_scene_ && look_.ambient_occlusion;
+    glDisable(GL_CULL_FACE);
+    glActiveTexture(GL_TEXTURE2);
+    glBindTexture(GL_TEXTURE_2D, scene_color_);
+    glActiveTexture(GL_TEXTURE3);
+    glBindTexture(GL_TEXTURE_2D, scene_depth_);
+    glActiveTexture(GL_TEXTURE4);
+    glBindTexture(GL_TEXTURE_2D, ao_texture_);
+    glActiveTexture(GL_TEXTURE0);
+    glBindVertexArray(empty_vao_);
+    if (occlusion) {
+        glBindFramebuffer(GL_FRAMEBUFFER, ao_fbo_);
+        glViewport(0, 0, (width + 1) / 2, (height + 1) / 2);
+        glDisable(GL_DEPTH_TEST);
+        glUseProgram(ambient_occlusion_.id);
+        glUniform1i(loc(ambient_occlusion_, "u_depth"), 3);
+        const float near_m = std::max(cam.distance_m * 0.01f, 0.005f), far_m = cam.distance_m * 100.0f + 100.0f;
+        glUniform2f(loc(ambient_occlusion_, "u_near_far"), near_m, far_m);
+        const float tan_half = std::tan(0.5f * cam.fov_y_rad);
+        glUniform2f(loc(ambient_occlusion_, "u_tan_half_fov"), tan_half * cam.aspect, tan_half);
+        glUniform1f(loc(ambient_occlusion_, "u_ao_radius_m"), ao_radius_m_);
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+        ++stats_.draw_calls;
+        glEnable(GL_DEPTH_TEST);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);
+    glViewport(0, 0, width, height);
+    // Depth is written (gl_FragDepth) for every pixel, so the test must pass everywhere.
+    glDepthFunc(GL_ALWAYS);
+    glUseProgram(composite_.id);
+    glUniform1i(loc(composite_, "u_color"), 2);
+    glUniform1i(loc(composite_, "u_depth"), 3);
+    glUniform1i(loc(composite_, "u_ao"), 4);
+    glUniform1f(loc(composite_, "u_ao_strength"), occlusion ? 1.0f : 0.0f);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    ++stats_.draw_calls;
+    glDepthFunc(GL_LESS);
+}
+
+void Renderer::drawOverlays(const glm::mat4& view_proj) {
     // Hulls: translucent over the scene, depth-tested so the ground and details in front hide them, no
-    // depth write (still off from the sky) so hulls behind hulls and the skeletons inside still show.
-    // Both faces: the inside of a hull the camera is in still tints the view.
+    // depth write so hulls behind hulls and the skeletons inside still show. Both faces: the inside of a
+    // hull the camera is in still tints the view.
     if (marker_hull_vertices_ > 0) {
         glEnable(GL_BLEND);
         glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+        glDepthMask(GL_FALSE);
         glUseProgram(hull_.id);
         glUniformMatrix4fv(loc(hull_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
         glUniform1f(loc(hull_, "u_alpha"), 0.22f);
@@ -294,8 +539,8 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
         glDrawArrays(GL_TRIANGLES, 0, GLsizei(marker_hull_vertices_));
         ++stats_.draw_calls;
         glDisable(GL_BLEND);
+        glDepthMask(GL_TRUE);
     }
-    glDepthMask(GL_TRUE);
 
     // Overlays last, without depth: a skeleton inside the pile it makes must stay visible.
     if (marker_line_vertices_ + marker_points_ + marker_dots_ > 0) {
@@ -316,7 +561,54 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
         glDisable(GL_PROGRAM_POINT_SIZE);
         glEnable(GL_DEPTH_TEST);
     }
-    glBindVertexArray(0);
+}
+
+void Renderer::uploadDraws(const ViewParams& params, const LodSettings& lod, IndirectDraws* draws,
+                           IndirectBuffer* buffer) {
+    buildIndirectDraws(*tiles_, *meshes_, params, lod, draws);
+    const size_t element_bytes = draws->elements.size() * sizeof(DrawElementsIndirectCommand);
+    const size_t point_bytes = draws->points.size() * sizeof(DrawArraysIndirectCommand);
+    buffer->points_offset = element_bytes;
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, buffer->id);
+    if (element_bytes + point_bytes > buffer->capacity_bytes) {
+        buffer->capacity_bytes = std::max<size_t>(2 * (element_bytes + point_bytes), 4096);
+        glBufferData(GL_DRAW_INDIRECT_BUFFER, GLsizeiptr(buffer->capacity_bytes), nullptr, GL_DYNAMIC_DRAW);
+    }
+    if (element_bytes) glBufferSubData(GL_DRAW_INDIRECT_BUFFER, 0, GLsizeiptr(element_bytes), draws->elements.data());
+    if (point_bytes)
+        glBufferSubData(GL_DRAW_INDIRECT_BUFFER, GLintptr(element_bytes), GLsizeiptr(point_bytes), draws->points.data());
+}
+
+void Renderer::drawMeshLods(const ShaderProgram& program, const IndirectDraws& draws, const IndirectBuffer& buffer,
+                            float pixels_per_radian, const LodSettings& lod, bool shadow) {
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, buffer.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, candidate_buffer_);
+    // One multi-draw per type and LOD; each command draws the LOD's index range for one run of tiles, its
+    // instances from the command's baseInstance (the tile's slot) on.
+    for (size_t i = 0; i < types_.size() && i < draws.groups.size(); ++i) {
+        if (!types_[i].visible) continue;
+        const DetailLodMesh& m = (*meshes_)[i];
+        if (!shadow) glUniform3fv(loc(program, "u_color"), 1, glm::value_ptr(m.color));
+        glUniform1f(loc(program, "u_lod_diameter_px"), lodDiameterPx(m, pixels_per_radian));
+        glUniform1f(loc(program, "u_impostor_px"), m.impostorPx(lod));
+        glBindVertexArray(types_[i].vao);
+        for (int level = 0; level < kMeshLodCount; ++level) {
+            const IndirectDraws::Group& g = draws.groups[i][size_t(level)];
+            if (g.count == 0) continue;
+            glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+                                        reinterpret_cast<void*>(uintptr_t(g.first) * sizeof(DrawElementsIndirectCommand)),
+                                        GLsizei(g.count), 0);
+            if (shadow) {
+                stats_.shadow_triangles += g.instances * m.triangles(level);
+                continue;
+            }
+            ++stats_.draw_calls;
+            stats_.indirect_commands += g.count;
+            stats_.triangles += g.instances * m.triangles(level);
+            stats_.lod_instances[size_t(level)] += g.instances;
+            stats_.instances_drawn += g.instances;
+        }
+    }
 }
 
 void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const glm::mat4& view_proj, const glm::vec3& eye,
@@ -330,18 +622,7 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
         params.view_proj = view_proj;
         params.eye = eye;
         params.pixels_per_radian = float(height) / cam.fov_y_rad;
-        buildIndirectDraws(*tiles_, *meshes_, params, lod, &draws_);
-        const size_t element_bytes = draws_.elements.size() * sizeof(DrawElementsIndirectCommand);
-        const size_t point_bytes = draws_.points.size() * sizeof(DrawArraysIndirectCommand);
-        indirect_points_offset_ = element_bytes;
-        glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect_buffer_);
-        if (element_bytes + point_bytes > indirect_capacity_bytes_) {
-            indirect_capacity_bytes_ = std::max<size_t>(2 * (element_bytes + point_bytes), 4096);
-            glBufferData(GL_DRAW_INDIRECT_BUFFER, GLsizeiptr(indirect_capacity_bytes_), nullptr, GL_DYNAMIC_DRAW);
-        }
-        if (element_bytes) glBufferSubData(GL_DRAW_INDIRECT_BUFFER, 0, GLsizeiptr(element_bytes), draws_.elements.data());
-        if (point_bytes)
-            glBufferSubData(GL_DRAW_INDIRECT_BUFFER, GLintptr(element_bytes), GLsizeiptr(point_bytes), draws_.points.data());
+        uploadDraws(params, lod, &draws_, &indirect_);
         last_view_proj_ = view_proj;
         last_lod_ = lod;
         draws_dirty_ = false;
@@ -350,37 +631,19 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
     stats_.tiles_visible = draws_.tiles_visible;
     stats_.tiles_culled = draws_.tiles_culled;
 
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect_buffer_);
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, candidate_buffer_);
-    // Mesh LODs 0..2: one multi-draw per type and LOD; each command draws the LOD's index range for one
-    // run of tiles, its instances from the command's baseInstance (the tile's slot) on.
     glUseProgram(detail_.id);
     glUniformMatrix4fv(loc(detail_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
     glUniform1f(loc(detail_, "u_tile_size_m"), tile_size_m_);
     glUniform1f(loc(detail_, "u_drop_unit_m"), tiles_ ? tiles_->drop_unit_m : 0.0f);
     setLighting(detail_, eye, fog_density);
     // Thin sheets (leaves, blades) are closed but ~1 mm thick: back faces are never the visible side.
-    for (size_t i = 0; i < types_.size() && i < draws_.groups.size(); ++i) {
-        if (!types_[i].visible) continue;
-        const DetailLodMesh& m = (*meshes_)[i];
-        glUniform3fv(loc(detail_, "u_color"), 1, glm::value_ptr(m.color));
-        glBindVertexArray(types_[i].vao);
-        for (int level = 0; level < kMeshLodCount; ++level) {
-            const IndirectDraws::Group& g = draws_.groups[i][size_t(level)];
-            if (g.count == 0) continue;
-            glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
-                                        reinterpret_cast<void*>(uintptr_t(g.first) * sizeof(DrawElementsIndirectCommand)),
-                                        GLsizei(g.count), 0);
-            ++stats_.draw_calls;
-            stats_.indirect_commands += g.count;
-            stats_.triangles += g.instances * m.triangles(level);
-            stats_.lod_instances[size_t(level)] += g.instances;
-            stats_.instances_drawn += g.instances;
-        }
-    }
+    const float pixels_per_radian = float(height) / cam.fov_y_rad;
+    drawMeshLods(detail_, draws_, indirect_, pixels_per_radian, lod, false);
+
     // Impostors: one point sprite per instance, straight from the instance buffer (no instancing: on
     // llvmpipe an instanced draw pays a fixed cost per instance, which tiny far objects cannot afford);
     // one multi-draw per type, a command per run of tiles.
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect_.id);
     glUseProgram(impostor_.id);
     glUniformMatrix4fv(loc(impostor_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
     glUniform1f(loc(impostor_, "u_tile_size_m"), tile_size_m_);
@@ -389,6 +652,10 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
     const glm::vec3 to_eye(view[0][2], view[1][2], view[2][2]);
     glUniform3fv(loc(impostor_, "u_to_eye"), 1, glm::value_ptr(to_eye));
     setLighting(impostor_, eye, fog_density);
+    glActiveTexture(GL_TEXTURE0 + kSilhouetteUnit);
+    glBindTexture(GL_TEXTURE_2D_ARRAY, silhouette_array_);
+    glActiveTexture(GL_TEXTURE0);
+    glUniform1i(loc(impostor_, "u_silhouettes"), kSilhouetteUnit);
     glEnable(GL_PROGRAM_POINT_SIZE);
     for (size_t i = 0; i < types_.size() && i < draws_.groups.size(); ++i) {
         if (!types_[i].visible) continue;
@@ -397,11 +664,16 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
         if (g.count == 0) continue;
         glUniform3fv(loc(impostor_, "u_color"), 1, glm::value_ptr(m.color));
         glUniform3fv(loc(impostor_, "u_center"), 1, glm::value_ptr(m.center));
-        glUniform1f(loc(impostor_, "u_half_size_m"), m.impostor_half_size_m);
+        glUniform4fv(loc(impostor_, "u_coverage_m2"), 1, m.coverage_m2.data());
+        glUniform1f(loc(impostor_, "u_upness"), m.upness);
+        glUniform1f(loc(impostor_, "u_impostor_px"), m.impostorPx(lod));
+        glUniform1f(loc(impostor_, "u_sprite_radius_m"), m.silhouettes.radius);
+        glUniform1i(loc(impostor_, "u_layer_first"), silhouette_array_ ? GLint(i * kCoverageElevations) : -1000000);
+        glUniform1f(loc(impostor_, "u_lod_diameter_px"), lodDiameterPx(m, pixels_per_radian));
         glBindVertexArray(types_[i].impostor_vao);
         glMultiDrawArraysIndirect(
             GL_POINTS,
-            reinterpret_cast<void*>(indirect_points_offset_ + uintptr_t(g.first) * sizeof(DrawArraysIndirectCommand)),
+            reinterpret_cast<void*>(indirect_.points_offset + uintptr_t(g.first) * sizeof(DrawArraysIndirectCommand)),
             GLsizei(g.count), 0);
         ++stats_.draw_calls;
         stats_.indirect_commands += g.count;

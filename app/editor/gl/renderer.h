@@ -1,4 +1,4 @@
-// The viewport renderer (DESIGN.md "Rendering"): sky, terrain or a ground grid, and the details by
+// The viewport renderer (docs/architecture.md "Rendering"): sky, terrain or a ground grid, and the details by
 // instancing. The Ghost Tile's candidate frames are uploaded once (an SSBO, 32 bytes a candidate); each
 // detail type has one vertex/index buffer holding its mesh LODs and one resident instance buffer of 8-byte
 // packed (tile, candidate) instances (render_data.h) in which every tile owns a slot. A live result
@@ -10,9 +10,18 @@
 // glMultiDrawArraysIndirect per type for the impostor point sprites. After the scene: the primitives'
 // translucent hulls (blended, depth-tested, no depth write), then the overlay lines and points.
 // The renderer only draws what it is given and exposes numbers; it decides nothing about instances.
+//
+// Light that shows contact (ViewportLook): before the scene, a depth-only pass from the sun into a shadow
+// map (shadow_frame.h: fitted to what the camera sees; the casters culled for the sun's view with the
+// camera's LOD choice, impostors cast none); the scene is drawn into an offscreen colour + depth target,
+// then composited onto the caller's framebuffer with screen-space ambient occlusion (ambient_occlusion.frag
+// at half resolution, blurred by composite.frag),
+// depth included, before hulls and overlays. render() draws into whatever framebuffer is bound when it is
+// called and leaves it bound.
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -31,6 +40,7 @@ namespace ug::editor::gl {
 
 struct RenderStats {
     uint64_t triangles = 0;   // terrain + detail meshes (LOD 0-2) drawn this frame; not sky, grid, UI
+    uint64_t shadow_triangles = 0;  // drawn again into the shadow map (terrain + detail meshes)
     uint64_t points = 0;      // impostor point sprites drawn this frame (one per far instance)
     uint64_t draw_calls = 0;  // scene draw calls: sky, ground, one multi-draw per non-empty type x LOD; not UI
     uint64_t indirect_commands = 0;  // commands the multi-draws ran (one per visible tile run x type)
@@ -43,6 +53,13 @@ struct RenderStats {
     uint64_t tiles_uploaded = 0;
     uint64_t bytes_uploaded = 0;
     uint64_t tiles_resident = 0;
+};
+
+// How the viewport lights the scene (the Render panel's toggles). View state, never saved with a scene.
+struct ViewportLook {
+    bool shadows = true;
+    bool ambient_occlusion = true;
+    int shadow_map_px = 2048;
 };
 
 class Renderer {
@@ -72,6 +89,9 @@ public:
     // sphere sets), drawn after the scene; uploaded now (small, capped by markers.h).
     void setMarkers(const MarkerGeometry& markers);
 
+    void setLook(const ViewportLook& look) { look_ = look; }
+    const ViewportLook& look() const { return look_; }
+
     void render(const OrbitCamera& camera, int width_px, int height_px, const LodSettings& lod);
     const RenderStats& stats() const { return stats_; }
 
@@ -86,19 +106,51 @@ private:
         bool visible = true;
     };
     void releaseScene();
+    void releaseTargets();
+    // (Re)builds the commands of `draws` when its view, the LOD settings or the tiles changed.
+    struct IndirectBuffer {
+        unsigned id = 0;
+        size_t capacity_bytes = 0;
+        size_t points_offset = 0;  // bytes: the impostor commands follow the element commands
+    };
+    // Builds the commands of `draws` (cull + LOD per tile) for `params` and uploads them to `buffer`.
+    void uploadDraws(const ViewParams& params, const LodSettings& lod, IndirectDraws* draws, IndirectBuffer* buffer);
+    void shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int height, const LodSettings& lod);
+    void ensureSceneTarget(int width, int height);
     void drawDetails(const OrbitCamera& cam, const glm::mat4& view, const glm::mat4& view_proj, const glm::vec3& eye,
                      int height, const LodSettings& lod, float fog_density);
+    void drawMeshLods(const ShaderProgram& program, const IndirectDraws& draws, const IndirectBuffer& buffer,
+                      float pixels_per_radian, const LodSettings& lod, bool shadow);
+    void composite(unsigned target_fbo, int width, int height, const OrbitCamera& cam);
+    void drawOverlays(const glm::mat4& view_proj);
+    void setLighting(const ShaderProgram& program, const glm::vec3& eye, float fog_density) const;
 
     ShaderProgram sky_, terrain_, detail_, impostor_, grid_, marker_, hull_;
+    ShaderProgram shadow_detail_, ambient_occlusion_, composite_;
+    ViewportLook look_;
+    // The shadow map (a depth texture with compare mode) and its framebuffer; the offscreen scene target.
+    unsigned shadow_fbo_ = 0, shadow_depth_ = 0;
+    int shadow_px_ = 0;
+    glm::mat4 shadow_texture_{1.0f};
+    float shadow_offset_m_ = 0.0f;
+    bool shadow_valid_ = false;
+    unsigned scene_fbo_ = 0, scene_color_ = 0, scene_depth_ = 0;
+    unsigned ao_fbo_ = 0, ao_texture_ = 0;  // half resolution
+    int scene_w_ = 0, scene_h_ = 0;
+    float ao_radius_m_ = 0.1f;
+    IndirectDraws shadow_draws_;
+    IndirectBuffer indirect_, shadow_indirect_;
+    glm::mat4 last_shadow_view_proj_{0.0f};
+    glm::vec3 last_shadow_eye_{NAN};
+    bool shadow_draws_dirty_ = true;
+    bool shadow_map_dirty_ = true;  // the casters changed since the map was drawn
     unsigned marker_vao_ = 0, marker_buffer_ = 0;
     uint32_t marker_hull_vertices_ = 0, marker_line_vertices_ = 0, marker_points_ = 0, marker_dots_ = 0;
-    unsigned indirect_buffer_ = 0;
-    size_t indirect_capacity_bytes_ = 0;
-    size_t indirect_points_offset_ = 0;  // bytes: the impostor commands follow the element commands
     unsigned empty_vao_ = 0;
     unsigned terrain_vao_ = 0, terrain_vertices_ = 0, terrain_indices_ = 0;
     uint32_t terrain_index_count_ = 0;
     unsigned candidate_buffer_ = 0;
+    unsigned silhouette_array_ = 0;  // impostor silhouettes, kCoverageElevations layers per type
     std::vector<TypeBuffers> types_;
     const std::vector<DetailLodMesh>* meshes_ = nullptr;
     const ResidentTiles* tiles_ = nullptr;
