@@ -27,6 +27,7 @@ uniform float u_drop_unit_m;
 uniform vec3 u_color;
 uniform vec3 u_center;
 uniform vec4 u_coverage_m2;
+uniform float u_tint_variation;
 uniform float u_sprite_radius_m;
 uniform int u_layer_first;  // the type's first silhouette layer
 uniform float u_upness;
@@ -67,7 +68,8 @@ void main() {
     // weighted by how flat its faces are (u_upness, render_data.h), and four upright faces around it
     // (a tuft's blades, a rock's sides) for the rest; every normal turned toward the eye, as the mesh's
     // two-sided sheets are (lit_surface.frag).
-    vec3 albedo = u_color * (0.9 + 0.2 * float(h & 1023u) / 1023.0);
+    // The material's average colour (its texture's mean is u_color) with the mesh's per-instance tint.
+    vec3 albedo = u_color * (0.9 + 0.2 * float(h & 1023u) / 1023.0) * instanceTint(u_tint_variation, h);
     vec3 up = rotate(f.rotation, vec3(0.0, 0.0, 1.0));
     vec3 across = rotate(f.rotation, vec3(1.0, 0.0, 0.0));
     vec3 along = cross(up, across);

@@ -3,7 +3,7 @@
 // Interface: a_position (0), a_normal (1) in model space; a_instance (2, per instance) = the packed
 // instance of app/editor/render_data.h: x = uint16(t.x) | uint16(t.y) << 16, y = uint9(t.z) | j << 9 |
 // drop code << 25; buffer 0 = the Ghost Tile's candidate frames (uploaded once); u_view_proj,
-// u_tile_size_m, u_drop_unit_m, u_color; u_eye (lighting.glsl), u_lod_diameter_px (the type's bounding
+// u_tile_size_m, u_drop_unit_m, u_color, u_tint_variation (material.h); u_eye (lighting.glsl), u_lod_diameter_px (the type's bounding
 // diameter on screen at 1 m), u_impostor_px: the per-instance mesh-or-impostor rule of render_data.h
 // (drawnAsMesh), whose impostor half detail_impostor.vert draws.
 layout(location = 0) in vec3 a_position;
@@ -22,7 +22,10 @@ uniform float u_drop_unit_m;
 uniform vec3 u_color;
 uniform float u_lod_diameter_px;
 uniform float u_impostor_px;
+uniform float u_tint_variation;
 out vec3 v_world;
+out vec3 v_model;  // model-space position (the texture's box projection, lit_surface.frag)
+out vec3 v_tint;   // the instance's colour multiplier (a textured surface's albedo is texture x tint)
 out vec3 v_normal;
 out vec3 v_color;
 
@@ -55,6 +58,8 @@ void main() {
     v_world = origin + f.position_scale.xyz + rotate(f.rotation, f.position_scale.w * a_position) - vec3(0.0, 0.0, drop);
     v_normal = rotate(f.rotation, a_normal);
     // +-10 % brightness per instance, hashed from (tile, candidate): neighbours of one type do not look cloned.
-    v_color = u_color * (0.9 + 0.2 * float(h & 1023u) / 1023.0);
+    v_tint = (0.9 + 0.2 * float(h & 1023u) / 1023.0) * instanceTint(u_tint_variation, h);
+    v_color = u_color * v_tint;
+    v_model = a_position;
     gl_Position = u_view_proj * vec4(v_world, 1.0);
 }

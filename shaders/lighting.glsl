@@ -20,6 +20,24 @@ uniform float u_shadow_offset_m;
 
 float g_ambient_share = 1.0;
 
+// material.h instanceTint: the per-instance colour multiplier for a material's tint_variation (brightness
+// and warmth from lowbias32 of a stable instance key).
+uint lowbias32(uint x) {
+    x ^= x >> 16;
+    x *= 0x7feb352du;
+    x ^= x >> 15;
+    x *= 0x846ca68bu;
+    x ^= x >> 16;
+    return x;
+}
+vec3 instanceTint(float variation, uint key) {
+    uint h = lowbias32(key);
+    float a = float(h & 0xffffu) / 65535.0, b = float(h >> 16) / 65535.0;
+    float brightness = 1.0 + variation * 0.5 * (2.0 * a - 1.0);
+    float warmth = variation * 0.25 * (2.0 * b - 1.0);
+    return brightness * vec3(1.0 + warmth, 1.0, 1.0 - warmth);
+}
+
 const vec3 kZenith = vec3(0.16, 0.33, 0.72);
 const vec3 kHorizon = vec3(0.60, 0.72, 0.86);
 const vec3 kBelowHorizon = vec3(0.52, 0.60, 0.68);

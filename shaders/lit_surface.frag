@@ -1,15 +1,46 @@
 #version 430 core
 // lit_surface: terrain, details and impostors; lighting.glsl's sky + sun + haze.
-// Interface: v_world, v_normal, v_color (linear RGB) from the vertex stage.
+// A textured material (material.h: the image is the final colour, sRGB, sampled as linear) replaces the
+// flat colour: texture x the instance's tint. Its coordinates are material/uv_projection.h's box
+// projection of the model-space position, by the face's dominant axis (ties to Z, then X), divided by the
+// texture's scale, as the exporter writes TEXCOORD_0; or, for the terrain, world X and Y over the scale.
+// Interface: v_world, v_normal, v_color (linear RGB), v_model, v_tint from the vertex stage; u_albedo,
+// u_texture_mode (0: none, 1: box projection of v_model, 2: world XY), u_texture_scale_m, u_alpha_cutout.
 in vec3 v_world;
 in vec3 v_normal;
 in vec3 v_color;
+in vec3 v_model;
+in vec3 v_tint;
+uniform sampler2D u_albedo;
+uniform int u_texture_mode;
+uniform float u_texture_scale_m;
+uniform int u_alpha_cutout;
 out vec4 o_color;
+
+vec2 textureCoordinates() {
+    if (u_texture_mode == 2) return v_model.xy / u_texture_scale_m;
+    vec3 a = abs(cross(dFdx(v_model), dFdy(v_model)));
+    vec2 uv = (a.z >= a.x && a.z >= a.y) ? v_model.xy : (a.x >= a.y ? v_model.yz : v_model.xz);
+    return uv / u_texture_scale_m;
+}
+
 void main() {
+    vec3 albedo = v_color;
+    if (u_texture_mode == 2) {
+        // Ground seen over tens of metres would show the repeat as a grid of blotches: a second, turned
+        // and stretched lookup of the same image averages it away (the mean colour is unchanged).
+        vec2 uv = textureCoordinates();
+        vec2 turned = mat2(0.8, 0.6, -0.6, 0.8) * uv * 0.37 + vec2(0.31, 0.17);
+        albedo = 0.5 * (texture(u_albedo, uv).rgb + texture(u_albedo, turned).rgb) * v_tint;
+    } else if (u_texture_mode != 0) {
+        vec4 t = texture(u_albedo, textureCoordinates());
+        if (u_alpha_cutout != 0 && t.a < 0.5) discard;
+        albedo = t.rgb * v_tint;
+    }
     vec3 n = normalize(v_normal);
     // Thin sheets (leaves, blades) are seen from both sides: light the side that faces the viewer.
     if (!gl_FrontFacing) n = -n;
-    vec3 lit = shadeSurface(v_color, n, v_world);
+    vec3 lit = shadeSurface(albedo, n, v_world);
     // Alpha carries the ambient share to the ambient occlusion pass (composite.frag).
     o_color = vec4(toDisplay(lit), g_ambient_share);
 }

@@ -211,7 +211,9 @@ int runInstantiateCommand(int argc, char** argv) {
     if (args.has("--measure"))
         stats["measurements"] =
             sceneMetricsJson(measureScene(job, store, settle.settings.enabled ? &drops : nullptr, threads));
+    const SceneMaterials looks = compileSceneMaterials(job.project, job.models);
     InstanceExportOptions export_options;
+    export_options.materials = &looks;
     export_options.chunk_size_m = chunk > 0.0f ? chunk : job.project.chunk_size_m;
     export_options.use_instancing_extension = !args.has("--plain-nodes");
     if (settle.settings.enabled) export_options.drops = &drops;

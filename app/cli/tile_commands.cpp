@@ -201,7 +201,9 @@ int runHeadlessJob(const std::string& scene, const std::string& out_dir, int thr
     const std::string scene_path = (fs::path(out_dir) / (stem + ".glb")).string();
     const std::string scene_stats_path = (fs::path(out_dir) / (stem + ".stats.json")).string();
     const nlohmann::json istats = instanceStatsJson(job, ist, seed, resolveThreadCount(threads), nullptr);
+    const SceneMaterials looks = compileSceneMaterials(job.project, job.models);
     InstanceExportOptions export_options;
+    export_options.materials = &looks;
     export_options.chunk_size_m = job.project.chunk_size_m;
     // Settled like `instantiate` and the editor, so the main job's export rests where they show it.
     const SettleInput settle = settleInput(job.project, job.compiled.terrain, job.tile, job.models);

@@ -17,10 +17,10 @@ namespace ug::editor {
 // non-null and not empty), else the extent. `instances` may be null (not instantiated yet).
 Bounds framingBounds(const Bounds& extent, const TriangleMesh* terrain, const ResidentTiles* instances);
 
-// The view a scene opens on: framingBounds, narrowed around its centre (in X and Y) so that the type with
-// the most instances fills at least kOpeningDetailFraction of the view's height where the camera looks:
-// a 40 m meadow opens on a patch where tufts read as tufts, not on 40 m of speckle; a pile smaller than
-// that opens whole. `meshes` are the types' LOD meshes (their bounding diameters), as the renderer has them.
+// The view a scene opens on: framingBounds, narrowed (in X and Y) to the patch with the most instances, of
+// a size at which the type with the most instances fills at least kOpeningDetailFraction of the view's
+// height: a 40 m meadow opens on a patch where tufts read as tufts, not on 40 m of speckle, a field of
+// haystacks on a haystack; a pile smaller than that opens whole. `meshes` are the types' LOD meshes (their bounding diameters), as the renderer has them.
 constexpr float kOpeningDetailFraction = 1.0f / 30.0f;
 Bounds openingBounds(const Bounds& extent, const TriangleMesh* terrain, const ResidentTiles* instances,
                      const std::vector<DetailLodMesh>& meshes);

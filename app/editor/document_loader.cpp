@@ -50,7 +50,10 @@ void DocumentLoader::work() {
         s.has_terrain = true;
     }
     progress_.store(0.85f);
-    s.meshes = buildTypeMeshes(doc.models(), doc.ghostTile().candidates);
+    // The materials bake their textures (a few hundred ms): here, off the UI thread.
+    const SceneMaterials looks = doc.materials();
+    s.meshes = buildTypeMeshes(doc.models(), doc.ghostTile().candidates, &looks);
+    s.terrain_material = looks.terrain;
     progress_.store(1.0f);
     phase_.store(LoadPhase::Ready, std::memory_order_release);
 }

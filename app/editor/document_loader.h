@@ -24,7 +24,8 @@ struct EditorScene {
     std::unique_ptr<Document> doc;
     bool has_terrain = false;
     TriangleMesh terrain;               // world space; empty without terrain
-    std::vector<DetailLodMesh> meshes;  // one per detail type
+    std::vector<DetailLodMesh> meshes;  // one per detail type, with its material
+    SurfaceMaterial terrain_material;
 };
 
 struct LoadRequest {

@@ -148,6 +148,7 @@ private:
     ResidentTiles instances;  // the tiles as the GPU holds them
     TileUploads uploads;      // what the latest live result changed in them
     std::shared_ptr<const InstanceStore> store;  // the result on screen
+    std::shared_ptr<const SettledDrops> drops;   // and its settled drops (null: the scene does not settle)
     uint64_t shown_generation = 0;
     bool have_result = false;
     std::string asking_recovery;  // a path whose recovery dialog is open

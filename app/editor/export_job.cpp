@@ -22,14 +22,16 @@ const char* exportStageName(ExportStage stage) {
     return "?";
 }
 
-ExportJob::ExportJob(const Document& doc, std::shared_ptr<const InstanceStore> store, ExportSettings settings,
-                     std::string stats_json)
+ExportJob::ExportJob(const Document& doc, std::shared_ptr<const InstanceStore> store,
+                     std::shared_ptr<const SettledDrops> drops, ExportSettings settings, std::string stats_json)
     : settings_(std::move(settings)),
       stats_json_(std::move(stats_json)),
       models_(doc.models()),
       terrain_(doc.terrain()),
       extent_(doc.compiled().extent),
-      store_(std::move(store)) {
+      store_(std::move(store)),
+      drops_(std::move(drops)),
+      materials_(doc.materials()) {
     tile_.settings = doc.ghostTile().settings;
     tile_.candidates = doc.ghostTile().candidates;
     thread_ = std::thread([this] { work(); });
@@ -45,6 +47,8 @@ void ExportJob::work() {
     InstanceExportOptions options;
     options.chunk_size_m = settings_.chunk_size_m;
     options.use_instancing_extension = !settings_.plain_nodes;
+    options.drops = drops_.get();
+    options.materials = &materials_;
     options.progress = [this](float fraction) {
         progress_.store(fraction, std::memory_order_relaxed);
         if (cancelRequested()) return false;

@@ -5,8 +5,9 @@
 //   every frame:  draw job.progress() and job.stage(); a Cancel button calls job.cancel();
 //                 if (job.finished()) { job.ok() ? "wrote N instances" : messages.push_back(job.error()); }
 //
-// The job copies what it reads (the candidates, the models, the terrain's shared pointer, the extent) and
-// holds the instance store snapshot, so the document may be edited, closed or replaced while it runs.
+// The job copies what it reads (the candidates, the models, the terrain's shared pointer, the extent, the
+// surfaces' materials) and holds the instance store snapshot and its settled drops (so the file holds the
+// instances where the viewport shows them, resting, as `instantiate` writes them), so the document may be edited, closed or replaced while it runs.
 // Cancel works until the final write starts; the write itself is one atomic step (nothing half-written is
 // ever left at the path), and a Cancel that comes during it is too late: the file is written.
 #pragma once
@@ -19,6 +20,8 @@
 
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instance_store.h"
+#include "instancer/settling.h"
+#include "material/material.h"
 #include "mesh/detail_model.h"
 #include "scene/document.h"
 
@@ -36,8 +39,9 @@ const char* exportStageName(ExportStage stage);  // "gathering instances", "writ
 class ExportJob {
   public:
     // `store` must not be null. `stats_json` (a JSON object) goes into the scene's extras.
-    ExportJob(const Document& doc, std::shared_ptr<const InstanceStore> store, ExportSettings settings,
-              std::string stats_json);
+    // `drops`: the store's settled drops (null: the scene does not settle).
+    ExportJob(const Document& doc, std::shared_ptr<const InstanceStore> store,
+              std::shared_ptr<const SettledDrops> drops, ExportSettings settings, std::string stats_json);
     ~ExportJob();  // cancels (when still possible) and waits for the thread
     ExportJob(const ExportJob&) = delete;
     ExportJob& operator=(const ExportJob&) = delete;
@@ -64,6 +68,8 @@ class ExportJob {
     std::shared_ptr<const HeightField> terrain_;
     Bounds extent_;
     std::shared_ptr<const InstanceStore> store_;
+    std::shared_ptr<const SettledDrops> drops_;
+    SceneMaterials materials_;
 
     std::atomic<bool> cancel_{false};
     std::atomic<float> progress_{0.0f};

@@ -38,7 +38,8 @@ OffscreenRenderStatus renderSceneOffscreen(const OffscreenRenderOptions& options
     result->load_seconds = snap.load_seconds;
     result->instantiate_seconds = snap.instantiate_seconds;
     result->instances = snap.tiles.instanceCount();
-    renderer.setScene(snap.extent(), snap.terrain(), &snap.scene.meshes, snap.candidates(), snap.tileSize());
+    renderer.setScene(snap.extent(), snap.terrain(), &snap.scene.meshes, snap.candidates(), snap.tileSize(),
+                      &snap.scene.terrain_material);
     renderer.uploadTiles(&snap.tiles, snap.uploads);
 
     const float aspect = float(options.width) / float(options.height);

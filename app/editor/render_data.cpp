@@ -135,9 +135,18 @@ float candidateScaleMax(const CandidateSet& candidates, size_t type) {
     return scale;
 }
 
-std::vector<DetailLodMesh> buildTypeMeshes(const std::vector<DetailModel>& models, const CandidateSet& candidates) {
+std::vector<DetailLodMesh> buildTypeMeshes(const std::vector<DetailModel>& models, const CandidateSet& candidates,
+                                           const SceneMaterials* looks) {
     std::vector<DetailLodMesh> meshes;
-    for (size_t i = 0; i < models.size(); ++i) meshes.push_back(buildDetailLods(models[i], candidateScaleMax(candidates, i)));
+    for (size_t i = 0; i < models.size(); ++i) {
+        meshes.push_back(buildDetailLods(models[i], candidateScaleMax(candidates, i)));
+        if (looks && i < looks->types.size()) {
+            meshes.back().material = looks->types[i];
+            meshes.back().color = looks->types[i].base_color;
+        } else {
+            meshes.back().material.base_color = meshes.back().color;
+        }
+    }
     return meshes;
 }
 

@@ -29,6 +29,7 @@
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instance_store.h"
 #include "instancer/settling.h"
+#include "material/material.h"
 #include "mesh/detail_model.h"
 
 namespace ug::editor {
@@ -96,6 +97,9 @@ struct DetailLodMesh {
     float impostor_scale = 1.0f;
     float impostorPx(const LodSettings& lod) const { return lod.impostor_px * impostor_scale; }
     float scale_max = 1.0f;                  // the type's largest candidate scale
+    // How the type looks (material.h): `color` is its base colour; a texture (final colour, sRGB) is
+    // mapped by box projection of the model-space position, as the exporter maps it.
+    SurfaceMaterial material;
 
     uint32_t triangles(int lod) const {
         return lod == kImpostorLod ? kImpostorTriangles : index_count[size_t(lod)] / 3;
@@ -112,8 +116,10 @@ DetailLodMesh buildDetailLods(const DetailModel& model, float scale_max);
 
 // The largest scale among a type's candidates, at least 1 (a type without candidates: 1).
 float candidateScaleMax(const CandidateSet& candidates, size_t type);
-// Every detail type's LOD meshes (buildDetailLods), in type order, each with its candidates' largest scale.
-std::vector<DetailLodMesh> buildTypeMeshes(const std::vector<DetailModel>& models, const CandidateSet& candidates);
+// Every detail type's LOD meshes (buildDetailLods), in type order, each with its candidates' largest scale
+// and, when `looks` is given (Document::materials()), its material (and colour = the material's base).
+std::vector<DetailLodMesh> buildTypeMeshes(const std::vector<DetailModel>& models, const CandidateSet& candidates,
+                                           const SceneMaterials* looks = nullptr);
 
 // The instances as they live on the GPU: per detail type one instance array (the CPU mirror of the
 // type's GPU buffer) in which every resident tile owns a slot (tile_slots.h). A live result rewrites only

@@ -96,6 +96,7 @@ void EditorSession::adoptLoadedDocument() {
     renderer->clearScene();
     if (scene) scene->doc->close();
     store.reset();
+    drops.reset();
     instances = ResidentTiles{};
     primitive_markers_key = PrimitiveMarkersKey{};  // a new document may come at the old one's address
     have_result = false;
@@ -106,9 +107,8 @@ void EditorSession::adoptLoadedDocument() {
     result->recovered = loader->request().recover;
     loader.reset();
     Document& d = *scene->doc;
-    renderer->setScene(d.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr,
-                      &scene->meshes, d.ghostTile().candidates,
-                      d.ghostTile().settings.tile_size_m);
+    renderer->setScene(d.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr, &scene->meshes,
+                       d.ghostTile().candidates, d.ghostTile().settings.tile_size_m, &scene->terrain_material);
     // Every document opens framed, as on startup (a camera left where the last scene was would show
     // nothing of this one); the first result frames it again by the cells that fill.
     camera_moved = false;
@@ -190,7 +190,7 @@ void EditorSession::handleFileRequests() {
                          {"seed", doc->project().instantiation_seed},
                          {"instances", store->instanceCount()},
                          {"instances_per_type", perTypeJson(view.type_names, perTypeCounts(*store, c))}};
-        export_job = std::make_unique<ExportJob>(*doc, store, export_settings, stats.dump());
+        export_job = std::make_unique<ExportJob>(*doc, store, drops, export_settings, stats.dump());
         export_result.clear();
     }
     if (requests.cancel_export && export_job) export_job->cancel();

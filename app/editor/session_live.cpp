@@ -25,9 +25,10 @@ void EditorSession::syncTile() {
     Document& d = *scene->doc;
     scene_tile_generation = d.tileGeneration();
     const CandidateSet& c = d.ghostTile().candidates;
-    scene->meshes = buildTypeMeshes(d.models(), c);
+    const SceneMaterials looks = d.materials();
+    scene->meshes = buildTypeMeshes(d.models(), c, &looks);
     renderer->setScene(d.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr, &scene->meshes, c,
-                      d.ghostTile().settings.tile_size_m);
+                       d.ghostTile().settings.tile_size_m, &scene->terrain_material);
     // What is on screen indexes the old tile's candidates: nothing is shown until the new result.
     instances = ResidentTiles{};
     store = std::make_shared<const InstanceStore>();
@@ -77,6 +78,7 @@ bool EditorSession::takeLiveResult() {
                 std::max(result->repack_ms_max,
                          std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
             store = live.store;
+            drops = live.drops;
             shown_generation = live.generation;
             view.instances = instances.instanceCount();
             view.instances_per_type = instances.instances_per_type;

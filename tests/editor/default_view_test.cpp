@@ -7,6 +7,7 @@
 #include <glm/gtc/constants.hpp>
 
 #include "editor/default_view.h"
+#include "instancer/tile_coord.h"
 
 namespace ug::editor {
 namespace {
@@ -94,6 +95,57 @@ TEST(DefaultView, ANarrowerViewportStandsFurtherBack) {
     const float tall = defaultView(field, 9.0f / 16.0f).distance_m;
     EXPECT_LT(wide, square);
     EXPECT_LT(square, tall);
+}
+
+// Resident tiles with `n` instances of type 0 in each listed cell (only the fields openingBounds reads).
+ResidentTiles tilesWith(const std::vector<std::pair<glm::ivec3, uint32_t>>& cells) {
+    ResidentTiles r;
+    r.type_count = 1;
+    r.tile_size_m = 0.5f;
+    r.instances_per_type = {0};
+    for (const auto& [c, n] : cells) {
+        r.tile_key.push_back(packTile(c));
+        r.tile_coord.push_back(c);
+        r.count.push_back(n);
+        r.instances_per_type[0] += n;
+    }
+    return r;
+}
+
+TEST(DefaultView, ALargeSceneOpensOnItsDensestPatchAtDetailSize) {
+    const Bounds extent{glm::vec3(-40.0f, -40.0f, -1.0f), glm::vec3(40.0f, 40.0f, 3.0f)};
+    std::vector<std::pair<glm::ivec3, uint32_t>> cells;
+    for (int x = -80; x < 80; x += 4)
+        for (int y = -80; y < 80; y += 4) cells.push_back({glm::ivec3(x, y, 0), 1});  // a sparse field
+    for (int x = 40; x < 44; ++x)
+        for (int y = -20; y < -16; ++y) cells.push_back({glm::ivec3(x, y, 4), 50});  // a dense heap at (21, -9), 2 m up
+    const ResidentTiles tiles = tilesWith(cells);
+    std::vector<DetailLodMesh> meshes(1);
+    meshes[0].radius_m = 0.1f;
+    meshes[0].scale_max = 1.0f;
+    const Bounds open = openingBounds(extent, nullptr, &tiles, meshes);
+    const glm::vec2 centre = 0.5f * (glm::vec2(open.lo) + glm::vec2(open.hi));
+    EXPECT_NEAR(centre.x, 21.0f, 1.5f);
+    EXPECT_NEAR(centre.y, -9.0f, 1.5f);
+    // The patch's floor and ceiling (the field's cells in it and the heap's), not the extent's.
+    EXPECT_EQ(open.lo.z, 0.0f);
+    EXPECT_EQ(open.hi.z, 2.5f);
+    // Framed, a 0.2 m object at the target fills about 1/30 of the view's height.
+    const OrbitCamera cam = defaultView(open, 16.0f / 9.0f);
+    const float fraction = 0.2f / (2.0f * cam.distance_m * std::tan(0.5f * cam.fov_y_rad));
+    EXPECT_GT(fraction, 0.5f * kOpeningDetailFraction);
+    EXPECT_LT(fraction, 2.0f * kOpeningDetailFraction);
+}
+
+TEST(DefaultView, ASmallPileOpensWhole) {
+    const Bounds extent{glm::vec3(-2.0f), glm::vec3(2.0f)};
+    const ResidentTiles tiles = tilesWith({{glm::ivec3(-1, -1, 0), 40}, {glm::ivec3(0, 0, 0), 40}, {glm::ivec3(1, 0, 0), 3}});
+    std::vector<DetailLodMesh> meshes(1);
+    meshes[0].radius_m = 0.1f;
+    const Bounds open = openingBounds(extent, nullptr, &tiles, meshes);
+    const Bounds all = framingBounds(extent, nullptr, &tiles);
+    EXPECT_EQ(glm::vec2(open.lo), glm::vec2(all.lo));
+    EXPECT_EQ(glm::vec2(open.hi), glm::vec2(all.hi));
 }
 
 }  // namespace

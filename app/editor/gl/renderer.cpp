@@ -27,6 +27,9 @@ static_assert(sizeof(GpuCandidateFrame) == 32);
 // The shadow map's texture unit (unit 0 is left to the material textures).
 constexpr GLint kShadowUnit = 1;
 constexpr GLint kSilhouetteUnit = 5;
+// lit_surface.frag's u_texture_mode: how a surface's texture coordinates come about (material/uv_projection.h).
+constexpr int kTextureBoxModel = 1;  // box projection of the model-space position (detail types)
+constexpr int kTextureWorldXY = 2;   // world X and Y (the terrain)
 
 GLint loc(const ShaderProgram& p, const char* name) { return glGetUniformLocation(p.id, name); }
 
@@ -126,6 +129,9 @@ void Renderer::releaseScene() {
     terrain_vao_ = terrain_vertices_ = terrain_indices_ = candidate_buffer_ = 0;
     if (silhouette_array_) glDeleteTextures(1, &silhouette_array_);
     silhouette_array_ = 0;
+    for (const auto& [img, id] : textures_) glDeleteTextures(1, &id);
+    textures_.clear();
+    terrain_texture_ = 0;
     terrain_index_count_ = 0;
     has_scene_ = false;
     tiles_ = nullptr;
@@ -140,9 +146,44 @@ void Renderer::releaseTargets() {
     shadow_px_ = scene_w_ = scene_h_ = 0;
 }
 
+unsigned Renderer::uploadTexture(const std::shared_ptr<const TextureImage>& image) {
+    if (!image || image->width <= 0 || image->height <= 0) return 0;
+    for (const auto& [img, id] : textures_)
+        if (img == image.get()) return id;
+    GLuint id = 0;
+    glGenTextures(1, &id);
+    glBindTexture(GL_TEXTURE_2D, id);
+    const int levels = int(std::floor(std::log2(float(std::max(image->width, image->height))))) + 1;
+    // The image is the final colour in sRGB (material.h): sampled as linear albedo.
+    glTexStorage2D(GL_TEXTURE_2D, levels, GL_SRGB8_ALPHA8, image->width, image->height);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, image->width, image->height, GL_RGBA, GL_UNSIGNED_BYTE, image->rgba.data());
+    glGenerateMipmap(GL_TEXTURE_2D);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    textures_.push_back({image.get(), id});
+    return id;
+}
+
+void Renderer::bindMaterial(const ShaderProgram& p, const SurfaceMaterial& m, unsigned texture, int mode) const {
+    glActiveTexture(GL_TEXTURE0);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glUniform1i(loc(p, "u_albedo"), 0);
+    glUniform1i(loc(p, "u_texture_mode"), texture ? mode : 0);
+    glUniform1f(loc(p, "u_texture_scale_m"), m.texture_scale_m);
+    glUniform1i(loc(p, "u_alpha_cutout"), texture && m.alpha_cutout ? 1 : 0);
+    glUniform1f(loc(p, "u_tint_variation"), m.tint_variation);
+}
+
 void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const std::vector<DetailLodMesh>* meshes,
-                        const CandidateSet& candidates, float tile_size_m) {
+                        const CandidateSet& candidates, float tile_size_m, const SurfaceMaterial* terrain_material) {
     releaseScene();
+    terrain_material_ = terrain_material ? *terrain_material : SurfaceMaterial{};
+    if (!terrain_material) terrain_material_.base_color = glm::vec3(0.20f, 0.15f, 0.09f);  // bare earth under grass
+    terrain_texture_ = uploadTexture(terrain_material_.texture);
     extent_ = extent;
     tile_size_m_ = tile_size_m;
     meshes_ = meshes;
@@ -194,6 +235,7 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
         const DetailLodMesh& m = (*meshes)[i];
         TypeBuffers& t = types_[i];
         uploadMesh(m.positions, m.normals, m.indices, &t.vao, &t.vertex_buffer, &t.index_buffer);
+        t.texture = uploadTexture(m.material.texture);
         glGenBuffers(1, &t.instance_buffer);
         // The instance attribute: two unsigned ints, advancing once per instance of the mesh, from the
         // command's baseInstance on (the tile's slot). The impostor VAO reads the same buffer one instance
@@ -328,8 +370,8 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
     } else if (terrain_index_count_ > 0) {
         glUseProgram(terrain_.id);
         glUniformMatrix4fv(loc(terrain_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
-        const glm::vec3 ground(0.20f, 0.15f, 0.09f);  // darker than kTerrainColor: bare earth under the grass
-        glUniform3fv(loc(terrain_, "u_color"), 1, glm::value_ptr(ground));
+        glUniform3fv(loc(terrain_, "u_color"), 1, glm::value_ptr(terrain_material_.base_color));
+        bindMaterial(terrain_, terrain_material_, terrain_texture_, kTextureWorldXY);
         setLighting(terrain_, eye, fog_density);
         glBindVertexArray(terrain_vao_);
         glDrawElements(GL_TRIANGLES, GLsizei(terrain_index_count_), GL_UNSIGNED_INT, nullptr);
@@ -588,7 +630,13 @@ void Renderer::drawMeshLods(const ShaderProgram& program, const IndirectDraws& d
     for (size_t i = 0; i < types_.size() && i < draws.groups.size(); ++i) {
         if (!types_[i].visible) continue;
         const DetailLodMesh& m = (*meshes_)[i];
-        if (!shadow) glUniform3fv(loc(program, "u_color"), 1, glm::value_ptr(m.color));
+        if (!shadow) {
+            glUniform3fv(loc(program, "u_color"), 1, glm::value_ptr(m.color));
+            bindMaterial(program, m.material, types_[i].texture, kTextureBoxModel);
+            // A cut-out sheet is seen from both sides through its holes.
+            if (types_[i].texture && m.material.alpha_cutout) glDisable(GL_CULL_FACE);
+            else glEnable(GL_CULL_FACE);
+        }
         glUniform1f(loc(program, "u_lod_diameter_px"), lodDiameterPx(m, pixels_per_radian));
         glUniform1f(loc(program, "u_impostor_px"), m.impostorPx(lod));
         glBindVertexArray(types_[i].vao);
@@ -663,6 +711,7 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
         const IndirectDraws::Group& g = draws_.groups[i][kImpostorLod];
         if (g.count == 0) continue;
         glUniform3fv(loc(impostor_, "u_color"), 1, glm::value_ptr(m.color));
+        glUniform1f(loc(impostor_, "u_tint_variation"), m.material.tint_variation);
         glUniform3fv(loc(impostor_, "u_center"), 1, glm::value_ptr(m.center));
         glUniform4fv(loc(impostor_, "u_coverage_m2"), 1, m.coverage_m2.data());
         glUniform1f(loc(impostor_, "u_upness"), m.upness);

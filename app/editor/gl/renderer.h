@@ -23,6 +23,8 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <memory>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -33,6 +35,7 @@
 #include "editor/orbit_camera.h"
 #include "editor/render_data.h"
 #include "field/bounds.h"
+#include "material/material.h"
 #include "ghosttile/ghost_tile.h"
 #include "mesh/triangle_mesh.h"
 
@@ -73,8 +76,10 @@ public:
 
     // The static scene: terrain (may be empty: a ground grid at the extent's floor is drawn instead),
     // detail meshes and the candidate frames. The pointed-to meshes must outlive the renderer's use.
+    // `terrain_material` (may be null: the default ground) is copied; the meshes' materials are read from
+    // the meshes (render_data.h DetailLodMesh::material). Textures are uploaded once per image.
     void setScene(const Bounds& extent, const TriangleMesh* terrain, const std::vector<DetailLodMesh>* meshes,
-                  const CandidateSet& candidates, float tile_size_m);
+                  const CandidateSet& candidates, float tile_size_m, const SurfaceMaterial* terrain_material = nullptr);
     // The resident tiles (kept by pointer: the owner keeps them alive; null: none) and what the latest
     // update changed in them: only those slot ranges are uploaded (the whole type buffer when `uploads`
     // says so). The indirect commands are rebuilt on the next frame.
@@ -104,7 +109,11 @@ private:
         unsigned vertex_buffer = 0, index_buffer = 0, instance_buffer = 0;
         uint32_t instance_capacity = 0;  // elements the GPU buffer holds
         bool visible = true;
+        unsigned texture = 0;            // owned by textures_ (shared between types using one image)
     };
+    // A material's GL state: its texture (0: none) and the uniforms lit_surface.frag reads.
+    void bindMaterial(const ShaderProgram& program, const SurfaceMaterial& m, unsigned texture, int mode) const;
+    unsigned uploadTexture(const std::shared_ptr<const TextureImage>& image);
     void releaseScene();
     void releaseTargets();
     // (Re)builds the commands of `draws` when its view, the LOD settings or the tiles changed.
@@ -150,7 +159,10 @@ private:
     unsigned terrain_vao_ = 0, terrain_vertices_ = 0, terrain_indices_ = 0;
     uint32_t terrain_index_count_ = 0;
     unsigned candidate_buffer_ = 0;
-    unsigned silhouette_array_ = 0;  // impostor silhouettes, kCoverageElevations layers per type
+    unsigned silhouette_array_ = 0;
+    std::vector<std::pair<const TextureImage*, unsigned>> textures_;  // material images -> GL textures
+    SurfaceMaterial terrain_material_;
+    unsigned terrain_texture_ = 0;  // impostor silhouettes, kCoverageElevations layers per type
     std::vector<TypeBuffers> types_;
     const std::vector<DetailLodMesh>* meshes_ = nullptr;
     const ResidentTiles* tiles_ = nullptr;
