@@ -31,7 +31,7 @@ dump() {
   rm -f stats.json
   key F12
   for _ in $(seq 1 40); do [ -s stats.json ] && break; sleep 0.25; done
-  [ -s stats.json ] || { echo "F12 wrote no statistics ($1)"; kill "$editor"; exit 1; }
+  [ -s stats.json ] || { echo "F12 wrote no statistics ($1): the key never reached the shortcuts (a field kept the keyboard?)"; kill "$editor"; exit 1; }
   mv stats.json "$1.json"
   title "$1"
 }
