@@ -33,6 +33,7 @@ void DocumentLoader::work() {
                                  : Document::open(request_.scene_path, request_.options, &error);
     }
     if (!s.doc) return failWith(error);
+    progress_.store(0.7f);
     const Document& doc = *s.doc;
     if (doc.terrain()) {
         // 512 cells a side at most: the meadow's 80 x 80 samples stay exact, a large image is decimated.
@@ -48,10 +49,12 @@ void DocumentLoader::work() {
             return failWith(request_.scene_path + ": terrain mesh: " + error);
         s.has_terrain = true;
     }
+    progress_.store(0.85f);
     // The materials bake their textures (a few hundred ms): here, off the UI thread.
     const SceneMaterials looks = doc.materials();
     s.meshes = buildTypeMeshes(doc.models(), doc.ghostTile().candidates, &looks);
     s.terrain_material = looks.terrain;
+    progress_.store(1.0f);
     phase_.store(LoadPhase::Ready, std::memory_order_release);
 }
 

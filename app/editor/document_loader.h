@@ -45,6 +45,10 @@ class DocumentLoader {
     DocumentLoader& operator=(const DocumentLoader&) = delete;
 
     LoadPhase phase() const { return phase_.load(std::memory_order_acquire); }
+    // The worker's stages so far, in [0, 1]: the document opened (project, terrain, models, the Ghost Tile
+    // verified or built, compiled), its terrain mesh, its detail LODs. The first instantiation comes after
+    // (LiveInstancer::fullRunProgress).
+    float progress() const { return progress_.load(std::memory_order_relaxed); }
     const LoadRequest& request() const { return request_; }
     // Valid when phase() is Ready; the worker has finished with it.
     EditorScene& scene() { return *scene_; }
@@ -58,6 +62,7 @@ class DocumentLoader {
     std::unique_ptr<EditorScene> scene_;
     std::string error_;
     std::atomic<LoadPhase> phase_{LoadPhase::Loading};
+    std::atomic<float> progress_{0.0f};
     std::thread thread_;
 };
 

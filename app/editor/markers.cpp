@@ -289,14 +289,14 @@ void addSphereOverlay(const ResidentTiles& tiles, const CandidateSet& c, const s
     }
 }
 
-void addBrushMarker(const Document& doc, glm::vec3 center, float r, MarkerGeometry* out) {
+void addBrushMarker(const Document& doc, glm::vec3 center, float r, bool on_ground, MarkerGeometry* out) {
     for (int k = 0; k < kCircleSegments; ++k) {
         glm::vec3 p[2];
         for (int e = 0; e < 2; ++e) {
             const float t = 6.2831853f * float(k + e) / kCircleSegments;
             p[e] = center + r * glm::vec3(std::cos(t), std::sin(t), 0.0f);
             // Draped 3 cm over the ground so the ground does not hide it.
-            if (doc.terrain()) p[e].z = doc.terrain()->sample(p[e].x, p[e].y) + 0.03f;
+            if (on_ground && doc.terrain()) p[e].z = doc.terrain()->sample(p[e].x, p[e].y) + 0.03f;
         }
         out->lines.push_back({p[0], kBrushColor});
         out->lines.push_back({p[1], kBrushColor});

@@ -76,7 +76,10 @@ void addAnchorOverlay(const ResidentTiles& tiles, const CandidateSet& candidates
 void addSphereOverlay(const ResidentTiles& tiles, const CandidateSet& candidates,
                       const std::vector<DetailModel>& models, glm::vec3 target, float radius_m, MarkerGeometry* out);
 
-// A circle of radius r on the surface around `center` (draped over the terrain when there is one).
-void addBrushMarker(const Document& doc, glm::vec3 center, float radius_m, MarkerGeometry* out);
+// A circle of radius r around `center`, the point the brush works on: draped over the terrain when that
+// point is on the ground (`on_ground`), else (a pile's surface, above the ground) flat at its height: a
+// ring draped over the ground under a pile's flank lies nearer the camera than the cursor's point and is
+// drawn well below the cursor on screen.
+void addBrushMarker(const Document& doc, glm::vec3 center, float radius_m, bool on_ground, MarkerGeometry* out);
 
 }  // namespace ug::editor

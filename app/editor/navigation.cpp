@@ -2,10 +2,12 @@
 
 #include <GLFW/glfw3.h>  // key codes only: the ImGui 1.86 GLFW backend indexes io.KeysDown by them
 #include <imgui.h>
+#include <imgui_internal.h>  // ClearActiveID: 1.86 has no public way to deactivate an item
 
 namespace ug::editor {
 
-bool navigate(OrbitCamera* camera, const Bounds& extent, float viewport_height_px, const Bounds* selection) {
+bool navigate(OrbitCamera* camera, const Bounds& extent, float viewport_height_px, const Bounds* selection,
+              const glm::vec3* zoom_pivot) {
     ImGuiIO& io = ImGui::GetIO();
     const OrbitCamera before = *camera;
     if (!io.WantCaptureMouse) {
@@ -20,7 +22,12 @@ bool navigate(OrbitCamera* camera, const Bounds& extent, float viewport_height_p
             else
                 orbit(camera, d.x, d.y);
         }
-        if (io.MouseWheel != 0.0f) zoom(camera, io.MouseWheel);
+        if (io.MouseWheel != 0.0f) {
+            if (zoom_pivot)
+                zoomToward(camera, io.MouseWheel, *zoom_pivot);
+            else
+                zoom(camera, io.MouseWheel);
+        }
     }
     auto moved = [&] {
         return camera->target != before.target || camera->distance_m != before.distance_m ||
@@ -42,6 +49,24 @@ bool navigate(OrbitCamera* camera, const Bounds& extent, float viewport_height_p
         camera->distance_m = framed.distance_m;
     }
     return moved();
+}
+
+bool giveKeyboardBackToViewport() {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (!io.WantCaptureKeyboard) return false;
+    // A dialog's field (Open, Save As) keeps the keyboard wherever the mouse goes; so does a panel's
+    // field while the mouse is over a panel.
+    if (ImGui::IsPopupOpen("", ImGuiPopupFlags_AnyPopupId)) return false;
+    if (ImGui::IsWindowHovered(ImGuiHoveredFlags_AnyWindow)) return false;
+    bool clicked = false;
+    for (int b = 0; b < ImGuiMouseButton_COUNT; ++b) clicked |= ImGui::IsMouseClicked(b);
+    // A button held since before (a slider dragged out of its panel) is the panel's drag: it goes on.
+    if (!clicked && ImGui::IsAnyMouseDown()) return false;
+    const bool moved = io.MouseDelta.x != 0.0f || io.MouseDelta.y != 0.0f;
+    if (!clicked && !moved) return false;
+    ImGui::ClearActiveID();  // the field keeps what was typed (ImGui applies each edit as it is made)
+    ImGui::SetWindowFocus(nullptr);
+    return true;
 }
 
 }  // namespace ug::editor

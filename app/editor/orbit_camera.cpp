@@ -71,6 +71,36 @@ void zoom(OrbitCamera* camera, float steps) {
     camera->distance_m = std::clamp(camera->distance_m * std::pow(1.2f, -steps), 0.02f, 1.0e5f);
 }
 
+void zoomToward(OrbitCamera* camera, float steps, glm::vec3 pivot) {
+    const float before = camera->distance_m;
+    zoom(camera, steps);
+    const float k = camera->distance_m / before;  // 1 when the zoom is at its limit
+    camera->target = pivot + (camera->target - pivot) * k;
+}
+
+bool keepEyeAboveGround(OrbitCamera* camera, const GroundHeight& ground_z, float margin_m) {
+    bool moved = false;
+    // Raising the pitch moves the eye's XY, hence the ground under it: a few rounds settle it (terrains
+    // are smooth at the scale of a camera step); whatever is left is taken up by the target below.
+    for (int round = 0; round < 8; ++round) {
+        const glm::vec3 eye = camera->eye();
+        const float floor_z = ground_z(glm::vec2(eye)) + margin_m;
+        if (!(eye.z < floor_z)) return moved;
+        moved = true;
+        const float s = (floor_z - camera->target.z) / std::max(camera->distance_m, 1e-6f);
+        if (s >= std::sin(kPitchLimitRad)) break;
+        // Slightly above the exact pitch, so rounding leaves the eye above the floor, not on it.
+        camera->pitch_rad = std::min(kPitchLimitRad, std::asin(std::max(s, -1.0f)) + 1e-4f);
+    }
+    const glm::vec3 eye = camera->eye();
+    const float floor_z = ground_z(glm::vec2(eye)) + margin_m;
+    if (eye.z < floor_z) {
+        camera->target.z += floor_z - eye.z + 1e-4f;
+        moved = true;
+    }
+    return moved;
+}
+
 void setPreset(OrbitCamera* camera, ViewPreset preset) {
     switch (preset) {
         case ViewPreset::Front: camera->yaw_rad = glm::radians(-90.0f); camera->pitch_rad = 0.0f; break;

@@ -2,6 +2,8 @@
 // navigation.h turns mouse and keys into its moves, the renderer only reads its matrices.
 #pragma once
 
+#include <functional>
+
 #include <glm/glm.hpp>
 
 #include "field/bounds.h"
@@ -34,6 +36,18 @@ void orbit(OrbitCamera* camera, float dx_px, float dy_px);
 void pan(OrbitCamera* camera, float dx_px, float dy_px, float viewport_height_px);
 // Wheel steps: > 0 zooms in (each step 1/1.2 of the distance).
 void zoom(OrbitCamera* camera, float steps);
+
+// Wheel steps toward a world point (the ground under the cursor): the eye and the target both scale about
+// `pivot` by the zoom factor, so the view direction is kept and `pivot` stays on the same pixel.
+void zoomToward(OrbitCamera* camera, float steps, glm::vec3 pivot);
+
+// The height of the ground at a world XY (the terrain, or the ground plane where there is none).
+using GroundHeight = std::function<float(glm::vec2 xy_m)>;
+constexpr float kEyeGroundMargin_m = 0.05f;  // how far above the ground the eye stays at least
+// Keeps the eye at least `margin_m` above the ground under it: first by raising the pitch (the eye swings
+// up around the target, the view stays on it), then, if even the steepest pitch is not enough (the target
+// itself is under ground), by lifting the target. Returns true when the camera had to move.
+bool keepEyeAboveGround(OrbitCamera* camera, const GroundHeight& ground_z, float margin_m = kEyeGroundMargin_m);
 
 enum class ViewPreset { Front, Side, Top };  // Blender's numpad 1 / 3 / 7
 void setPreset(OrbitCamera* camera, ViewPreset preset);

@@ -48,6 +48,10 @@ float groundPlaneZ(const Bounds& extent) {
 
 }  // namespace
 
+float groundHeightAt(const Document& doc, glm::vec2 xy) {
+    return doc.terrain() ? doc.terrain()->sample(xy.x, xy.y) : groundPlaneZ(doc.compiled().extent);
+}
+
 SurfaceHit pickGround(const Document& doc, const Ray& ray) {
     SurfaceHit out;
     float t = 0.0f;

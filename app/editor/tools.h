@@ -81,6 +81,8 @@ struct SurfaceHit {
 // The ground under a ray: the terrain, or without one the plane z = 0 when the extent holds it, else the
 // extent's floor (what the renderer draws as the ground grid).
 SurfaceHit pickGround(const Document& doc, const Ray& ray);
+// The ground's height at world (x, y): the terrain's, else the ground plane's (what pickGround meets).
+float groundHeightAt(const Document& doc, glm::vec2 xy_m);
 // The sculpt type's f = kSculptIso isosurface when the ray meets it before the ground, else the ground.
 SurfaceHit pickPile(const Document& doc, size_t type, const Ray& ray);
 

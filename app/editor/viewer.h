@@ -86,6 +86,12 @@ struct ViewerResult {
     // Mouse sculpt strokes, in order: each one's pile (viewer.cpp pileRecord) measured as it was released.
     nlohmann::json sculpt_strokes = nlohmann::json::array();
     std::vector<std::string> messages;      // errors shown in the UI
+    // The viewport as the user sees it (viewer.cpp viewportJson): the camera, the eye's ground height, the
+    // cursor, the ground point under it, the brush ring's screen centre, the active tool, the Statistics
+    // panel's document name, whether ImGui has the keyboard. Interactive runs with --stats rewrite the
+    // statistics on F12 too, so a driven session can read it after each step.
+    nlohmann::json viewport = nlohmann::json::object();
+    std::string window_title;
 };
 
 enum class ViewerStatus { Ok, NoDisplay, Failed };

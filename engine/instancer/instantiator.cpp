@@ -24,6 +24,20 @@ namespace ug {
 
 namespace {
 
+// InstanceOptions::fraction: computing the tiles is the first 60 % of a full run, resolving them the rest.
+constexpr float kComputeShare = 0.6f;
+
+// Raises *a to v (never lowers it: workers finish out of order).
+void storeMax(std::atomic<float>* a, float v) {
+    float cur = a->load(std::memory_order_relaxed);
+    while (cur < v && !a->compare_exchange_weak(cur, v, std::memory_order_relaxed)) {
+    }
+}
+
+}  // namespace
+
+namespace {
+
 constexpr int32_t kEmptyTile = -1;    // a neighbour tile known to hold no alive candidate
 constexpr int32_t kUnknownTile = -2;  // a neighbour tile not computed yet (region mode only)
 
@@ -555,7 +569,8 @@ bool Instantiator::Engine::enumerateAndCompute(const Bounds& box_in, const Insta
                                                                                                     : nullptr;
                 computeTile(&ts, parents, &scratch);
             }
-            done.fetch_add(coords.size(), std::memory_order_relaxed);
+            const uint64_t now_done = done.fetch_add(coords.size(), std::memory_order_relaxed) + coords.size();
+            if (options.fraction && tile_total > 0) storeMax(options.fraction, kComputeShare * float(now_done) / float(tile_total));
         }
     });
     if (stop.load()) {
@@ -763,10 +778,15 @@ bool Instantiator::Engine::resolveTiles(const std::vector<int32_t>& which, const
     missing_per_worker.resize(size_t(threads));
     std::vector<uint64_t> resolved_per_worker(size_t(threads), 0);
     std::atomic<bool> stop{false};
+    std::atomic<uint64_t> resolved_tiles{0};
     parallelFor(order.size(), threads, 4, [&](size_t b, size_t e, int worker) {
         Resolver resolver(tiles, input.tile->graph);
         for (size_t k = b; k < e; ++k) {
             if (options.cancel && options.cancel->load()) return stop.store(true);
+            if (options.fraction) {
+                const uint64_t n = resolved_tiles.fetch_add(1, std::memory_order_relaxed) + 1;
+                storeMax(options.fraction, kComputeShare + (1.0f - kComputeShare) * float(n) / float(order.size() + 1));
+            }
             const int32_t t = order[k];
             for (uint32_t a : tiles[t].order) {
                 // In region mode, only the wanted candidates are driven; others resolve on demand.
@@ -872,6 +892,7 @@ bool Instantiator::instantiateAll(const InstanceOptions& options, InstanceStats*
     st.tiles_changed = e.store.tileCount();
     st.seconds = secondsSince(t0);
     if (options.progress) options.progress(1.0f);
+    if (options.fraction) options.fraction->store(1.0f);
     if (stats) *stats = st;
     return true;
 }

@@ -53,6 +53,9 @@ struct InstanceOptions {
     int threads = 0;                                // 0 = all hardware threads
     const std::atomic<bool>* cancel = nullptr;      // true: stop early, the call returns false
     std::function<void(float fraction)> progress;   // from the calling thread, in [0, 1]
+    // Optional: instantiateAll stores its progress here as the tiles are computed and resolved (from the
+    // worker threads, never decreasing, 1 at the end), for a UI thread to read while the call runs.
+    std::atomic<float>* fraction = nullptr;
     uint64_t max_memory_bytes = 8ull << 30;         // refuse up front a scene whose state may need more
     uint64_t tile_order_seed = 0;                   // tests: resolve tiles in a shuffled order (0 = sorted)
 };

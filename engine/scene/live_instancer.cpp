@@ -178,18 +178,26 @@ bool LiveInstancer::runJob(Job& job, InstanceStats* stats, std::vector<uint64_t>
     // Full: a reset, or an edit after a failed run. Every tile of the old and new result changed.
     instantiated_ = false;
     *full = true;
+    full_instantiated_.store(0.0f);
+    full_settled_.store(0.0f);
+    InstanceOptions full_options = options;
+    full_options.fraction = &full_instantiated_;
     std::vector<uint64_t> old_keys = tileKeys(last_store_.get());
     if (base_.extent.empty()) {  // no density anywhere: nothing to instantiate
         last_store_ = std::make_shared<const InstanceStore>();
         *changed = std::move(old_keys);
         settle(true, changed);
+        full_instantiated_.store(1.0f);
+        full_settled_.store(1.0f);
         return true;
     }
-    if (!instantiator_.setInput(base_, error) || !instantiator_.instantiateAll(options, stats, error)) return false;
+    if (!instantiator_.setInput(base_, error) || !instantiator_.instantiateAll(full_options, stats, error))
+        return false;
     instantiated_ = true;
     last_store_ = std::make_shared<const InstanceStore>(instantiator_.store());
     *changed = sortedUnion(old_keys, tileKeys(last_store_.get()));
     settle(true, changed);
+    full_settled_.store(1.0f);
     return true;
 }
 
@@ -208,6 +216,10 @@ void LiveInstancer::settle(bool full, std::vector<uint64_t>* changed) {
         *changed = sortedUnion(*changed, touched);
     }
     last_drops_ = std::move(drops);
+}
+
+float LiveInstancer::fullRunProgress() const {
+    return 0.9f * full_instantiated_.load() + 0.1f * full_settled_.load();
 }
 
 }  // namespace ug

@@ -84,6 +84,9 @@ public:
     // Blocks until nothing is queued or running (tests, scripted runs, closing).
     void waitIdle();
     uint64_t generation() const;  // of the latest submission
+    // The latest full run's progress in [0, 1] (instantiating 90 %, settling the rest): 0 when it starts,
+    // 1 once it is done (a UI's progress bar while a big scene's first result is computed).
+    float fullRunProgress() const;
 
 private:
     struct Job {
@@ -112,6 +115,8 @@ private:
     bool have_input_ = false;
     uint64_t generation_ = 0;
     std::atomic<bool> cancel_{false};
+    std::atomic<float> full_instantiated_{0.0f};  // InstanceOptions::fraction of the full run
+    std::atomic<float> full_settled_{0.0f};       // 0 or 1
     // Published, under mutex_.
     LiveResult published_;
     bool fresh_ = false;

@@ -59,6 +59,7 @@ OpenStatus Window::open(const WindowOptions& options, std::string* error) {
         *error = "cannot create an OpenGL 4.3 core window: " + g_last_glfw_error;
         return OpenStatus::Failed;
     }
+    title_ = options.title;
     glfwMakeContextCurrent(window_);
     glfwSwapInterval(options.vsync ? 1 : 0);
     if (epoxy_gl_version() < 43) {
@@ -99,6 +100,12 @@ void Window::renderUi() {
 
 void Window::swapBuffers() { glfwSwapBuffers(window_); }
 void Window::finish() { glFinish(); }
+void Window::setTitle(const std::string& title) {
+    if (title == title_) return;
+    title_ = title;
+    glfwSetWindowTitle(window_, title_.c_str());
+}
+
 void Window::framebufferSize(int* width, int* height) const { glfwGetFramebufferSize(window_, width, height); }
 
 }  // namespace ug::editor::gl

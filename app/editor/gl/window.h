@@ -38,6 +38,9 @@ public:
     void swapBuffers();
     void finish();        // glFinish: frame times that include the GPU's (llvmpipe's) work
     void framebufferSize(int* width, int* height) const;
+    // Sets the title bar's text (UTF-8); a title equal to the current one costs nothing (called per frame).
+    void setTitle(const std::string& title);
+    const std::string& title() const { return title_; }
     const std::string& glVersion() const { return gl_version_; }
     const std::string& rendererName() const { return renderer_; }
 
@@ -46,6 +49,7 @@ private:
     bool imgui_ready_ = false;
     std::string gl_version_;
     std::string renderer_;
+    std::string title_;
 };
 
 }  // namespace ug::editor::gl

@@ -1,0 +1,230 @@
+// The editor's session (viewer.h runViewer): one window on a Document, its panels, tools, live instancing,
+// replay and statistics. The state lives here; the frame's steps are methods, grouped by subsystem in
+// their own files:
+//   editor_session.cpp    the main loop (STYLE.md's flat loop), start-up, the statistics
+//   session_document.cpp  the document's lifecycle: open / recover / new, menus and shortcuts' requests,
+//                         save, save as, the unsaved-changes and recovery dialogs, autosave
+//   session_live.cpp      live instancing: finished results re-packed for the GPU (resident tiles)
+//   session_input.cpp     the UI frame: navigation (zoom to the cursor, the eye above the ground), the
+//                         keyboard given back to the viewport, panels, the mouse tools and brush ring
+//   session_replay.cpp    replay scripts (replay.h): actions started, advanced and recorded
+//   session_render.cpp    the frame's render, overlays and screenshots; the after-frame bookkeeping
+//   session_stats.h, background_jobs.h   free helpers: action statistics, finished jobs' outcomes
+// Internal to app/editor: nothing outside viewer.cpp constructs one.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <cmath>
+#include <memory>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <nlohmann/json.hpp>
+
+#include "editor/document_loader.h"
+#include "editor/export_job.h"
+#include "editor/gl/renderer.h"
+#include "editor/gl/window.h"
+#include "editor/markers.h"
+#include "editor/orbit_camera.h"
+#include "editor/panels.h"
+#include "editor/render_data.h"
+#include "editor/tools.h"
+#include "editor/viewer.h"
+#include "scene/document.h"
+#include "scene/ghost_tile_job.h"
+
+namespace ug::editor {
+
+// What "frame all" (Home) frames, and the view a scene opens on, for the session's scene (viewer.cpp,
+// over default_view.h).
+Bounds framingBounds(const EditorScene& s, const ResidentTiles* instances);
+Bounds openingBounds(const EditorScene& s, const ResidentTiles& instances);
+
+class EditorSession {
+public:
+    EditorSession(const ViewerOptions& options, ViewerResult* result, std::string* error);
+    ViewerStatus run();
+
+private:
+    using Clock = std::chrono::steady_clock;
+    using json = nlohmann::json;
+
+    // A stamp waiting for the frame that shows it.
+    struct PendingStamp {
+        uint64_t generation = 0;
+        Clock::time_point time;
+        int action = -1;  // replay action index, -1 for the mouse
+    };
+    // The replay's progress (replay.h).
+    struct ReplayState {
+        size_t index = 0;
+        bool started = false;
+        bool finishing = false;  // the action's edits are all made; waiting for the settled result
+        std::vector<glm::vec2> path;
+        size_t step = 0;
+        json record;
+        json uploads = json::array();       // per live result while the action ran
+        std::set<uint64_t> uploaded_tiles;  // packed keys
+        std::shared_ptr<const InstanceStore> before;
+        std::vector<double> stamp_ms;
+        Bounds moved_from;  // move: the primitive's support before
+    };
+    // The user primitives' skeletons and hulls change only with an edit, the selection or the hull toggle,
+    // so they are kept between frames: a stroke leaves dozens of hulls of hundreds of triangles each.
+    struct PrimitiveMarkersKey {
+        const Document* doc = nullptr;
+        uint64_t edits = 0;  // the live instancer's generation: every edit, undo and redo moves it
+        uint64_t tile = 0;   // type colours come from the meshes, rebuilt with the tile
+        uint64_t selected = 0;
+        bool hulls = false;
+        bool operator==(const PrimitiveMarkersKey&) const = default;
+    };
+    struct BrushProbe {
+        bool drawn = false;
+        bool on_pile = false;
+        glm::vec3 center{0.0f};
+        glm::vec2 ring_center_px{0.0f};  // the ring's centre (its vertices' mean) on screen
+    };
+    enum class Prompt { None, Quit, Open, New };
+
+    // ---- editor_session.cpp ----
+    ViewerStatus start();            // the window, the renderer, the first document's open
+    json viewportJson();             // ViewerResult::viewport
+    void fillDocumentResult();
+    void writeInteractiveStats();
+    void updateStatus();             // the Statistics window's status line and progress bar
+    // ---- session_document.cpp ----
+    void startLoad(const std::string& path, bool recover);
+    // Opens `path`, asking first (interactive) when an autosave of it is newer than the file.
+    bool requestOpen(const std::string& path, RecoverChoice choice);
+    void startNew();
+    bool applyFinishedWork();        // a loaded document, a finished Ghost Tile build or export, a live result
+    void adoptLoadedDocument();      // the loader's document replaces the current one
+    // Menus' and shortcuts' requests, then the dialogs (in this order, once a frame).
+    void handleEditRequests();
+    void handleFileRequests();
+    void handleDialogs();
+    void autosave();
+    // ---- session_live.cpp ----
+    void syncTile();
+    // Takes a finished live result, if any, and re-packs it for the GPU (viewer.cpp's header).
+    bool takeLiveResult();
+    // ---- session_input.cpp ----
+    void drawUi();                   // navigation, panels
+    void mouseTools();
+    // The ground's height under a world XY on the current document (the camera stays above it).
+    float groundZ(glm::vec2 xy) const;
+    // ---- session_replay.cpp ----
+    bool stepReplay();               // start or advance the current action; false: the script is wrong
+    bool startReplayStroke(const ReplayAction& action);
+    bool runReplayAction(const ReplayAction& action);
+    void recordChangeBox(Bounds box);
+    void recordPile(const BrushStroke& stroke);
+    // A type named by the script, or kNoType with *error set (the run fails: the script is wrong).
+    static constexpr size_t kNoType = SIZE_MAX;
+    size_t replayType(const std::string& name);
+    Ray strokeRay(const ReplayAction& action, glm::vec2 xy) const;
+    void finishReplayAction();       // the action's record, once its result is settled and on screen
+    // ---- session_render.cpp ----
+    bool renderFrame();              // false: a scripted screenshot failed, or a live result
+    bool afterFrame();               // false: the run is over
+
+    const ViewerOptions& options;
+    ViewerResult* result;
+    std::string* error;
+    const bool scripted;
+    std::vector<std::string>& messages;
+    gl::Window window;
+    std::unique_ptr<gl::Renderer> renderer;  // made once the window (its context) is open
+    DocumentOptions doc_options;
+
+    // ---- the document: opened (or recovered) in the background ----
+    std::unique_ptr<DocumentLoader> loader;
+    std::unique_ptr<EditorScene> scene;
+    ResidentTiles instances;  // the tiles as the GPU holds them
+    TileUploads uploads;      // what the latest live result changed in them
+    std::shared_ptr<const InstanceStore> store;  // the result on screen
+    std::shared_ptr<const SettledDrops> drops;   // and its settled drops (null: the scene does not settle)
+    uint64_t shown_generation = 0;
+    bool have_result = false;
+    std::string asking_recovery;  // a path whose recovery dialog is open
+    RecoveryInfo recovery_info;
+
+    OrbitCamera camera;
+    bool camera_moved = false;
+    UiRequests requests;
+    WindowToggles windows;
+    ToolState tools;
+    BrushStroke stroke;
+    MoveDrag move_drag;
+    MarkerGeometry markers;
+    MarkerGeometry primitive_markers;
+    PrimitiveMarkersKey primitive_markers_key;
+    RenderSettings render_settings;
+    StatisticsView view;
+    std::vector<std::string> recent_files;
+    std::string last_autosave_error;
+    bool save_as_open = false;
+    std::string save_as_path;
+    Prompt prompt = Prompt::None;
+    std::string prompt_open_path;
+    bool quitting = false;
+    // ---- outliner, instantiation and export panels, New / Open ----
+    std::vector<uint8_t> type_visible;  // view state, not a document edit: never undone, never saved
+    InstantiationView inst_view;
+    ExportSettings export_settings;
+    std::unique_ptr<ExportJob> export_job;
+    std::string export_result;
+    json export_record;  // the finished export's outcome, for the replay
+    bool open_dialog_open = false;
+    std::string open_dialog_path;
+    std::string load_error;  // the last failed open or new (for the replay's record)
+    // File > New: the template's terrain, extent and types, no density.
+    const std::string new_template = std::string(UG_SOURCE_DIR) + "/assets/scenes/default.json";
+
+    std::vector<double> frame_ms;
+    std::vector<uint8_t> pixels;
+    int screenshot_count = 0;
+    std::string screenshot_request_path;
+    std::string ui_screenshot_path;  // replay "screenshot" with "ui": true: read after the panels are drawn
+    bool screenshot_overlays = true;
+    std::vector<PendingStamp> pending_stamps;
+    ReplayState replay;
+    float reach_m = 0.0f;
+    int frame_index = 0;        // frames since the first result was on screen
+    int frames_after_done = 0;  // scripted: frames since the script finished and the result settled
+    bool stats_written = false;
+    const Clock::time_point start_time = Clock::now();
+    Clock::time_point last_frame_end = start_time;
+
+    // ---- what the viewport shows, for the statistics (ViewerResult::viewport) ----
+    int last_fb_w = 0, last_fb_h = 0;
+    glm::vec2 cursor_px{NAN};  // framebuffer pixels; NaN until the pointer is in the window
+    BrushProbe brush_probe;
+
+    // ---- Ghost Tile panel: one background build at a time (ghost_tile_job.h), applied at the frame
+    // boundary; the renderer's scene (LOD meshes, candidate frames) follows the document's tile generation
+    GhostTilePanelState ghost_panel;
+    std::unique_ptr<GhostTileJob> ghost_job;
+    const Document* ghost_job_doc = nullptr;  // the document it was started on
+    int ghost_job_action = -1;                // the replay action that started it, -1: the panel
+    uint64_t scene_tile_generation = 0;       // the tile generation the renderer's scene was set for
+
+    // ---- the current frame (set by run() and the steps, read by the later steps) ----
+    Clock::time_point frame_start;
+    int fb_w = 0, fb_h = 0;
+    double now_s = 0.0;
+    bool settled = false;             // the live result is on screen and nothing is pending
+    size_t stamps_before_frame = 0;
+    // While another document loads, the current one is shown but not edited: it is replaced (and its
+    // edits dropped) when the new one is ready, and is editable again if that load fails.
+    Document* doc = nullptr;
+    glm::mat4 view_proj{1.0f};        // after navigation
+    bool screenshot_requested = false;
+};
+
+}  // namespace ug::editor

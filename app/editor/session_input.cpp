@@ -1,0 +1,174 @@
+#include "editor/editor_session.h"
+
+#include <imgui.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <thread>
+
+#include "core/atomic_file.h"
+#include "core/hash.h"
+#include "editor/background_jobs.h"
+#include "editor/navigation.h"
+#include "editor/session_stats.h"
+#include "editor/window_title.h"
+#include "instancer/instance_query.h"
+#include "instancer/tile_coord.h"
+
+namespace ug::editor {
+
+void EditorSession::drawUi() {
+    // ---- UI: navigation, tools, panels, dialogs ----
+    stamps_before_frame = pending_stamps.size();
+    window.beginUiFrame();
+    // While another document loads, the current one is shown but not edited: it is replaced (and its
+    // edits dropped) when the new one is ready, and is editable again if that load fails.
+    doc = scene && !loader ? scene->doc.get() : nullptr;
+    const ImGuiIO& io = ImGui::GetIO();
+    last_fb_w = fb_w;
+    last_fb_h = fb_h;
+    cursor_px = ImGui::IsMousePosValid() ? glm::vec2(io.MousePos.x * io.DisplayFramebufferScale.x,
+                                                     io.MousePos.y * io.DisplayFramebufferScale.y)
+                                         : glm::vec2(NAN);
+    // The mouse moving or clicking in the viewport takes the keyboard back from a panel's field.
+    if (!scripted) giveKeyboardBackToViewport();
+    if (scene && !scripted) {
+        Bounds selection;
+        Primitive selected_prim;
+        if (tools.selected != 0 && doc && doc->findPrimitive(tools.selected, nullptr, &selected_prim))
+            selection = editBounds(selected_prim);
+        // Terrain kinds reach everywhere in XY: nothing sensible to frame.
+        for (int a = 0; a < 3; ++a)
+            if (!std::isfinite(selection.lo[a]) || !std::isfinite(selection.hi[a])) selection = Bounds{};
+        // The wheel zooms toward the ground under the cursor.
+        glm::vec3 pivot(0.0f);
+        bool has_pivot = false;
+        if (io.MouseWheel != 0.0f && std::isfinite(cursor_px.x)) {
+            const SurfaceHit g = pickGround(
+                *scene->doc, rayThroughPixel(camera.viewProjection(), float(fb_w), float(fb_h), cursor_px));
+            has_pivot = g.hit;
+            pivot = g.point_m;
+        }
+        camera_moved |= navigate(&camera, framingBounds(*scene, have_result ? &instances : nullptr),
+                                 float(fb_h), &selection, has_pivot ? &pivot : nullptr);
+        keepEyeAboveGround(&camera, [this](glm::vec2 xy) { return groundZ(xy); });
+    }
+    // After navigation: the brush ring and picking use this frame's camera, not the last one's.
+    view_proj = camera.viewProjection();
+    MenuView menu;
+    menu.has_document = doc != nullptr;
+    menu.dirty = doc && doc->isDirty();
+    menu.undo_name = doc && doc->canUndo() ? doc->undoName() : "";
+    menu.redo_name = doc && doc->canRedo() ? doc->redoName() : "";
+    menu.recent_files = recent_files;
+    drawMainMenu(menu, &requests, &tools, &windows);
+    drawStatisticsPanel(view, &windows.statistics);
+    drawRenderPanel(view, &render_settings, &windows.render);
+    drawToolsPanel(view.type_names, &tools, &windows.tools);
+    std::string inspector_message;
+    drawInspector(doc, view.type_names, &tools, &requests, &inspector_message, &windows.inspector);
+    if (!inspector_message.empty()) messages.push_back(inspector_message);
+    drawGhostTilePanel(doc, &ghost_panel, &windows.ghost_tile);
+    if (doc && ghost_panel.build && !ghost_job) {
+        std::string job_error;
+        ghost_job = doc->startGhostTileJob(ghost_panel.pending, &job_error);
+        ghost_job_doc = doc;
+        ghost_job_action = -1;
+        if (!ghost_job) {
+            messages.push_back(job_error);
+            ghost_panel.last_outcome = "refused: " + job_error;
+        }
+    }
+    if (ghost_job && ghost_panel.cancel) ghost_job->cancel();
+    ghost_panel.build = ghost_panel.cancel = false;
+    {
+        OutlinerView outliner;
+        outliner.type_names = view.type_names;
+        outliner.instances_per_type = view.instances_per_type;
+        if (scene)
+            for (const DetailLodMesh& m : scene->meshes) outliner.colors.push_back(m.color);
+        drawOutliner(doc, outliner, &type_visible, &tools, &requests, &windows.outliner);
+        for (size_t t = 0; t < type_visible.size(); ++t) renderer->setTypeVisible(t, type_visible[t] != 0);
+        inst_view.pending = scene && !settled;
+        std::string panel_message;
+        drawInstantiationPanel(doc, view.type_names, inst_view, &panel_message, &windows.instantiation);
+        if (!panel_message.empty()) messages.push_back(panel_message);
+        ExportView export_view;
+        export_view.has_document = doc != nullptr && store != nullptr && settled;  // the settled set
+        export_view.running = export_job != nullptr;
+        export_view.can_cancel = export_job && export_job->stage() == ExportStage::Gathering;
+        export_view.progress = export_job ? export_job->progress() : 0.0f;
+        export_view.stage = export_job ? exportStageName(export_job->stage()) : "";
+        export_view.last_result = export_result;
+        drawExportPanel(export_view, &export_settings, &requests, &windows.export_panel);
+    }
+
+}
+
+void EditorSession::mouseTools() {
+    const ImGuiIO& io = ImGui::GetIO();
+    markers.clear();
+    brush_probe.drawn = false;
+    // Mouse tools: not while a panel has the mouse, Alt is held (Alt + left drag orbits) or a replay
+    // stroke is running.
+    const bool replay_stroke = replay.started && !replay.finishing;
+    if (doc && have_result && !scripted && !replay_stroke && asking_recovery.empty() &&
+        prompt == Prompt::None) {
+        const glm::vec2 cursor(io.MousePos.x * io.DisplayFramebufferScale.x,
+                               io.MousePos.y * io.DisplayFramebufferScale.y);
+        const Ray ray = rayThroughPixel(view_proj, float(fb_w), float(fb_h), cursor);
+        const bool mouse_free = !io.WantCaptureMouse && !io.KeyAlt;
+        if (tools.tool == ToolKind::Select) {
+            // Click picks; dragging the picked primitive moves it (Shift: up and down).
+            if (mouse_free && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+                tools.selected = pickPrimitive(*doc, view_proj, float(fb_w), float(fb_h), cursor, 20.0f);
+                if (tools.selected != 0) move_drag.begin(doc, tools.selected, ray);
+            } else if (move_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+                const uint64_t generation = doc->live().generation();
+                std::string move_error;
+                if (!move_drag.drag(ray, io.KeyShift, &move_error)) messages.push_back(move_error);
+                if (doc->live().generation() != generation)
+                    pending_stamps.push_back({doc->live().generation(), Clock::now(), -1});
+            }
+        } else {
+            // The marker shows where the brush works: for Sculpt, where the material lands.
+            const SurfaceHit hit = tools.tool == ToolKind::Sculpt
+                                       ? sculptLanding(*doc, tools.brush.sculpt_type, ray)
+                                       : pickBrushSurface(*doc, tools.brush, ray);
+            if (hit.hit && mouse_free) {
+                const size_t first = markers.lines.size();
+                addBrushMarker(*doc, hit.point_m, tools.brush.radius_m, !hit.on_pile, &markers);
+                glm::vec3 sum(0.0f);
+                for (size_t i = first; i < markers.lines.size(); ++i) sum += markers.lines[i].position;
+                const glm::vec3 ring_centre = sum / float(std::max<size_t>(1, markers.lines.size() - first));
+                brush_probe = {true, hit.on_pile, hit.point_m,
+                               projectToPixel(view_proj, float(fb_w), float(fb_h), ring_centre)};
+            }
+            const int before = stroke.stamps();
+            std::string stroke_error;
+            bool ok = true;
+            if (mouse_free && ImGui::IsMouseClicked(ImGuiMouseButton_Left))
+                ok = stroke.begin(doc, tools.tool, tools.brush, ray, now_s, &stroke_error);
+            else if (stroke.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left))
+                ok = stroke.drag(ray, now_s, &stroke_error);
+            if (!ok) messages.push_back(stroke_error);
+            if (stroke.stamps() > before)
+                pending_stamps.push_back({doc->live().generation(), Clock::now(), -1});
+        }
+        if (stroke.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+            // The statistics keep each mouse sculpt stroke's pile (tests drive the mouse with xdotool).
+            if (stroke.tool() == ToolKind::Sculpt && !stroke.stampPoints().empty() && !options.stats_path.empty())
+                result->sculpt_strokes.push_back(pileRecord(*doc, stroke));
+            stroke.end();
+        }
+        if (move_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) move_drag.end();
+    }
+
+}
+
+float EditorSession::groundZ(glm::vec2 xy) const { return scene ? groundHeightAt(*scene->doc, xy) : -1.0e30f; }
+
+}  // namespace ug::editor
