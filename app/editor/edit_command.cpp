@@ -37,11 +37,11 @@ int runEditCommand(int argc, char** argv) {
     const char* usage =
         "usage: undergrowth edit SCENE.json [--frames N] [--screenshot OUT.png] [--stats STATS.json] [--size WxH]\n"
         "       [--threads N] [--cache DIR] [--config DIR] [--replay SCRIPT.json] [--recover yes|no]\n"
-        "       [--autosave-interval SECONDS]";
+        "       [--autosave-interval SECONDS] [--no-shadows] [--no-ao]";
     Args args;
     std::string error;
     if (!parseArgs(argc, argv, 2, {"--frames", "--screenshot", "--stats", "--size", "--threads", "--cache", "--config", "--replay",
-                    "--recover", "--autosave-interval"}, {}, &args,
+                    "--recover", "--autosave-interval"}, {"--no-shadows", "--no-ao"}, &args,
                    &error) ||
         args.positional.size() != 1)
         return fail(error.empty() ? usage : error + "\n" + usage, 2);
@@ -49,6 +49,8 @@ int runEditCommand(int argc, char** argv) {
     options.scene_path = args.positional[0];
     options.cache_dir = args.get("--cache", options.cache_dir);
     options.screenshot_path = args.get("--screenshot");
+    options.look.shadows = !args.has("--no-shadows");
+    options.look.ambient_occlusion = !args.has("--no-ao");
     long value = 0;
     if (args.has("--frames")) {
         if (!parseInt("--frames", args.get("--frames"), 1, 1000000, &value, &error)) return fail(error, 2);

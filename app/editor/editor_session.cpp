@@ -56,6 +56,7 @@ ViewerStatus EditorSession::start() {
     doc_options.autosave_interval_s = options.autosave_interval_s;
     camera.aspect = float(options.width) / float(options.height);
     render_settings.lod = options.lod;
+    render_settings.look = options.look;
     view.scene = options.scene_path;
     view.gl_version = window.glVersion();
     view.renderer = window.rendererName();

@@ -96,6 +96,7 @@ struct WindowToggles {
 // The Render panel's settings: LOD switch distances and what is drawn over the scene.
 struct RenderSettings {
     LodSettings lod;
+    ViewportLook look;            // shadows and ambient occlusion
     bool hulls = true;            // translucent hulls of the user primitives
     bool tile_grid = false;       // outlines of the non-empty tiles near the view target
     bool anchors = false;         // Ghost Tile candidates' anchors in the tiles near the target

@@ -64,8 +64,8 @@ uint32_t packedDropCode(float drop_m, float drop_unit_m);
 // diameter at its largest scale). Below `impostor_px` a type is drawn as impostors, through a band in
 // which instances switch one by one (drawnAsMesh) rather than a whole ring of tiles at once.
 struct LodSettings {
-    float lod1_px = 90.0f;
-    float lod2_px = 30.0f;
+    float lod1_px = 120.0f;
+    float lod2_px = 50.0f;
     float impostor_px = 10.0f;
 };
 

@@ -26,6 +26,11 @@ void drawRenderPanel(const StatisticsView& v, RenderSettings* settings, bool* op
     ImGui::SliderFloat("impostor below", &lod.impostor_px, 0.0f, 100.0f, "%.0f px");
     lod.impostor_px = std::min(lod.impostor_px, lod.lod2_px);
     ImGui::Separator();
+    // Light that shows contact; each costs llvmpipe a share of the frame (docs/benchmarks.md).
+    ImGui::Checkbox("sun shadows", &settings->look.shadows);
+    ImGui::SameLine();
+    ImGui::Checkbox("ambient occlusion", &settings->look.ambient_occlusion);
+    ImGui::Separator();
     ImGui::Checkbox("primitive hulls", &settings->hulls);
     ImGui::Checkbox("tile grid", &settings->tile_grid);
     ImGui::Checkbox("anchors", &settings->anchors);

@@ -64,6 +64,7 @@ bool EditorSession::renderFrame() {
     }
     if (!screenshot_request_path.empty() && !screenshot_overlays) markers.clear();
     renderer->setMarkers(markers);
+    renderer->setLook(render_settings.look);
     renderer->render(camera, fb_w, fb_h, render_settings.lod);
     const gl::RenderStats& rs = renderer->stats();
     view.triangles = rs.triangles;

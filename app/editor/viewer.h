@@ -37,6 +37,7 @@ struct ViewerOptions {
     bool finish_each_frame = false;  // glFinish every frame (frame times then include the GPU's work)
     bool quiet = false;
     LodSettings lod;
+    ViewportLook look;                 // shadows and ambient occlusion (the Render panel's toggles)
     std::vector<ReplayAction> replay;  // run in order (replay.h)
     // An autosave newer than the file: Ask shows a dialog (interactive; a scripted run opens the file and
     // leaves the autosave alone), Yes recovers it, No opens the file and removes the autosave.

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# Renders the README's pictures with `undergrowth render` (no display needed) into docs/images/.
+#   scripts/render-gallery.sh [BUILD_DIR]      (default: build)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bin="${1:-build}/undergrowth"
+out=docs/images
+mkdir -p "$out"
+shot() {  # name scene [render options...]
+  local name="$1" scene="$2"
+  shift 2
+  "$bin" render "assets/scenes/$scene.json" -o "$out/$name.png" --size 960x540 "$@" | tail -1
+}
+shot rock_pile rock_pile                                     # the opening view
+shot rock_pile_close rock_pile --camera 0.2,-0.1,0.25,1.4,-70,38
+shot meadow meadow                                           # the opening view
+shot meadow_close meadow --camera -8,8,0.35,2.2,-100,22
+shot stone_hut stone_hut
+shot stone_hut_side stone_hut --camera 0,0,0.8,6,20,12
+shot beaver_dam beaver_dam
+shot haystack_field haystack_field
