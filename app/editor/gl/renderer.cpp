@@ -412,6 +412,7 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
     glBindVertexArray(empty_vao_);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     ++stats_.draw_calls;
+    glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
 
     drawHulls(view_proj);
