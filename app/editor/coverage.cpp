@@ -77,6 +77,15 @@ SilhouetteMasks silhouetteMasks(const std::vector<glm::vec3>& positions, const u
                        &out.mask[size_t(e)]);
         for (uint8_t& m : out.mask[size_t(e)]) m = m ? 255 : 0;
     }
+    // The extent: the farthest covered texel's outer edge from the centre, in either axis, plus a texel
+    // for the sprite's bilinear filtering.
+    int reach = 0;  // in half-texels from the centre
+    for (const std::vector<uint8_t>& m : out.mask)
+        for (int y = 0; y < resolution; ++y)
+            for (int x = 0; x < resolution; ++x)
+                if (m[size_t(y) * size_t(resolution) + size_t(x)])
+                    reach = std::max({reach, std::abs(2 * x + 1 - resolution) + 1, std::abs(2 * y + 1 - resolution) + 1});
+    out.extent = std::min(1.0f, float(reach + 2) / float(resolution));
     return out;
 }
 

@@ -31,6 +31,10 @@ struct SilhouetteMasks {
     glm::vec3 centre{0.0f};
     float radius = 0.0f;
     std::array<std::vector<uint8_t>, kCoverageElevations> mask;
+    // The centred square, as a fraction of the whole (0, 1], outside which no mask covers a texel: the
+    // sprite is drawn that much smaller (a tuft fills little of its bounding sphere's square, and every
+    // empty pixel of a sprite still costs llvmpipe a texture lookup).
+    float extent = 1.0f;
 };
 SilhouetteMasks silhouetteMasks(const std::vector<glm::vec3>& positions, const uint32_t* indices, size_t index_count,
                                 int resolution = 64);

@@ -1,6 +1,8 @@
 // The mesh levels of every starter model are honest (render_data.h buildDetailLods): each level's
 // silhouette is within kLodCoverageTolerance of the model's from every elevation, levels never gain
 // triangles, the rocks do get cheaper, and the impostor switch moves out only for a model that stays heavy.
+#include <cmath>
+
 #include <gtest/gtest.h>
 
 #include "editor/coverage.h"
@@ -60,6 +62,26 @@ TEST(DetailLods, TheSilhouetteMasksCoverWhatTheProfileSaysFromAbove) {
     // The profile is rastered at 128, the mask at 64: the same area to about a texel along the outline.
     EXPECT_NEAR(float(covered) * cell * cell, leaf.coverage_m2[kCoverageElevations - 1],
                 0.15f * leaf.coverage_m2[kCoverageElevations - 1]);
+}
+
+TEST(DetailLods, TheSpriteShowsEveryCoveredTexelAndTheTuftsSpriteIsCropped) {
+    for (const std::string& name : starterAssetNames()) {
+        const SilhouetteMasks s = buildDetailLods(starter(name), 1.0f).silhouettes;
+        ASSERT_GT(s.resolution, 0) << name;
+        ASSERT_GT(s.extent, 0.0f) << name;
+        ASSERT_LE(s.extent, 1.0f) << name;
+        // Every covered texel's centre lies inside the centred square of side `extent`.
+        const float half = 0.5f * s.extent * float(s.resolution);
+        for (const std::vector<uint8_t>& m : s.mask)
+            for (int y = 0; y < s.resolution; ++y)
+                for (int x = 0; x < s.resolution; ++x)
+                    if (m[size_t(y) * size_t(s.resolution) + size_t(x)]) {
+                        EXPECT_LE(std::abs(float(x) + 0.5f - 0.5f * float(s.resolution)), half) << name;
+                        EXPECT_LE(std::abs(float(y) + 0.5f - 0.5f * float(s.resolution)), half) << name;
+                    }
+    }
+    // A tuft is taller than wide, but its bounding sphere's square is wider still than its height.
+    EXPECT_LT(buildDetailLods(starter("grass_tuft"), 1.0f).silhouettes.extent, 0.9f);
 }
 
 }  // namespace

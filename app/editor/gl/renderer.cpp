@@ -79,7 +79,7 @@ bool Renderer::init(const std::string& dir, std::string* error) {
         !loadProgram(dir, "detail_impostor.vert", "impostor.frag",
                      with({"u_view_proj", "u_tile_size_m", "u_drop_unit_m", "u_color", "u_center", "u_coverage_m2",
                            "u_point_scale", "u_to_eye", "u_lod_diameter_px", "u_impostor_px", "u_upness",
-                           "u_sprite_radius_m", "u_layer_first", "u_silhouettes"},
+                           "u_sprite_radius_m", "u_layer_first", "u_silhouettes", "u_sprite_extent"},
                           true),
                      &impostor_, error) ||
         !loadProgram(dir, "ground_grid.vert", "ground_grid.frag",
@@ -725,7 +725,9 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
         glUniform4fv(loc(impostor_, "u_coverage_m2"), 1, m.coverage_m2.data());
         glUniform1f(loc(impostor_, "u_upness"), m.upness);
         glUniform1f(loc(impostor_, "u_impostor_px"), m.impostorPx(lod));
-        glUniform1f(loc(impostor_, "u_sprite_radius_m"), m.silhouettes.radius);
+        // The sprite covers the masks' occupied square only (coverage.h extent).
+        glUniform1f(loc(impostor_, "u_sprite_radius_m"), m.silhouettes.radius * m.silhouettes.extent);
+        glUniform1f(loc(impostor_, "u_sprite_extent"), m.silhouettes.extent);
         glUniform1i(loc(impostor_, "u_layer_first"), silhouette_array_ ? GLint(i * kCoverageElevations) : -1000000);
         glUniform1f(loc(impostor_, "u_lod_diameter_px"), lodDiameterPx(m, pixels_per_radian));
         glBindVertexArray(types_[i].impostor_vao);
