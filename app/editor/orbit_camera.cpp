@@ -19,11 +19,10 @@ glm::vec3 OrbitCamera::eye() const {
 
 glm::mat4 OrbitCamera::view() const { return glm::lookAt(eye(), target, glm::vec3(0.0f, 0.0f, 1.0f)); }
 
-glm::mat4 OrbitCamera::projection() const {
-    const float near_m = std::max(distance_m * 0.01f, 0.005f);
-    const float far_m = distance_m * 100.0f + 100.0f;
-    return glm::perspective(fov_y_rad, aspect, near_m, far_m);
-}
+float OrbitCamera::nearPlane() const { return std::max(distance_m * 0.01f, 0.005f); }
+float OrbitCamera::farPlane() const { return distance_m * 100.0f + 100.0f; }
+
+glm::mat4 OrbitCamera::projection() const { return glm::perspective(fov_y_rad, aspect, nearPlane(), farPlane()); }
 
 void frameBounds(const Bounds& extent, OrbitCamera* camera) {
     const glm::vec3 lo = extent.lo, hi = extent.hi;

@@ -21,6 +21,8 @@ struct OrbitCamera {
     glm::vec3 eye() const;
     glm::mat4 view() const;
     // Near and far planes follow the distance, so a 2 m pile and an 80 m field both keep depth precision.
+    float nearPlane() const;
+    float farPlane() const;
     glm::mat4 projection() const;
     glm::mat4 viewProjection() const { return projection() * view(); }
 };

@@ -395,7 +395,7 @@ void buildIndirectDraws(const ResidentTiles& in, const std::vector<DetailLodMesh
     std::vector<float> diameter_px_at_1m(types);
     for (uint32_t i = 0; i < types; ++i) {
         reach = std::max(reach, meshes[i].radius_m * meshes[i].scale_max);
-        diameter_px_at_1m[i] = 2.0f * meshes[i].radius_m * meshes[i].scale_max * view.pixels_per_radian;
+        diameter_px_at_1m[i] = meshes[i].lodDiameterPx(view.pixels_per_radian);
     }
     const float s = in.tile_size_m;
     const float half_diagonal = 0.5f * std::sqrt(3.0f) * s;

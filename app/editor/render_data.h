@@ -104,6 +104,9 @@ struct DetailLodMesh {
     // silhouette sprite while the sprite is still large enough to show the blades.
     float impostor_scale = 1.0f;
     float impostorPx(const LodSettings& lod) const { return lod.impostor_px * impostor_scale; }
+    // The bounding diameter at the largest scale, in pixels at 1 m: what the LOD choice divides by the
+    // distance (buildIndirectDraws on the CPU, u_lod_diameter_px in the shaders).
+    float lodDiameterPx(float pixels_per_radian) const { return 2.0f * radius_m * scale_max * pixels_per_radian; }
     float scale_max = 1.0f;                  // the type's largest candidate scale
     // How the type looks (material.h): `color` is its base colour; a texture (final colour, sRGB) is
     // mapped by box projection of the model-space position, as the exporter maps it.

@@ -25,7 +25,7 @@ ShadowFrame fitShadowFrame(const OrbitCamera& camera, const Bounds& extent, cons
     const glm::vec3 forward(-v[0][2], -v[1][2], -v[2][2]);
     const glm::vec3 eye = camera.eye();
     const float tan_y = std::tan(0.5f * camera.fov_y_rad), tan_x = tan_y * camera.aspect;
-    const float near_m = std::max(camera.distance_m * 0.01f, 0.005f);
+    const float near_m = camera.nearPlane();
     out.distance_m = shadowDistance(camera);
     glm::vec3 f_lo(1e30f), f_hi(-1e30f);
     for (float d : {near_m, out.distance_m})

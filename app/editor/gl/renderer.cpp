@@ -32,10 +32,17 @@ constexpr int kTextureWorldXY = 2;   // world X and Y (the terrain)
 
 GLint loc(const ShaderProgram& p, const char* name) { return glGetUniformLocation(p.id, name); }
 
-// The type's bounding diameter on screen at 1 m, as buildIndirectDraws computes it for the LOD choice.
-float lodDiameterPx(const DetailLodMesh& m, float pixels_per_radian) {
-    return 2.0f * m.radius_m * m.scale_max * pixels_per_radian;
+// The bound texture's filtering and wrapping (both axes alike).
+void setSampling(GLenum target, GLint min_filter, GLint mag_filter, GLint wrap) {
+    glTexParameteri(target, GL_TEXTURE_MIN_FILTER, min_filter);
+    glTexParameteri(target, GL_TEXTURE_MAG_FILTER, mag_filter);
+    glTexParameteri(target, GL_TEXTURE_WRAP_S, wrap);
+    glTexParameteri(target, GL_TEXTURE_WRAP_T, wrap);
 }
+
+// A full mip chain's level count for a w x h image.
+int mipLevels(int w, int h) { return int(std::floor(std::log2(float(std::max({w, h, 1}))))) + 1; }
+
 
 }  // namespace
 
@@ -150,17 +157,14 @@ unsigned Renderer::uploadTexture(const std::shared_ptr<const TextureImage>& imag
     GLuint id = 0;
     glGenTextures(1, &id);
     glBindTexture(GL_TEXTURE_2D, id);
-    const int levels = int(std::floor(std::log2(float(std::max(image->width, image->height))))) + 1;
+    const int levels = mipLevels(image->width, image->height);
     // The image is the final colour in sRGB (material.h): sampled as linear albedo.
     glTexStorage2D(GL_TEXTURE_2D, levels, GL_SRGB8_ALPHA8, image->width, image->height);
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, image->width, image->height, GL_RGBA, GL_UNSIGNED_BYTE, image->rgba.data());
     glGenerateMipmap(GL_TEXTURE_2D);
     // Bilinear within the nearest mip level: trilinear filtering doubles llvmpipe's cost per lookup.
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_NEAREST);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    setSampling(GL_TEXTURE_2D, GL_LINEAR_MIPMAP_NEAREST, GL_LINEAR, GL_REPEAT);
     glBindTexture(GL_TEXTURE_2D, 0);
     textures_.push_back({image.get(), id});
     return id;
@@ -257,7 +261,7 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
         glGenTextures(1, &silhouette_array_);
         glBindTexture(GL_TEXTURE_2D_ARRAY, silhouette_array_);
         const GLsizei layers = GLsizei(meshes->size() * kCoverageElevations);
-        const int levels = int(std::floor(std::log2(float(res)))) + 1;
+        const int levels = mipLevels(res, res);
         glTexStorage3D(GL_TEXTURE_2D_ARRAY, levels, GL_R8, res, res, layers);
         glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
         for (size_t i = 0; i < meshes->size(); ++i)
@@ -265,10 +269,7 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
                 glTexSubImage3D(GL_TEXTURE_2D_ARRAY, 0, 0, 0, GLint(i * kCoverageElevations + size_t(e)), res, res, 1, GL_RED,
                                 GL_UNSIGNED_BYTE, (*meshes)[i].silhouettes.mask[size_t(e)].data());
         glGenerateMipmap(GL_TEXTURE_2D_ARRAY);
-        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MIN_FILTER, GL_LINEAR_MIPMAP_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTexParameteri(GL_TEXTURE_2D_ARRAY, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        setSampling(GL_TEXTURE_2D_ARRAY, GL_LINEAR_MIPMAP_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE);
         glBindTexture(GL_TEXTURE_2D_ARRAY, 0);
     }
 
@@ -432,10 +433,7 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
         glBindTexture(GL_TEXTURE_2D, shadow_depth_);
         glTexStorage2D(GL_TEXTURE_2D, 1, GL_DEPTH_COMPONENT24, px, px);
         // Hardware comparison with bilinear filtering: each lookup is a 2x2 percentage-closer filter.
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        setSampling(GL_TEXTURE_2D, GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_MODE, GL_COMPARE_REF_TO_TEXTURE);
         glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_COMPARE_FUNC, GL_LEQUAL);
         glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
@@ -518,10 +516,7 @@ void Renderer::ensureSceneTarget(int width, int height) {
     for (int k = 0; k < 2; ++k) {
         glBindTexture(GL_TEXTURE_2D, ao_texture_[k]);
         glTexStorage2D(GL_TEXTURE_2D, 1, GL_R8, (width + 1) / 2, (height + 1) / 2);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        setSampling(GL_TEXTURE_2D, GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE);
         glBindFramebuffer(GL_FRAMEBUFFER, ao_fbo_[k]);
         glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, ao_texture_[k], 0);
     }
@@ -549,8 +544,7 @@ void Renderer::composite(unsigned target_fbo, int width, int height, const Orbit
     glViewport(0, 0, (width + 1) / 2, (height + 1) / 2);
     glUseProgram(ambient_occlusion_.id);
     glUniform1i(loc(ambient_occlusion_, "u_depth"), 3);
-    const float near_m = std::max(cam.distance_m * 0.01f, 0.005f), far_m = cam.distance_m * 100.0f + 100.0f;
-    glUniform2f(loc(ambient_occlusion_, "u_near_far"), near_m, far_m);
+    glUniform2f(loc(ambient_occlusion_, "u_near_far"), cam.nearPlane(), cam.farPlane());
     const float tan_half = std::tan(0.5f * cam.fov_y_rad);
     glUniform2f(loc(ambient_occlusion_, "u_tan_half_fov"), tan_half * cam.aspect, tan_half);
     glUniform1f(loc(ambient_occlusion_, "u_ao_radius_m"), ao_radius_m_);
@@ -646,7 +640,7 @@ void Renderer::drawMeshLods(const ShaderProgram& program, const IndirectDraws& d
             if (types_[i].texture && m.material.alpha_cutout) glDisable(GL_CULL_FACE);
             else glEnable(GL_CULL_FACE);
         }
-        glUniform1f(loc(program, "u_lod_diameter_px"), lodDiameterPx(m, pixels_per_radian));
+        glUniform1f(loc(program, "u_lod_diameter_px"), m.lodDiameterPx(pixels_per_radian));
         glUniform1f(loc(program, "u_impostor_px"), m.impostorPx(lod));
         glBindVertexArray(types_[i].vao);
         for (int level = 0; level < kMeshLodCount; ++level) {
@@ -729,7 +723,7 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
         glUniform1f(loc(impostor_, "u_sprite_radius_m"), m.silhouettes.radius * m.silhouettes.extent);
         glUniform1f(loc(impostor_, "u_sprite_extent"), m.silhouettes.extent);
         glUniform1i(loc(impostor_, "u_layer_first"), silhouette_array_ ? GLint(i * kCoverageElevations) : -1000000);
-        glUniform1f(loc(impostor_, "u_lod_diameter_px"), lodDiameterPx(m, pixels_per_radian));
+        glUniform1f(loc(impostor_, "u_lod_diameter_px"), m.lodDiameterPx(pixels_per_radian));
         glBindVertexArray(types_[i].impostor_vao);
         glMultiDrawArraysIndirect(
             GL_POINTS,
