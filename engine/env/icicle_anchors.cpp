@@ -3,7 +3,6 @@
 // input meshes are often split-vertex, non-manifold or open, and sorting gives a canonical order for free.
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <string>
 #include <vector>
 
@@ -26,27 +25,26 @@ struct Welded {
     std::vector<glm::vec3> position; // per welded vertex
 };
 
-bool lessPosition(const glm::vec3& a, const glm::vec3& b) {
-    if (a.x != b.x) return a.x < b.x;
-    if (a.y != b.y) return a.y < b.y;
-    return a.z < b.z;
-}
-
-// Welds vertices of exactly equal position; welded ids follow the position order, so everything built
-// on them is independent of the input's vertex order.
+// Welds vertices of exactly equal position; welded ids follow the position order (x, then y, then z), so
+// everything built on them is independent of the input's vertex order.
 Welded weldByPosition(const std::vector<glm::vec3>& positions) {
-    std::vector<uint32_t> order(positions.size());
-    std::iota(order.begin(), order.end(), 0u);
-    std::sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-        if (lessPosition(positions[a], positions[b])) return true;
-        if (lessPosition(positions[b], positions[a])) return false;
-        return a < b;
+    struct Keyed {
+        glm::vec3 p;
+        uint32_t index;
+    };
+    std::vector<Keyed> sorted(positions.size());
+    for (uint32_t i = 0; i < positions.size(); ++i) sorted[i] = {positions[i], i};
+    std::sort(sorted.begin(), sorted.end(), [](const Keyed& a, const Keyed& b) {
+        if (a.p.x != b.p.x) return a.p.x < b.p.x;
+        if (a.p.y != b.p.y) return a.p.y < b.p.y;
+        if (a.p.z != b.p.z) return a.p.z < b.p.z;
+        return a.index < b.index;
     });
     Welded w;
     w.id.resize(positions.size());
-    for (size_t k = 0; k < order.size(); ++k) {
-        if (k == 0 || positions[order[k]] != positions[order[k - 1]]) w.position.push_back(positions[order[k]]);
-        w.id[order[k]] = uint32_t(w.position.size() - 1);
+    for (size_t k = 0; k < sorted.size(); ++k) {
+        if (k == 0 || sorted[k].p != sorted[k - 1].p) w.position.push_back(sorted[k].p);
+        w.id[sorted[k].index] = uint32_t(w.position.size() - 1);
     }
     return w;
 }
@@ -67,6 +65,26 @@ struct EdgeMap {
     std::vector<FaceFrame> faces;   // per triangle
 };
 
+// Orders half-edges by (a, b, face) in linear time: a counting sort by a (stable, and the input comes in
+// face order), then each bucket (the few edges of one vertex) by b, stably. A comparison sort of all
+// half-edges was the bottleneck on facade-sized meshes.
+void sortHalfEdges(std::vector<HalfEdge>* half, size_t vertex_count) {
+    std::vector<uint32_t> first(vertex_count + 1, 0);
+    for (const HalfEdge& h : *half) ++first[h.a + 1];
+    for (size_t v = 1; v <= vertex_count; ++v) first[v] += first[v - 1];
+    std::vector<HalfEdge> sorted(half->size());
+    std::vector<uint32_t> fill(first.begin(), first.end() - 1);
+    for (const HalfEdge& h : *half) sorted[fill[h.a]++] = h;
+    for (size_t v = 0; v < vertex_count; ++v)  // insertion sort: stable, no allocation, buckets are small
+        for (uint32_t i = first[v] + 1; i < first[v + 1]; ++i) {
+            const HalfEdge h = sorted[i];
+            uint32_t j = i;
+            for (; j > first[v] && sorted[j - 1].b > h.b; --j) sorted[j] = sorted[j - 1];
+            sorted[j] = h;
+        }
+    *half = std::move(sorted);
+}
+
 EdgeMap buildEdgeMap(const TriangleMesh& base, const Welded& w) {
     EdgeMap m;
     const size_t tri_count = base.triangleCount();
@@ -84,11 +102,7 @@ EdgeMap buildEdgeMap(const TriangleMesh& base, const Welded& w) {
             m.half.push_back({std::min(p, q), std::max(p, q), uint32_t(t), v[(k + 2) % 3]});
         }
     }
-    std::sort(m.half.begin(), m.half.end(), [](const HalfEdge& x, const HalfEdge& y) {
-        if (x.a != y.a) return x.a < y.a;
-        if (x.b != y.b) return x.b < y.b;
-        return x.face < y.face;
-    });
+    sortHalfEdges(&m.half, w.position.size());
     return m;
 }
 
@@ -267,6 +281,7 @@ std::vector<IcicleAnchor> findIcicleAnchors(const TriangleMesh& base, const Icic
                             std::to_string(kMaxIcicleAnchors));
             return {};
         }
+        anchors.reserve(size_t(estimate));
         for (const Chain& c : Chainer(drips, w).chains()) sampleChain(c, w, s.spacing_m, &anchors);
     }
     const glm::vec3 side = horizontalAxis(s.up);

@@ -40,26 +40,28 @@ float field(const std::vector<Sphere>& chain, const glm::vec3& p) {
     return f;
 }
 
-// The paper's sphere list for one shape: radius and spacing fall linearly with the chain parameter
-// t = k / n (centres at -length (1 - (1 - t)^2), so spacing shrinks as 1 - t, like the radius), and each
-// centre drifts from the previous one by up to 30% of its radius (a damped random walk, so the icicle
-// bends gently rather than jitters). The top sphere sits at the origin.
+// The paper's sphere list for one shape: from the top (the origin) down, each sphere's visible radius
+// follows a slightly concave cone r(z) = r_tip + (r_top - r_tip) (1 - |z| / L)^1.2 (a carrot: thick at the
+// root, a fine point), and the next centre lies 0.7 r below (spacing shrinks with the radius, so the
+// blend stays smooth with faint ripples, like real icicles). Each centre drifts from the previous one by
+// up to 30% of its radius (a damped random walk: the icicle bends gently rather than jitters).
 std::vector<Sphere> sphereChain(float length, float top_radius, uint32_t seed) {
-    const float tip_radius = 0.15f * top_radius;
-    const int n = std::clamp(int(std::ceil(2.0f * length / (0.7f * top_radius))), 8, 64);
-    const float chain_length = 0.92f * length;  // the tip's cap adds the rest; exact length set later
+    constexpr size_t kMaxSpheres = 160;
+    const float tip_radius = 0.1f * top_radius;
+    const float chain_length = 0.97f * length;  // the tip's cap adds the rest; exact length set later
     std::vector<Sphere> chain;
     glm::vec2 offset(0.0f);
-    for (int k = 0; k < n; ++k) {
-        const float t = float(k) / float(n);
-        const float radius = tip_radius + (top_radius - tip_radius) * (1.0f - t);
+    float depth = 0.0f;
+    for (uint32_t k = 0; depth < chain_length && k < kMaxSpheres; ++k) {
+        const float u = depth / chain_length;
+        const float radius = tip_radius + (top_radius - tip_radius) * std::pow(1.0f - u, 1.2f);
         if (k > 0) {
             const uint64_t h = hashWords(seed, uint64_t(k), 0x1c1c1e);
             const glm::vec2 jitter(unitFloat(h) * 2.0f - 1.0f, unitFloat(mix64(h)) * 2.0f - 1.0f);
             offset = 0.6f * offset + 0.3f * radius * jitter;
         }
-        const float z = -chain_length * (1.0f - (1.0f - t) * (1.0f - t));
-        chain.push_back({glm::vec3(offset, z), radius / kVisibleFraction});
+        chain.push_back({glm::vec3(offset, -depth), radius / kVisibleFraction});
+        depth += 0.7f * radius;
     }
     return chain;
 }
@@ -166,7 +168,9 @@ std::vector<IcicleShape> buildShapes() {
 IcicleShape makeIcicleShape(size_t length_class, uint32_t seed) {
     assert(length_class < kIcicleShapeLengths && seed < kIcicleShapeSeeds);
     const float length = kLengths_m[length_class];
-    const float chain_top_radius = 0.004f + 0.07f * length;  // longer icicles are thicker
+    // Longer icicles are thicker; the blend of overlapping spheres widens the chain by about 35%, so a
+    // 0.35 m icicle is about 4.5 cm across at the top, a 6 cm one about 1.3 cm.
+    const float chain_top_radius = 0.0025f + 0.04f * length;
     IcicleShape shape;
     shape.mesh = polygonize(sphereChain(length, chain_top_radius, seed), length, chain_top_radius);
     shape.length_m = length;

@@ -51,6 +51,25 @@ TriangleMesh uvSphere(float radius, int slices, int stacks) {
     return m;
 }
 
+// A closed cylinder about z (radius r, z in [0, height]), `sides` flat sides, welded, outward.
+TriangleMesh cylinder(float r, float height, int sides) {
+    TriangleMesh m;
+    for (int k = 0; k < sides; ++k) {
+        const float a = 2.0f * float(M_PI) * float(k) / float(sides);
+        m.positions.push_back({r * std::cos(a), r * std::sin(a), 0.0f});
+        m.positions.push_back({r * std::cos(a), r * std::sin(a), height});
+    }
+    const uint32_t bottom = uint32_t(m.positions.size()), top = bottom + 1;
+    m.positions.push_back({0, 0, 0});
+    m.positions.push_back({0, 0, height});
+    for (int k = 0; k < sides; ++k) {
+        const uint32_t b0 = uint32_t(2 * k), t0 = b0 + 1, b1 = uint32_t(2 * ((k + 1) % sides)), t1 = b1 + 1;
+        m.indices.insert(m.indices.end(), {b0, b1, t1, b0, t1, t0, bottom, b1, b0, top, t0, t1});
+    }
+    computeNormals(&m);
+    return m;
+}
+
 EnvSample freezing(float theta, float ice = 1.0f, float humidity = 0.0f) {
     EnvSample e;
     e.temperature = theta;
@@ -137,6 +156,29 @@ TEST(IcicleAnchors, SlabDripsFromItsBottomRimEverySpacing) {
         std::sort(xs.begin(), xs.end());
         ASSERT_EQ(xs.size(), 17u);
         for (size_t k = 0; k < xs.size(); ++k) EXPECT_NEAR(xs[k], -0.5f + 0.02f + 0.06f * float(k), 1e-5f);
+    }
+}
+
+TEST(IcicleAnchors, WeldedCubeAndRoundRimLoop) {
+    // Shared-vertex unit cube: four 1 m bottom edges, 17 anchors each, at z = -0.5.
+    const std::vector<IcicleAnchor> cube = findIcicleAnchors(test::unitCube(), IcicleSettings{});
+    ASSERT_EQ(cube.size(), 4u * 17u);
+    for (const IcicleAnchor& a : cube) EXPECT_FLOAT_EQ(a.position.z, -0.5f);
+    // A 32-sided drum: its bottom rim turns 11.25° per vertex, one closed loop of perimeter
+    // P = 64 r sin(π/32), n = floor(P / 0.06 + 0.5) = 31 anchors, P / 31 apart along the rim.
+    const float r = 0.3f;
+    const std::vector<IcicleAnchor> drum = findIcicleAnchors(cylinder(r, 0.4f, 32), IcicleSettings{});
+    const float perimeter = 64.0f * r * std::sin(float(M_PI) / 32.0f);
+    ASSERT_EQ(drum.size(), 31u);
+    for (size_t k = 0; k < drum.size(); ++k) {
+        EXPECT_EQ(drum[k].position.z, 0.0f);
+        const float d = glm::length(glm::vec2(drum[k].position));
+        EXPECT_GE(d, r * std::cos(float(M_PI) / 32.0f) - 1e-6f);
+        EXPECT_LE(d, r + 1e-6f);
+        // Neighbours along the loop (also across its start): a chord just under the arc step P / 31.
+        const float chord = glm::distance(drum[k].position, drum[(k + 1) % drum.size()].position);
+        EXPECT_LE(chord, perimeter / 31.0f + 1e-5f);
+        EXPECT_GE(chord, 0.99f * perimeter / 31.0f);
     }
 }
 
