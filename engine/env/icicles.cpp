@@ -14,6 +14,7 @@ namespace {
 constexpr float kTwoPi = 6.28318530718f;
 constexpr uint64_t kSeedSalt = 0x5eed1c1e;
 constexpr uint64_t kYawSalt = 0x7a3c1c1e;
+constexpr uint64_t kLengthSalt = 0x1e7c1c1e;
 
 bool finite(const glm::vec3& v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -65,6 +66,8 @@ std::string validateIcicleSettings(const IcicleSettings& s) {
         return "length_per_degree_m must be finite and >= 0, got " + fmt(s.length_per_degree_m);
     if (!(s.humidity_gain >= 0.0f) || !std::isfinite(s.humidity_gain))
         return "humidity_gain must be finite and >= 0, got " + fmt(s.humidity_gain);
+    if (!(s.length_variation >= 0.0f && s.length_variation < 1.0f))
+        return "length_variation must be in [0, 1), got " + fmt(s.length_variation);
     if (s.anchors.size() > kMaxIcicleAnchors)
         return std::to_string(s.anchors.size()) + " authored anchors exceed the limit of " +
                std::to_string(kMaxIcicleAnchors);
@@ -111,9 +114,11 @@ std::vector<IcicleInstance> placeIcicles(const std::vector<IcicleAnchor>& anchor
     for (size_t j = 0; j < anchors.size(); ++j) {
         const EnvSample& e = env[j];
         if (!(e.temperature < 0.0f && e.icicles > 0.0f)) continue;  // §5.2's presence test (NaN fails)
-        const float h = fitToClearance(icicleLength(e.temperature, e.humidity, s), clearance_m[j]);
-        if (!(h >= kMinIcicleLength_m)) continue;
         const glm::vec3 p = anchors[j].position;
+        const float natural = icicleLength(e.temperature, e.humidity, s) *
+                              (1.0f - s.length_variation * unitFloat(anchorHash(p, kLengthSalt)));
+        const float h = fitToClearance(natural, clearance_m[j]);
+        if (!(h >= kMinIcicleLength_m)) continue;
         const size_t shape = nearestLengthClass(h) * kIcicleShapeSeeds + anchorHash(p, kSeedSalt) % kIcicleShapeSeeds;
         IcicleInstance icicle;
         icicle.shape = uint32_t(shape);

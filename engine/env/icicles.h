@@ -49,6 +49,10 @@ struct IcicleSettings {
     float length_per_degree_m = 0.03f;
     // g_η: how strongly humidity lengthens (η > 0) or shortens (η < 0) icicles, >= 0; 0 ignores η.
     float humidity_gain = 1.0f;
+    // Natural unevenness along an eave, in [0, 1): each placed icicle is shortened by a fraction in
+    // [0, length_variation) of its length, from a hash of its anchor's position. 0 (the default) keeps
+    // every icicle at exactly icicleLength(θ, η); 0.4 looks like a real eave.
+    float length_variation = 0.0f;
 };
 
 // "" when the settings are usable, else the first problem ("spacing_m must be >= 0.001 m, got 0").
@@ -130,14 +134,15 @@ struct IcicleInstance {
 glm::mat4 icicleTransform(const IcicleInstance& icicle);
 
 // Decides the icicles (§5.2). Anchor j gets one when θ(p_j) < 0 and i(p_j) > 0 (env[j]; NaN never
-// passes) and there is room below it: with h = icicleLength(θ, η) and free = kIcicleClearanceUse *
-// clearance_m[j] (the free distance below the anchor along -up, +inf when open; NaN or negative counts as
-// 0): h is kept when free >= h, shortened to free when free >= h / 2 (an icicle that grew into a
-// narrow gap), and no icicle otherwise; nothing shorter than kMinIcicleLength_m is placed. Its shape is
-// the library's length class nearest to h in ratio (|log(h / L)|, ties to the shorter class), the seed
-// within the class and the yaw from a hash of the anchor's position (so icicles stay put when other
-// anchors are added or removed). Instances follow anchor order. Empty with *error set when the three
-// arrays differ in size or the settings are invalid.
+// passes) and there is room below it. Its natural length is h = icicleLength(θ, η), times
+// (1 - length_variation * u), u in [0, 1) hashed from the anchor's position. With free =
+// kIcicleClearanceUse * clearance_m[j] (the free distance below the anchor along -up, +inf when open;
+// NaN or negative counts as 0): h is kept when free >= h, shortened to free when free >= h / 2 (an
+// icicle that grew into a narrow gap), and there is no icicle otherwise; nothing shorter than
+// kMinIcicleLength_m is placed. Its shape is the library's length class nearest to h in ratio
+// (|log(h / L)|, ties to the shorter class), with the seed within the class and the yaw hashed from the
+// anchor's position (so icicles stay put when other anchors are added or removed). Instances follow
+// anchor order. Empty with *error set when the three arrays differ in size or the settings are invalid.
 std::vector<IcicleInstance> placeIcicles(const std::vector<IcicleAnchor>& anchors, const std::vector<EnvSample>& env,
                                          const std::vector<float>& clearance_m, const IcicleSettings& s,
                                          std::string* error = nullptr);

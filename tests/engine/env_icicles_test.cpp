@@ -401,6 +401,30 @@ TEST(IciclePlacement, IsAPureFunctionOfTheAnchor) {
     EXPECT_TRUE(yaws_differ);
 }
 
+// With length_variation v, every icicle keeps a length in ((1 - v) h, h], not all the same, and the
+// variation is a function of the anchor (the same anchor, the same length).
+TEST(IciclePlacement, LengthVariationShortensWithinItsFraction) {
+    IcicleSettings s;
+    s.length_variation = 0.4f;
+    std::vector<IcicleAnchor> anchors;
+    for (int k = 0; k < 40; ++k) anchors.push_back({{0.06f * float(k), 0, 1}, {1, 0, 0}});
+    const std::vector<EnvSample> env(40, freezing(-5.0f));  // h = 0.15
+    const std::vector<IcicleInstance> icicles = placeIcicles(anchors, env, std::vector<float>(40, kInf), s);
+    ASSERT_EQ(icicles.size(), 40u);
+    float lo = kInf, hi = 0.0f;
+    for (const IcicleInstance& i : icicles) {
+        EXPECT_GT(i.length_m, 0.6f * 0.15f);
+        EXPECT_LE(i.length_m, 0.15f + 1e-6f);
+        lo = std::min(lo, i.length_m), hi = std::max(hi, i.length_m);
+    }
+    EXPECT_GT(hi - lo, 0.03f);  // 40 draws spread over most of the 0.06 m range
+    const std::vector<IcicleInstance> again = placeIcicles({anchors[7]}, {env[7]}, {kInf}, s);
+    ASSERT_EQ(again.size(), 1u);
+    EXPECT_EQ(again[0].length_m, icicles[7].length_m);
+    s.length_variation = 1.0f;
+    EXPECT_NE(validateIcicleSettings(s).find("length_variation"), std::string::npos);
+}
+
 TEST(IciclePlacement, RefusesMismatchedInputs) {
     std::string error;
     const std::vector<IcicleAnchor> anchors(3, IcicleAnchor{{0, 0, 1}, {1, 0, 0}});
