@@ -142,6 +142,10 @@ TriangleMesh icicleMesh(const std::vector<IcicleInstance>& icicles, std::string*
                          std::to_string(shapes.size());
             return {};
         }
+        if (!(icicles[k].scale > 0.0f) || !std::isfinite(icicles[k].scale)) {
+            if (error) *error = "icicle " + std::to_string(k) + " has scale " + fmt(icicles[k].scale);
+            return {};
+        }
         triangles += shapes[icicles[k].shape].mesh.triangleCount();
         if (triangles > kMaxIcicleMeshTriangles) {
             if (error)

@@ -81,8 +81,8 @@ struct IcicleAnchor {
 // most 30°), in a canonical order (by welded vertex position), and each chain of length L gets
 // n = floor(L / spacing + 0.5) anchors spaced by spacing_m and centred on it (open chains), or n evenly
 // spaced ones starting at the chain's first vertex + half a step (closed loops). Authored anchors follow.
-// Deterministic: the same mesh gives the same anchors whatever its vertex order (up to the start of
-// loops). Empty (with *error set) on invalid settings, indices out of range, non-finite positions, or an
+// Chains shorter than spacing_m / 2 get none. Deterministic: the same surface gives the same anchors
+// whatever its vertex and triangle order, and whether its vertices are split or shared. Empty (with *error set) on invalid settings, indices out of range, non-finite positions, or an
 // estimated anchor count above kMaxIcicleAnchors.
 std::vector<IcicleAnchor> findIcicleAnchors(const TriangleMesh& base, const IcicleSettings& s,
                                             std::string* error = nullptr);
@@ -149,7 +149,8 @@ std::vector<IcicleInstance> placeIcicles(const std::vector<IcicleAnchor>& anchor
 
 // The placed icicles merged into one mesh (object space, with normals, icy base_color), for exporters
 // without instancing and for tests. Empty with *error set when the result would exceed
-// kMaxIcicleMeshTriangles or an instance names a shape outside the library.
+// kMaxIcicleMeshTriangles, an instance names a shape outside the library or its scale is not a finite
+// positive number.
 TriangleMesh icicleMesh(const std::vector<IcicleInstance>& icicles, std::string* error = nullptr);
 
 }  // namespace ug

@@ -436,6 +436,11 @@ TEST(IciclePlacement, RefusesMismatchedInputs) {
     error.clear();
     EXPECT_EQ(icicleMesh({bad}, &error).triangleCount(), 0u);
     EXPECT_NE(error.find("shape 999"), std::string::npos);
+    bad.shape = 0;
+    bad.scale = 0.0f;
+    error.clear();
+    EXPECT_EQ(icicleMesh({bad}, &error).triangleCount(), 0u);
+    EXPECT_NE(error.find("scale"), std::string::npos);
 }
 
 }  // namespace ug
