@@ -32,6 +32,9 @@ void printUsage() {
         "                     [--threads N] [--cache DIR] [--no-shadows] [--no-ao] [--frames N]\n"
         "      a picture of the settled scene from the editor's opening view (or --camera), without any display\n"
         "      (EGL); --size defaults to 1280x720; --frames N times N frames (median)\n"
+        "  undergrowth environment SCENE --at x,y,z [--at x,y,z ...]\n"
+        "      the environment at world points (snow, icicles, leaves, grass, trash, occlusion, humidity,\n"
+        "      temperature and the shelter) as JSON\n"
         "  undergrowth build-tile SCENE [--cache DIR] [--stats FILE] [--threads N]\n"
         "      build (or load from the verified cache) the scene's Ghost Tile and print its statistics\n"
         "  undergrowth bench [--quick] [--json FILE] [--threads N] [--filter NAME]\n"
@@ -52,6 +55,7 @@ int main(int argc, char** argv) {
     if (command == "instantiate") return ug::cli::runInstantiateCommand(argc, argv);
     if (command == "edit") return ug::cli::runEditCommand(argc, argv);
     if (command == "render") return ug::cli::runRenderCommand(argc, argv);
+    if (command == "environment") return ug::cli::runEnvironmentCommand(argc, argv);
     if (command == "build-tile") return ug::cli::runBuildTileCommand(argc, argv);
     if (command == "bench") return ug::cli::runBenchCommand(argc, argv);
     if (command == "make-assets") return ug::cli::runMakeAssetsCommand(argc, argv);

@@ -12,6 +12,8 @@ int runMakeAssetsCommand(int argc, char** argv);  // undergrowth make-assets [--
 int runBenchCommand(int argc, char** argv);      // undergrowth bench [--quick] [--json FILE]
 int runInstantiateCommand(int argc, char** argv);  // undergrowth instantiate SCENE -o OUT.glb [...]
 int runEditCommand(int argc, char** argv);       // undergrowth edit SCENE [--frames N] [--screenshot PNG] [...]
-int runRenderCommand(int argc, char** argv);     // undergrowth render SCENE -o PICTURE.png [...]: no display needed
+int runRenderCommand(int argc, char** argv);
+// undergrowth environment SCENE --at x,y,z [--at ...]: the environment's channels and shelter as JSON
+int runEnvironmentCommand(int argc, char** argv);     // undergrowth render SCENE -o PICTURE.png [...]: no display needed
 
 }  // namespace ug::cli

@@ -12,6 +12,7 @@
 #include "ghosttile/ghost_tile_cache.h"
 #include "instancer/instantiator.h"
 #include "scene/project.h"
+#include "env/env_scene.h"
 #include "scene/scene_compile.h"
 
 namespace ug::cli {
@@ -24,6 +25,7 @@ struct SceneJob {
     CacheOutcome outcome = CacheOutcome::BuiltMissing;
     double models_seconds = 0.0;
     CompiledScene compiled;
+    std::shared_ptr<const EnvScene> environment;  // never null after a load
 };
 
 // Loads the project, fits its models, loads or builds the Ghost Tile (progress on stderr unless quiet) and

@@ -202,40 +202,21 @@ bool Document::load(Project project, const std::string& path, const DocumentOpti
     options_ = options;
     path_ = path;
     project_ = std::move(project);
-    const std::string name = path.empty() ? project_.name : path;
-    auto models = std::make_shared<std::vector<DetailModel>>();
     for (const DetailTypeDesc& t : project_.detail_types)
         assets_.model_files.push_back(modelFileStamp(resolveProjectPath(project_, t.model.mesh_path)));
-    // The terrain first: cheap to check, and a bad one must not wait for the models and the tile.
-    if (!loadTerrain(project_, &terrain_, error)) return false;
-    if (!loadProjectModels(project_, models.get(), error)) {
-        if (project_.source.empty()) *error = name + ": " + *error;  // else the message starts with the file
+    if (project_.source.empty() && !path.empty()) project_.source = path;
+    LoadedScene scene;
+    if (!loadScene(project_, SceneLoadOptions{.cache_dir = options.cache_dir, .threads = options.threads,
+                                              .allow_empty_extent = true},
+                   &scene, error))
         return false;
-    }
-    std::string note;
-    const GhostTileInput input = ghostTileInput(project_, *models);
-    auto tile = std::make_shared<GhostTile>();
-    if (!loadOrBuildGhostTile(options.cache_dir, input, BuildOptions{.threads = options.threads}, tile.get(),
-                              &assets_.outcome, &note, error)) {
-        *error = name + ": " + *error;
-        return false;
-    }
-    assets_.tile = std::move(tile);
-    assets_.models = std::move(models);
+    terrain_ = scene.terrain;
+    assets_.outcome = scene.outcome;
+    assets_.tile = std::move(scene.tile);
+    assets_.models = std::move(scene.models);
     live_assets_ = assets_;
-    if (!compileScene(project_, terrain_, &compiled_, error)) {
-        // The CLI refuses a scene with nothing to instantiate; the editor opens it (a new project) with an
-        // empty extent. Every other reason stands.
-        if (project_.extent) return false;
-        CompiledScene scene;
-        scene.terrain = terrain_;
-        scene.types.resize(project_.detail_types.size());
-        std::string type_error;
-        for (size_t t = 0; t < scene.types.size(); ++t)
-            if (!compileDetailType(project_, t, terrain_, &scene.types[t], &type_error)) return false;
-        if (!documentExtent(project_, scene, name, &scene.extent, &type_error) || !scene.extent.empty()) return false;
-        compiled_ = std::move(scene);
-    }
+    compiled_ = std::move(scene.compiled);
+    environment_ = std::move(scene.environment);
     densities_.clear();
     for (const DetailTypeDesc& t : project_.detail_types) densities_.push_back(editableDensityFor(t.density, &next_id_));
     live_ = std::make_unique<LiveInstancer>(options.threads);
@@ -453,6 +434,8 @@ bool Document::saveAs(const std::string& path, std::string* error) {
     if (moved) {
         for (DetailTypeDesc& t : saved.detail_types)
             t.model.mesh_path = rebasePath(t.model.mesh_path, old_dir.lexically_normal(), new_dir.lexically_normal());
+        for (EnvTypeDesc& t : saved.environment.types)
+            t.mesh_path = rebasePath(t.mesh_path, old_dir.lexically_normal(), new_dir.lexically_normal());
         if (saved.terrain.kind == TerrainKind::Image)
             saved.terrain.image_path =
                 rebasePath(saved.terrain.image_path, old_dir.lexically_normal(), new_dir.lexically_normal());

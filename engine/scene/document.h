@@ -47,6 +47,7 @@
 #include "scene/live_instancer.h"
 #include "scene/project.h"
 #include "scene/scene_compile.h"
+#include "scene/scene_load.h"
 
 namespace ug {
 
@@ -107,6 +108,8 @@ public:
     const TileAssets& tileAssets() const { return assets_; }
     const std::shared_ptr<const HeightField>& terrain() const { return terrain_; }
     const CompiledScene& compiled() const { return compiled_; }
+    // The environmental objects as loaded (never null; empty without any).
+    const std::shared_ptr<const EnvScene>& environment() const { return environment_; }
     // Every surface's look now (compileSceneMaterials on project() and models()): one SurfaceMaterial per
     // detail type and the terrain's, textures baked. Computed on each call (a few hundred ms for the
     // default scene's five kinds): call it when the project or tileGeneration() changes, not per frame.
@@ -208,6 +211,7 @@ private:
     TileAssets live_assets_;
     std::vector<TileAssets> retired_;
     std::shared_ptr<const HeightField> terrain_;
+    std::shared_ptr<const EnvScene> environment_;
     CompiledScene compiled_;
     std::vector<EditableDensity> densities_;
     uint64_t next_id_ = 1;

@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "env/env_json.h"
 #include "scene/field_json.h"
 #include "scene/json_parse.h"
 #include "scene/json_reader.h"
@@ -64,13 +65,15 @@ bool positiveNumber(JsonReader& r, const json& obj, const std::string& p, const 
 // Keys of this object valid in the file's format version; a key only a newer version knows is named as
 // such, so an old file edited by hand gets told what to change rather than "unknown field".
 bool versionedKeys(JsonReader& r, const json& j, const std::string& p, int version,
-                   const std::set<std::string>& v1_keys, const std::set<std::string>& v2_keys) {
+                   const std::set<std::string>& v1_keys, const std::set<std::string>& v2_keys,
+                   const std::set<std::string>& v3_keys = {}) {
     for (auto it = j.begin(); it != j.end(); ++it) {
         if (v1_keys.count(it.key())) continue;
-        if (v2_keys.count(it.key())) {
-            if (version >= 2) continue;
-            return r.fail(p + "/" + it.key(),
-                          "needs format_version 2 (this file says " + std::to_string(version) + ")");
+        const int needs = v2_keys.count(it.key()) ? 2 : v3_keys.count(it.key()) ? 3 : 0;
+        if (needs > 0) {
+            if (version >= needs) continue;
+            return r.fail(p + "/" + it.key(), "needs format_version " + std::to_string(needs) + " (this file says " +
+                                                  std::to_string(version) + ")");
         }
         return r.fail(p + "/" + it.key(), "unknown field");
     }
@@ -347,7 +350,7 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
                                              std::to_string(kProjectFormatVersion) + "); update Undergrowth");
     if (!versionedKeys(r, doc, "", version,
                        {"format", "format_version", "name", "ghost_tile", "detail_types"},
-                       {"terrain", "extent", "instantiation", "settling"}))
+                       {"terrain", "extent", "instantiation", "settling"}, {"environment"}))
         return false;
     Project p;
     p.source = source_name;
@@ -453,6 +456,9 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
             return false;
         p.detail_types.push_back(std::move(d));
     }
+    if (auto it = doc.find("environment");
+        it != doc.end() && !readEnvironment(r, *it, "/environment", &p.environment))
+        return false;
     *out = std::move(p);
     return true;
 }
@@ -595,7 +601,8 @@ void writePretty(const json& j, size_t indent, size_t key_width, std::string* ou
 std::string projectToJson(const Project& project) {
     json doc;
     doc["format"] = "undergrowth-project";
-    doc["format_version"] = kProjectFormatVersion;
+    // A project without environmental objects is a format 2 file, which older builds still read.
+    doc["format_version"] = project.environment.empty() ? 2 : kProjectFormatVersion;
     doc["name"] = project.name;
     doc["ghost_tile"] = {{"tile_size_m", jsonFloat(project.ghost_tile.tile_size_m)},
                          {"delta_m", jsonFloat(project.ghost_tile.delta_m)},
@@ -660,6 +667,7 @@ std::string projectToJson(const Project& project) {
         types.push_back(std::move(type));
     }
     doc["detail_types"] = types;
+    if (!project.environment.empty()) doc["environment"] = environmentToJson(project.environment);
     std::string text;
     writePretty(doc, 0, 0, &text);
     return text + "\n";

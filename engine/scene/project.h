@@ -59,6 +59,7 @@
 #include "field/density_field.h"
 #include "field/direction_field.h"
 #include "field/height_field.h"
+#include "env/env_desc.h"
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instancing_settings.h"
 #include "instancer/settling.h"
@@ -68,7 +69,8 @@
 namespace ug {
 
 // 2: terrain, extent, instantiation, and per type density, subtract_terrain, terrain_falloff_m, instancing.
-constexpr int kProjectFormatVersion = 2;
+// 3: environment (the environmental-object tree, env/env_json.h).
+constexpr int kProjectFormatVersion = 3;
 // Refused when the project is read, before any model is loaded (each type costs a model load and a fit).
 constexpr size_t kMaxDetailTypes = 1024;
 // Larger project files are refused before they are read (named in the message).
@@ -144,6 +146,7 @@ struct Project {
     uint64_t instantiation_seed = 1;
     float chunk_size_m = 8.0f;  // export: edge of the square XY chunks instances are grouped by, > 0
     std::vector<DetailTypeDesc> detail_types;
+    EnvironmentDesc environment;  // format 3: environmental objects, fields and effects (empty: none)
     std::string base_dir;  // folder of the file it was loaded from (not saved)
     std::string source;    // the file (or source name) it was parsed from, for messages (not saved)
 };

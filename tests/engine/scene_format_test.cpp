@@ -455,8 +455,11 @@ TEST(SceneFormat, ErrorsNameThePlaceAndTheReason) {
         {R"({"format": "undergrowth-project", "format_version": 1,
              "detail_types": [{"name": "t", "model": {"mesh": "t.glb"}, "density": {"blend": []}}]})",
          "/detail_types/0/density: needs format_version 2 (this file says 1)"},
-        {R"({"format": "undergrowth-project", "format_version": 3, "detail_types": []})",
-         "/format_version: version 3 is newer than this program reads (2)"},
+        {R"({"format": "undergrowth-project", "format_version": 4, "detail_types": []})",
+         "/format_version: version 4 is newer than this program reads (3)"},
+        {R"({"format": "undergrowth-project", "format_version": 2, "environment": {},
+             "detail_types": [{"name": "t", "model": {"mesh": "t.glb"}}]})",
+         "/environment: needs format_version 3 (this file says 2)"},
     };
     for (const Case& c : cases) {
         Project p;

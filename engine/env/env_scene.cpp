@@ -1,0 +1,523 @@
+#include "env/env_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+#include "field/primitive.h"
+#include "mesh/mesh_loader.h"
+
+namespace ug {
+
+namespace {
+
+constexpr float kDegToRad = 0.017453292519943295f;
+
+// Primitive bounds mapped through a placement: the local box's corners placed, then their AABB (a turn
+// about Z of an AABB stays within the placed corners' AABB; the scale and translation are exact).
+Bounds placedBounds(const Bounds& local, const EnvPlacement& pl) {
+    if (local.empty()) return local;
+    for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(local.lo[a]) || !std::isfinite(local.hi[a])) return Bounds::everything();
+    Bounds out;
+    for (int k = 0; k < 8; ++k) {
+        const glm::vec3 c((k & 1) ? local.hi.x : local.lo.x, (k & 2) ? local.hi.y : local.lo.y,
+                          (k & 4) ? local.hi.z : local.lo.z);
+        const glm::vec3 w = pl.toWorld(c);
+        out.lo = glm::min(out.lo, w);
+        out.hi = glm::max(out.hi, w);
+    }
+    // Rounding of the placed corners: pad by a few ulps of the coordinates.
+    const glm::vec3 pad = glm::max(glm::abs(out.lo), glm::abs(out.hi)) * 4e-7f + glm::vec3(1e-6f);
+    out.lo -= pad;
+    out.hi += pad;
+    return out;
+}
+
+void applyOverrides(const EffectOverrides& o, SnowEffectDesc* snow, IcicleEffectDesc* ice) {
+    if (o.snow_mode) snow->mode = *o.snow_mode;
+    if (o.snow_max_face_angle_deg) snow->max_face_angle_deg = *o.snow_max_face_angle_deg;
+    if (o.snow_d0_m) snow->d0_m = *o.snow_d0_m;
+    if (o.snow_target_edge_m) snow->target_edge_m = *o.snow_target_edge_m;
+    if (o.icicles_enabled) ice->enabled = *o.icicles_enabled;
+    if (o.icicle_spacing_m) ice->spacing_m = *o.icicle_spacing_m;
+    if (o.icicle_max_length_m) ice->max_length_m = *o.icicle_max_length_m;
+}
+
+// The inherited state while walking the tree: the overrides from the root down (nearest last).
+struct WalkState {
+    EnvPlacement placement;
+    std::vector<const EffectOverrides*> overrides;
+    bool under_lod = false;  // an LOD node above supplies the fields of this subtree
+};
+
+class TreeExpander {
+public:
+    TreeExpander(const EnvironmentDesc& desc, const std::vector<EnvObjectType>& types, const std::string& name,
+                 std::vector<EnvObject>* objects, std::vector<EnvWorldField>* fields, std::string* error)
+        : desc_(desc), types_(types), name_(name), objects_(objects), fields_(fields), error_(error) {}
+
+    // Counts the objects the tree expands into (references followed) before any is made, refusing cycles,
+    // unknown groups and counts over kMaxEnvObjects.
+    bool count(const EnvNode& n, const std::string& where, int depth, std::vector<std::string>* stack, size_t* total) {
+        if (depth > kMaxEnvTreeDepth) return fail(where, "the tree (references followed) is deeper than " +
+                                                             std::to_string(kMaxEnvTreeDepth) + " levels");
+        switch (n.kind) {
+        case EnvNodeKind::Object:
+            if (++*total > kMaxEnvObjects)
+                return fail(where, "the tree expands to more than " + std::to_string(kMaxEnvObjects) + " objects");
+            return true;
+        case EnvNodeKind::Reference: {
+            const NamedEnvGroup* g = group(n.target);
+            if (!g) return fail(where + "/ref", "no group named \"" + n.target + "\" in /environment/groups");
+            if (std::find(stack->begin(), stack->end(), n.target) != stack->end())
+                return fail(where + "/ref", "reference cycle: group \"" + n.target + "\" refers back to itself");
+            stack->push_back(n.target);
+            const bool ok = count(g->group, "/environment/groups/" + n.target, depth + 1, stack, total);
+            stack->pop_back();
+            return ok;
+        }
+        case EnvNodeKind::Group:
+        case EnvNodeKind::Lod:
+            for (size_t i = 0; i < n.children.size(); ++i)
+                if (!count(n.children[i], childPointer(n, where, i), depth + 1, stack, total)) return false;
+            return true;
+        }
+        return true;
+    }
+
+    void expand(const EnvNode& n, const std::string& where, const WalkState& parent) {
+        WalkState st = parent;
+        st.placement = parent.placement.compose(EnvPlacement::of(n.transform));
+        if (!n.overrides.empty()) st.overrides.push_back(&n.overrides);
+        const bool lod = n.kind == EnvNodeKind::Lod && desc_.use_lod_nodes;
+        // An LOD node's own fields stand for its subtree; below it, nothing else emits.
+        if (!parent.under_lod) addFields(n.fields, st.placement);
+        if (lod) st.under_lod = true;
+        switch (n.kind) {
+        case EnvNodeKind::Object: {
+            const EnvObjectType& type = types_[n.type];
+            EnvObject o;
+            o.type = n.type;
+            o.placement = st.placement;
+            o.snow = type.desc.snow;
+            o.icicles = type.desc.icicles;
+            for (const EffectOverrides* ov : st.overrides) applyOverrides(*ov, &o.snow, &o.icicles);
+            o.bounds = placedBounds(Bounds{type.bounds.min, type.bounds.max}, o.placement);
+            o.where = where;
+            objects_->push_back(std::move(o));
+            if (!parent.under_lod) addFields(type.desc.fields, st.placement);
+            return;
+        }
+        case EnvNodeKind::Reference:
+            expand(group(n.target)->group, "/environment/groups/" + n.target, st);
+            return;
+        case EnvNodeKind::Group:
+        case EnvNodeKind::Lod:
+            for (size_t i = 0; i < n.children.size(); ++i) expand(n.children[i], childPointer(n, where, i), st);
+            return;
+        }
+    }
+
+private:
+    bool fail(const std::string& where, const std::string& reason) {
+        *error_ = name_ + ": " + where + ": " + reason;
+        return false;
+    }
+    static std::string childPointer(const EnvNode& n, const std::string& where, size_t i) {
+        return where + (n.kind == EnvNodeKind::Lod ? "/lod" : "/group") + "/children/" + std::to_string(i);
+    }
+    const NamedEnvGroup* group(const std::string& name) const {
+        for (const NamedEnvGroup& g : desc_.groups)
+            if (g.name == name) return &g;
+        return nullptr;
+    }
+    void addFields(const std::vector<EnvFieldDesc>& fields, const EnvPlacement& owner) {
+        for (const EnvFieldDesc& f : fields) {
+            EnvWorldField w;
+            w.channel = f.channel;
+            w.everywhere = f.everywhere;
+            w.value = f.value;
+            w.shape = f.shape;
+            w.owner = owner;
+            w.bounds = f.everywhere ? Bounds::everything() : placedBounds(primitiveBounds(f.shape, nullptr), owner);
+            fields_->push_back(w);
+        }
+    }
+
+    const EnvironmentDesc& desc_;
+    const std::vector<EnvObjectType>& types_;
+    const std::string& name_;
+    std::vector<EnvObject>* objects_;
+    std::vector<EnvWorldField>* fields_;
+    std::string* error_;
+};
+
+bool loadType(const EnvTypeDesc& desc, size_t index, const std::string& base_dir, const std::string& name,
+              EnvObjectType* out, std::string* error) {
+    namespace fs = std::filesystem;
+    const std::string where = name + ": /environment/types/" + std::to_string(index) + "/mesh: ";
+    fs::path path(desc.mesh_path);
+    if (path.is_relative() && !base_dir.empty()) path = fs::path(base_dir) / path;
+    auto mesh = std::make_shared<TriangleMesh>();
+    if (!loadMeshFile(path.lexically_normal().string(), mesh.get(), error)) {
+        *error = where + *error;
+        return false;
+    }
+    if (desc.y_up) convertYUpToZUp(mesh.get());
+    if (desc.scale != 1.0f) scaleMesh(mesh.get(), desc.scale);
+    if (!validateMesh(*mesh, error)) {
+        *error = where + path.string() + ": " + *error;
+        return false;
+    }
+    computeNormals(mesh.get());
+    out->desc = desc;
+    out->bounds = meshBounds(*mesh);
+    out->spans = std::make_shared<HeightSpanMap>(*mesh);
+    out->mesh = std::move(mesh);
+    return true;
+}
+
+}  // namespace
+
+EnvPlacement EnvPlacement::of(const EnvTransform& tr) {
+    EnvPlacement p;
+    p.t = tr.translation;
+    p.yaw_deg = tr.yaw_deg;
+    p.c = std::cos(tr.yaw_deg * kDegToRad);
+    p.s = std::sin(tr.yaw_deg * kDegToRad);
+    p.scale = tr.scale;
+    return p;
+}
+
+EnvPlacement EnvPlacement::compose(const EnvPlacement& child) const {
+    EnvPlacement out;
+    out.t = toWorld(child.t);
+    out.c = c * child.c - s * child.s;
+    out.s = s * child.c + c * child.s;
+    out.scale = scale * child.scale;
+    out.yaw_deg = yaw_deg + child.yaw_deg;
+    return out;
+}
+
+glm::vec3 EnvPlacement::toWorld(glm::vec3 p) const {
+    const glm::vec3 q = p * scale;
+    return glm::vec3(c * q.x - s * q.y, s * q.x + c * q.y, q.z) + t;
+}
+
+glm::vec3 EnvPlacement::toLocal(glm::vec3 p) const {
+    const glm::vec3 d = p - t;
+    return glm::vec3(c * d.x + s * d.y, -s * d.x + c * d.y, d.z) / scale;
+}
+
+bool compileEnvScene(const EnvironmentDesc& desc, const std::string& base_dir, const std::string& name,
+                     std::shared_ptr<const HeightField> terrain, EnvScene* out, std::string* error) {
+    EnvScene scene;
+    scene.desc_ = desc;
+    scene.terrain_ = std::move(terrain);
+    scene.types_.resize(desc.types.size());
+    for (size_t t = 0; t < desc.types.size(); ++t)
+        if (!loadType(desc.types[t], t, base_dir, name, &scene.types_[t], error)) return false;
+    TreeExpander tree(desc, scene.types_, name, &scene.objects_, &scene.fields_, error);
+    size_t total = 0;
+    std::vector<std::string> stack;
+    for (size_t i = 0; i < desc.roots.size(); ++i)
+        if (!tree.count(desc.roots[i], "/environment/tree/" + std::to_string(i), 0, &stack, &total)) return false;
+    for (const NamedEnvGroup& g : desc.groups) {  // a cycle among groups no tree node uses is still an error
+        stack.assign(1, g.name);
+        size_t unused = 0;
+        if (!tree.count(g.group, "/environment/groups/" + g.name, 1, &stack, &unused)) return false;
+    }
+    scene.objects_.reserve(total);
+    for (size_t i = 0; i < desc.roots.size(); ++i)
+        tree.expand(desc.roots[i], "/environment/tree/" + std::to_string(i), WalkState{});
+    for (const EnvFieldDesc& f : desc.global_fields) {
+        EnvWorldField w;
+        w.channel = f.channel;
+        w.everywhere = f.everywhere;
+        w.value = f.value;
+        w.shape = f.shape;
+        w.bounds = f.everywhere ? Bounds::everything() : primitiveBounds(f.shape, nullptr);
+        scene.fields_.push_back(w);
+    }
+    if (scene.fields_.size() > kMaxEnvFields)
+        return *error = name + ": /environment: " + std::to_string(scene.fields_.size()) +
+                        " fields after expansion exceed the limit of " + std::to_string(kMaxEnvFields),
+               false;
+    for (const EnvObject& o : scene.objects_) {
+        scene.object_bounds_.lo = glm::min(scene.object_bounds_.lo, o.bounds.lo);
+        scene.object_bounds_.hi = glm::max(scene.object_bounds_.hi, o.bounds.hi);
+    }
+    scene.buildIndex();
+    *out = std::move(scene);
+    return true;
+}
+
+// ---- indexes ---------------------------------------------------------------------------------------------
+
+void EnvScene::buildIndex() {
+    // Fields: global ones (unbounded in every axis) apart; a median-split BVH over the others.
+    std::vector<uint32_t> local;
+    global_ids_.clear();
+    for (uint32_t i = 0; i < fields_.size(); ++i) {
+        const Bounds& b = fields_[i].bounds;
+        bool finite = !b.empty();
+        for (int a = 0; a < 3 && finite; ++a) finite = std::isfinite(b.lo[a]) && std::isfinite(b.hi[a]);
+        (finite ? local : global_ids_).push_back(i);
+    }
+    nodes_.clear();
+    leaf_ids_.clear();
+    if (!local.empty()) {
+        struct Task {
+            uint32_t node, begin, end;
+        };
+        nodes_.push_back({});
+        std::vector<Task> tasks = {{0, 0, uint32_t(local.size())}};
+        while (!tasks.empty()) {
+            const Task t = tasks.back();
+            tasks.pop_back();
+            Bounds box;
+            for (uint32_t k = t.begin; k < t.end; ++k) {
+                box.lo = glm::min(box.lo, fields_[local[k]].bounds.lo);
+                box.hi = glm::max(box.hi, fields_[local[k]].bounds.hi);
+            }
+            nodes_[t.node].box = box;
+            if (t.end - t.begin <= 4) {
+                nodes_[t.node].first = uint32_t(leaf_ids_.size());
+                nodes_[t.node].count = t.end - t.begin;
+                std::vector<uint32_t> ids(local.begin() + t.begin, local.begin() + t.end);
+                std::sort(ids.begin(), ids.end());
+                leaf_ids_.insert(leaf_ids_.end(), ids.begin(), ids.end());
+                continue;
+            }
+            const glm::vec3 ext = box.hi - box.lo;
+            const int axis = ext.x >= ext.y && ext.x >= ext.z ? 0 : (ext.y >= ext.z ? 1 : 2);
+            const uint32_t mid = (t.begin + t.end) / 2;
+            std::nth_element(local.begin() + t.begin, local.begin() + mid, local.begin() + t.end,
+                             [&](uint32_t a, uint32_t b) {
+                                 const float ca = fields_[a].bounds.lo[axis] + fields_[a].bounds.hi[axis];
+                                 const float cb = fields_[b].bounds.lo[axis] + fields_[b].bounds.hi[axis];
+                                 return ca < cb || (ca == cb && a < b);
+                             });
+            const uint32_t left = uint32_t(nodes_.size());
+            nodes_.push_back({});
+            nodes_.push_back({});
+            nodes_[t.node].first = left;
+            nodes_[t.node].count = 0;
+            tasks.push_back({left, t.begin, mid});
+            tasks.push_back({left + 1, mid, t.end});
+        }
+    }
+    // Objects: a uniform XY grid of about 4 objects per cell.
+    grid_ids_.clear();
+    grid_first_.clear();
+    grid_nx_ = grid_ny_ = 0;
+    if (objects_.empty()) return;
+    const glm::vec2 lo(object_bounds_.lo), hi(object_bounds_.hi);
+    const float area = std::max((hi.x - lo.x) * (hi.y - lo.y), 1e-4f);
+    grid_cell_ = std::max(std::sqrt(area * 4.0f / float(objects_.size())), 0.25f);
+    grid_origin_ = lo;
+    grid_nx_ = std::min(4096, int((hi.x - lo.x) / grid_cell_) + 1);
+    grid_ny_ = std::min(4096, int((hi.y - lo.y) / grid_cell_) + 1);
+    grid_cell_ = std::max((hi.x - lo.x) / float(grid_nx_), (hi.y - lo.y) / float(grid_ny_)) * 1.0001f + 1e-6f;
+    const size_t cells = size_t(grid_nx_) * size_t(grid_ny_);
+    std::vector<uint32_t> count(cells + 1, 0);
+    auto range = [&](const Bounds& b, int* i0, int* i1, int* j0, int* j1) {
+        *i0 = std::clamp(int((b.lo.x - kShelterCellM - grid_origin_.x) / grid_cell_), 0, grid_nx_ - 1);
+        *i1 = std::clamp(int((b.hi.x + kShelterCellM - grid_origin_.x) / grid_cell_), 0, grid_nx_ - 1);
+        *j0 = std::clamp(int((b.lo.y - kShelterCellM - grid_origin_.y) / grid_cell_), 0, grid_ny_ - 1);
+        *j1 = std::clamp(int((b.hi.y + kShelterCellM - grid_origin_.y) / grid_cell_), 0, grid_ny_ - 1);
+    };
+    for (const EnvObject& o : objects_) {
+        int i0, i1, j0, j1;
+        range(o.bounds, &i0, &i1, &j0, &j1);
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i) ++count[size_t(j) * grid_nx_ + i + 1];
+    }
+    for (size_t c = 0; c < cells; ++c) count[c + 1] += count[c];
+    grid_first_ = count;
+    grid_ids_.resize(grid_first_[cells]);
+    for (uint32_t k = 0; k < objects_.size(); ++k) {
+        int i0, i1, j0, j1;
+        range(objects_[k].bounds, &i0, &i1, &j0, &j1);
+        for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i) grid_ids_[count[size_t(j) * grid_nx_ + i]++] = k;
+    }
+}
+
+void EnvScene::fieldsAt(glm::vec3 p, std::vector<uint32_t>* out) const {
+    out->assign(global_ids_.begin(), global_ids_.end());
+    if (!nodes_.empty()) {
+        uint32_t stack[128];
+        int top = 0;
+        stack[top++] = 0;
+        while (top > 0) {
+            const Node& n = nodes_[stack[--top]];
+            if (!contains(n.box, p)) continue;
+            if (n.count > 0) {
+                for (uint32_t k = n.first; k < n.first + n.count; ++k)
+                    if (contains(fields_[leaf_ids_[k]].bounds, p)) out->push_back(leaf_ids_[k]);
+            } else if (top + 2 <= 128) {
+                stack[top++] = n.first;
+                stack[top++] = n.first + 1;
+            }
+        }
+    }
+    std::sort(out->begin(), out->end());
+}
+
+size_t EnvScene::candidateFieldCount(const Bounds& box) const {
+    size_t n = global_ids_.size();
+    if (nodes_.empty()) return n;
+    std::vector<uint32_t> stack = {0};
+    while (!stack.empty()) {
+        const Node& node = nodes_[stack.back()];
+        stack.pop_back();
+        if (!overlaps(node.box, box)) continue;
+        if (node.count > 0) {
+            for (uint32_t k = node.first; k < node.first + node.count; ++k)
+                n += overlaps(fields_[leaf_ids_[k]].bounds, box) ? 1 : 0;
+        } else {
+            stack.push_back(node.first);
+            stack.push_back(node.first + 1);
+        }
+    }
+    return n;
+}
+
+void EnvScene::objectsAt(float x, float y, std::vector<uint32_t>* out) const {
+    out->clear();
+    if (grid_nx_ == 0) return;
+    const float fx = (x - grid_origin_.x) / grid_cell_, fy = (y - grid_origin_.y) / grid_cell_;
+    if (!(fx >= 0.0f && fy >= 0.0f && fx < float(grid_nx_) && fy < float(grid_ny_))) return;
+    const size_t c = size_t(int(fy)) * grid_nx_ + size_t(int(fx));
+    out->assign(grid_ids_.begin() + grid_first_[c], grid_ids_.begin() + grid_first_[c + 1]);
+}
+
+// ---- evaluation ------------------------------------------------------------------------------------------
+
+EnvSample EnvScene::accumulate(glm::vec3 p, const uint32_t* ids, size_t n) const {
+    float sum[kEnvChannelCount] = {};
+    float alpha = 1.0f;
+    for (size_t k = 0; k < n; ++k) {
+        const EnvWorldField& f = fields_[ids[k]];
+        const float v = f.everywhere ? f.value : primitiveValue(f.shape, nullptr, f.owner.toLocal(p));
+        if (f.channel == EnvChannel::Occlusion)
+            alpha *= 1.0f - v;
+        else
+            sum[size_t(f.channel)] += v;
+    }
+    EnvSample e;
+    e.snow = sum[size_t(EnvChannel::Snow)];
+    e.icicles = sum[size_t(EnvChannel::Icicles)];
+    e.leaves = sum[size_t(EnvChannel::Leaves)];
+    e.grass = sum[size_t(EnvChannel::Grass)];
+    e.trash = sum[size_t(EnvChannel::Trash)];
+    e.occlusion = std::clamp(alpha, 0.0f, 1.0f);
+    e.humidity = sum[size_t(EnvChannel::Humidity)];
+    e.temperature = sum[size_t(EnvChannel::Temperature)];
+    return e;
+}
+
+EnvSample EnvScene::channels(glm::vec3 p) const {
+    std::vector<uint32_t> ids;
+    fieldsAt(p, &ids);
+    return accumulate(p, ids.data(), ids.size());
+}
+
+float EnvScene::shelter(glm::vec3 p) const {
+    std::vector<uint32_t> objs;
+    int open = 0;
+    for (int j = -1; j <= 1; ++j)
+        for (int i = -1; i <= 1; ++i) {
+            const glm::vec3 q = p + glm::vec3(float(i) * kShelterCellM, float(j) * kShelterCellM, 0.0f);
+            objectsAt(q.x, q.y, &objs);
+            bool covered = false;
+            for (uint32_t o : objs) {
+                const EnvObject& obj = objects_[o];
+                if (q.x < obj.bounds.lo.x || q.x > obj.bounds.hi.x || q.y < obj.bounds.lo.y || q.y > obj.bounds.hi.y ||
+                    obj.bounds.hi.z <= q.z + kShelterEpsM)
+                    continue;
+                const glm::vec3 local = obj.placement.toLocal(q);
+                if (types_[obj.type].spans->coveredAbove(local, kShelterEpsM / obj.placement.scale)) {
+                    covered = true;
+                    break;
+                }
+            }
+            open += covered ? 0 : 1;
+        }
+    return float(open) / 9.0f;
+}
+
+float EnvScene::clearanceBelow(glm::vec3 p) const {
+    float floor_z = -std::numeric_limits<float>::infinity();
+    if (terrain_ && !terrain_->empty()) floor_z = terrain_->sample(p.x, p.y);
+    std::vector<uint32_t> objs;
+    objectsAt(p.x, p.y, &objs);
+    for (uint32_t o : objs) {
+        const EnvObject& obj = objects_[o];
+        if (!contains(Bounds{glm::vec3(obj.bounds.lo.x, obj.bounds.lo.y, -INFINITY),
+                             glm::vec3(obj.bounds.hi.x, obj.bounds.hi.y, p.z)},
+                      p))
+            continue;
+        const float below = types_[obj.type].spans->highestBelow(obj.placement.toLocal(p), kShelterEpsM / obj.placement.scale);
+        if (below > -std::numeric_limits<float>::infinity())
+            floor_z = std::max(floor_z, obj.placement.toWorld(glm::vec3(0.0f, 0.0f, below)).z);
+    }
+    return p.z - floor_z;
+}
+
+EnvSample EnvScene::sample(glm::vec3 p) const {
+    EnvSample e = channels(p);
+    e.shelter = shelter(p);
+    return e;
+}
+
+void EnvScene::sampleBatch(const glm::vec3* points, size_t n, EnvSample* out) const {
+    if (n == 0) return;
+    // The fields whose bounds meet the batch's box, in index order; per point those holding it, in the
+    // same order sample() sums them: the same value bit for bit.
+    Bounds box;
+    for (size_t k = 0; k < n; ++k) {
+        box.lo = glm::min(box.lo, points[k]);
+        box.hi = glm::max(box.hi, points[k]);
+    }
+    std::vector<uint32_t> near = global_ids_;
+    if (!nodes_.empty()) {
+        std::vector<uint32_t> stack = {0};
+        while (!stack.empty()) {
+            const Node& node = nodes_[stack.back()];
+            stack.pop_back();
+            if (!overlaps(node.box, box)) continue;
+            if (node.count > 0) {
+                for (uint32_t k = node.first; k < node.first + node.count; ++k)
+                    if (overlaps(fields_[leaf_ids_[k]].bounds, box)) near.push_back(leaf_ids_[k]);
+            } else {
+                stack.push_back(node.first);
+                stack.push_back(node.first + 1);
+            }
+        }
+    }
+    std::sort(near.begin(), near.end());
+    std::vector<uint32_t> ids;
+    ids.reserve(near.size());
+    for (size_t k = 0; k < n; ++k) {
+        ids.clear();
+        for (uint32_t f : near)
+            if (contains(fields_[f].bounds, points[k])) ids.push_back(f);
+        out[k] = accumulate(points[k], ids.data(), ids.size());
+        out[k].shelter = shelter(points[k]);
+    }
+}
+
+EnvQuery EnvScene::objectQuery(size_t object) const {
+    const EnvPlacement pl = objects_[object].placement;
+    return [this, pl](const glm::vec3* points, size_t n, EnvSample* out) {
+        std::vector<glm::vec3> world(n);
+        for (size_t k = 0; k < n; ++k) world[k] = pl.toWorld(points[k]);
+        sampleBatch(world.data(), n, out);
+    };
+}
+
+}  // namespace ug

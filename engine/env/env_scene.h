@@ -1,0 +1,139 @@
+// The environmental-object scene compiled (Grosbellet et al. 2016 §3-§4, §6.1; docs/architecture.md
+// "Environmental objects"): the type library with its meshes loaded, the tree expanded into a flat list of
+// objects (references followed, group overrides inherited), every emitted field placed in the world, and
+// the environment e(p) with the shelter term.
+//
+//   EnvScene env;
+//   if (!compileEnvScene(project.environment, project.base_dir, "street.json", terrain, &env, &error)) ...
+//   EnvSample e = env.sample({1, 2, 0.5});             // channels + shelter at a world point
+//   env.sampleBatch(points, n, out);                   // bit-identical to sample() per point
+//
+// Fields: channels blend by sum, occlusion by product of α_i = 1 - value·K(d) (§4). A point sums the fields
+// whose support holds it, always in the order the fields were placed (types' fields per object in tree
+// order, then nodes' own, then the global ones), so the scalar, batched and any region's evaluation agree
+// bit for bit. An LOD node's own fields replace its subtree's for these queries when use_lod_nodes is on
+// (§6.1); with it off, LOD nodes act as groups.
+//
+// Shelter: the fraction of 9 vertical rays, on a 3 x 3 grid of kShelterCellM around the point, that no
+// object's base geometry crosses above the point by more than kShelterEpsM (height_span_map.h). The
+// terrain shelters nothing (it is below).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "env/env_desc.h"
+#include "env/env_sample.h"
+#include "env/height_span_map.h"
+#include "field/bounds.h"
+#include "field/height_field.h"
+#include "mesh/triangle_mesh.h"
+
+namespace ug {
+
+constexpr float kShelterEpsM = 0.03f;  // geometry closer above a point than this does not shelter it
+
+// object space -> world: translate(t) * rotateZ(yaw) * scale(s).
+struct EnvPlacement {
+    glm::vec3 t{0.0f};
+    float c = 1.0f, s = 0.0f;  // cos and sin of the yaw
+    float scale = 1.0f;
+    float yaw_deg = 0.0f;
+
+    static EnvPlacement of(const EnvTransform& tr);
+    // this ∘ child: the child's placement in this one's space, composed.
+    EnvPlacement compose(const EnvPlacement& child) const;
+    glm::vec3 toWorld(glm::vec3 p) const;
+    glm::vec3 toLocal(glm::vec3 p) const;
+    bool operator==(const EnvPlacement&) const = default;
+};
+
+struct EnvObjectType {
+    EnvTypeDesc desc;
+    std::shared_ptr<const TriangleMesh> mesh;  // object space, Z up, normals
+    std::shared_ptr<const HeightSpanMap> spans;
+    Bounds3 bounds;                            // of the mesh
+};
+
+struct EnvObject {
+    uint32_t type = 0;
+    EnvPlacement placement;
+    SnowEffectDesc snow;        // the type's, with the overrides of the object and its ancestors applied
+    IcicleEffectDesc icicles;
+    Bounds bounds;              // world AABB of the base mesh
+    std::string where;          // the node's JSON Pointer in the file, for messages
+};
+
+struct EnvWorldField {
+    EnvChannel channel = EnvChannel::Snow;
+    bool everywhere = false;
+    float value = 0.0f;
+    Primitive shape;          // in the owner's space
+    EnvPlacement owner;       // owner space -> world
+    Bounds bounds;            // world AABB of the support (everything for a global field)
+};
+
+class EnvScene {
+public:
+    const std::vector<EnvObjectType>& types() const { return types_; }
+    const std::vector<EnvObject>& objects() const { return objects_; }
+    const std::vector<EnvWorldField>& fields() const { return fields_; }
+    const std::shared_ptr<const HeightField>& terrain() const { return terrain_; }
+    const EnvironmentDesc& desc() const { return desc_; }
+    bool empty() const { return objects_.empty() && fields_.empty(); }
+    // World AABB of every object (empty when there is none).
+    const Bounds& objectBounds() const { return object_bounds_; }
+
+    EnvSample sample(glm::vec3 p) const;
+    void sampleBatch(const glm::vec3* points, size_t n, EnvSample* out) const;
+    // The channels only (shelter left at 1).
+    EnvSample channels(glm::vec3 p) const;
+    float shelter(glm::vec3 p) const;
+    // The free fall below p: p.z minus the highest base geometry or terrain under it (+inf over nothing).
+    float clearanceBelow(glm::vec3 p) const;
+    // The environment at object-space points of `object` (EnvQuery for the effects).
+    EnvQuery objectQuery(size_t object) const;
+
+    // How many fields a query in `box` has to look at (the LOD nodes' gain, §6.1, in the bench).
+    size_t candidateFieldCount(const Bounds& box) const;
+
+private:
+    friend bool compileEnvScene(const EnvironmentDesc&, const std::string&, const std::string&,
+                                std::shared_ptr<const HeightField>, EnvScene*, std::string*);
+    void buildIndex();
+    // Appends the indices (ascending) of fields whose bounds hold p.
+    void fieldsAt(glm::vec3 p, std::vector<uint32_t>* out) const;
+    void objectsAt(float x, float y, std::vector<uint32_t>* out) const;
+    EnvSample accumulate(glm::vec3 p, const uint32_t* ids, size_t n) const;
+
+    EnvironmentDesc desc_;
+    std::vector<EnvObjectType> types_;
+    std::vector<EnvObject> objects_;
+    std::vector<EnvWorldField> fields_;
+    std::shared_ptr<const HeightField> terrain_;
+    Bounds object_bounds_;
+
+    // Field index: a BVH over the local fields' bounds (leaves hold field ids), plus the global ones.
+    struct Node {
+        Bounds box;
+        uint32_t first = 0, count = 0;  // leaf: range in leaf_ids_; inner: count 0, children first, first + 1
+    };
+    std::vector<Node> nodes_;
+    std::vector<uint32_t> leaf_ids_;
+    std::vector<uint32_t> global_ids_;
+    // Object index: a uniform XY grid of object ids (ascending per cell).
+    glm::vec2 grid_origin_{0.0f};
+    float grid_cell_ = 1.0f;
+    int grid_nx_ = 0, grid_ny_ = 0;
+    std::vector<uint32_t> grid_first_, grid_ids_;
+};
+
+// Loads every type's mesh (relative paths against base_dir), expands the tree and indexes the fields.
+// Errors: "<name>: /environment/...: <reason>" (a missing or corrupt mesh names the file too; a reference to
+// an unknown group or a reference cycle names the reference; more than kMaxEnvObjects objects after
+// expansion is refused before they are made).
+bool compileEnvScene(const EnvironmentDesc& desc, const std::string& base_dir, const std::string& name,
+                     std::shared_ptr<const HeightField> terrain, EnvScene* out, std::string* error);
+
+}  // namespace ug

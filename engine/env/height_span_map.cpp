@@ -1,0 +1,85 @@
+#include "env/height_span_map.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ug {
+
+namespace {
+
+// Calls f(cell index, z) for every cell centre inside the triangle's XY projection (edges included: a
+// centre on an edge shared by two triangles is counted by both, which only repeats a crossing).
+template <typename F>
+void rasterTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec2 origin, float cell, int nx, int ny, F&& f) {
+    const float area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
+    if (std::fabs(area) < 1e-12f) return;  // vertical: crosses no vertical line
+    const float lo_x = std::min({a.x, b.x, c.x}), hi_x = std::max({a.x, b.x, c.x});
+    const float lo_y = std::min({a.y, b.y, c.y}), hi_y = std::max({a.y, b.y, c.y});
+    const int i0 = std::max(0, int(std::ceil((lo_x - origin.x) / cell - 0.5f)));
+    const int i1 = std::min(nx - 1, int(std::floor((hi_x - origin.x) / cell - 0.5f)));
+    const int j0 = std::max(0, int(std::ceil((lo_y - origin.y) / cell - 0.5f)));
+    const int j1 = std::min(ny - 1, int(std::floor((hi_y - origin.y) / cell - 0.5f)));
+    const float inv = 1.0f / area;
+    for (int j = j0; j <= j1; ++j) {
+        const float y = origin.y + (float(j) + 0.5f) * cell;
+        for (int i = i0; i <= i1; ++i) {
+            const float x = origin.x + (float(i) + 0.5f) * cell;
+            const float w0 = ((b.x - x) * (c.y - y) - (c.x - x) * (b.y - y)) * inv;
+            const float w1 = ((c.x - x) * (a.y - y) - (a.x - x) * (c.y - y)) * inv;
+            const float w2 = 1.0f - w0 - w1;
+            const float tol = -1e-6f;
+            if (w0 < tol || w1 < tol || w2 < tol) continue;
+            f(size_t(j) * size_t(nx) + size_t(i), w0 * a.z + w1 * b.z + w2 * c.z);
+        }
+    }
+}
+
+}  // namespace
+
+HeightSpanMap::HeightSpanMap(const TriangleMesh& mesh) {
+    const Bounds3 b = meshBounds(mesh);
+    const glm::vec2 size(b.max.x - b.min.x, b.max.y - b.min.y);
+    cell_ = kShelterCellM;
+    // Coarsen so the grid stays bounded for a large mesh (a whole building block).
+    while (double(size.x / cell_ + 3.0f) * double(size.y / cell_ + 3.0f) > double(kMaxSpanMapCells)) cell_ *= 2.0f;
+    origin_ = glm::vec2(b.min.x, b.min.y) - glm::vec2(cell_);
+    nx_ = int(std::ceil(size.x / cell_)) + 2;
+    ny_ = int(std::ceil(size.y / cell_)) + 2;
+    const size_t cells = size_t(nx_) * size_t(ny_);
+    std::vector<uint32_t> count(cells + 1, 0);
+    auto each = [&](auto&& f) {
+        for (size_t t = 0; t + 2 < mesh.indices.size(); t += 3)
+            rasterTriangle(mesh.positions[mesh.indices[t]], mesh.positions[mesh.indices[t + 1]],
+                           mesh.positions[mesh.indices[t + 2]], origin_, cell_, nx_, ny_, f);
+    };
+    each([&](size_t cell, float) { ++count[cell + 1]; });
+    for (size_t c = 0; c < cells; ++c) count[c + 1] += count[c];
+    first_ = count;
+    z_.resize(first_[cells]);
+    each([&](size_t cell, float z) { z_[count[cell]++] = z; });
+    for (size_t c = 0; c < cells; ++c) std::sort(z_.begin() + first_[c], z_.begin() + first_[c + 1]);
+}
+
+long HeightSpanMap::cellOf(float x, float y) const {
+    if (nx_ == 0) return -1;
+    const float fx = (x - origin_.x) / cell_, fy = (y - origin_.y) / cell_;
+    if (!(fx >= 0.0f && fy >= 0.0f && fx < float(nx_) && fy < float(ny_))) return -1;
+    return long(int(fy)) * nx_ + long(int(fx));
+}
+
+bool HeightSpanMap::coveredAbove(glm::vec3 p, float eps) const {
+    const long c = cellOf(p.x, p.y);
+    if (c < 0 || first_[size_t(c)] == first_[size_t(c) + 1]) return false;
+    return z_[first_[size_t(c) + 1] - 1] > p.z + eps;
+}
+
+float HeightSpanMap::highestBelow(glm::vec3 p, float eps) const {
+    const long c = cellOf(p.x, p.y);
+    if (c < 0) return -std::numeric_limits<float>::infinity();
+    const float* lo = z_.data() + first_[size_t(c)];
+    const float* hi = z_.data() + first_[size_t(c) + 1];
+    const float* it = std::lower_bound(lo, hi, p.z - eps);  // first crossing >= z - eps
+    return it == lo ? -std::numeric_limits<float>::infinity() : *(it - 1);
+}
+
+}  // namespace ug

@@ -1,0 +1,55 @@
+// Where a mesh lies above and below a point along the vertical: docs/architecture.md "Beyond the paper:
+// shelter". For a grid of cells over the mesh's XY bounds, every height at which the mesh crosses the
+// vertical line through the cell's centre, sorted. Built once per environmental-object type in its own
+// space; objects turn only about the vertical, so a world point is looked up by mapping it into an
+// object's space.
+//
+// Vertical faces (walls) cross no vertical line and so shelter nothing from snow falling straight down,
+// which is what a wall does. Geometry thinner than a cell may fall between the centres: it is too thin to
+// keep snow off anyway.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "mesh/triangle_mesh.h"
+
+namespace ug {
+
+constexpr float kShelterCellM = 0.025f;        // grid cell at scale 1 (coarsened for very large meshes)
+constexpr size_t kMaxSpanMapCells = 1u << 22;  // per type: beyond this the cell grows
+
+class HeightSpanMap {
+public:
+    HeightSpanMap() = default;
+    // The mesh must pass validateMesh.
+    explicit HeightSpanMap(const TriangleMesh& mesh);
+
+    // The highest crossing above z + eps at the cell of (x, y); false when there is none (or (x, y) is
+    // outside the grid).
+    bool coveredAbove(glm::vec3 p, float eps) const;
+    // The highest crossing below z - eps at the cell of (x, y), or -infinity when there is none.
+    float highestBelow(glm::vec3 p, float eps) const;
+
+    float cellSize() const { return cell_; }
+    glm::vec2 origin() const { return origin_; }
+    int width() const { return nx_; }
+    int height() const { return ny_; }
+    size_t crossingCount() const { return z_.size(); }
+
+private:
+    // The cell holding (x, y), or -1 outside the grid.
+    long cellOf(float x, float y) const;
+
+    glm::vec2 origin_{0.0f};  // XY of cell (0, 0)'s lower corner
+    float cell_ = kShelterCellM;
+    int nx_ = 0, ny_ = 0;
+    std::vector<uint32_t> first_;  // nx*ny + 1 offsets into z_
+    std::vector<float> z_;         // per cell, ascending
+};
+
+}  // namespace ug

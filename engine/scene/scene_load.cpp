@@ -1,0 +1,66 @@
+#include "scene/scene_load.h"
+
+#include <chrono>
+#include <cmath>
+
+namespace ug {
+
+namespace {
+
+std::string sceneName(const Project& project) { return project.source.empty() ? project.name : project.source; }
+
+// The editor's extent for a project the compiler refuses only for having no density yet: the project's
+// own, else empty. Any other reason (an unbounded field without an extent) still stands.
+bool emptyExtentScene(const Project& project, const std::shared_ptr<const HeightField>& terrain,
+                      CompiledScene* out, std::string* error) {
+    if (project.extent) return false;
+    CompiledScene scene;
+    scene.terrain = terrain;
+    scene.types.resize(project.detail_types.size());
+    for (size_t t = 0; t < scene.types.size(); ++t)
+        if (!compileDetailType(project, t, terrain, &scene.types[t], error)) return false;
+    const Bounds e = computeSceneExtent(project, scene);
+    bool flat = false;
+    for (int a = 0; a < 3; ++a) flat = flat || !(e.lo[a] < e.hi[a]);
+    if (!e.empty() && !flat) return false;
+    scene.extent = Bounds{};
+    *out = std::move(scene);
+    return true;
+}
+
+}  // namespace
+
+bool loadScene(const Project& project, const SceneLoadOptions& options, LoadedScene* out, std::string* error) {
+    const std::string name = sceneName(project);
+    LoadedScene scene;
+    if (!loadTerrain(project, &scene.terrain, error)) return false;
+    const auto t0 = std::chrono::steady_clock::now();
+    scene.models = std::make_shared<std::vector<DetailModel>>();
+    if (!loadProjectModels(project, scene.models.get(), error)) {
+        if (project.source.empty()) *error = name + ": " + *error;  // else the message starts with the file
+        return false;
+    }
+    scene.models_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const GhostTileInput input = ghostTileInput(project, *scene.models);
+    scene.tile = std::make_shared<GhostTile>();
+    if (!loadOrBuildGhostTile(options.cache_dir, input,
+                              BuildOptions{.threads = options.threads, .progress = options.tile_progress},
+                              scene.tile.get(), &scene.outcome, &scene.cache_note, error)) {
+        *error = name + ": " + *error;
+        return false;
+    }
+    if (!compileScene(project, scene.terrain, &scene.compiled, error)) {
+        std::string first = *error;
+        if (!options.allow_empty_extent || !emptyExtentScene(project, scene.terrain, &scene.compiled, error)) {
+            *error = first;
+            return false;
+        }
+    }
+    auto env = std::make_shared<EnvScene>();
+    if (!compileEnvScene(project.environment, project.base_dir, name, scene.terrain, env.get(), error)) return false;
+    scene.environment = std::move(env);
+    *out = std::move(scene);
+    return true;
+}
+
+}  // namespace ug
