@@ -13,27 +13,30 @@
 // between 100 and 30,000 triangles each.
 //
 // The set (bounding boxes are x × y × z, metres):
-//   bench          1.6 × 0.64 × 0.9; four seat slats with their top at z = 0.45, three backrest slats on
+//   bench          1.6 × 0.61 × 0.89; four seat slats with their top at z = 0.45, three backrest slats on
 //                  tilted back legs, two leg frames at x = ±0.62.
 //   lamppost       pole of radius 0.06 m to z = 4 on a turned base, an arm along +Y to y = 0.72 and a
 //                  lamp head hanging from it: glass housing under a low conical roof with a rim (drip
-//                  edge at z = 3.74); about 0.6 × 1.0 × 4.05.
+//                  edge at z = 3.74); 0.56 × 1.18 × 4.05.
 //   trash_can      standing cylinder of radius 0.3 m, 0.9 m tall, with a lid rim of radius 0.33 m from
 //                  z = 0.83 (its underside is a drip edge) and a domed lid.
 //   bus_shelter    3.2 × 1.6 roof slab 0.1 m thick from z = 2.4 to 2.5, two posts and a thin glass back
 //                  wall at y = -0.55, and the bench under the roof (seat front at y = 0.17).
-//   fence_segment  2 m along x: two posts (1.18 m with caps), two rails, 14 pickets with pointed tops.
+//   fence_segment  2 m along x: two posts (1.18 m with caps), two rails, 14 pickets with pointed tops
+//                  (1.08 m) in front of the rails.
 //   pavement_slab  2 × 2: 4 × 4 paving slabs 0.12 m thick with 8 mm joints, and a kerb 0.15 m wide and
 //                  0.15 m high along the +Y edge.
 //   road_segment   4 × 4 asphalt slab 0.1 m thick (top at z = 0.1), top face a 32 × 32 grid.
-//   tree           bare deciduous tree, 5 m tall: a root flare, a tapered trunk (radius 0.25 m at the
-//                  base) to 3 m, and three further levels of tapered branches.
+//   tree           bare deciduous tree, scaled to exactly 5 m tall: a root flare, a tapered trunk (radius
+//                  about 0.25 m at the base) to about 3 m, and three further levels of tapered branches
+//                  (a leader and 2 to 3 side branches each); the crown about 2.8 × 2.3 m.
 //   fountain       round basin of 2 m diameter (ring wall 0.5 m high, a rim of radius 1.05 m with drip
 //                  edges inside and out, floor at z = 0.15), a central column with a bowl and a spout.
 //   facade         4 m wide × 6 m tall wall, 0.4 m deep (y from -0.2 to 0.2, front at +Y): 2 × 2 window
 //                  openings 0.9 × 1.4 m recessed 0.2 m (centred at x = ±1; bottoms at z = 1.0 and 3.9),
-//                  each with a sill protruding 0.07 m from the wall face (z from bottom - 0.06 to the
-//                  bottom), a cornice, and a balcony on the upper floor (slab 3.4 × 0.7 m, top at z = 3.0,
+//                  each with a frame (mullion at its centre, transom), open shutters beside it and a sill
+//                  protruding 0.07 m from the wall face (z from bottom - 0.06 to the bottom); a cornice,
+//                  and a balcony on the upper floor (slab 3.4 × 0.7 m, top at z = 3.0,
 //                  railing to z = 3.95).
 //   steps          four steps 1.5 m wide, 0.3 m treads and 0.16 m risers, climbing towards -Y (the
 //                  lowest step at the front).

@@ -110,11 +110,11 @@ TriangleMesh makeBusShelter(uint64_t) {
 
 TriangleMesh makeFenceSegment(uint64_t) {
     MeshBuilder b;
-    for (const float x : {-0.955f, 0.955f}) {
+    for (const float x : {-0.94f, 0.94f}) {
         addBox(&b, {x - 0.045f, -0.045f, 0.0f}, {x + 0.045f, 0.045f, 1.15f});
         addBox(&b, {x - 0.06f, -0.06f, 1.15f}, {x + 0.06f, 0.06f, 1.18f});  // cap: a drip edge all round
     }
-    for (const float z : {0.25f, 0.80f}) addBox(&b, {-0.955f, -0.02f, z}, {0.955f, 0.02f, z + 0.08f}, {8, 1, 1});
+    for (const float z : {0.25f, 0.80f}) addBox(&b, {-0.94f, -0.02f, z}, {0.94f, 0.02f, z + 0.08f}, {8, 1, 1});
     // Pickets in front of the rails: 7 cm wide, 2 cm thick, pointed.
     const std::vector<glm::vec2> picket = {{-0.035f, 0.06f}, {0.035f, 0.06f}, {0.035f, 1.0f}, {0.0f, 1.08f}, {-0.035f, 1.0f}};
     for (int k = 0; k < 14; ++k) {

@@ -44,7 +44,7 @@ void grow(MeshBuilder* b, uint64_t seed, const Branch& br) {
     std::vector<glm::vec3> line;
     std::vector<float> radii;
     glm::vec3 p = br.start, dir = glm::normalize(br.dir);
-    const float wander = br.level == 0 ? 0.04f : 0.18f, lift = br.level == 0 ? 0.0f : 0.12f;
+    const float wander = br.level == 0 ? 0.04f : 0.18f, lift = br.level == 0 ? 0.0f : 0.07f;
     for (int k = 0; k < points; ++k) {
         line.push_back(p);
         radii.push_back(br.radius * (1.0f - 0.55f * float(k) / float(points - 1)));
