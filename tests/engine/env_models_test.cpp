@@ -239,4 +239,23 @@ TEST(EnvModels, WrittenFilesReloadWithTheSameTrianglesAndBounds) {
     }
 }
 
+// The committed assets/env_models/*.glb are what the generators make now (regenerate them with
+// `undergrowth make-assets` after changing a model). A tolerance, not bits: another compiler may round
+// the trigonometry differently.
+TEST(EnvModels, CommittedAssetsMatchTheGenerators) {
+    for (const std::string& name : envStarterNames()) {
+        SCOPED_TRACE(name);
+        TriangleMesh committed;
+        std::string error;
+        ASSERT_TRUE(loadMeshFile(std::string(UG_SOURCE_DIR) + "/assets/env_models/" + name + ".glb", &committed, &error)) << error;
+        convertYUpToZUp(&committed);
+        const TriangleMesh m = make(name);
+        ASSERT_EQ(committed.triangleCount(), m.triangleCount());
+        ASSERT_EQ(committed.positions.size(), m.positions.size());
+        float worst = 0.0f;
+        for (size_t i = 0; i < m.positions.size(); ++i) worst = std::max(worst, glm::length(committed.positions[i] - m.positions[i]));
+        EXPECT_LT(worst, 1e-4f);
+    }
+}
+
 }  // namespace ug
