@@ -22,15 +22,16 @@ void addBalcony(MeshBuilder* b) {
     addBox(b, {-half, y_out - 0.05f, rail}, {half, y_out, rail + 0.05f}, {12, 1, 1});  // front handrail
     for (const float x : {-half, half - 0.05f})
         addBox(b, {x, kFront, rail}, {x + 0.05f, y_out - 0.05f, rail + 0.05f}, {1, 3, 1});  // side handrails
+    // Balusters reach 1 cm into the slab and the handrail: overlapping, never face on face.
     const float bar = 0.02f;
     for (int k = 0; k <= 28; ++k) {  // front balusters
         const float x = -half + 0.025f + (2.0f * half - 0.05f) * float(k) / 28.0f;
-        addBox(b, {x - 0.5f * bar, y_out - 0.035f, top}, {x + 0.5f * bar, y_out - 0.015f, rail});
+        addBox(b, {x - 0.5f * bar, y_out - 0.035f, top - 0.01f}, {x + 0.5f * bar, y_out - 0.015f, rail + 0.01f});
     }
     for (const float x : {-half + 0.025f, half - 0.025f})
         for (int k = 0; k < 5; ++k) {  // side balusters
             const float y = kFront + 0.1f + 0.11f * float(k);
-            addBox(b, {x - 0.5f * bar, y - 0.5f * bar, top}, {x + 0.5f * bar, y + 0.5f * bar, rail});
+            addBox(b, {x - 0.5f * bar, y - 0.5f * bar, top - 0.01f}, {x + 0.5f * bar, y + 0.5f * bar, rail + 0.01f});
         }
 }
 
@@ -44,7 +45,7 @@ void addWindow(MeshBuilder* b, float x0, float x1, float bottom) {
     addBox(b, {x1 - w, inner, bottom - sink}, {x1 + sink, inner + d, top + sink});
     addBox(b, {x0 + w, inner, bottom - sink}, {x1 - w, inner + d, bottom + w}, {2, 1, 1});  // bottom rail
     addBox(b, {x0 + w, inner, top - w}, {x1 - w, inner + d, top + sink}, {2, 1, 1});        // head
-    addBox(b, {xm - 0.025f, inner, bottom + w}, {xm + 0.025f, inner + d, top - w});       // mullion
+    addBox(b, {xm - 0.025f, inner, bottom + w - sink}, {xm + 0.025f, inner + d, top - w + sink});  // mullion
     for (const float xa : {x0 + w, xm + 0.025f})                                           // transom
         addBox(b, {xa, inner, zt - 0.025f}, {xa + (xm - 0.025f - x0 - w), inner + d, zt + 0.025f});
     // The sill: a slab flush with the recess floor, protruding from the wall face; its underside is
@@ -98,7 +99,7 @@ TriangleMesh makeFountain(uint64_t) {
     addLathe(&b, {0, 0, 0}, {{0.0f, 1.0f}, {0.12f, 1.0f}, {0.42f, 1.22f}, {0.5f, 1.3f}, {0.5f, 1.35f}, {0.45f, 1.35f},
                              {0.0f, 1.24f}}, sides);
     // Spout.
-    addCylinder(&b, {0, 0, 1.2f}, {0, 0, 1.45f}, 0.035f, 16);
+    addCylinder(&b, {0, 0, 1.2f}, {0, 0, 1.46f}, 0.035f, 16);  // into the knob
     addLathe(&b, {0, 0, 1.45f}, {{0.0f, 0.0f}, {0.06f, 0.0f}, {0.06f, 0.03f}, {0.0f, 0.06f}}, 16);
     return b.finish({0.62f, 0.60f, 0.56f});
 }

@@ -22,9 +22,11 @@ constexpr int kSeatSlats = 4;
 // backrest. Returns the back leg as a box so the backrest can follow it.
 Box addLegFrame(MeshBuilder* b, const glm::vec3& at, float x) {
     const float seat_back = kSeatFront - kSeatSlats * kSlatDepth - (kSeatSlats - 1) * kSlatGap;
-    const float rail_top = kSeatTop - kSlatThickness;
+    // Each piece reaches 5 mm into the one it carries: overlapping, never touching face to face (a face
+    // lying on another would be an up-facing face with no sky above it, and flickers in a viewer).
+    const float rail_top = kSeatTop - kSlatThickness + 0.005f;
     addBox(b, at + glm::vec3(x - 0.03f, seat_back - 0.01f, rail_top - 0.05f), at + glm::vec3(x + 0.03f, kSeatFront - 0.02f, rail_top));
-    addBox(b, at + glm::vec3(x - 0.03f, kSeatFront - 0.1f, 0.0f), at + glm::vec3(x + 0.03f, kSeatFront - 0.04f, rail_top));
+    addBox(b, at + glm::vec3(x - 0.03f, kSeatFront - 0.1f, 0.0f), at + glm::vec3(x + 0.03f, kSeatFront - 0.04f, rail_top - 0.01f));
     // Back leg: from the ground under the seat's back edge, tilted back about 12 degrees, to z = 0.9.
     const glm::vec3 foot = at + glm::vec3(x, seat_back + 0.03f, 0.0f), top = at + glm::vec3(x, seat_back - 0.16f, 0.88f);
     const glm::vec3 w = glm::normalize(top - foot), u(1, 0, 0), v = glm::cross(w, u);
@@ -101,9 +103,10 @@ TriangleMesh makeBusShelter(uint64_t) {
     MeshBuilder b;
     // Roof: 3.2 x 1.6 m, overhanging the posts by 0.15 m at the sides and 0.25 m at the back.
     addBox(&b, {-1.6f, -0.8f, 2.4f}, {1.6f, 0.8f, 2.5f}, {16, 8, 1});
-    for (const float x : {-1.45f, 1.45f}) addBox(&b, {x - 0.05f, -0.6f, 0.0f}, {x + 0.05f, -0.5f, 2.4f});
-    addBox(&b, {-1.4f, -0.58f, 2.3f}, {1.4f, -0.52f, 2.4f}, {8, 1, 1});   // header beam under the roof
-    addBox(&b, {-1.4f, -0.56f, 0.12f}, {1.4f, -0.54f, 2.3f}, {8, 1, 4});  // glass back wall
+    // Posts, beam and glass reach into what they carry (no face lying on another).
+    for (const float x : {-1.45f, 1.45f}) addBox(&b, {x - 0.05f, -0.6f, 0.0f}, {x + 0.05f, -0.5f, 2.45f});
+    addBox(&b, {-1.4f, -0.58f, 2.3f}, {1.4f, -0.52f, 2.45f}, {8, 1, 1});   // header beam under the roof
+    addBox(&b, {-1.4f, -0.56f, 0.12f}, {1.4f, -0.54f, 2.32f}, {8, 1, 4});  // glass back wall
     addBench(&b, {0.0f, -0.15f, 0.0f});
     return b.finish({0.35f, 0.38f, 0.40f});
 }
@@ -111,7 +114,7 @@ TriangleMesh makeBusShelter(uint64_t) {
 TriangleMesh makeFenceSegment(uint64_t) {
     MeshBuilder b;
     for (const float x : {-0.94f, 0.94f}) {
-        addBox(&b, {x - 0.045f, -0.045f, 0.0f}, {x + 0.045f, 0.045f, 1.15f});
+        addBox(&b, {x - 0.045f, -0.045f, 0.0f}, {x + 0.045f, 0.045f, 1.16f});  // into its cap
         addBox(&b, {x - 0.06f, -0.06f, 1.15f}, {x + 0.06f, 0.06f, 1.18f});  // cap: a drip edge all round
     }
     for (const float z : {0.25f, 0.80f}) addBox(&b, {-0.94f, -0.02f, z}, {0.94f, 0.02f, z + 0.08f}, {8, 1, 1});
