@@ -13,7 +13,8 @@ constexpr float kPi = 3.14159265358979f;
 // The 6 faces of a lattice box: point(i, j, k) is lattice vertex (i, j, k), 0 <= i <= cells.x etc.;
 // axis(k) is the world direction of lattice axis k. Corners shared by two faces come from the same
 // call, so they are bit-identical and the box is closed once welded.
-void addLatticeBox(MeshBuilder* b, const glm::ivec3& cells, const std::function<glm::vec3(int, int, int)>& point,
+void addLatticeBox(MeshBuilder* b, const glm::ivec3& cells,
+                   const std::function<glm::vec3(int, int, int)>& point,
                    const std::function<glm::vec3(int)>& axis) {
     for (int k = 0; k < 3; ++k) {
         const int a1 = (k + 1) % 3, a2 = (k + 2) % 3;
@@ -41,7 +42,9 @@ void addLatticeBox(MeshBuilder* b, const glm::ivec3& cells, const std::function<
 }
 
 // i/n of the way from lo to hi, exactly hi at i = n.
-float lattice(float lo, float hi, int i, int n) { return i == n ? hi : lo + (hi - lo) * (float(i) / float(n)); }
+float lattice(float lo, float hi, int i, int n) {
+    return i == n ? hi : lo + (hi - lo) * (float(i) / float(n));
+}
 
 }  // namespace
 
@@ -51,7 +54,8 @@ uint32_t MeshBuilder::vertex(const glm::vec3& p) {
 }
 
 void MeshBuilder::tri(uint32_t a, uint32_t b, uint32_t c, const glm::vec3& outward) {
-    const glm::vec3 n = glm::cross(mesh_.positions[b] - mesh_.positions[a], mesh_.positions[c] - mesh_.positions[a]);
+    const glm::vec3 n =
+        glm::cross(mesh_.positions[b] - mesh_.positions[a], mesh_.positions[c] - mesh_.positions[a]);
     if (glm::dot(n, outward) < 0.0f) std::swap(b, c);
     mesh_.indices.insert(mesh_.indices.end(), {a, b, c});
 }
@@ -61,19 +65,6 @@ void MeshBuilder::face(const std::vector<glm::vec3>& polygon, const glm::vec3& o
     std::vector<uint32_t> ids;
     for (const glm::vec3& p : polygon) ids.push_back(vertex(p));
     for (size_t k = 1; k + 1 < ids.size(); ++k) tri(ids[0], ids[k], ids[k + 1], outward);
-}
-
-void MeshBuilder::grid(const glm::vec3& origin, const glm::vec3& du, const glm::vec3& dv, int nu, int nv,
-                       const glm::vec3& outward) {
-    std::vector<uint32_t> ids;
-    for (int i = 0; i <= nu; ++i)
-        for (int j = 0; j <= nv; ++j) ids.push_back(vertex(origin + du * (float(i) / float(nu)) + dv * (float(j) / float(nv))));
-    auto at = [&](int i, int j) { return ids[size_t(i) * size_t(nv + 1) + size_t(j)]; };
-    for (int i = 0; i < nu; ++i)
-        for (int j = 0; j < nv; ++j) {
-            tri(at(i, j), at(i + 1, j), at(i + 1, j + 1), outward);
-            tri(at(i, j), at(i + 1, j + 1), at(i, j + 1), outward);
-        }
 }
 
 TriangleMesh MeshBuilder::finish(const glm::vec3& color) {
@@ -89,7 +80,8 @@ void addBox(MeshBuilder* b, const Box& box) {
     addLatticeBox(
         b, box.cells,
         [&](int i, int j, int k) {
-            return box.centre + box.axes[0] * coord(0, i) + box.axes[1] * coord(1, j) + box.axes[2] * coord(2, k);
+            return box.centre + box.axes[0] * coord(0, i) + box.axes[1] * coord(1, j) +
+                   box.axes[2] * coord(2, k);
         },
         [&](int k) { return box.axes[k]; });
 }
@@ -99,7 +91,8 @@ void addBox(MeshBuilder* b, const glm::vec3& lo, const glm::vec3& hi, const glm:
     addLatticeBox(
         b, cells,
         [&](int i, int j, int k) {
-            return glm::vec3(lattice(lo.x, hi.x, i, cells.x), lattice(lo.y, hi.y, j, cells.y), lattice(lo.z, hi.z, k, cells.z));
+            return glm::vec3(lattice(lo.x, hi.x, i, cells.x), lattice(lo.y, hi.y, j, cells.y),
+                             lattice(lo.z, hi.z, k, cells.z));
         },
         [](int k) {
             glm::vec3 a(0.0f);
@@ -153,7 +146,9 @@ void addLathe(MeshBuilder* b, const glm::vec3& base, const std::vector<glm::vec2
         const glm::vec2 d = p1 - p0;
         const glm::vec2 n(d.y, -d.x);  // outward: right of the direction of a counter-clockwise profile
         const std::vector<uint32_t> r0 = ring(p0), r1 = ring(p1);
-        auto at = [&](const std::vector<uint32_t>& r, int j) { return r[r.size() == 1 ? 0 : size_t(j % segments)]; };
+        auto at = [&](const std::vector<uint32_t>& r, int j) {
+            return r[r.size() == 1 ? 0 : size_t(j % segments)];
+        };
         for (int j = 0; j < segments; ++j) {
             const float a = 2.0f * kPi * (float(j) + 0.5f) / float(segments);
             const glm::vec3 outward(n.x * std::cos(a), n.x * std::sin(a), n.y);
@@ -171,7 +166,8 @@ void addTube(MeshBuilder* b, const std::vector<glm::vec3>& line, const std::vect
                                          : glm::normalize(glm::cross(t0, glm::vec3(1, 0, 0)));
     std::vector<glm::vec3> rings;
     for (size_t k = 0; k < line.size(); ++k) {
-        const glm::vec3 t = glm::normalize(k + 1 < line.size() ? line[k + 1] - line[k] : line[k] - line[k - 1]);
+        const glm::vec3 t =
+            glm::normalize(k + 1 < line.size() ? line[k + 1] - line[k] : line[k] - line[k - 1]);
         const glm::vec3 tk = k > 0 && k + 1 < line.size() ? glm::normalize(line[k + 1] - line[k - 1]) : t;
         n1 = glm::normalize(n1 - glm::dot(n1, tk) * tk);
         const glm::vec3 n2 = glm::cross(tk, n1);

@@ -11,9 +11,8 @@
 // Parts may overlap; the model is their union.
 #pragma once
 
-#include <vector>
-
 #include <glm/glm.hpp>
+#include <vector>
 
 #include "mesh/triangle_mesh.h"
 
@@ -21,13 +20,10 @@ namespace ug::envparts {
 
 // Collects the parts of one model.
 class MeshBuilder {
-public:
+  public:
     // A planar convex polygon (at least 3 corners, in order) as one face group, wound so that its
     // normal points along `outward`.
     void face(const std::vector<glm::vec3>& polygon, const glm::vec3& outward);
-    // A planar grid patch origin + (i/nu) du + (j/nv) dv as one face group, wound along `outward`.
-    void grid(const glm::vec3& origin, const glm::vec3& du, const glm::vec3& dv, int nu, int nv,
-              const glm::vec3& outward);
 
     uint32_t vertex(const glm::vec3& p);
     // A triangle wound so that its normal points along `outward`.
@@ -36,7 +32,7 @@ public:
     // The mesh with area-weighted normals (per face group, as the vertices are) and `color`.
     TriangleMesh finish(const glm::vec3& color);
 
-private:
+  private:
     TriangleMesh mesh_;
 };
 

@@ -3,7 +3,6 @@
 #pragma once
 
 #include <cstdint>
-
 #include <glm/glm.hpp>
 
 #include "env/env_mesh_parts.h"

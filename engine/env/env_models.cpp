@@ -9,26 +9,25 @@
 namespace ug {
 
 const std::vector<std::string>& envStarterNames() {
-    static const std::vector<std::string> names = {"bench",         "lamppost",     "trash_can", "bus_shelter",
-                                                   "fence_segment", "pavement_slab", "road_segment", "tree",
-                                                   "fountain",      "facade",        "steps"};
+    static const std::vector<std::string> names = {
+        "bench",        "lamppost", "trash_can", "bus_shelter", "fence_segment", "pavement_slab",
+        "road_segment", "tree",     "fountain",  "facade",      "steps"};
     return names;
 }
 
 bool makeEnvStarterModel(const std::string& name, uint64_t seed, TriangleMesh* out) {
     using Maker = TriangleMesh (*)(uint64_t);
-    static const std::pair<const char*, Maker> makers[] = {
-        {"bench", envmodels::makeBench},
-        {"lamppost", envmodels::makeLamppost},
-        {"trash_can", envmodels::makeTrashCan},
-        {"bus_shelter", envmodels::makeBusShelter},
-        {"fence_segment", envmodels::makeFenceSegment},
-        {"pavement_slab", envmodels::makePavementSlab},
-        {"road_segment", envmodels::makeRoadSegment},
-        {"tree", envmodels::makeTree},
-        {"fountain", envmodels::makeFountain},
-        {"facade", envmodels::makeFacade},
-        {"steps", envmodels::makeSteps}};
+    static const std::pair<const char*, Maker> makers[] = {{"bench", envmodels::makeBench},
+                                                           {"lamppost", envmodels::makeLamppost},
+                                                           {"trash_can", envmodels::makeTrashCan},
+                                                           {"bus_shelter", envmodels::makeBusShelter},
+                                                           {"fence_segment", envmodels::makeFenceSegment},
+                                                           {"pavement_slab", envmodels::makePavementSlab},
+                                                           {"road_segment", envmodels::makeRoadSegment},
+                                                           {"tree", envmodels::makeTree},
+                                                           {"fountain", envmodels::makeFountain},
+                                                           {"facade", envmodels::makeFacade},
+                                                           {"steps", envmodels::makeSteps}};
     for (const auto& [n, make] : makers)
         if (name == n) {
             *out = make(seed);

@@ -26,12 +26,14 @@ void addBalcony(MeshBuilder* b) {
     const float bar = 0.02f;
     for (int k = 0; k <= 28; ++k) {  // front balusters
         const float x = -half + 0.025f + (2.0f * half - 0.05f) * float(k) / 28.0f;
-        addBox(b, {x - 0.5f * bar, y_out - 0.035f, top - 0.01f}, {x + 0.5f * bar, y_out - 0.015f, rail + 0.01f});
+        addBox(b, {x - 0.5f * bar, y_out - 0.035f, top - 0.01f},
+               {x + 0.5f * bar, y_out - 0.015f, rail + 0.01f});
     }
     for (const float x : {-half + 0.025f, half - 0.025f})
         for (int k = 0; k < 5; ++k) {  // side balusters
             const float y = kFront + 0.1f + 0.11f * float(k);
-            addBox(b, {x - 0.5f * bar, y - 0.5f * bar, top - 0.01f}, {x + 0.5f * bar, y + 0.5f * bar, rail + 0.01f});
+            addBox(b, {x - 0.5f * bar, y - 0.5f * bar, top - 0.01f},
+                   {x + 0.5f * bar, y + 0.5f * bar, rail + 0.01f});
         }
 }
 
@@ -41,12 +43,12 @@ void addBalcony(MeshBuilder* b) {
 void addWindow(MeshBuilder* b, float x0, float x1, float bottom) {
     const float inner = kFront - kRecess, top = bottom + kWindowHeight, w = 0.06f, d = 0.06f, sink = 0.01f;
     const float xm = 0.5f * (x0 + x1), zt = bottom + 0.7f * kWindowHeight;
-    addBox(b, {x0 - sink, inner, bottom - sink}, {x0 + w, inner + d, top + sink});        // jambs
+    addBox(b, {x0 - sink, inner, bottom - sink}, {x0 + w, inner + d, top + sink});  // jambs
     addBox(b, {x1 - w, inner, bottom - sink}, {x1 + sink, inner + d, top + sink});
     addBox(b, {x0 + w, inner, bottom - sink}, {x1 - w, inner + d, bottom + w}, {2, 1, 1});  // bottom rail
     addBox(b, {x0 + w, inner, top - w}, {x1 - w, inner + d, top + sink}, {2, 1, 1});        // head
     addBox(b, {xm - 0.025f, inner, bottom + w - sink}, {xm + 0.025f, inner + d, top - w + sink});  // mullion
-    for (const float xa : {x0 + w, xm + 0.025f})                                           // transom
+    for (const float xa : {x0 + w, xm + 0.025f})                                                   // transom
         addBox(b, {xa, inner, zt - 0.025f}, {xa + (xm - 0.025f - x0 - w), inner + d, zt + 0.025f});
     // The sill: a slab flush with the recess floor, protruding from the wall face; its underside is
     // the drip edge.
@@ -91,13 +93,31 @@ TriangleMesh makeFountain(uint64_t) {
     const int sides = 48;
     // Basin: floor at z = 0.15, ring wall from r = 0.85 to 1.0, 0.5 m high, a rim overhanging both
     // sides of the wall (its undersides are drip edges).
-    addLathe(&b, {0, 0, 0}, {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 0.42f}, {1.05f, 0.42f}, {1.05f, 0.5f}, {0.81f, 0.5f},
-                             {0.81f, 0.42f}, {0.85f, 0.42f}, {0.85f, 0.15f}, {0.0f, 0.15f}}, sides);
+    addLathe(&b, {0, 0, 0},
+             {{0.0f, 0.0f},
+              {1.0f, 0.0f},
+              {1.0f, 0.42f},
+              {1.05f, 0.42f},
+              {1.05f, 0.5f},
+              {0.81f, 0.5f},
+              {0.81f, 0.42f},
+              {0.85f, 0.42f},
+              {0.85f, 0.15f},
+              {0.0f, 0.15f}},
+             sides);
     // Column on a plinth.
-    addLathe(&b, {0, 0, 0}, {{0.0f, 0.1f}, {0.22f, 0.1f}, {0.22f, 0.28f}, {0.13f, 0.36f}, {0.11f, 1.1f}, {0.0f, 1.1f}}, 32);
+    addLathe(&b, {0, 0, 0},
+             {{0.0f, 0.1f}, {0.22f, 0.1f}, {0.22f, 0.28f}, {0.13f, 0.36f}, {0.11f, 1.1f}, {0.0f, 1.1f}}, 32);
     // Bowl: a cup flaring from the column to a rim of radius 0.5 m, hollow on top.
-    addLathe(&b, {0, 0, 0}, {{0.0f, 1.0f}, {0.12f, 1.0f}, {0.42f, 1.22f}, {0.5f, 1.3f}, {0.5f, 1.35f}, {0.45f, 1.35f},
-                             {0.0f, 1.24f}}, sides);
+    addLathe(&b, {0, 0, 0},
+             {{0.0f, 1.0f},
+              {0.12f, 1.0f},
+              {0.42f, 1.22f},
+              {0.5f, 1.3f},
+              {0.5f, 1.35f},
+              {0.45f, 1.35f},
+              {0.0f, 1.24f}},
+             sides);
     // Spout.
     addCylinder(&b, {0, 0, 1.2f}, {0, 0, 1.46f}, 0.035f, 16);  // into the knob
     addLathe(&b, {0, 0, 1.45f}, {{0.0f, 0.0f}, {0.06f, 0.0f}, {0.06f, 0.03f}, {0.0f, 0.06f}}, 16);

@@ -14,7 +14,8 @@ TriangleMesh makePavementSlab(uint64_t) {
     for (int i = 0; i < 4; ++i)
         for (int j = 0; j < 4; ++j) {
             const float x0 = -1.0f + 0.5f * float(i), x1 = x0 + 0.5f;
-            const float y0 = -1.0f + (kerb_y + 1.0f) * 0.25f * float(j), y1 = -1.0f + (kerb_y + 1.0f) * 0.25f * float(j + 1);
+            const float y0 = -1.0f + (kerb_y + 1.0f) * 0.25f * float(j),
+                        y1 = -1.0f + (kerb_y + 1.0f) * 0.25f * float(j + 1);
             const glm::vec3 lo(i == 0 ? x0 : x0 + 0.5f * joint, j == 0 ? y0 : y0 + 0.5f * joint, 0.0f);
             const glm::vec3 hi(i == 3 ? x1 : x1 - 0.5f * joint, y1 - 0.5f * joint, 0.12f);
             addBox(&b, lo, hi, {4, 4, 1});

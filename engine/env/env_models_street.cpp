@@ -25,10 +25,13 @@ Box addLegFrame(MeshBuilder* b, const glm::vec3& at, float x) {
     // Each piece reaches 5 mm into the one it carries: overlapping, never touching face to face (a face
     // lying on another would be an up-facing face with no sky above it, and flickers in a viewer).
     const float rail_top = kSeatTop - kSlatThickness + 0.005f;
-    addBox(b, at + glm::vec3(x - 0.03f, seat_back - 0.01f, rail_top - 0.05f), at + glm::vec3(x + 0.03f, kSeatFront - 0.02f, rail_top));
-    addBox(b, at + glm::vec3(x - 0.03f, kSeatFront - 0.1f, 0.0f), at + glm::vec3(x + 0.03f, kSeatFront - 0.04f, rail_top - 0.01f));
+    addBox(b, at + glm::vec3(x - 0.03f, seat_back - 0.01f, rail_top - 0.05f),
+           at + glm::vec3(x + 0.03f, kSeatFront - 0.02f, rail_top));
+    addBox(b, at + glm::vec3(x - 0.03f, kSeatFront - 0.1f, 0.0f),
+           at + glm::vec3(x + 0.03f, kSeatFront - 0.04f, rail_top - 0.01f));
     // Back leg: from the ground under the seat's back edge, tilted back about 12 degrees, to z = 0.9.
-    const glm::vec3 foot = at + glm::vec3(x, seat_back + 0.03f, 0.0f), top = at + glm::vec3(x, seat_back - 0.16f, 0.88f);
+    const glm::vec3 foot = at + glm::vec3(x, seat_back + 0.03f, 0.0f),
+                    top = at + glm::vec3(x, seat_back - 0.16f, 0.88f);
     const glm::vec3 w = glm::normalize(top - foot), u(1, 0, 0), v = glm::cross(w, u);
     Box leg;
     leg.axes[0] = u;
@@ -56,7 +59,8 @@ void addBench(MeshBuilder* b, const glm::vec3& at) {
     for (int k = 0; k < 3; ++k) {
         const float s = 0.58f + 0.14f * float(k);  // fraction of the leg's length
         Box slat = leg;
-        slat.centre = leg.centre + leg.axes[2] * (leg.half.z * (2.0f * s - 1.0f)) + leg.axes[1] * (leg.half.y + 0.0175f);
+        slat.centre = leg.centre + leg.axes[2] * (leg.half.z * (2.0f * s - 1.0f)) +
+                      leg.axes[1] * (leg.half.y + 0.0175f);
         slat.centre.x = at.x;
         slat.half = {kBenchHalfLength, 0.0175f, 0.045f};
         slat.cells = {8, 1, 1};
@@ -74,8 +78,15 @@ TriangleMesh makeLamppost(uint64_t) {
     MeshBuilder b;
     const int sides = 32;
     // Turned base: a plinth narrowing to a collar around the pole.
-    addLathe(&b, {0, 0, 0}, {{0.0f, 0.0f}, {0.18f, 0.0f}, {0.18f, 0.22f}, {0.11f, 0.34f}, {0.11f, 0.52f},
-                             {0.085f, 0.56f}, {0.0f, 0.56f}}, sides);
+    addLathe(&b, {0, 0, 0},
+             {{0.0f, 0.0f},
+              {0.18f, 0.0f},
+              {0.18f, 0.22f},
+              {0.11f, 0.34f},
+              {0.11f, 0.52f},
+              {0.085f, 0.56f},
+              {0.0f, 0.56f}},
+             sides);
     addCylinder(&b, {0, 0, 0.5f}, {0, 0, 4.0f}, 0.06f, sides);
     // Finial on the pole top.
     addLathe(&b, {0, 0, 3.98f}, {{0.0f, 0.0f}, {0.075f, 0.0f}, {0.075f, 0.03f}, {0.0f, 0.07f}}, sides);
@@ -85,17 +96,35 @@ TriangleMesh makeLamppost(uint64_t) {
     addCylinder(&b, {0, reach, arm_z + 0.03f}, {0, reach, 3.78f}, 0.03f, 24);
     // Head: glass housing widening upwards, a rim (its underside the drip edge at z = 3.74) and a low
     // conical roof.
-    addLathe(&b, {0, reach, 3.74f}, {{0.0f, -0.34f}, {0.10f, -0.34f}, {0.17f, 0.0f}, {0.28f, 0.0f}, {0.28f, 0.04f},
-                                      {0.24f, 0.05f}, {0.0f, 0.10f}}, 48);
+    addLathe(&b, {0, reach, 3.74f},
+             {{0.0f, -0.34f},
+              {0.10f, -0.34f},
+              {0.17f, 0.0f},
+              {0.28f, 0.0f},
+              {0.28f, 0.04f},
+              {0.24f, 0.05f},
+              {0.0f, 0.10f}},
+             48);
     return b.finish({0.12f, 0.16f, 0.14f});
 }
 
 TriangleMesh makeTrashCan(uint64_t) {
     MeshBuilder b;
     // One closed profile: a foot, the body, the lid rim overhanging it, a domed lid and a knob.
-    addLathe(&b, {0, 0, 0}, {{0.0f, 0.0f}, {0.27f, 0.0f}, {0.27f, 0.03f}, {0.30f, 0.03f}, {0.30f, 0.83f},
-                             {0.33f, 0.83f}, {0.33f, 0.865f}, {0.29f, 0.88f}, {0.16f, 0.895f}, {0.04f, 0.895f},
-                             {0.04f, 0.9f}, {0.0f, 0.9f}}, 40);
+    addLathe(&b, {0, 0, 0},
+             {{0.0f, 0.0f},
+              {0.27f, 0.0f},
+              {0.27f, 0.03f},
+              {0.30f, 0.03f},
+              {0.30f, 0.83f},
+              {0.33f, 0.83f},
+              {0.33f, 0.865f},
+              {0.29f, 0.88f},
+              {0.16f, 0.895f},
+              {0.04f, 0.895f},
+              {0.04f, 0.9f},
+              {0.0f, 0.9f}},
+             40);
     return b.finish({0.20f, 0.28f, 0.22f});
 }
 
@@ -115,11 +144,13 @@ TriangleMesh makeFenceSegment(uint64_t) {
     MeshBuilder b;
     for (const float x : {-0.94f, 0.94f}) {
         addBox(&b, {x - 0.045f, -0.045f, 0.0f}, {x + 0.045f, 0.045f, 1.16f});  // into its cap
-        addBox(&b, {x - 0.06f, -0.06f, 1.15f}, {x + 0.06f, 0.06f, 1.18f});  // cap: a drip edge all round
+        addBox(&b, {x - 0.06f, -0.06f, 1.15f}, {x + 0.06f, 0.06f, 1.18f});     // cap: a drip edge all round
     }
-    for (const float z : {0.25f, 0.80f}) addBox(&b, {-0.94f, -0.02f, z}, {0.94f, 0.02f, z + 0.08f}, {8, 1, 1});
+    for (const float z : {0.25f, 0.80f})
+        addBox(&b, {-0.94f, -0.02f, z}, {0.94f, 0.02f, z + 0.08f}, {8, 1, 1});
     // Pickets in front of the rails: 7 cm wide, 2 cm thick, pointed.
-    const std::vector<glm::vec2> picket = {{-0.035f, 0.06f}, {0.035f, 0.06f}, {0.035f, 1.0f}, {0.0f, 1.08f}, {-0.035f, 1.0f}};
+    const std::vector<glm::vec2> picket = {
+        {-0.035f, 0.06f}, {0.035f, 0.06f}, {0.035f, 1.0f}, {0.0f, 1.08f}, {-0.035f, 1.0f}};
     for (int k = 0; k < 14; ++k) {
         const float x = -0.8125f + 0.125f * float(k);
         addPrism(&b, picket, {x, 0.04f, 0.0f}, {1, 0, 0}, {0, 0, 1}, 0.02f);  // extruded along -Y to y = 0.02

@@ -22,7 +22,8 @@ float rnd(uint64_t seed, uint64_t a, uint64_t b, float lo, float hi) {
 
 // Any unit vector perpendicular to d.
 glm::vec3 perpendicular(const glm::vec3& d) {
-    return glm::normalize(std::abs(d.z) < 0.9f ? glm::cross(d, glm::vec3(0, 0, 1)) : glm::cross(d, glm::vec3(1, 0, 0)));
+    return glm::normalize(std::abs(d.z) < 0.9f ? glm::cross(d, glm::vec3(0, 0, 1))
+                                               : glm::cross(d, glm::vec3(1, 0, 0)));
 }
 
 struct Branch {
@@ -48,9 +49,10 @@ void grow(MeshBuilder* b, uint64_t seed, const Branch& br) {
     for (int k = 0; k < points; ++k) {
         line.push_back(p);
         radii.push_back(br.radius * (1.0f - 0.55f * float(k) / float(points - 1)));
-        dir = glm::normalize(dir + glm::vec3(rnd(seed, br.id, uint64_t(3 * k), -wander, wander),
-                                             rnd(seed, br.id, uint64_t(3 * k + 1), -wander, wander),
-                                             lift + rnd(seed, br.id, uint64_t(3 * k + 2), -0.5f * wander, 0.5f * wander)));
+        dir = glm::normalize(
+            dir + glm::vec3(rnd(seed, br.id, uint64_t(3 * k), -wander, wander),
+                            rnd(seed, br.id, uint64_t(3 * k + 1), -wander, wander),
+                            lift + rnd(seed, br.id, uint64_t(3 * k + 2), -0.5f * wander, 0.5f * wander)));
         p += dir * (br.length / float(points - 1));
     }
     addTube(b, line, radii, kSides[br.level]);
@@ -68,13 +70,15 @@ void grow(MeshBuilder* b, uint64_t seed, const Branch& br) {
         const float parent_r = glm::mix(radii[k], radii[k + 1], f);
         const glm::vec3 axis = glm::normalize(line[k + 1] - line[k]);
         const glm::vec3 u = perpendicular(axis), v = glm::cross(axis, u);
-        const float azimuth = phase + 2.0f * kPi * (float(c) + rnd(seed, id, 2, -0.2f, 0.2f)) / float(children);
+        const float azimuth =
+            phase + 2.0f * kPi * (float(c) + rnd(seed, id, 2, -0.2f, 0.2f)) / float(children);
         const float spread = c == 0 ? rnd(seed, id, 3, 0.1f, 0.3f) : rnd(seed, id, 3, 0.6f, 1.05f);
         const glm::vec3 out = std::cos(azimuth) * u + std::sin(azimuth) * v;
         Branch child;
         child.start = start - 0.3f * parent_r * axis;  // start inside the parent: no gap at the joint
         child.dir = std::cos(spread) * axis + std::sin(spread) * out;
-        child.length = br.length * (br.level == 0 ? rnd(seed, id, 4, 0.5f, 0.65f) : rnd(seed, id, 4, 0.55f, 0.7f));
+        child.length =
+            br.length * (br.level == 0 ? rnd(seed, id, 4, 0.5f, 0.65f) : rnd(seed, id, 4, 0.55f, 0.7f));
         child.radius = parent_r * (c == 0 ? 0.8f : 0.62f);
         child.level = br.level + 1;
         child.id = id;

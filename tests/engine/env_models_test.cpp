@@ -1,11 +1,12 @@
+#include "env/env_models.h"
+
+#include <gtest/gtest.h>
+
 #include <cmath>
 #include <cstring>
 #include <map>
 #include <numeric>
 
-#include <gtest/gtest.h>
-
-#include "env/env_models.h"
 #include "mesh/mesh_loader.h"
 #include "mesh/triangle_bvh.h"
 #include "mesh_test_util.h"
@@ -19,7 +20,9 @@ TriangleMesh make(const std::string& name, uint64_t seed = kEnvStarterSeed) {
     return m;
 }
 
-glm::vec3 corner(const TriangleMesh& m, size_t t, int k) { return m.positions[m.indices[3 * t + size_t(k)]]; }
+glm::vec3 corner(const TriangleMesh& m, size_t t, int k) {
+    return m.positions[m.indices[3 * t + size_t(k)]];
+}
 
 glm::vec3 faceNormal(const TriangleMesh& m, size_t t) {
     return glm::normalize(glm::cross(corner(m, t, 1) - corner(m, t, 0), corner(m, t, 2) - corner(m, t, 0)));
@@ -33,7 +36,8 @@ glm::vec3 centroid(const TriangleMesh& m, size_t t) {
 std::vector<uint32_t> weldedIds(const TriangleMesh& m) {
     std::map<std::tuple<float, float, float>, uint32_t> ids;
     std::vector<uint32_t> out;
-    for (const glm::vec3& p : m.positions) out.push_back(ids.emplace(std::make_tuple(p.x, p.y, p.z), uint32_t(ids.size())).first->second);
+    for (const glm::vec3& p : m.positions)
+        out.push_back(ids.emplace(std::make_tuple(p.x, p.y, p.z), uint32_t(ids.size())).first->second);
     return out;
 }
 
@@ -60,9 +64,9 @@ const std::map<std::string, Extents>& expectedExtents() {
 }  // namespace
 
 TEST(EnvModels, NamesInTheDocumentedOrderAndUnknownNamesRefused) {
-    const std::vector<std::string> expected = {"bench",         "lamppost",      "trash_can",    "bus_shelter",
-                                               "fence_segment", "pavement_slab", "road_segment", "tree",
-                                               "fountain",      "facade",        "steps"};
+    const std::vector<std::string> expected = {
+        "bench",        "lamppost", "trash_can", "bus_shelter", "fence_segment", "pavement_slab",
+        "road_segment", "tree",     "fountain",  "facade",      "steps"};
     EXPECT_EQ(envStarterNames(), expected);
     TriangleMesh m;
     m.base_color = {0.1f, 0.2f, 0.3f};
@@ -101,11 +105,13 @@ TEST(EnvModels, DeterministicAndOnlyTheTreeDependsOnTheSeed) {
         const TriangleMesh a = make(name), b = make(name), other = make(name, 7);
         ASSERT_EQ(a.positions.size(), b.positions.size());
         ASSERT_EQ(a.indices, b.indices);
-        EXPECT_EQ(0, std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(glm::vec3)));
+        EXPECT_EQ(
+            0, std::memcmp(a.positions.data(), b.positions.data(), a.positions.size() * sizeof(glm::vec3)));
         EXPECT_EQ(0, std::memcmp(a.normals.data(), b.normals.data(), a.normals.size() * sizeof(glm::vec3)));
         EXPECT_EQ(a.base_color, b.base_color);
         const bool same = a.positions.size() == other.positions.size() &&
-                          std::memcmp(a.positions.data(), other.positions.data(), a.positions.size() * sizeof(glm::vec3)) == 0;
+                          std::memcmp(a.positions.data(), other.positions.data(),
+                                      a.positions.size() * sizeof(glm::vec3)) == 0;
         EXPECT_EQ(same, name != "tree");
     }
 }
@@ -126,10 +132,12 @@ TEST(EnvModels, ClosedOutwardPartsWithoutDegenerateTriangles) {
         };
         size_t degenerate = 0;
         for (size_t t = 0; t < m.triangleCount(); ++t) {
-            const glm::vec3 n = glm::cross(corner(m, t, 1) - corner(m, t, 0), corner(m, t, 2) - corner(m, t, 0));
+            const glm::vec3 n =
+                glm::cross(corner(m, t, 1) - corner(m, t, 0), corner(m, t, 2) - corner(m, t, 0));
             degenerate += 0.5f * glm::length(n) < 1e-7f;
             for (int k = 0; k < 3; ++k) {
-                const uint32_t a = id[m.indices[3 * t + size_t(k)]], b = id[m.indices[3 * t + size_t(k + 1) % 3]];
+                const uint32_t a = id[m.indices[3 * t + size_t(k)]],
+                               b = id[m.indices[3 * t + size_t(k + 1) % 3]];
                 edges[{a, b}]++;
                 parent[root(a)] = root(b);
             }
@@ -176,7 +184,8 @@ TEST(EnvModels, UnitNormalsAndSharpEdgesStaySharp) {
         size_t sharp = 0;
         for (const auto& [edge, tris] : shared)
             for (size_t i = 1; i < tris.size(); ++i)
-                sharp += glm::dot(faceNormal(m, tris[0]), faceNormal(m, tris[i])) < std::cos(glm::radians(70.0f));
+                sharp +=
+                    glm::dot(faceNormal(m, tris[0]), faceNormal(m, tris[i])) < std::cos(glm::radians(70.0f));
         EXPECT_EQ(sharp, 0u);
     }
 }
@@ -250,7 +259,8 @@ TEST(EnvModels, FacadeWindowsAreRecessedWithDripEdgesUnderTheirSills) {
         }
     // The lower openings' panes (beside the mullion at x = +-1) are recessed 0.2 m behind the wall face
     // at y = 0.2.
-    for (const float x : {-1.2f, -0.8f, 0.8f, 1.2f}) EXPECT_NEAR(bvh.rayHit({x, 2.0f, 1.7f}, {0, -1, 0}), 2.0f, 1e-4f);
+    for (const float x : {-1.2f, -0.8f, 0.8f, 1.2f})
+        EXPECT_NEAR(bvh.rayHit({x, 2.0f, 1.7f}, {0, -1, 0}), 2.0f, 1e-4f);
     EXPECT_NEAR(bvh.rayHit({0.0f, 2.0f, 1.7f}, {0, -1, 0}), 1.8f, 1e-4f);  // the pier between them
 }
 
@@ -279,13 +289,16 @@ TEST(EnvModels, CommittedAssetsMatchTheGenerators) {
         SCOPED_TRACE(name);
         TriangleMesh committed;
         std::string error;
-        ASSERT_TRUE(loadMeshFile(std::string(UG_SOURCE_DIR) + "/assets/env_models/" + name + ".glb", &committed, &error)) << error;
+        ASSERT_TRUE(loadMeshFile(std::string(UG_SOURCE_DIR) + "/assets/env_models/" + name + ".glb",
+                                 &committed, &error))
+            << error;
         convertYUpToZUp(&committed);
         const TriangleMesh m = make(name);
         ASSERT_EQ(committed.triangleCount(), m.triangleCount());
         ASSERT_EQ(committed.positions.size(), m.positions.size());
         float worst = 0.0f;
-        for (size_t i = 0; i < m.positions.size(); ++i) worst = std::max(worst, glm::length(committed.positions[i] - m.positions[i]));
+        for (size_t i = 0; i < m.positions.size(); ++i)
+            worst = std::max(worst, glm::length(committed.positions[i] - m.positions[i]));
         EXPECT_LT(worst, 1e-4f);
     }
 }
