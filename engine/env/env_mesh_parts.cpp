@@ -101,11 +101,6 @@ void addBox(MeshBuilder* b, const glm::vec3& lo, const glm::vec3& hi, const glm:
         });
 }
 
-void addBoxOnBase(MeshBuilder* b, const glm::vec3& base, const glm::vec3& size) {
-    const glm::vec3 h(0.5f * size.x, 0.5f * size.y, 0.0f);
-    addBox(b, base - h, base + h + glm::vec3(0, 0, size.z));
-}
-
 void addPrism(MeshBuilder* b, const std::vector<glm::vec2>& convex_profile, const glm::vec3& origin,
               const glm::vec3& U, const glm::vec3& V, float depth) {
     assert(convex_profile.size() >= 3 && depth > 0.0f);

@@ -36,8 +36,8 @@ class MeshBuilder {
     TriangleMesh mesh_;
 };
 
-// An oriented box: centre + sum of a_k * axes[k] for a_k in [-half[k], half[k]]; axes orthonormal and
-// right-handed. Each face is a grid of cells[k] cells along axis k (for snow on large flat tops).
+// An oriented box: centre + sum of a_k * axes[k] for a_k in [-half[k], half[k]]; axes orthonormal (either
+// handedness: faces are wound by their outward axis). Each face is a grid of cells[k] cells along axis k (for snow on large flat tops).
 struct Box {
     glm::vec3 centre{0.0f};
     glm::vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
@@ -47,8 +47,6 @@ struct Box {
 void addBox(MeshBuilder* b, const Box& box);
 // An axis-aligned box from lo to hi.
 void addBox(MeshBuilder* b, const glm::vec3& lo, const glm::vec3& hi, const glm::ivec3& cells = {1, 1, 1});
-// An axis-aligned box of the given size whose bottom face is centred on `base`.
-void addBoxOnBase(MeshBuilder* b, const glm::vec3& base, const glm::vec3& size);
 
 // A convex polygon (u, v) in the plane origin + u U + v V, extruded by `depth` along W = cross(U, V)
 // (U, V orthonormal); the profile may be either winding.
