@@ -36,8 +36,9 @@ class MeshBuilder {
     TriangleMesh mesh_;
 };
 
-// An oriented box: centre + sum of a_k * axes[k] for a_k in [-half[k], half[k]]; axes orthonormal (either
-// handedness: faces are wound by their outward axis). Each face is a grid of cells[k] cells along axis k (for snow on large flat tops).
+// An oriented box: centre + sum of a_k * axes[k] for a_k in [-half[k], half[k]]; axes orthonormal
+// (either handedness: faces are wound by their outward axis). Each face is a grid of cells[k] cells
+// along axis k (for snow on large flat tops).
 struct Box {
     glm::vec3 centre{0.0f};
     glm::vec3 axes[3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
