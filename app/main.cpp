@@ -39,8 +39,8 @@ void printUsage() {
         "      build (or load from the verified cache) the scene's Ghost Tile and print its statistics\n"
         "  undergrowth bench [--quick] [--json FILE] [--threads N] [--filter NAME]\n"
         "      benchmarks: prints a table; --json writes {\"results\": [...]}\n"
-        "  undergrowth make-assets [--out DIR]\n"
-        "      regenerate the procedural starter models (assets/models/*.glb)\n"
+        "  undergrowth make-assets [--out DIR] [--env-out DIR]\n"
+        "      regenerate the procedural starter models (assets/models/*.glb, assets/env_models/*.glb)\n"
         "  undergrowth --help | --version\n"
         "\n"
         "exit codes: 0 success, 1 the job failed (the message names the file and the reason), 2 bad usage\n");

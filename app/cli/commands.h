@@ -8,7 +8,7 @@ namespace ug::cli {
 // on SCENE when a display is there (and not --headless), else the headless main job.
 int runMainJob(int argc, char** argv);
 int runBuildTileCommand(int argc, char** argv);  // undergrowth build-tile SCENE [--cache DIR] [--stats FILE]
-int runMakeAssetsCommand(int argc, char** argv);  // undergrowth make-assets [--out DIR]
+int runMakeAssetsCommand(int argc, char** argv);  // undergrowth make-assets [--out DIR] [--env-out DIR]
 int runBenchCommand(int argc, char** argv);      // undergrowth bench [--quick] [--json FILE]
 int runInstantiateCommand(int argc, char** argv);  // undergrowth instantiate SCENE -o OUT.glb [...]
 int runEditCommand(int argc, char** argv);       // undergrowth edit SCENE [--frames N] [--screenshot PNG] [...]

@@ -16,6 +16,7 @@
 #include "io/instance_export.h"
 #include "core/atomic_file.h"
 #include "core/hash.h"
+#include "env/env_models.h"
 #include "ghosttile/ghost_tile_cache.h"
 #include "io/gltf_mesh_io.h"
 #include "mesh/procedural_models.h"
@@ -252,13 +253,20 @@ int runBuildTileCommand(int argc, char** argv) {
 int runMakeAssetsCommand(int argc, char** argv) {
     Args args;
     std::string error;
-    if (!parseArgs(argc, argv, 2, {"--out"}, {}, &args, &error) || !args.positional.empty())
-        return fail("make-assets", error.empty() ? "usage: undergrowth make-assets [--out DIR]" : error, 2);
+    if (!parseArgs(argc, argv, 2, {"--out", "--env-out"}, {}, &args, &error) || !args.positional.empty())
+        return fail("make-assets",
+                    error.empty() ? "usage: undergrowth make-assets [--out DIR] [--env-out DIR]" : error, 2);
     const std::string dir = args.get("--out", assetsDir() + "/models");
+    // The environmental objects go next to the detail models (assets/env_models by default).
+    fs::path models_dir(dir);
+    if (!models_dir.has_filename()) models_dir = models_dir.parent_path();  // "out/models/"
+    const std::string env_dir = args.get("--env-out", (models_dir.parent_path() / "env_models").string());
     std::error_code ec;
     fs::create_directories(dir, ec);
     if (!writeStarterAssets(dir, &error)) return fail("make-assets", error);
     std::printf("wrote the starter models to %s\n", dir.c_str());
+    if (!writeEnvStarterModels(env_dir, &error)) return fail("make-assets", error);
+    std::printf("wrote the environmental starter models to %s\n", env_dir.c_str());
     return 0;
 }
 
