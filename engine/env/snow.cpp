@@ -31,11 +31,13 @@ bool validateSnowSettings(const SnowSettings& s, std::string* error) {
     if (!(std::fabs(len - 1.0f) <= 1e-3f))
         return fail(error, "snow settings: up must be a unit vector (length " + num(len) + ")");
     if (!(s.max_face_angle_deg >= 0.0f && s.max_face_angle_deg <= 90.0f))
-        return fail(error, "snow settings: max_face_angle_deg must be in [0, 90] (got " + num(s.max_face_angle_deg) + ")");
+        return fail(error, "snow settings: max_face_angle_deg must be in [0, 90] (got " +
+                               num(s.max_face_angle_deg) + ")");
     if (!(s.d0_m > 0.0f) || !std::isfinite(s.d0_m))
         return fail(error, "snow settings: d0_m must be finite and > 0 (got " + num(s.d0_m) + ")");
     if (!(s.target_edge_m > 0.0f) || !std::isfinite(s.target_edge_m))
-        return fail(error, "snow settings: target_edge_m must be finite and > 0 (got " + num(s.target_edge_m) + ")");
+        return fail(error,
+                    "snow settings: target_edge_m must be finite and > 0 (got " + num(s.target_edge_m) + ")");
     if (!(s.min_open >= 0.0f && s.min_open <= 1.0f))
         return fail(error, "snow settings: min_open must be in [0, 1] (got " + num(s.min_open) + ")");
     return true;
@@ -91,8 +93,9 @@ void dropBare(const std::vector<uint32_t>& indices, const std::vector<uint32_t>&
 
 }  // namespace
 
-bool finishSnowCover(SnowLayout&& layout, const SnowSettings& s, const EnvQuery& env, bool zero_below_min_open,
-                     size_t base_faces_used_if_any, size_t patch_count, SnowCover* out, std::string* error) {
+bool finishSnowCover(SnowLayout&& layout, const SnowSettings& s, const EnvQuery& env,
+                     bool zero_below_min_open, size_t base_faces_used_if_any, size_t patch_count,
+                     SnowCover* out, std::string* error) {
     const size_t n = layout.surface.size();
     std::vector<EnvSample> samples(n);
     if (n > 0) env(layout.surface.data(), n, samples.data());
@@ -106,8 +109,9 @@ bool finishSnowCover(SnowLayout&& layout, const SnowSettings& s, const EnvQuery&
         if (layout.border_distance[i] == 0.0f) d = 0.0f;
         if (!std::isfinite(d))
             return fail(error, "snow: the environment gives a non-finite displacement at vertex " +
-                                   std::to_string(i) + " (snow " + num(e.snow) + ", occlusion " + num(e.occlusion) +
-                                   ", shelter " + num(e.shelter) + ", temperature " + num(e.temperature) + ")");
+                                   std::to_string(i) + " (snow " + num(e.snow) + ", occlusion " +
+                                   num(e.occlusion) + ", shelter " + num(e.shelter) + ", temperature " +
+                                   num(e.temperature) + ")");
         disp[i] = d;
     }
 

@@ -17,10 +17,9 @@
 #pragma once
 
 #include <cstddef>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "env/env_sample.h"
 #include "field/bounds.h"
@@ -55,12 +54,12 @@ float snowEdgeProfile(float d_m, float d0_m);
 float snowDisplacement(const EnvSample& e, float d_m, float d0_m);
 
 struct SnowCover {
-    TriangleMesh mesh;            // object space (world space for terrain snow), normals recomputed after
-                                  // displacement, base_color snow white (0.9, 0.92, 0.95); empty when no
-                                  // snow lies anywhere
-    size_t base_faces_used = 0;   // faces of the base that took snow (geometry snow; 1 for the procedural
-                                  // shapes and the terrain when any snow lies there, else 0)
-    size_t patch_count = 0;       // connected snow patches extracted (geometry snow), else 1 or 0
+    TriangleMesh mesh;           // object space (world space for terrain snow), normals recomputed after
+                                 // displacement, base_color snow white (0.9, 0.92, 0.95); empty when no
+                                 // snow lies anywhere
+    size_t base_faces_used = 0;  // faces of the base that took snow (geometry snow; 1 for the procedural
+                                 // shapes and the terrain when any snow lies there, else 0)
+    size_t patch_count = 0;      // connected snow patches extracted (geometry snow), else 1 or 0
     // Per vertex of `mesh` (same order and size as mesh.positions):
     std::vector<glm::vec3> surface_positions;  // the point on the base surface before displacement
     std::vector<float> displacement_m;         // metres moved along `up` (0 on the border)
@@ -106,8 +105,8 @@ bool buildBoxSnow(glm::vec3 center, glm::vec3 half_extents, const SnowSettings& 
                   SnowCover* out, std::string* error);
 bool buildCylinderSnow(glm::vec3 base_center, float radius, float height, const SnowSettings& s,
                        const EnvQuery& env, SnowCover* out, std::string* error);
-bool buildSphereSnow(glm::vec3 center, float radius, const SnowSettings& s, const EnvQuery& env, SnowCover* out,
-                     std::string* error);
+bool buildSphereSnow(glm::vec3 center, float radius, const SnowSettings& s, const EnvQuery& env,
+                     SnowCover* out, std::string* error);
 
 // The terrain's snow: the height field over the XY rectangle of `region` (clipped to the field's
 // rectangle), sampled on a regular grid of spacing <= cell_m (the rectangle's sides land exactly on grid

@@ -3,10 +3,9 @@
 #pragma once
 
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <string>
 #include <vector>
-
-#include <glm/glm.hpp>
 
 #include "env/snow.h"
 
@@ -28,17 +27,20 @@ struct SnowLayout {
 // and shelter < min_open), drops the triangles whose three vertices stay put,
 // drops the vertices no kept triangle uses (order kept), recomputes normals and fills *out. Returns false
 // (with a reason, *out untouched) when the environment yields a non-finite displacement.
-bool finishSnowCover(SnowLayout&& layout, const SnowSettings& s, const EnvQuery& env, bool zero_below_min_open,
-                     size_t base_faces_used_if_any, size_t patch_count, SnowCover* out, std::string* error);
+bool finishSnowCover(SnowLayout&& layout, const SnowSettings& s, const EnvQuery& env,
+                     bool zero_below_min_open, size_t base_faces_used_if_any, size_t patch_count,
+                     SnowCover* out, std::string* error);
 
 // The first half of buildGeometrySnow, exposed so tests can check the refinement itself (tiling,
 // conformity, edge lengths) before the environment drops anything: validation, extraction (one batched
 // shelter query at the candidate faces' centroids), the size checks and the subdivision. On success
 // *faces_used is the number of extracted faces and *patch_count the number of patches.
-bool layOutGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const EnvQuery& env, SnowLayout* layout,
-                        size_t* faces_used, size_t* patch_count, std::string* error);
+bool layOutGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const EnvQuery& env,
+                        SnowLayout* layout, size_t* faces_used, size_t* patch_count, std::string* error);
 
 // `up` normalised (validateSnowSettings guarantees it is within 1e-3 of unit length).
-inline glm::vec3 unitUp(const SnowSettings& s) { return glm::normalize(s.up); }
+inline glm::vec3 unitUp(const SnowSettings& s) {
+    return glm::normalize(s.up);
+}
 
 }  // namespace ug::snow_detail

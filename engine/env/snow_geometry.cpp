@@ -48,20 +48,20 @@ void weldVertices(const TriangleMesh& base, std::vector<uint32_t>* weld, std::ve
 // One extracted face: welded corners, its edges and how it meets them.
 struct SnowFace {
     uint32_t base_face = 0;
-    uint32_t v[3] = {0, 0, 0};      // welded corner ids, the base's winding
-    uint32_t edge[3] = {0, 0, 0};   // edge k joins v[k] and v[(k + 1) % 3]
+    uint32_t v[3] = {0, 0, 0};             // welded corner ids, the base's winding
+    uint32_t edge[3] = {0, 0, 0};          // edge k joins v[k] and v[(k + 1) % 3]
     bool forward[3] = {true, true, true};  // edge k runs lo -> hi from v[k]
-    uint32_t n = 1;                 // grid segments per side (the largest of its edges' counts)
+    uint32_t n = 1;                        // grid segments per side (the largest of its edges' counts)
     uint32_t patch = 0;
-    uint32_t interior_first = 0;    // first id of its (n-1)(n-2)/2 inner vertices
+    uint32_t interior_first = 0;  // first id of its (n-1)(n-2)/2 inner vertices
 };
 
 struct SnowEdge {
-    uint32_t lo = 0, hi = 0;  // welded ids, lo < hi
-    uint32_t n = 1;           // segments
-    uint32_t face0 = 0;       // the first extracted face using it
-    bool border = false;      // used by one extracted face, or by more than two (non-manifold)
-    uint32_t inner_first = 0; // first id of its n-1 inner points
+    uint32_t lo = 0, hi = 0;   // welded ids, lo < hi
+    uint32_t n = 1;            // segments
+    uint32_t face0 = 0;        // the first extracted face using it
+    bool border = false;       // used by one extracted face, or by more than two (non-manifold)
+    uint32_t inner_first = 0;  // first id of its n-1 inner points
 };
 
 // Faces facing `up` within the angle, non-degenerate, in base order.
@@ -192,10 +192,104 @@ double assignCounts(const std::vector<glm::vec3>& welded, const SnowSettings& s,
 }
 
 // Border edges each face may be within d0 of (its patch's border edges whose box meets the face's box
-// grown by d0), as CSR lists.
+// grown by d0), as CSR lists in increasing edge order.
 struct Candidates {
     std::vector<uint32_t> first;  // per face, size faces + 1
     std::vector<uint32_t> edges;
+};
+
+struct Box {
+    glm::vec3 lo, hi;
+};
+
+bool boxesMeet(const Box& a, const Box& b) {
+    return a.lo.x <= b.hi.x && b.lo.x <= a.hi.x && a.lo.y <= b.hi.y && b.lo.y <= a.hi.y && a.lo.z <= b.hi.z &&
+           b.lo.z <= a.hi.z;
+}
+
+// A uniform grid over the border edges, so a face looks at the border edges near it rather than at its
+// whole patch's (a large patch has many). Cells are sorted (cell, patch, edge) entries: no hashing.
+// Edges spanning too many cells, and faces covering too many, fall back to the patch's full list.
+class BorderGrid {
+    struct Cell3 {
+        uint64_t x, y, z;
+    };
+
+  public:
+    static constexpr uint64_t kMaxCellsPerItem = 64;
+
+    BorderGrid(const std::vector<Box>& edge_box, const std::vector<std::pair<uint32_t, uint32_t>>& patch_edge,
+               float d0) {
+        Box all{glm::vec3(INFINITY), glm::vec3(-INFINITY)};
+        double total = 0.0;
+        for (const auto& pe : patch_edge) {
+            const Box& b = edge_box[pe.second];
+            all.lo = glm::min(all.lo, b.lo);
+            all.hi = glm::max(all.hi, b.hi);
+            total += double(glm::length(b.hi - b.lo));
+        }
+        origin_ = all.lo;
+        const glm::vec3 size = patch_edge.empty() ? glm::vec3(0.0f) : all.hi - all.lo;
+        const float extent = std::max({size.x, size.y, size.z});
+        const float mean = patch_edge.empty() ? 0.0f : float(total / double(patch_edge.size()));
+        cell_ = std::max({d0, mean, extent / float(kAxisCells - 1)});
+        for (const auto& pe : patch_edge) {
+            const Cell3 a = cellOf(edge_box[pe.second].lo), b = cellOf(edge_box[pe.second].hi);
+            if (cellCount(a, b) > kMaxCellsPerItem) {
+                big_.push_back(pe);
+                continue;
+            }
+            for (uint64_t x = a.x; x <= b.x; ++x)
+                for (uint64_t y = a.y; y <= b.y; ++y)
+                    for (uint64_t z = a.z; z <= b.z; ++z)
+                        entries_.push_back({key(x, y, z), pe.first, pe.second});
+        }
+        std::sort(entries_.begin(), entries_.end());
+        std::sort(big_.begin(), big_.end());
+    }
+
+    // Appends to *out the border edges of `patch` in the cells `box` covers, plus the patch's edges too long
+    // for the grid; false (nothing appended) when the box covers too many cells to be worth it.
+    bool gather(const Box& box, uint32_t patch, std::vector<uint32_t>* out) const {
+        const Cell3 a = cellOf(box.lo), b = cellOf(box.hi);
+        if (cellCount(a, b) > kMaxCellsPerItem) return false;
+        for (uint64_t x = a.x; x <= b.x; ++x)
+            for (uint64_t y = a.y; y <= b.y; ++y)
+                for (uint64_t z = a.z; z <= b.z; ++z) {
+                    const uint64_t k = key(x, y, z);
+                    auto it = std::lower_bound(entries_.begin(), entries_.end(), Entry{k, patch, 0});
+                    for (; it != entries_.end() && it->cell == k && it->patch == patch; ++it)
+                        out->push_back(it->edge);
+                }
+        auto it = std::lower_bound(big_.begin(), big_.end(), std::pair<uint32_t, uint32_t>(patch, 0));
+        for (; it != big_.end() && it->first == patch; ++it) out->push_back(it->second);
+        return true;
+    }
+
+  private:
+    static constexpr uint64_t kAxisCells = uint64_t(1) << 20;
+    struct Entry {
+        uint64_t cell;
+        uint32_t patch, edge;
+        bool operator<(const Entry& o) const {
+            if (cell != o.cell) return cell < o.cell;
+            return patch != o.patch ? patch < o.patch : edge < o.edge;
+        }
+    };
+    Cell3 cellOf(glm::vec3 p) const {
+        const glm::vec3 u = (p - origin_) / cell_;
+        auto axis = [](float v) { return uint64_t(std::clamp(v, 0.0f, float(kAxisCells - 1))); };
+        return {axis(u.x), axis(u.y), axis(u.z)};
+    }
+    static uint64_t cellCount(Cell3 a, Cell3 b) {
+        return (b.x - a.x + 1) * (b.y - a.y + 1) * (b.z - a.z + 1);
+    }
+    static uint64_t key(uint64_t x, uint64_t y, uint64_t z) { return (x << 42) | (y << 21) | z; }
+
+    glm::vec3 origin_{0.0f};
+    float cell_ = 1.0f;
+    std::vector<Entry> entries_;
+    std::vector<std::pair<uint32_t, uint32_t>> big_;  // (patch, edge)
 };
 
 Candidates borderCandidates(const std::vector<glm::vec3>& welded, const std::vector<SnowEdge>& edges,
@@ -211,20 +305,31 @@ Candidates borderCandidates(const std::vector<glm::vec3>& welded, const std::vec
     for (const auto& pe : patch_edge) ++patch_first[pe.first + 1];
     for (size_t p = 0; p < patch_count; ++p) patch_first[p + 1] += patch_first[p];
 
+    std::vector<Box> edge_box(edges.size());
+    for (size_t e = 0; e < edges.size(); ++e) {
+        const glm::vec3 p = welded[edges[e].lo], q = welded[edges[e].hi];
+        edge_box[e] = {glm::min(p, q), glm::max(p, q)};
+    }
+    const BorderGrid grid(edge_box, patch_edge, d0);
+
     Candidates c;
     c.first.reserve(faces.size() + 1);
     c.first.push_back(0);
+    std::vector<uint32_t> near;
     for (const SnowFace& f : faces) {
         const glm::vec3 a = welded[f.v[0]], b = welded[f.v[1]], cc = welded[f.v[2]];
-        const glm::vec3 lo = glm::min(a, glm::min(b, cc)) - glm::vec3(d0);
-        const glm::vec3 hi = glm::max(a, glm::max(b, cc)) + glm::vec3(d0);
-        for (uint32_t i = patch_first[f.patch]; i < patch_first[f.patch + 1]; ++i) {
-            const uint32_t e = patch_edge[i].second;
-            const glm::vec3 p = welded[edges[e].lo], q = welded[edges[e].hi];
-            const glm::vec3 elo = glm::min(p, q), ehi = glm::max(p, q);
-            if (elo.x <= hi.x && lo.x <= ehi.x && elo.y <= hi.y && lo.y <= ehi.y && elo.z <= hi.z && lo.z <= ehi.z)
-                c.edges.push_back(e);
+        const Box box{glm::min(a, glm::min(b, cc)) - glm::vec3(d0),
+                      glm::max(a, glm::max(b, cc)) + glm::vec3(d0)};
+        near.clear();
+        if (grid.gather(box, f.patch, &near)) {
+            std::sort(near.begin(), near.end());
+            near.erase(std::unique(near.begin(), near.end()), near.end());
+        } else {
+            for (uint32_t i = patch_first[f.patch]; i < patch_first[f.patch + 1]; ++i)
+                near.push_back(patch_edge[i].second);
         }
+        for (uint32_t e : near)
+            if (boxesMeet(edge_box[e], box)) c.edges.push_back(e);
         c.first.push_back(uint32_t(c.edges.size()));
     }
     return c;
@@ -261,7 +366,7 @@ struct DistanceContext {
 uint32_t edgeNode(const SnowFace& f, int k, uint32_t m, const std::vector<SnowEdge>& edges,
                   const std::vector<uint32_t>& base_id) {
     const SnowEdge& e = edges[f.edge[k]];
-    const uint64_t cm = f.forward[k] ? m : f.n - m;  // numerator along lo -> hi
+    const uint64_t cm = f.forward[k] ? m : f.n - m;                  // numerator along lo -> hi
     const uint64_t kk = (2 * cm * e.n + f.n) / (2 * uint64_t(f.n));  // round(cm * e.n / f.n), ties up
     if (kk == 0) return base_id[e.lo];
     if (kk >= e.n) return base_id[e.hi];
@@ -289,7 +394,8 @@ snow_detail::SnowLayout layOut(const std::vector<glm::vec3>& welded, std::vector
     std::vector<uint32_t> base_id(welded.size(), UINT32_MAX), corner_face(welded.size(), UINT32_MAX);
     std::vector<uint8_t> corner_border(welded.size(), 0);
     for (size_t f = 0; f < faces.size(); ++f)
-        for (int k = 0; k < 3; ++k) corner_face[faces[f].v[k]] = std::min(corner_face[faces[f].v[k]], uint32_t(f));
+        for (int k = 0; k < 3; ++k)
+            corner_face[faces[f].v[k]] = std::min(corner_face[faces[f].v[k]], uint32_t(f));
     for (const SnowEdge& e : edges)
         if (e.border) corner_border[e.lo] = corner_border[e.hi] = 1;
     for (size_t v = 0; v < welded.size(); ++v) {
@@ -319,9 +425,12 @@ snow_detail::SnowLayout layOut(const std::vector<glm::vec3>& welded, std::vector
         size_t at = 0;
         for (uint32_t j = 0; j <= n; ++j)
             for (uint32_t i = 0; i + j <= n; ++i, ++at) {
-                if (j == 0) node[at] = edgeNode(f, 0, i, edges, base_id);
-                else if (i + j == n) node[at] = edgeNode(f, 1, j, edges, base_id);
-                else if (i == 0) node[at] = edgeNode(f, 2, n - j, edges, base_id);
+                if (j == 0)
+                    node[at] = edgeNode(f, 0, i, edges, base_id);
+                else if (i + j == n)
+                    node[at] = edgeNode(f, 1, j, edges, base_id);
+                else if (i == 0)
+                    node[at] = edgeNode(f, 2, n - j, edges, base_id);
                 else {
                     const glm::vec3 p = a + ab * (float(i) / float(n)) + ac * (float(j) / float(n));
                     node[at] = uint32_t(out.surface.size());
@@ -329,7 +438,9 @@ snow_detail::SnowLayout layOut(const std::vector<glm::vec3>& welded, std::vector
                     out.border_distance.push_back(dist(p, uint32_t(fi)));
                 }
             }
-        auto id = [&](uint32_t i, uint32_t j) { return node[size_t(j) * (n + 1) - size_t(j) * (j - 1) / 2 + i]; };
+        auto id = [&](uint32_t i, uint32_t j) {
+            return node[size_t(j) * (n + 1) - size_t(j) * (j - 1) / 2 + i];
+        };
         auto emit = [&](uint32_t p, uint32_t q, uint32_t r) {
             if (p == q || q == r || r == p) return;  // collapsed in a transition strip
             out.indices.insert(out.indices.end(), {p, q, r});
@@ -348,8 +459,8 @@ snow_detail::SnowLayout layOut(const std::vector<glm::vec3>& welded, std::vector
 
 namespace snow_detail {
 
-bool layOutGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const EnvQuery& env, SnowLayout* layout,
-                        size_t* faces_used, size_t* patch_count, std::string* error) {
+bool layOutGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const EnvQuery& env,
+                        SnowLayout* layout, size_t* faces_used, size_t* patch_count, std::string* error) {
     std::string why;
     if (!validateMesh(base, &why)) return fail(error, "snow base mesh: " + why);
     if (!validateSnowSettings(s, error)) return false;
@@ -368,14 +479,15 @@ bool layOutGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const E
     if (estimate > double(kMaxSnowTriangles))
         return fail(error, "snow: about " + std::to_string(uint64_t(std::min(estimate, 1e18))) +
                                " triangles for " + std::to_string(area) + " m² at target_edge_m " +
-                               std::to_string(s.target_edge_m) + " (more than " + std::to_string(kMaxSnowTriangles) +
-                               "); raise target_edge_m");
+                               std::to_string(s.target_edge_m) + " (more than " +
+                               std::to_string(kMaxSnowTriangles) + "); raise target_edge_m");
 
     std::vector<SnowEdge> edges = buildEdges(&faces);
     const size_t patches = assignPatches(edges, &faces);
     const double exact = assignCounts(welded, s, &edges, &faces);
     if (exact > double(kMaxSnowTriangles))
-        return fail(error, "snow: uniform subdivision gives " + std::to_string(uint64_t(std::min(exact, 1e18))) +
+        return fail(error, "snow: uniform subdivision gives " +
+                               std::to_string(uint64_t(std::min(exact, 1e18))) +
                                " triangles at target_edge_m " + std::to_string(s.target_edge_m) +
                                " (more than " + std::to_string(kMaxSnowTriangles) +
                                "; thin faces subdivide into many); raise target_edge_m");
@@ -394,8 +506,8 @@ bool buildGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const En
     snow_detail::SnowLayout layout;
     size_t faces = 0, patches = 0;
     if (!snow_detail::layOutGeometrySnow(base, s, env, &layout, &faces, &patches, error)) return false;
-    return snow_detail::finishSnowCover(std::move(layout), s, env, /*zero_below_min_open=*/false, faces, patches,
-                                        out, error);
+    return snow_detail::finishSnowCover(std::move(layout), s, env, /*zero_below_min_open=*/false, faces,
+                                        patches, out, error);
 }
 
 }  // namespace ug

@@ -25,7 +25,9 @@ bool fail(std::string* error, const std::string& why) {
     return false;
 }
 
-bool finite3(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite3(glm::vec3 v) {
+    return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 bool tooMany(double triangles, const char* what, std::string* error) {
     if (triangles <= double(kMaxSnowTriangles)) return false;
@@ -71,7 +73,8 @@ snow_detail::SnowLayout ringDisc(uint32_t K, Point point) {
             out.border_distance.push_back(d);
         }
     auto start = [](uint32_t k) { return k == 0 ? 0u : 1 + 3 * k * (k - 1); };
-    for (uint32_t j = 0; j < 6; ++j) out.indices.insert(out.indices.end(), {0u, start(1) + j, start(1) + (j + 1) % 6});
+    for (uint32_t j = 0; j < 6; ++j)
+        out.indices.insert(out.indices.end(), {0u, start(1) + j, start(1) + (j + 1) % 6});
     for (uint32_t k = 2; k <= K; ++k) {
         const uint32_t m1 = 6 * (k - 1), m2 = 6 * k, s1 = start(k - 1), s2 = start(k);
         uint32_t a = 0, b = 0;
@@ -95,7 +98,8 @@ snow_detail::SnowLayout ringDisc(uint32_t K, Point point) {
 bool buildBoxSnow(glm::vec3 center, glm::vec3 half_extents, const SnowSettings& s, const EnvQuery& env,
                   SnowCover* out, std::string* error) {
     if (!validateSnowSettings(s, error)) return false;
-    if (!finite3(center) || !finite3(half_extents) || !(half_extents.x > 0 && half_extents.y > 0 && half_extents.z > 0))
+    if (!finite3(center) || !finite3(half_extents) ||
+        !(half_extents.x > 0 && half_extents.y > 0 && half_extents.z > 0))
         return fail(error, "snow box: center must be finite and half_extents finite and > 0");
     if (!env) return fail(error, "snow: no environment query");
     if (!topTakesSnow(s)) return emptyCover(out);
@@ -130,13 +134,15 @@ bool buildBoxSnow(glm::vec3 center, glm::vec3 half_extents, const SnowSettings& 
             const uint32_t a = j * (nx + 1) + i, b = a + 1, c = a + (nx + 1) + 1, d = a + (nx + 1);
             layout.indices.insert(layout.indices.end(), {a, b, c, a, c, d});
         }
-    return snow_detail::finishSnowCover(std::move(layout), s, env, /*zero_below_min_open=*/true, 1, 1, out, error);
+    return snow_detail::finishSnowCover(std::move(layout), s, env, /*zero_below_min_open=*/true, 1, 1, out,
+                                        error);
 }
 
 bool buildCylinderSnow(glm::vec3 base_center, float radius, float height, const SnowSettings& s,
                        const EnvQuery& env, SnowCover* out, std::string* error) {
     if (!validateSnowSettings(s, error)) return false;
-    if (!finite3(base_center) || !(radius > 0 && std::isfinite(radius)) || !(height > 0 && std::isfinite(height)))
+    if (!finite3(base_center) || !(radius > 0 && std::isfinite(radius)) ||
+        !(height > 0 && std::isfinite(height)))
         return fail(error, "snow cylinder: base_center must be finite, radius and height finite and > 0");
     if (!env) return fail(error, "snow: no environment query");
     if (!topTakesSnow(s)) return emptyCover(out);
@@ -156,11 +162,12 @@ bool buildCylinderSnow(glm::vec3 base_center, float radius, float height, const 
         *d = k == K ? 0.0f : (dist < s.d0_m ? dist : kInf);
         return glm::vec3(base_center.x + r * float(std::cos(a)), base_center.y + r * float(std::sin(a)), z);
     });
-    return snow_detail::finishSnowCover(std::move(layout), s, env, /*zero_below_min_open=*/true, 1, 1, out, error);
+    return snow_detail::finishSnowCover(std::move(layout), s, env, /*zero_below_min_open=*/true, 1, 1, out,
+                                        error);
 }
 
-bool buildSphereSnow(glm::vec3 center, float radius, const SnowSettings& s, const EnvQuery& env, SnowCover* out,
-                     std::string* error) {
+bool buildSphereSnow(glm::vec3 center, float radius, const SnowSettings& s, const EnvQuery& env,
+                     SnowCover* out, std::string* error) {
     if (!validateSnowSettings(s, error)) return false;
     if (!finite3(center) || !(radius > 0 && std::isfinite(radius)))
         return fail(error, "snow sphere: center must be finite and radius finite and > 0");
@@ -185,7 +192,8 @@ bool buildSphereSnow(glm::vec3 center, float radius, const SnowSettings& s, cons
         const glm::vec3 dir = up * cp + (ex * float(std::cos(a)) + ey * float(std::sin(a))) * sp;
         return center + dir * radius;
     });
-    return snow_detail::finishSnowCover(std::move(layout), s, env, /*zero_below_min_open=*/true, 1, 1, out, error);
+    return snow_detail::finishSnowCover(std::move(layout), s, env, /*zero_below_min_open=*/true, 1, 1, out,
+                                        error);
 }
 
 }  // namespace ug

@@ -29,8 +29,10 @@ bool buildTerrainSnow(const HeightField& hf, const Bounds& region, float cell_m,
                       const EnvQuery& env, SnowCover* out, std::string* error) {
     if (!validateSnowSettings(s, error)) return false;
     if (hf.empty()) return fail(error, "terrain snow: the height field is empty");
-    if (!(cell_m > 0.0f) || !std::isfinite(cell_m)) return fail(error, "terrain snow: cell_m must be finite and > 0");
-    if (std::isnan(region.lo.x) || std::isnan(region.lo.y) || std::isnan(region.hi.x) || std::isnan(region.hi.y))
+    if (!(cell_m > 0.0f) || !std::isfinite(cell_m))
+        return fail(error, "terrain snow: cell_m must be finite and > 0");
+    if (std::isnan(region.lo.x) || std::isnan(region.lo.y) || std::isnan(region.hi.x) ||
+        std::isnan(region.hi.y))
         return fail(error, "terrain snow: the region is NaN");
     if (!env) return fail(error, "snow: no environment query");
 
@@ -68,7 +70,8 @@ bool buildTerrainSnow(const HeightField& hf, const Bounds& region, float cell_m,
             const uint32_t a = j * (nx + 1) + i, b = a + 1, c = a + (nx + 1) + 1, d = a + (nx + 1);
             layout.indices.insert(layout.indices.end(), {a, b, c, a, c, d});
         }
-    return snow_detail::finishSnowCover(std::move(layout), s, env, /*zero_below_min_open=*/true, 1, 1, out, error);
+    return snow_detail::finishSnowCover(std::move(layout), s, env, /*zero_below_min_open=*/true, 1, 1, out,
+                                        error);
 }
 
 }  // namespace ug

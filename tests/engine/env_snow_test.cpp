@@ -72,7 +72,8 @@ TriangleMesh gridQuad(float x0, float x1, float y0, float y1, float z, int n, Tr
     TriangleMesh m;
     for (int j = 0; j <= n; ++j)
         for (int i = 0; i <= n; ++i)
-            m.positions.emplace_back(x0 + (x1 - x0) * float(i) / float(n), y0 + (y1 - y0) * float(j) / float(n), z);
+            m.positions.emplace_back(x0 + (x1 - x0) * float(i) / float(n),
+                                     y0 + (y1 - y0) * float(j) / float(n), z);
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {
             const uint32_t a = uint32_t(j * (n + 1) + i), b = a + 1, c = a + uint32_t(n + 1) + 1,
@@ -121,7 +122,7 @@ TEST(SnowProfile, DisplacementIsClampedPaperFormula) {
     EXPECT_EQ(snowDisplacement(e, 1.0f, 0.05f), 0.0f);
     e.shelter = 1.0f;
     EXPECT_EQ(snowDisplacement(e, 0.0f, 0.05f), 0.0f);  // the border
-    e.snow = NAN;  // a broken environment is not hidden by the clamp
+    e.snow = NAN;                                       // a broken environment is not hidden by the clamp
     EXPECT_TRUE(std::isnan(snowDisplacement(e, 1.0f, 0.05f)));
 }
 
@@ -134,15 +135,33 @@ TEST(SnowSettingsCheck, RefusesNonFiniteAndOutOfRange) {
     SnowSettings s;
     std::string error;
     EXPECT_TRUE(validateSnowSettings(s, &error)) << error;
-    s = {}; s.target_edge_m = NAN; refused(s, "target_edge_m");
-    s = {}; s.target_edge_m = 0.0f; refused(s, "target_edge_m");
-    s = {}; s.d0_m = NAN; refused(s, "d0_m");
-    s = {}; s.d0_m = -1.0f; refused(s, "d0_m");
-    s = {}; s.up = glm::vec3(NAN, 0, 1); refused(s, "up");
-    s = {}; s.up = glm::vec3(0, 0, 2); refused(s, "up");
-    s = {}; s.max_face_angle_deg = NAN; refused(s, "max_face_angle_deg");
-    s = {}; s.max_face_angle_deg = 120.0f; refused(s, "max_face_angle_deg");
-    s = {}; s.min_open = NAN; refused(s, "min_open");
+    s = {};
+    s.target_edge_m = NAN;
+    refused(s, "target_edge_m");
+    s = {};
+    s.target_edge_m = 0.0f;
+    refused(s, "target_edge_m");
+    s = {};
+    s.d0_m = NAN;
+    refused(s, "d0_m");
+    s = {};
+    s.d0_m = -1.0f;
+    refused(s, "d0_m");
+    s = {};
+    s.up = glm::vec3(NAN, 0, 1);
+    refused(s, "up");
+    s = {};
+    s.up = glm::vec3(0, 0, 2);
+    refused(s, "up");
+    s = {};
+    s.max_face_angle_deg = NAN;
+    refused(s, "max_face_angle_deg");
+    s = {};
+    s.max_face_angle_deg = 120.0f;
+    refused(s, "max_face_angle_deg");
+    s = {};
+    s.min_open = NAN;
+    refused(s, "min_open");
 
     // And every builder refuses them.
     int calls = 0;
@@ -191,6 +210,12 @@ TEST(SnowGeometry, UnitCubeTopOnlyNoCrack) {
         } else {
             EXPECT_GT(cover.border_distance_m[v], 0.0f);
         }
+        // d(p) against the analytic distance to the square's rim (infinite at or beyond d0).
+        if (to_rim < 0.0499f) {
+            EXPECT_NEAR(cover.border_distance_m[v], to_rim, 1e-6f);
+        } else if (to_rim > 0.0501f) {
+            EXPECT_EQ(cover.border_distance_m[v], INFINITY);
+        }
         if (to_rim > 0.051f) {
             ++interior;
             EXPECT_EQ(cover.displacement_m[v], 0.1f);
@@ -223,8 +248,8 @@ TEST(SnowGeometry, RefinementTilesEachFaceConformingly) {
     snow_detail::SnowLayout layout;
     size_t faces = 0, patches = 0;
     std::string error;
-    ASSERT_TRUE(snow_detail::layOutGeometrySnow(m, s, ConstantEnv{snowOf(0.1f), &calls}, &layout, &faces, &patches,
-                                                &error))
+    ASSERT_TRUE(snow_detail::layOutGeometrySnow(m, s, ConstantEnv{snowOf(0.1f), &calls}, &layout, &faces,
+                                                &patches, &error))
         << error;
     EXPECT_EQ(faces, 5u);
     EXPECT_EQ(patches, 1u);
@@ -251,6 +276,61 @@ TEST(SnowGeometry, RefinementTilesEachFaceConformingly) {
     EXPECT_LE(maxEdge(layout.surface, layout.indices), 1.5 * s.target_edge_m);
 }
 
+// d(p) of every refined vertex against a brute-force distance to the patch's outer polygon.
+void expectBorderDistances(const TriangleMesh& m, const std::vector<glm::vec3>& polygon, float d0) {
+    SnowSettings s = fineSettings();
+    s.d0_m = d0;
+    int calls = 0;
+    snow_detail::SnowLayout layout;
+    size_t faces = 0, patches = 0;
+    std::string error;
+    ASSERT_TRUE(snow_detail::layOutGeometrySnow(m, s, ConstantEnv{snowOf(0.1f), &calls}, &layout, &faces,
+                                                &patches, &error))
+        << error;
+    ASSERT_EQ(patches, 1u);
+    size_t near = 0;
+    for (size_t v = 0; v < layout.surface.size(); ++v) {
+        const glm::vec3 p = layout.surface[v];
+        float ref = INFINITY;
+        for (size_t i = 0; i < polygon.size(); ++i) {
+            const glm::vec3 a = polygon[i], b = polygon[(i + 1) % polygon.size()];
+            const float t = std::clamp(glm::dot(p - a, b - a) / glm::dot(b - a, b - a), 0.0f, 1.0f);
+            ref = std::min(ref, glm::length(p - (a + (b - a) * t)));
+        }
+        const float d = layout.border_distance[v];
+        if (d == 0.0f) {
+            EXPECT_LT(ref, 1e-5f);  // a border vertex lies on the polygon
+        } else if (ref < d0 * 0.999f) {
+            ++near;
+            EXPECT_NEAR(d, ref, 1e-5f);
+        } else if (ref > d0 * 1.001f) {
+            EXPECT_EQ(d, INFINITY);
+        }
+    }
+    EXPECT_GT(near, 10u);
+}
+
+TEST(SnowGeometry, BorderDistanceMatchesBruteForce) {
+    // The irregular patch of the test above.
+    TriangleMesh m;
+    m.positions = {{0, 0, 0}, {1, 0, 0}, {1.3f, 0.9f, 0}, {0.1f, 1, 0}, {0.55f, 0.4f, 0}, {0.5f, 0.05f, 0}};
+    m.indices = {0, 5, 4, 5, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4};
+    expectBorderDistances(m, {m.positions[0], m.positions[5], m.positions[1], m.positions[2], m.positions[3]},
+                          0.2f);
+    // A fan of large faces whose border edges are short (the search grid's fallback to the whole patch).
+    TriangleMesh fan;
+    fan.positions.push_back({0, 0, 0});
+    std::vector<glm::vec3> rim;
+    for (int i = 0; i < 96; ++i) {
+        const float a = 2.0f * 3.14159265f * float(i) / 96.0f;
+        rim.emplace_back(2.0f * std::cos(a), 2.0f * std::sin(a), 0.0f);
+        fan.positions.push_back(rim.back());
+    }
+    for (uint32_t i = 0; i < 96; ++i) fan.indices.insert(fan.indices.end(), {0u, 1 + i, 1 + (i + 1) % 96});
+    expectBorderDistances(fan, rim, 0.3f);
+    expectBorderDistances(fan, rim, 0.05f);
+}
+
 TEST(SnowGeometry, UniformMeshEdgesWithinTarget) {
     // Equilateral faces: every edge of a face has the same count, no transition strip.
     TriangleMesh m;
@@ -263,8 +343,8 @@ TEST(SnowGeometry, UniformMeshEdgesWithinTarget) {
     snow_detail::SnowLayout layout;
     size_t faces = 0, patches = 0;
     std::string error;
-    ASSERT_TRUE(snow_detail::layOutGeometrySnow(m, s, ConstantEnv{snowOf(0.1f), &calls}, &layout, &faces, &patches,
-                                                &error));
+    ASSERT_TRUE(snow_detail::layOutGeometrySnow(m, s, ConstantEnv{snowOf(0.1f), &calls}, &layout, &faces,
+                                                &patches, &error));
     EXPECT_EQ(layout.indices.size() / 3, 2u * 10u * 10u);  // n = ceil(1 / 0.1) = 10, n² per face
     EXPECT_LE(maxEdge(layout.surface, layout.indices), 0.1 + 1e-6);
     // Welded: 2 faces of a 10-grid sharing one edge: 66 + 66 - 11 vertices.
@@ -288,14 +368,17 @@ TEST(SnowGeometry, NothingUnderTheRoof) {
     SnowCover cover;
     std::string error;
     ASSERT_TRUE(buildGeometrySnow(m, fineSettings(), env, &cover, &error)) << error;
-    EXPECT_EQ(cover.base_faces_used, 32u - 8u + 8u);  // ground minus the 2x2 quads under the roof, plus the roof
-    EXPECT_EQ(cover.patch_count, 2u);                 // the ground ring and the roof
+    EXPECT_EQ(cover.base_faces_used,
+              32u - 8u + 8u);          // ground minus the 2x2 quads under the roof, plus the roof
+    EXPECT_EQ(cover.patch_count, 2u);  // the ground ring and the roof
     bool roof = false, ground = false;
     for (size_t t = 0; t < cover.mesh.indices.size(); t += 3) {
         const glm::vec3 c = (cover.surface_positions[cover.mesh.indices[t]] +
                              cover.surface_positions[cover.mesh.indices[t + 1]] +
-                             cover.surface_positions[cover.mesh.indices[t + 2]]) / 3.0f;
-        if (c.z > 1.0f) roof = true;
+                             cover.surface_positions[cover.mesh.indices[t + 2]]) /
+                            3.0f;
+        if (c.z > 1.0f)
+            roof = true;
         else {
             ground = true;
             EXPECT_FALSE(std::fabs(c.x) < 0.5f && std::fabs(c.y) < 0.5f) << "snow under the roof";
@@ -344,13 +427,15 @@ TEST(SnowGeometry, MeltedAndOccludedSnowIsDropped) {
     warm.temperature = 0.2f;  // θ > α s: melts entirely
     SnowCover cover;
     std::string error;
-    ASSERT_TRUE(buildGeometrySnow(test::flatQuad(), fineSettings(), ConstantEnv{warm, &calls}, &cover, &error));
+    ASSERT_TRUE(
+        buildGeometrySnow(test::flatQuad(), fineSettings(), ConstantEnv{warm, &calls}, &cover, &error));
     EXPECT_EQ(cover.mesh.triangleCount(), 0u);
     EXPECT_GT(cover.triangles_before_drop, 0u);
     EXPECT_EQ(cover.base_faces_used, 0u);
     EnvSample half = snowOf(0.1f);
     half.occlusion = 0.5f;
-    ASSERT_TRUE(buildGeometrySnow(test::flatQuad(), fineSettings(), ConstantEnv{half, &calls}, &cover, &error));
+    ASSERT_TRUE(
+        buildGeometrySnow(test::flatQuad(), fineSettings(), ConstantEnv{half, &calls}, &cover, &error));
     const float top = *std::max_element(cover.displacement_m.begin(), cover.displacement_m.end());
     EXPECT_FLOAT_EQ(top, 0.05f);
 }
@@ -378,7 +463,8 @@ TEST(SnowGeometry, RefusesAbsurdSizesUpFront) {
 
     // And a broken base mesh.
     error.clear();
-    EXPECT_FALSE(buildGeometrySnow(TriangleMesh{}, fineSettings(), ConstantEnv{snowOf(0.1f), &calls}, &cover, &error));
+    EXPECT_FALSE(
+        buildGeometrySnow(TriangleMesh{}, fineSettings(), ConstantEnv{snowOf(0.1f), &calls}, &cover, &error));
     EXPECT_NE(error.find("base mesh"), std::string::npos) << error;
 }
 
@@ -386,8 +472,8 @@ TEST(SnowGeometry, NonFiniteEnvironmentIsReported) {
     int calls = 0;
     SnowCover cover;
     std::string error;
-    EXPECT_FALSE(buildGeometrySnow(test::flatQuad(), fineSettings(), ConstantEnv{snowOf(INFINITY), &calls}, &cover,
-                                   &error));
+    EXPECT_FALSE(buildGeometrySnow(test::flatQuad(), fineSettings(), ConstantEnv{snowOf(INFINITY), &calls},
+                                   &cover, &error));
     EXPECT_NE(error.find("non-finite"), std::string::npos) << error;
 }
 
@@ -400,7 +486,8 @@ TEST(SnowGeometry, DeterministicAndWeldsSeams) {
         split.positions.push_back(cube.positions[i]);
     }
     const EnvQuery env = [](const glm::vec3* p, size_t n, EnvSample* out) {
-        for (size_t i = 0; i < n; ++i) out[i] = snowOf(0.1f + 0.05f * std::sin(7.0f * p[i].x + 3.0f * p[i].y));
+        for (size_t i = 0; i < n; ++i)
+            out[i] = snowOf(0.1f + 0.05f * std::sin(7.0f * p[i].x + 3.0f * p[i].y));
     };
     SnowSettings s = fineSettings();
     s.up = glm::normalize(glm::vec3(0.2f, 0.1f, 1.0f));
@@ -412,8 +499,12 @@ TEST(SnowGeometry, DeterministicAndWeldsSeams) {
     EXPECT_EQ(a.base_faces_used, 2u);
     ASSERT_EQ(a.mesh.positions.size(), b.mesh.positions.size());
     ASSERT_GT(a.mesh.positions.size(), 0u);
-    EXPECT_EQ(std::memcmp(a.mesh.positions.data(), b.mesh.positions.data(), a.mesh.positions.size() * sizeof(glm::vec3)), 0);
-    EXPECT_EQ(std::memcmp(a.mesh.normals.data(), b.mesh.normals.data(), a.mesh.normals.size() * sizeof(glm::vec3)), 0);
+    EXPECT_EQ(std::memcmp(a.mesh.positions.data(), b.mesh.positions.data(),
+                          a.mesh.positions.size() * sizeof(glm::vec3)),
+              0);
+    EXPECT_EQ(
+        std::memcmp(a.mesh.normals.data(), b.mesh.normals.data(), a.mesh.normals.size() * sizeof(glm::vec3)),
+        0);
     EXPECT_EQ(a.mesh.indices, b.mesh.indices);
     // Displaced along the tilted `up`.
     for (size_t v = 0; v < a.mesh.positions.size(); ++v) {
@@ -504,7 +595,8 @@ TEST(SnowProcedural, CylinderTopDisc) {
     SnowCover cover;
     std::string error;
     const SnowSettings s = fineSettings();
-    ASSERT_TRUE(buildCylinderSnow(base, r, height, s, ConstantEnv{snowOf(0.1f), &calls}, &cover, &error)) << error;
+    ASSERT_TRUE(buildCylinderSnow(base, r, height, s, ConstantEnv{snowOf(0.1f), &calls}, &cover, &error))
+        << error;
     EXPECT_EQ(calls, 1);
     const size_t K = 15;  // ceil(1.46 · 0.5 / 0.05)
     EXPECT_EQ(cover.triangles_before_drop, 6 * K * K);
@@ -567,13 +659,16 @@ TEST(SnowProcedural, SphereCapDownToMaxAngle) {
     s.max_face_angle_deg = 0.0f;
     ASSERT_TRUE(buildSphereSnow(c, R, s, ConstantEnv{snowOf(0.1f), &calls}, &cover, &error));
     EXPECT_EQ(cover.mesh.triangleCount(), 0u);
-    EXPECT_FALSE(buildSphereSnow(c, -1.0f, fineSettings(), ConstantEnv{snowOf(0.1f), &calls}, &cover, &error));
+    EXPECT_FALSE(
+        buildSphereSnow(c, -1.0f, fineSettings(), ConstantEnv{snowOf(0.1f), &calls}, &cover, &error));
 }
 
 // ---------------------------------------------------------------------------------------------------
 // Terrain snow
 
-HeightField flatField(float z) { return HeightField({0, 0}, 1.0f, 11, 11, std::vector<float>(121, z)); }
+HeightField flatField(float z) {
+    return HeightField({0, 0}, 1.0f, 11, 11, std::vector<float>(121, z));
+}
 
 TEST(SnowTerrain, FlatFieldRisesUniformly) {
     const HeightField hf = flatField(1.0f);
@@ -581,7 +676,8 @@ TEST(SnowTerrain, FlatFieldRisesUniformly) {
     SnowCover cover;
     std::string error;
     const Bounds region{{2, 2, -100}, {8, 8, 100}};
-    ASSERT_TRUE(buildTerrainSnow(hf, region, 0.5f, fineSettings(), ConstantEnv{snowOf(0.2f), &calls}, &cover, &error))
+    ASSERT_TRUE(
+        buildTerrainSnow(hf, region, 0.5f, fineSettings(), ConstantEnv{snowOf(0.2f), &calls}, &cover, &error))
         << error;
     EXPECT_EQ(calls, 1);
     EXPECT_EQ(cover.mesh.positions.size(), 13u * 13u);
@@ -603,16 +699,19 @@ TEST(SnowTerrain, RegionIsClippedOrRefused) {
     SnowCover cover;
     std::string error;
     const EnvQuery env = ConstantEnv{snowOf(0.2f), &calls};
-    EXPECT_FALSE(buildTerrainSnow(hf, Bounds{{20, 20, 0}, {30, 30, 1}}, 0.5f, fineSettings(), env, &cover, &error));
+    EXPECT_FALSE(
+        buildTerrainSnow(hf, Bounds{{20, 20, 0}, {30, 30, 1}}, 0.5f, fineSettings(), env, &cover, &error));
     EXPECT_NE(error.find("does not overlap"), std::string::npos) << error;
     EXPECT_FALSE(buildTerrainSnow(hf, Bounds{}, 0.5f, fineSettings(), env, &cover, &error));  // the empty box
     EXPECT_FALSE(buildTerrainSnow(hf, Bounds::everything(), 1e-6f, fineSettings(), env, &cover, &error));
     EXPECT_NE(error.find("triangles"), std::string::npos) << error;
     EXPECT_FALSE(buildTerrainSnow(hf, Bounds::everything(), NAN, fineSettings(), env, &cover, &error));
-    EXPECT_FALSE(buildTerrainSnow(HeightField{}, Bounds::everything(), 1.0f, fineSettings(), env, &cover, &error));
+    EXPECT_FALSE(
+        buildTerrainSnow(HeightField{}, Bounds::everything(), 1.0f, fineSettings(), env, &cover, &error));
     EXPECT_EQ(calls, 0);
     // Half outside: clipped to the field's rectangle [0, 10]².
-    ASSERT_TRUE(buildTerrainSnow(hf, Bounds{{5, -5, 0}, {15, 5, 1}}, 1.0f, fineSettings(), env, &cover, &error));
+    ASSERT_TRUE(
+        buildTerrainSnow(hf, Bounds{{5, -5, 0}, {15, 5, 1}}, 1.0f, fineSettings(), env, &cover, &error));
     for (const glm::vec3& p : cover.mesh.positions) {
         EXPECT_GE(p.x, 5.0f);
         EXPECT_LE(p.x, 10.0f);
