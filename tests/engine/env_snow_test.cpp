@@ -2,6 +2,7 @@
 // snow (extraction, refinement, border, shelter), procedural snow and terrain snow.
 #include <gtest/gtest.h>
 
+#include <OpenMesh/Core/Mesh/TriMesh_ArrayKernelT.hh>
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -329,6 +330,77 @@ TEST(SnowGeometry, BorderDistanceMatchesBruteForce) {
     for (uint32_t i = 0; i < 96; ++i) fan.indices.insert(fan.indices.end(), {0u, 1 + i, 1 + (i + 1) % 96});
     expectBorderDistances(fan, rim, 0.3f);
     expectBorderDistances(fan, rim, 0.05f);
+}
+
+TEST(SnowGeometry, PatchesAndBordersMatchOpenMesh) {
+    // A 12 x 12 grid of 0.25 m quads with three 2 x 2 holes of shelter and one 4 x 4 hole enclosing an
+    // island: several patches, outer and inner borders. OpenMesh's half-edge structure is the reference.
+    const int n = 12;
+    const TriangleMesh m = gridQuad(0, 3, 0, 3, 0, n);
+    auto sheltered = [](glm::vec3 p) {
+        const int i = int(p.x / 0.25f), j = int(p.y / 0.25f);
+        const bool hole = (i >= 1 && i < 3 && j >= 1 && j < 3) || (i >= 8 && i < 10 && j >= 1 && j < 3) ||
+                          (i >= 1 && i < 3 && j >= 8 && j < 10);
+        const bool ring = i >= 5 && i < 11 && j >= 5 && j < 11 && !(i >= 7 && i < 9 && j >= 7 && j < 9);
+        return hole || ring;
+    };
+    const EnvQuery env = [&](const glm::vec3* p, size_t k, EnvSample* out) {
+        for (size_t i = 0; i < k; ++i) {
+            out[i] = snowOf(0.1f);
+            out[i].shelter = sheltered(p[i]) ? 0.0f : 1.0f;
+        }
+    };
+    OpenMesh::TriMesh_ArrayKernelT<> om;
+    std::vector<OpenMesh::VertexHandle> vh;
+    for (const glm::vec3& p : m.positions) vh.push_back(om.add_vertex({p.x, p.y, p.z}));
+    for (size_t f = 0; f < m.triangleCount(); ++f) {
+        const uint32_t* t = &m.indices[3 * f];
+        const glm::vec3 c = (m.positions[t[0]] + m.positions[t[1]] + m.positions[t[2]]) / 3.0f;
+        if (!sheltered(c)) {
+            ASSERT_TRUE(om.add_face(vh[t[0]], vh[t[1]], vh[t[2]]).is_valid());
+        }
+    }
+    // Components by flood fill over face-face adjacency; boundary vertices from boundary half-edges.
+    size_t components = 0;
+    std::vector<int> seen(om.n_faces(), 0);
+    for (auto f : om.faces()) {
+        if (seen[f.idx()]) continue;
+        ++components;
+        std::vector<OpenMesh::FaceHandle> stack{f};
+        seen[f.idx()] = 1;
+        while (!stack.empty()) {
+            const auto g = stack.back();
+            stack.pop_back();
+            for (auto h : om.ff_range(g))
+                if (!seen[h.idx()]) {
+                    seen[h.idx()] = 1;
+                    stack.push_back(h);
+                }
+        }
+    }
+    std::vector<std::pair<float, float>> om_border;
+    for (auto v : om.vertices())
+        if (!om.is_isolated(v) && om.is_boundary(v)) om_border.emplace_back(om.point(v)[0], om.point(v)[1]);
+    std::sort(om_border.begin(), om_border.end());
+
+    snow_detail::SnowLayout layout;
+    size_t faces = 0, patches = 0;
+    std::string error;
+    ASSERT_TRUE(snow_detail::layOutGeometrySnow(m, fineSettings(), env, &layout, &faces, &patches, &error))
+        << error;
+    EXPECT_EQ(faces, om.n_faces());
+    EXPECT_EQ(patches, components);
+    EXPECT_EQ(patches, 2u);  // the outer region (with its holes) and the island
+    // Our border vertices that are base grid nodes: exactly OpenMesh's boundary vertices.
+    std::vector<std::pair<float, float>> ours;
+    for (size_t v = 0; v < layout.surface.size(); ++v) {
+        const glm::vec3 p = layout.surface[v];
+        const bool node = std::fmod(p.x, 0.25f) == 0.0f && std::fmod(p.y, 0.25f) == 0.0f;
+        if (node && layout.border_distance[v] == 0.0f) ours.emplace_back(p.x, p.y);
+    }
+    std::sort(ours.begin(), ours.end());
+    EXPECT_EQ(ours, om_border);
+    EXPECT_GT(ours.size(), 40u);
 }
 
 TEST(SnowGeometry, UniformMeshEdgesWithinTarget) {
