@@ -71,11 +71,13 @@ struct SnowCover {
 // Geometry-controlled snow. Extracts the faces of `base` whose normal (from the winding) is within
 // max_face_angle of `up` and whose centroid has shelter >= min_open, groups them into patches (connected
 // through shared edges, after welding exactly coincident base vertices), and refines each face by uniform
-// subdivision: an edge of length L is split into ceil(L / target) equal segments (the same on both faces
-// that share it, so their vertices coincide and are welded by construction), and a face is split into n²
-// sub-triangles, n its largest edge count; where one of its edges has fewer segments, the grid nodes on
-// that edge snap to the nearest of the edge's points (the degenerate triangles are dropped).
-// Every snow edge is <= target except in those transition strips, where the bound is 1.5 × target.
+// subdivision: a face wants n0 = ceil(longest edge / target) segments per side, an edge is split into
+// the larger n0 of the faces sharing it (identically for both, so their vertices coincide and are welded
+// by construction), and a face into n² sub-triangles, n the largest count of its edges; where one of its
+// edges has fewer segments, the grid nodes on that edge snap to the nearest of the edge's points (the
+// degenerate triangles are dropped). Where neighbouring faces want the same n0 (regular meshes: quads
+// split in two, uniform grids) every snow edge is <= target; in the transition strips between faces
+// that want different counts the bound is 1.5 × target. The total is at most 4 Σ n0².
 // The patch border is made of base vertices and points on base edges, with d = 0, so displaced by 0
 // (g(0) = 0): no crack with the base. d(p) is the Euclidean distance from a vertex to the nearest border
 // edge of its own patch (computed exactly below d0; beyond, only "at least d0" matters). Each vertex

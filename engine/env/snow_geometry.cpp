@@ -174,14 +174,23 @@ size_t assignPatches(const std::vector<SnowEdge>& edges, std::vector<SnowFace>* 
     return count;
 }
 
-// Segment counts: an edge's from its own length, a face's the largest of its edges'. Returns the exact
-// number of sub-triangles before allocating any (a double: it may be astronomically large).
+// Segment counts. A face wants n0 = ceil(longest edge / target); an edge takes the larger n0 of the faces
+// sharing it (so both split it identically), and a face's grid the largest count of its edges. Where
+// neighbours want the same n0 (regular meshes: quads split in two, uniform grids) no grid node is
+// snapped and every edge is <= target. A face's count is at most the largest n0 among itself and its
+// (at most three, manifold) neighbours, so the total is at most 4 Σ n0². Returns the exact number of
+// sub-triangles before allocating any (a double: it may be astronomically large).
 double assignCounts(const std::vector<glm::vec3>& welded, const SnowSettings& s, std::vector<SnowEdge>* edges,
                     std::vector<SnowFace>* faces) {
-    for (SnowEdge& e : *edges) {
-        const double len = glm::length(glm::dvec3(welded[e.hi]) - glm::dvec3(welded[e.lo]));
-        const double n = std::max(1.0, std::ceil(len / double(s.target_edge_m)));
-        e.n = n > 1e9 ? UINT32_MAX : uint32_t(n);  // refused below anyway
+    for (SnowEdge& e : *edges) e.n = 1;
+    for (SnowFace& f : *faces) {
+        double longest = 0.0;
+        for (int k = 0; k < 3; ++k)
+            longest = std::max(
+                longest, glm::length(glm::dvec3(welded[f.v[(k + 1) % 3]]) - glm::dvec3(welded[f.v[k]])));
+        const double n0 = std::max(1.0, std::ceil(longest / double(s.target_edge_m)));
+        const uint32_t n = n0 > 1e9 ? uint32_t(1e9) : uint32_t(n0);  // 1e18 triangles: refused below anyway
+        for (int k = 0; k < 3; ++k) (*edges)[f.edge[k]].n = std::max((*edges)[f.edge[k]].n, n);
     }
     double triangles = 0.0;
     for (SnowFace& f : *faces) {

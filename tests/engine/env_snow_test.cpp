@@ -226,6 +226,10 @@ TEST(SnowGeometry, UnitCubeTopOnlyNoCrack) {
     }
     EXPECT_GT(border, 0u);
     EXPECT_GT(interior, 100u);
+    // Both triangles want n = ceil(√2 / 0.05) = 29: every edge split 29 times, 2 · 29² triangles, every
+    // edge (before displacement) within the target.
+    EXPECT_EQ(cover.triangles_before_drop, 2u * 29u * 29u);
+    EXPECT_LE(maxEdge(cover.surface_positions, cover.mesh.indices), s.target_edge_m + 1e-6);
     // The snow's open boundary is pinned to the base surface.
     for (const auto& [a, b] : boundaryEdges(cover.mesh.indices)) {
         EXPECT_EQ(cover.displacement_m[a], 0.0f);
