@@ -51,6 +51,9 @@ bool validateSnowSettings(const SnowSettings& s, std::string* error);
 float snowEdgeProfile(float d_m, float d0_m);
 
 // The paper's displacement (α·s·g(d) − θ)⁺, α being e.openness() (occlusion × shelter). Metres along `up`.
+// A NaN input gives NaN (the builders report it instead of hiding it in the clamp). Note that with θ < 0
+// this is −θ > 0 even at d = 0; the builders pin border vertices (d = 0) to 0 regardless, so the snow
+// never lifts off its base.
 float snowDisplacement(const EnvSample& e, float d_m, float d0_m);
 
 struct SnowCover {
@@ -99,8 +102,9 @@ bool buildGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const En
 //             triangles (cell diagonals <= target); d = distance to the rectangle's sides.
 //   cylinder: the top disc of the upright cylinder (base disc centred at base_center, axis +Z), a disc of
 //             concentric rings (ring k has 6k vertices); d = radius − distance to the axis.
-//   sphere:   the cap of the sphere whose normals are within max_face_angle of +Z, rings of constant polar
-//             angle; d = the geodesic distance to the cap's rim.
+//   sphere:   the cap of the sphere whose normals are within max_face_angle of `up` (a sphere has no
+//             preferred top, so the cap follows `up`), rings of constant polar angle; d = the geodesic
+//             distance to the cap's rim. max_face_angle 0 gives an empty cover.
 // Returns false with a reason for non-finite or non-positive sizes, invalid settings, or an output over
 // kMaxSnowTriangles (counted before allocating).
 bool buildBoxSnow(glm::vec3 center, glm::vec3 half_extents, const SnowSettings& s, const EnvQuery& env,
