@@ -282,9 +282,11 @@ TEST(SnowGeometry, RefinementTilesEachFaceConformingly) {
 }
 
 // d(p) of every refined vertex against a brute-force distance to the patch's outer polygon.
-void expectBorderDistances(const TriangleMesh& m, const std::vector<glm::vec3>& polygon, float d0) {
+void expectBorderDistances(const TriangleMesh& m, const std::vector<glm::vec3>& polygon, float d0,
+                           float target = 0.1f) {
     SnowSettings s = fineSettings();
     s.d0_m = d0;
+    s.target_edge_m = target;
     int calls = 0;
     snow_detail::SnowLayout layout;
     size_t faces = 0, patches = 0;
@@ -328,12 +330,12 @@ TEST(SnowGeometry, BorderDistanceMatchesBruteForce) {
     std::vector<glm::vec3> rim;
     for (int i = 0; i < 96; ++i) {
         const float a = 2.0f * 3.14159265f * float(i) / 96.0f;
-        rim.emplace_back(2.0f * std::cos(a), 2.0f * std::sin(a), 0.0f);
+        rim.emplace_back(0.8f * std::cos(a), 0.8f * std::sin(a), 0.0f);
         fan.positions.push_back(rim.back());
     }
     for (uint32_t i = 0; i < 96; ++i) fan.indices.insert(fan.indices.end(), {0u, 1 + i, 1 + (i + 1) % 96});
     expectBorderDistances(fan, rim, 0.3f);
-    expectBorderDistances(fan, rim, 0.05f);
+    expectBorderDistances(fan, rim, 0.05f, 0.04f);
 }
 
 TEST(SnowGeometry, PatchesAndBordersMatchOpenMesh) {
