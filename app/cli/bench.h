@@ -25,6 +25,8 @@ bool benchModels(const BenchContext& ctx, std::vector<BenchRow>* rows, std::stri
 // Rest, packing and tiling of the sample scenes (pile.*, tiling.*): measurements, not timings.
 bool benchPile(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 // In the editor's window where one opens, else offscreen (EGL); the editor.stamp_* rows need the window.
+// Environmental objects: snow and icicles of the winter scenes, a local edit, LOD nodes (env.*).
+bool benchEnvironment(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 bool benchRender(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 
 }  // namespace ug::cli

@@ -34,6 +34,7 @@ int runBenchCommand(int argc, char** argv) {
                                 {"instantiate", benchInstancer},
                                 {"models", benchModels},
                                 {"pile", benchPile},
+                                {"env", benchEnvironment},
                                 {"render", benchRender}};
     std::vector<BenchRow> rows;
     for (const Section& s : sections) {

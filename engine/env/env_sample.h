@@ -29,7 +29,8 @@ struct EnvSample {
     float trash = 0.0f;        // t
     float occlusion = 1.0f;    // α in [0, 1]: 1 open, 0 fully occluded
     float humidity = 0.0f;     // η: < 0 dry
-    float temperature = 0.0f;  // θ: degrees above freezing, in snow metres where it melts (§5.1)
+    float temperature = 0.0f;  // θ: degrees above freezing; below 0 icicles form, above it snow melts
+                               // (snow.h kSnowMeltPerDegreeM)
     float shelter = 1.0f;      // fraction of the sky left open above the point (1 = open)
 
     // The occlusion the snow, leaf and trash effects use: α times the shelter.

@@ -212,13 +212,25 @@ glm::vec3 EnvPlacement::toLocal(glm::vec3 p) const {
 }
 
 bool compileEnvScene(const EnvironmentDesc& desc, const std::string& base_dir, const std::string& name,
-                     std::shared_ptr<const HeightField> terrain, EnvScene* out, std::string* error) {
+                     std::shared_ptr<const HeightField> terrain, EnvScene* out, std::string* error,
+                     const EnvScene* previous) {
     EnvScene scene;
     scene.desc_ = desc;
     scene.terrain_ = std::move(terrain);
     scene.types_.resize(desc.types.size());
-    for (size_t t = 0; t < desc.types.size(); ++t)
-        if (!loadType(desc.types[t], t, base_dir, name, &scene.types_[t], error)) return false;
+    for (size_t t = 0; t < desc.types.size(); ++t) {
+        const EnvTypeDesc& d = desc.types[t];
+        const EnvObjectType* same = nullptr;
+        if (previous)
+            for (const EnvObjectType& old : previous->types())
+                if (old.desc.mesh_path == d.mesh_path && old.desc.scale == d.scale && old.desc.y_up == d.y_up) same = &old;
+        if (same) {
+            scene.types_[t] = *same;
+            scene.types_[t].desc = d;
+        } else if (!loadType(d, t, base_dir, name, &scene.types_[t], error)) {
+            return false;
+        }
+    }
     TreeExpander tree(desc, scene.types_, name, &scene.objects_, &scene.fields_, error);
     size_t total = 0;
     std::vector<std::string> stack;

@@ -100,7 +100,7 @@ public:
 
 private:
     friend bool compileEnvScene(const EnvironmentDesc&, const std::string&, const std::string&,
-                                std::shared_ptr<const HeightField>, EnvScene*, std::string*);
+                                std::shared_ptr<const HeightField>, EnvScene*, std::string*, const EnvScene*);
     void buildIndex();
     // Appends the indices (ascending) of fields whose bounds hold p.
     void fieldsAt(glm::vec3 p, std::vector<uint32_t>* out) const;
@@ -132,8 +132,11 @@ private:
 // Loads every type's mesh (relative paths against base_dir), expands the tree and indexes the fields.
 // Errors: "<name>: /environment/...: <reason>" (a missing or corrupt mesh names the file too; a reference to
 // an unknown group or a reference cycle names the reference; more than kMaxEnvObjects objects after
-// expansion is refused before they are made).
+// expansion is refused before they are made). `previous` (may be null): a scene compiled before an edit,
+// whose loaded meshes are reused for types with the same mesh path, scale and axes (an edit then costs
+// the tree's expansion, not the mesh loads).
 bool compileEnvScene(const EnvironmentDesc& desc, const std::string& base_dir, const std::string& name,
-                     std::shared_ptr<const HeightField> terrain, EnvScene* out, std::string* error);
+                     std::shared_ptr<const HeightField> terrain, EnvScene* out, std::string* error,
+                     const EnvScene* previous = nullptr);
 
 }  // namespace ug

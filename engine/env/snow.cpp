@@ -53,7 +53,9 @@ float snowEdgeProfile(float d_m, float d0_m) {
 }
 
 float snowDisplacement(const EnvSample& e, float d_m, float d0_m) {
-    const float v = e.openness() * e.snow * snowEdgeProfile(d_m, d0_m) - e.temperature;
+    // Only warmth melts: a temperature below freezing adds no snow (the paper's θ is a melting term).
+    const float melt = e.temperature > 0.0f ? e.temperature * kSnowMeltPerDegreeM : 0.0f;
+    const float v = e.openness() * e.snow * snowEdgeProfile(d_m, d0_m) - melt;
     // Clamp to zero (no negative snow) but let a NaN through, so callers can report a broken environment.
     return v <= 0.0f ? 0.0f : v;
 }
@@ -105,7 +107,7 @@ bool finishSnowCover(SnowLayout&& layout, const SnowSettings& s, const EnvQuery&
         const EnvSample& e = samples[i];
         float d = snowDisplacement(e, layout.border_distance[i], s.d0_m);
         if (zero_below_min_open && !(e.shelter >= s.min_open)) d = 0.0f;
-        // (α·s·g − θ)⁺ is −θ on the border when θ < 0: pin it, or the snow would float above its base.
+        // The border stays on the base (g(0) = 0): pinned, so no rounding lifts it off and opens a crack.
         if (layout.border_distance[i] == 0.0f) d = 0.0f;
         if (!std::isfinite(d))
             return fail(error, "snow: the environment gives a non-finite displacement at vertex " +

@@ -50,10 +50,14 @@ bool validateSnowSettings(const SnowSettings& s, std::string* error);
 // g(d) = (1 − (1 − d/d0)²)⁴ for d < d0, 1 otherwise (d >= 0; d0 > 0). g(0) = 0, g(d0) = 1.
 float snowEdgeProfile(float d_m, float d0_m);
 
-// The paper's displacement (α·s·g(d) − θ)⁺, α being e.openness() (occlusion × shelter). Metres along `up`.
-// A NaN input gives NaN (the builders report it instead of hiding it in the clamp). Note that with θ < 0
-// this is −θ > 0 even at d = 0; the builders pin border vertices (d = 0) to 0 regardless, so the snow
-// never lifts off its base.
+// Metres of snow one degree above freezing melts (θ is in degrees: the same channel decides where icicles
+// freeze, θ < 0, and where snow melts).
+constexpr float kSnowMeltPerDegreeM = 0.02f;
+
+// The paper's displacement (α·s·g(d) − θ)⁺ with θ as melt: (α·s·g(d) − kSnowMeltPerDegreeM·max(θ, 0))⁺,
+// α being e.openness() (occlusion × shelter); frost adds no snow. Metres along `up`. A NaN input gives
+// NaN (the builders report it instead of hiding it in the clamp). The builders pin border vertices
+// (d = 0) to 0, so the snow never lifts off its base.
 float snowDisplacement(const EnvSample& e, float d_m, float d0_m);
 
 struct SnowCover {

@@ -113,10 +113,12 @@ TEST(SnowProfile, DisplacementIsClampedPaperFormula) {
     e.snow = 0.2f;
     e.occlusion = 0.5f;
     e.shelter = 0.8f;
-    e.temperature = 0.01f;
+    e.temperature = 0.5f;  // half a degree above freezing melts 0.01 m
     EXPECT_FLOAT_EQ(snowDisplacement(e, 1.0f, 0.05f), 0.5f * 0.8f * 0.2f - 0.01f);  // g = 1
     EXPECT_FLOAT_EQ(snowDisplacement(e, 0.025f, 0.05f), 0.5f * 0.8f * 0.2f * 0.31640625f - 0.01f);
-    e.temperature = 0.5f;  // θ > α s g: melted, clamped to 0 (not negative)
+    e.temperature = -6.0f;  // frost adds no snow
+    EXPECT_FLOAT_EQ(snowDisplacement(e, 1.0f, 0.05f), 0.5f * 0.8f * 0.2f);
+    e.temperature = 5.0f;  // melts 0.1 m > α s g = 0.08: clamped to 0 (not negative)
     EXPECT_EQ(snowDisplacement(e, 1.0f, 0.05f), 0.0f);
     e.temperature = 0.0f;
     e.shelter = 0.0f;  // under a roof
@@ -502,7 +504,7 @@ TEST(SnowGeometry, SteepFacesTakeNoSnow) {
 TEST(SnowGeometry, MeltedAndOccludedSnowIsDropped) {
     int calls = 0;
     EnvSample warm = snowOf(0.1f);
-    warm.temperature = 0.2f;  // θ > α s: melts entirely
+    warm.temperature = 10.0f;  // melts 0.2 m > α s: entirely
     SnowCover cover;
     std::string error;
     ASSERT_TRUE(

@@ -1,0 +1,252 @@
+// Snow cover and icicles for whole environmental-object scenes (engine/env/env_effects.h): where snow and
+// icicles go (up-facing, open faces; frost and ice; the open air below an edge), that shared effects equal
+// the individually computed ones, that an incremental update equals a full one after random edits, and that
+// threads and regions do not change the result.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "env/env_effects.h"
+#include "scene/project.h"
+#include "scene/scene_compile.h"
+#include "scene_test_util.h"
+
+namespace ug {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string modelPath(const std::string& name) {
+    return (fs::path(UG_SOURCE_DIR) / "assets" / "env_models" / (name + ".glb")).string();
+}
+
+std::string types() {
+    std::string s = R"("types": [)";
+    const char* names[] = {"bench", "bus_shelter", "pavement_slab", "trash_can", "facade"};
+    for (int i = 0; i < 5; ++i)
+        s += std::string(i ? "," : "") + R"({"name": ")" + names[i] + R"(", "mesh": ")" + modelPath(names[i]) +
+             R"(", "snow": {"target_edge_m": 0.05}, "icicles": {"spacing_m": 0.08}})";
+    return s + "]";
+}
+
+const std::string kCold = R"({"channel": "snow", "value": 0.1}, {"channel": "icicles", "value": 1},
+                              {"channel": "temperature", "value": -3})";
+
+bool compileEnv(const std::string& env_json, EnvScene* out, std::string* error) {
+    const std::string text = R"({"format": "undergrowth-project", "format_version": 3, "name": "fx",
+      "detail_types": [{"name": "d", "model": {"mesh": ")" +
+                             (fs::path(UG_SOURCE_DIR) / "assets/models/pebble.glb").string() +
+                             R"("}, "candidates": {"count": 4}}], "environment": {)" + types() + "," + env_json + "}}";
+    Project p;
+    if (!parseProject(text, "fx.json", &p, error)) return false;
+    return compileEnvScene(p.environment, p.base_dir, "fx.json", nullptr, out, error);
+}
+
+// The world-space snow of object o (its class's mesh placed).
+std::vector<glm::vec3> worldSnow(const EnvScene& env, const EnvEffects& fx, size_t o) {
+    std::vector<glm::vec3> out;
+    const EffectClass& c = fx.classes[fx.class_of[o]];
+    if (!c.snow) return out;
+    for (glm::vec3 p : c.snow->positions) out.push_back(env.objects()[o].placement.toWorld(p));
+    return out;
+}
+
+::testing::AssertionResult sameEffects(const EnvScene& env, const EnvEffects& a, const EnvEffects& b) {
+    if (a.class_of.size() != b.class_of.size()) return ::testing::AssertionFailure() << "object counts differ";
+    for (size_t o = 0; o < a.class_of.size(); ++o) {
+        const EffectClass& ca = a.classes[a.class_of[o]];
+        const EffectClass& cb = b.classes[b.class_of[o]];
+        if (ca.members.empty() != cb.members.empty()) return ::testing::AssertionFailure() << "object " << o << " region";
+        if (ca.members.empty()) continue;
+        const size_t na = ca.snow ? ca.snow->positions.size() : 0, nb = cb.snow ? cb.snow->positions.size() : 0;
+        if (na != nb) return ::testing::AssertionFailure() << "object " << o << ": " << na << " vs " << nb << " snow vertices";
+        for (size_t k = 0; k < na; ++k)
+            if (!test::sameBits(ca.snow->positions[k], cb.snow->positions[k]))
+                return ::testing::AssertionFailure() << "object " << o << " snow vertex " << k;
+        if (ca.snow && ca.snow->indices != cb.snow->indices) return ::testing::AssertionFailure() << "object " << o << " indices";
+        if (ca.icicles.size() != cb.icicles.size())
+            return ::testing::AssertionFailure() << "object " << o << ": " << ca.icicles.size() << " vs " << cb.icicles.size()
+                                                 << " icicles";
+        for (size_t k = 0; k < ca.icicles.size(); ++k)
+            if (!test::sameBits(ca.icicles[k].anchor, cb.icicles[k].anchor) ||
+                !test::sameBits(ca.icicles[k].length_m, cb.icicles[k].length_m) || ca.icicles[k].shape != cb.icicles[k].shape)
+                return ::testing::AssertionFailure() << "object " << o << " icicle " << k;
+    }
+    if (a.terrain_snow.size() != b.terrain_snow.size()) return ::testing::AssertionFailure() << "terrain chunks";
+    for (size_t k = 0; k < a.terrain_snow.size(); ++k)
+        if (a.terrain_snow[k].mesh->positions != b.terrain_snow[k].mesh->positions)
+            return ::testing::AssertionFailure() << "terrain chunk " << k;
+    (void)env;
+    return ::testing::AssertionSuccess();
+}
+
+TEST(EnvEffects, SnowOnlyOnOpenUpFacingFacesNoneUnderTheShelter) {
+    EnvScene env;
+    std::string error;
+    ASSERT_TRUE(compileEnv(R"("tree": [{"object": "bus_shelter"}, {"object": "bench", "at": [4, 0, 0]},
+                                       {"object": "bench", "at": [0, 0.2, 0], "scale": 0.9}],
+                              "global_fields": [)" + kCold + "]",
+                           &env, &error))
+        << error;
+    EnvEffects fx;
+    ASSERT_TRUE(computeEnvEffects(env, {}, &fx, &error)) << error;
+    // The shelter's roof carries snow; nothing below it (the roof's underside is at 2.4 m).
+    const std::vector<glm::vec3> shelter_snow = worldSnow(env, fx, 0);
+    ASSERT_FALSE(shelter_snow.empty());
+    for (glm::vec3 p : shelter_snow) EXPECT_GE(p.z, 2.45f) << p.x << " " << p.y;
+    // The bench in the open takes snow on its seat; the one under the roof takes none.
+    EXPECT_FALSE(worldSnow(env, fx, 1).empty());
+    EXPECT_TRUE(worldSnow(env, fx, 2).empty());
+    // Snow lies on top: every snow vertex is at or above the base's bottom, and the open bench's seat snow
+    // rises at most s = 0.1 m above the seat (z = 0.45).
+    for (glm::vec3 p : worldSnow(env, fx, 1)) EXPECT_LE(p.z, 0.89f + 0.1f + 1e-4f);
+    EXPECT_GT(fx.stats.snow_triangles, 0u);
+}
+
+TEST(EnvEffects, IciclesNeedFrostAndIceAndHangBelowTheirEdge) {
+    std::string error;
+    EnvScene cold, warm, dry;
+    ASSERT_TRUE(compileEnv(R"("tree": [{"object": "bus_shelter"}], "global_fields": [)" + kCold + "]", &cold, &error)) << error;
+    ASSERT_TRUE(compileEnv(R"("tree": [{"object": "bus_shelter"}], "global_fields": [{"channel": "snow", "value": 0.1},
+        {"channel": "icicles", "value": 1}, {"channel": "temperature", "value": 2}])",
+                           &warm, &error));
+    ASSERT_TRUE(compileEnv(R"("tree": [{"object": "bus_shelter"}], "global_fields": [{"channel": "temperature", "value": -3}])",
+                           &dry, &error));
+    EnvEffects a, b, c;
+    ASSERT_TRUE(computeEnvEffects(cold, {}, &a, &error)) << error;
+    ASSERT_TRUE(computeEnvEffects(warm, {}, &b, &error)) << error;
+    ASSERT_TRUE(computeEnvEffects(dry, {}, &c, &error)) << error;
+    EXPECT_GT(a.stats.icicles, 10u);
+    EXPECT_EQ(b.stats.icicles, 0u);  // θ >= 0
+    EXPECT_EQ(c.stats.icicles, 0u);  // i = 0
+    const float cap = 0.35f;         // the types' default max_length_m
+    for (const IcicleInstance& ic : a.classes[0].icicles) {
+        EXPECT_LE(ic.length_m, cap + 1e-6f);
+        EXPECT_GT(ic.length_m, 0.0f);
+        // In the open below: nothing of the scene within the icicle's length under its anchor.
+        EXPECT_GE(cold.clearanceBelow(cold.objects()[0].placement.toWorld(ic.anchor)), ic.length_m);
+    }
+}
+
+TEST(EnvEffects, SharedEffectsEqualTheIndividuallyComputedOnes) {
+    std::string error;
+    std::string tree = "[";
+    for (int i = 0; i < 6; ++i) tree += std::string(i ? "," : "") + R"({"object": "trash_can", "at": [)" + std::to_string(3 * i) + R"(, 0, 0]})";
+    tree += "]";
+    EnvScene shared, alone;
+    ASSERT_TRUE(compileEnv(R"("tree": )" + tree + R"(, "global_fields": [)" + kCold + "]", &shared, &error)) << error;
+    ASSERT_TRUE(compileEnv(R"("tree": )" + tree + R"(, "sharing_threshold": -1, "global_fields": [)" + kCold + "]", &alone, &error));
+    EnvEffects a, b;
+    ASSERT_TRUE(computeEnvEffects(shared, {}, &a, &error)) << error;
+    ASSERT_TRUE(computeEnvEffects(alone, {}, &b, &error)) << error;
+    EXPECT_EQ(a.stats.effect_computations, 1u);
+    EXPECT_EQ(b.stats.effect_computations, 6u);
+    EXPECT_EQ(a.stats.snow_triangles, b.stats.snow_triangles);
+    EXPECT_TRUE(sameEffects(shared, a, b));
+}
+
+TEST(EnvEffects, IncrementalEqualsFullAfterRandomEdits) {
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(0.0f, 8.0f);
+    struct Obj {
+        std::string type;
+        float x, y, yaw;
+    };
+    std::vector<Obj> objs = {{"bench", 1, 1, 0}, {"trash_can", 3, 1, 0}, {"pavement_slab", 5, 1, 0},
+                             {"bench", 1, 4, 90}, {"trash_can", 6, 5, 0}, {"pavement_slab", 1, 7, 0}};
+    std::vector<std::string> locals;
+    float global_snow = 0.1f;
+    auto json = [&]() {
+        std::string t = "[";
+        for (size_t i = 0; i < objs.size(); ++i)
+            t += std::string(i ? "," : "") + R"({"object": ")" + objs[i].type + R"(", "at": [)" + std::to_string(objs[i].x) +
+                 ", " + std::to_string(objs[i].y) + R"(, 0], "yaw_deg": )" + std::to_string(objs[i].yaw) + "}";
+        std::string g = R"({"channel": "snow", "value": )" + std::to_string(global_snow) +
+                        R"(}, {"channel": "icicles", "value": 1}, {"channel": "temperature", "value": -3})";
+        for (const std::string& l : locals) g += "," + l;
+        return R"("tree": )" + t + R"(], "global_fields": [)" + g + "]";
+    };
+    std::string error;
+    EnvScene before;
+    ASSERT_TRUE(compileEnv(json(), &before, &error)) << error;
+    EnvEffects fx;
+    ASSERT_TRUE(computeEnvEffects(before, {}, &fx, &error)) << error;
+    size_t reused_total = 0;
+    for (int edit = 0; edit < 12; ++edit) {
+        const int kind = edit % 4;
+        if (kind == 0) {  // move an object
+            Obj& o = objs[rng() % objs.size()];
+            o.x = u(rng), o.y = u(rng);
+        } else if (kind == 1) {  // a footprint
+            locals.push_back(R"({"channel": "occlusion", "value": 0.9, "shape": {"point": {"center": [)" +
+                             std::to_string(u(rng)) + ", " + std::to_string(u(rng)) + R"(, 0.4], "radius": 0.3}}})");
+        } else if (kind == 2) {  // a warm spot
+            locals.push_back(R"({"channel": "temperature", "value": 5, "shape": {"point": {"center": [)" +
+                             std::to_string(u(rng)) + ", " + std::to_string(u(rng)) + R"(, 0.5], "radius": 0.6}}})");
+        } else if (edit == 11) {  // the global snow
+            global_snow = 0.14f;
+        } else {  // turn one
+            objs[rng() % objs.size()].yaw += 30.0f;
+        }
+        EnvScene after;
+        ASSERT_TRUE(compileEnv(json(), &after, &error)) << error;
+        EnvEffects incremental, full;
+        ASSERT_TRUE(updateEnvEffects(after, fx, envDirtyRegion(before, after), {}, &incremental, &error)) << error;
+        ASSERT_TRUE(computeEnvEffects(after, {}, &full, &error)) << error;
+        ASSERT_TRUE(sameEffects(after, incremental, full)) << "edit " << edit;
+        reused_total += incremental.stats.classes_reused;
+        before = std::move(after);
+        fx = std::move(incremental);
+    }
+    EXPECT_GT(reused_total, 20u);  // the updates did reuse most of the unchanged objects' effects
+}
+
+TEST(EnvEffects, SameForAnyThreadCountAndRegionSplit) {
+    const fs::path scene = fs::path(UG_SOURCE_DIR) / "assets/scenes/street_winter.json";
+    Project p;
+    std::string error;
+    ASSERT_TRUE(loadProject(scene.string(), &p, &error)) << error;
+    std::shared_ptr<const HeightField> terrain;
+    ASSERT_TRUE(loadTerrain(p, &terrain, &error)) << error;
+    EnvScene env;
+    ASSERT_TRUE(compileEnvScene(p.environment, p.base_dir, scene.string(), terrain, &env, &error)) << error;
+    EnvEffects one, two, eight;
+    ASSERT_TRUE(computeEnvEffects(env, {.threads = 1}, &one, &error)) << error;
+    ASSERT_TRUE(computeEnvEffects(env, {.threads = 2}, &two, &error)) << error;
+    ASSERT_TRUE(computeEnvEffects(env, {.threads = 8}, &eight, &error)) << error;
+    EXPECT_TRUE(sameEffects(env, one, two));
+    EXPECT_TRUE(sameEffects(env, one, eight));
+    EXPECT_GT(one.stats.icicles, 0u);
+    EXPECT_GT(one.stats.snow_triangles, 100000u);
+    // Four quadrants: each object and terrain chunk in exactly one, with the whole's effects.
+    const Bounds quads[4] = {{{-1, -1, -10}, {5, 5, 10}}, {{5, -1, -10}, {11, 5, 10}},
+                             {{-1, 5, -10}, {5, 11, 10}}, {{5, 5, -10}, {11, 11, 10}}};
+    std::vector<int> seen(env.objects().size(), 0);
+    size_t chunks = 0;
+    uint64_t triangles = 0;
+    for (const Bounds& q : quads) {
+        // Half-open quadrants: nudge the shared edges so a point on one belongs to one side only.
+        Bounds r = q;
+        r.hi.x -= 1e-4f, r.hi.y -= 1e-4f;
+        EnvEffects part;
+        ASSERT_TRUE(computeEnvEffects(env, {.threads = 2, .region = &r}, &part, &error)) << error;
+        for (const EffectClass& c : part.classes)
+            for (uint32_t o : c.members) {
+                ++seen[o];
+                const EffectClass& whole = one.classes[one.class_of[o]];
+                ASSERT_EQ(c.snow ? c.snow->positions : std::vector<glm::vec3>{},
+                          whole.snow ? whole.snow->positions : std::vector<glm::vec3>{});
+                ASSERT_EQ(c.icicles.size(), whole.icicles.size());
+            }
+        chunks += part.terrain_snow.size();
+        triangles += part.stats.snow_triangles;
+    }
+    for (size_t o = 0; o < seen.size(); ++o) EXPECT_EQ(seen[o], 1) << env.objects()[o].where;
+    EXPECT_EQ(chunks, one.terrain_snow.size());
+    EXPECT_EQ(triangles, one.stats.snow_triangles);
+}
+
+}  // namespace
+}  // namespace ug
