@@ -1,5 +1,7 @@
 #include "editor/render_data.h"
 
+#include <glm/gtc/quaternion.hpp>
+
 #include "editor/coverage.h"
 
 #include <algorithm>
@@ -455,6 +457,52 @@ void buildIndirectDraws(const ResidentTiles& in, const std::vector<DetailLodMesh
         g.first = uint32_t(points_first);
         g.count = uint32_t(out->points.size() - points_first);
     }
+}
+
+std::vector<GpuStaticInstance> packStaticInstances(const MeshInstances& entry) {
+    if (entry.instances.empty()) return {GpuStaticInstance{}};
+    std::vector<GpuStaticInstance> out(entry.instances.size());
+    for (size_t i = 0; i < out.size(); ++i) {
+        const InstanceTransform& t = entry.instances[i];
+        const float norm = glm::length(t.rotation);
+        const glm::quat q = norm > 0.0f ? t.rotation / norm : glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+        out[i].position_scale = glm::vec4(t.position, t.scale);
+        out[i].rotation = glm::vec4(q.x, q.y, q.z, q.w);
+    }
+    return out;
+}
+
+glm::mat4 staticInstanceMatrix(const GpuStaticInstance& g) {
+    const glm::quat q(g.rotation.w, g.rotation.x, g.rotation.y, g.rotation.z);
+    const glm::mat3 rs = glm::mat3_cast(q) * g.position_scale.w;
+    glm::mat4 m(rs);
+    m[3] = glm::vec4(glm::vec3(g.position_scale), 1.0f);
+    return m;
+}
+
+Bounds staticMeshBounds(const MeshInstances& entry) {
+    Bounds out;
+    if (!entry.mesh || entry.mesh->positions.empty()) return out;
+    Bounds local;
+    for (const glm::vec3& p : entry.mesh->positions) local = unite(local, Bounds{p, p});
+    const glm::vec3 centre = 0.5f * (local.lo + local.hi), half = 0.5f * (local.hi - local.lo);
+    for (const GpuStaticInstance& g : packStaticInstances(entry)) {
+        const glm::mat4 m = staticInstanceMatrix(g);
+        const glm::mat3 abs_rs(glm::abs(glm::vec3(m[0])), glm::abs(glm::vec3(m[1])), glm::abs(glm::vec3(m[2])));
+        const glm::vec3 c = glm::vec3(m * glm::vec4(centre, 1.0f)), h = abs_rs * half;
+        out = unite(out, Bounds{c - h, c + h});
+    }
+    return out;
+}
+
+Bounds staticMeshesBounds(const std::vector<MeshInstances>& meshes) {
+    Bounds out;
+    for (const MeshInstances& entry : meshes) out = unite(out, staticMeshBounds(entry));
+    return out;
+}
+
+bool boxInFrustum(const glm::mat4& view_proj, const Bounds& box) {
+    return !box.empty() && !boxOutside(frustumPlanes(view_proj), box.lo, box.hi);
 }
 
 }  // namespace ug::editor
