@@ -53,7 +53,7 @@ struct RenderStats {
     uint64_t static_meshes_drawn = 0;   // static-mesh entries that passed the frustum test this frame
     uint64_t static_meshes_culled = 0;
     uint64_t points = 0;      // impostor point sprites drawn this frame (one per far instance)
-    uint64_t draw_calls = 0;  // scene draw calls: sky, ground, one multi-draw per non-empty type x LOD; not UI
+    uint64_t draw_calls = 0;  // scene draw calls: sky, ground, one per visible static mesh, one multi-draw per non-empty type x LOD; not UI
     uint64_t indirect_commands = 0;  // commands the multi-draws ran (one per visible tile run x type)
     uint64_t instances_drawn = 0;
     std::array<uint64_t, kLodCount> lod_instances{};  // instances drawn per LOD (3 = impostors)
