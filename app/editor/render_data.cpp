@@ -1,12 +1,12 @@
 #include "editor/render_data.h"
 
-#include <glm/gtc/quaternion.hpp>
-
 #include "editor/coverage.h"
 
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+
+#include <glm/gtc/quaternion.hpp>
 
 #include <meshoptimizer.h>
 
@@ -480,17 +480,71 @@ glm::mat4 staticInstanceMatrix(const GpuStaticInstance& g) {
     return m;
 }
 
-Bounds staticMeshBounds(const MeshInstances& entry) {
-    Bounds out;
-    if (!entry.mesh || entry.mesh->positions.empty()) return out;
+namespace {
+
+// The mesh's object-space box as centre and half extents; false without vertices.
+bool localBox(const MeshInstances& entry, glm::vec3* centre, glm::vec3* half) {
+    if (!entry.mesh || entry.mesh->positions.empty()) return false;
     Bounds local;
     for (const glm::vec3& p : entry.mesh->positions) local = unite(local, Bounds{p, p});
-    const glm::vec3 centre = 0.5f * (local.lo + local.hi), half = 0.5f * (local.hi - local.lo);
-    for (const GpuStaticInstance& g : packStaticInstances(entry)) {
-        const glm::mat4 m = staticInstanceMatrix(g);
-        const glm::mat3 abs_rs(glm::abs(glm::vec3(m[0])), glm::abs(glm::vec3(m[1])), glm::abs(glm::vec3(m[2])));
-        const glm::vec3 c = glm::vec3(m * glm::vec4(centre, 1.0f)), h = abs_rs * half;
-        out = unite(out, Bounds{c - h, c + h});
+    *centre = 0.5f * (local.lo + local.hi);
+    *half = 0.5f * (local.hi - local.lo);
+    return true;
+}
+
+// The engine-space box of that box turned by one instance: exact for the box (centre moved, half extents
+// through |R| s).
+Bounds instanceBox(const GpuStaticInstance& g, glm::vec3 centre, glm::vec3 half) {
+    const glm::mat4 m = staticInstanceMatrix(g);
+    const glm::mat3 abs_rs(glm::abs(glm::vec3(m[0])), glm::abs(glm::vec3(m[1])), glm::abs(glm::vec3(m[2])));
+    const glm::vec3 c = glm::vec3(m * glm::vec4(centre, 1.0f)), h = abs_rs * half;
+    return Bounds{c - h, c + h};
+}
+
+// A chunk index, clamped so that absurd positions still sort (they only lose culling precision).
+int64_t chunkIndex(float v, float chunk_m) {
+    return int64_t(std::clamp(std::floor(double(v) / double(chunk_m)), -1e15, 1e15));
+}
+
+}  // namespace
+
+Bounds staticMeshBounds(const MeshInstances& entry) {
+    Bounds out;
+    glm::vec3 centre, half;
+    if (!localBox(entry, &centre, &half)) return out;
+    for (const GpuStaticInstance& g : packStaticInstances(entry)) out = unite(out, instanceBox(g, centre, half));
+    return out;
+}
+
+StaticInstanceChunks chunkStaticInstances(const MeshInstances& entry, float chunk_m) {
+    StaticInstanceChunks out;
+    glm::vec3 centre, half;
+    if (!localBox(entry, &centre, &half)) return out;
+    const std::vector<GpuStaticInstance> packed = packStaticInstances(entry);
+    struct Key {
+        int64_t ix, iy;
+        uint32_t index;
+    };
+    std::vector<Key> keys(packed.size());
+    for (size_t i = 0; i < packed.size(); ++i)
+        keys[i] = {chunkIndex(packed[i].position_scale.x, chunk_m), chunkIndex(packed[i].position_scale.y, chunk_m),
+                   uint32_t(i)};
+    std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+        if (a.ix != b.ix) return a.ix < b.ix;
+        if (a.iy != b.iy) return a.iy < b.iy;
+        return a.index < b.index;
+    });
+    out.instances.reserve(packed.size());
+    for (size_t k = 0; k < keys.size(); ++k) {
+        const GpuStaticInstance& g = packed[keys[k].index];
+        const Bounds box = instanceBox(g, centre, half);
+        if (k == 0 || keys[k].ix != keys[k - 1].ix || keys[k].iy != keys[k - 1].iy)
+            out.chunks.push_back({uint32_t(k), 0, Bounds{}});
+        StaticInstanceChunks::Chunk& chunk = out.chunks.back();
+        ++chunk.count;
+        chunk.bounds = unite(chunk.bounds, box);
+        out.bounds = unite(out.bounds, box);
+        out.instances.push_back(g);
     }
     return out;
 }

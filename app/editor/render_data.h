@@ -268,6 +268,22 @@ glm::mat4 staticInstanceMatrix(const GpuStaticInstance& instance);
 Bounds staticMeshBounds(const MeshInstances& entry);
 // The union over a list (empty list: the empty box).
 Bounds staticMeshesBounds(const std::vector<MeshInstances>& meshes);
+
+// An entry's instances grouped into square XY chunks (chunk (floor(x / chunk_m), floor(y / chunk_m)) of the
+// instance's position; sorted by (ix, iy), input order within a chunk), each with the box of its instances:
+// the renderer culls the entry by `bounds`, then each chunk, and draws the runs of visible chunks (so
+// thousands of icicles spread over a scene cost what the view holds). No mesh: nothing.
+constexpr float kStaticChunkM = 8.0f;
+struct StaticInstanceChunks {
+    struct Chunk {
+        uint32_t first = 0, count = 0;  // into `instances`
+        Bounds bounds;
+    };
+    std::vector<GpuStaticInstance> instances;
+    std::vector<Chunk> chunks;
+    Bounds bounds;  // staticMeshBounds
+};
+StaticInstanceChunks chunkStaticInstances(const MeshInstances& entry, float chunk_m = kStaticChunkM);
 // False when `box` is wholly outside the view-projection's frustum (the tiles' test); the empty box is
 // never visible.
 bool boxInFrustum(const glm::mat4& view_proj, const Bounds& box);

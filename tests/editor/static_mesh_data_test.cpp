@@ -102,4 +102,41 @@ TEST(StaticMeshData, FrustumTestKeepsWhatTheCameraSees) {
     EXPECT_FALSE(boxInFrustum(view_proj, Bounds{}));
 }
 
+TEST(StaticMeshData, ChunksPartitionTheInstancesWithTheirOwnBoxes) {
+    MeshInstances entry;
+    entry.mesh = boxMesh(glm::vec3(-0.5f), glm::vec3(0.5f));
+    // Chunks of 8 m: (0, 0) gets instances 0 and 3, (-1, 0) instance 1, (2, -1) instance 2.
+    entry.instances = {at({1, 1, 0}), at({-3, 2, 0}), at({17, -0.5f, 5}, glm::quat(1, 0, 0, 0), 2.0f), at({7, 7, 0})};
+    const StaticInstanceChunks c = chunkStaticInstances(entry);
+    ASSERT_EQ(c.instances.size(), 4u);
+    ASSERT_EQ(c.chunks.size(), 3u);
+    // Sorted by (ix, iy): (-1, 0), (0, 0), (2, -1); input order within a chunk.
+    EXPECT_EQ(c.chunks[0].first, 0u);
+    EXPECT_EQ(c.chunks[0].count, 1u);
+    EXPECT_EQ(c.chunks[1].first, 1u);
+    EXPECT_EQ(c.chunks[1].count, 2u);
+    EXPECT_EQ(c.chunks[2].first, 3u);
+    EXPECT_EQ(c.chunks[2].count, 1u);
+    EXPECT_EQ(c.instances[0].position_scale, glm::vec4(-3, 2, 0, 1));
+    EXPECT_EQ(c.instances[1].position_scale, glm::vec4(1, 1, 0, 1));
+    EXPECT_EQ(c.instances[2].position_scale, glm::vec4(7, 7, 0, 1));
+    EXPECT_EQ(c.instances[3].position_scale, glm::vec4(17, -0.5f, 5, 2));
+    expectNear(c.chunks[1].bounds.lo, {0.5f, 0.5f, -0.5f});
+    expectNear(c.chunks[1].bounds.hi, {7.5f, 7.5f, 0.5f});
+    expectNear(c.chunks[2].bounds.lo, {16, -1.5f, 4});
+    expectNear(c.chunks[2].bounds.hi, {18, 0.5f, 6});
+    // The whole entry's box is the union, as staticMeshBounds says.
+    const Bounds whole = staticMeshBounds(entry);
+    EXPECT_EQ(c.bounds.lo, whole.lo);
+    EXPECT_EQ(c.bounds.hi, whole.hi);
+    expectNear(whole.lo, {-3.5f, -1.5f, -0.5f});
+    expectNear(whole.hi, {18, 7.5f, 6});
+    // No instances: one chunk holding the copy at the identity; no mesh: nothing.
+    entry.instances.clear();
+    const StaticInstanceChunks one = chunkStaticInstances(entry);
+    ASSERT_EQ(one.chunks.size(), 1u);
+    EXPECT_EQ(one.chunks[0].count, 1u);
+    EXPECT_TRUE(chunkStaticInstances(MeshInstances{}).chunks.empty());
+}
+
 }  // namespace ug::editor

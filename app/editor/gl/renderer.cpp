@@ -314,7 +314,8 @@ void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
             uploadMesh(with_normals.positions, with_normals.normals, with_normals.indices, &b.vao, &b.vertex_buffer,
                        &b.index_buffer);
         }
-        const std::vector<GpuStaticInstance> instances = packStaticInstances(entry);
+        StaticInstanceChunks chunked = chunkStaticInstances(entry);
+        const std::vector<GpuStaticInstance>& instances = chunked.instances;
         glBindVertexArray(b.vao);
         glGenBuffers(1, &b.instance_buffer);
         glBindBuffer(GL_ARRAY_BUFFER, b.instance_buffer);
@@ -328,8 +329,8 @@ void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
         }
         glBindVertexArray(0);
         b.index_count = uint32_t(mesh.indices.size());
-        b.instance_count = uint32_t(instances.size());
-        b.bounds = staticMeshBounds(entry);
+        b.bounds = chunked.bounds;
+        b.chunks = std::move(chunked.chunks);
         b.material = entry.material ? *entry.material : SurfaceMaterial{};
         b.color = entry.material ? entry.material->base_color : mesh.base_color;
         b.texture = uploadTexture(b.material.texture, &static_textures_);
@@ -343,7 +344,6 @@ void Renderer::drawStaticMeshes(const ShaderProgram& program, const glm::mat4& v
             if (!shadow) ++stats_.static_meshes_culled;
             continue;
         }
-        const uint64_t triangles = uint64_t(b.index_count / 3) * b.instance_count;
         if (!shadow) {
             glUniform3fv(loc(program, "u_color"), 1, glm::value_ptr(b.color));
             bindMaterial(program, b.material, b.texture, kTextureBoxModel);
@@ -351,13 +351,27 @@ void Renderer::drawStaticMeshes(const ShaderProgram& program, const glm::mat4& v
             else glEnable(GL_CULL_FACE);
         }
         glBindVertexArray(b.vao);
-        glDrawElementsInstanced(GL_TRIANGLES, GLsizei(b.index_count), GL_UNSIGNED_INT, nullptr,
-                                GLsizei(b.instance_count));
+        // One instanced draw per run of consecutive visible chunks (baseInstance = the run's first
+        // instance; the per-instance attributes honour it).
+        uint64_t drawn = 0;
+        for (size_t c = 0; c < b.chunks.size();) {
+            if (!boxInFrustum(view_proj, b.chunks[c].bounds)) {
+                ++c;
+                continue;
+            }
+            const uint32_t first = b.chunks[c].first;
+            uint32_t count = 0;
+            for (; c < b.chunks.size() && boxInFrustum(view_proj, b.chunks[c].bounds); ++c) count += b.chunks[c].count;
+            glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(b.index_count), GL_UNSIGNED_INT, nullptr,
+                                                GLsizei(count), first);
+            drawn += count;
+            if (!shadow) ++stats_.draw_calls;
+        }
+        const uint64_t triangles = uint64_t(b.index_count / 3) * drawn;
         if (shadow) {
             stats_.shadow_triangles += triangles;
             continue;
         }
-        ++stats_.draw_calls;
         ++stats_.static_meshes_drawn;
         stats_.triangles += triangles;
     }

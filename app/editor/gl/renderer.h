@@ -10,8 +10,9 @@
 // glMultiDrawArraysIndirect per type for the impostor point sprites. After the scene: the primitives'
 // translucent hulls (blended, depth-tested, no depth write), then the overlay lines and points.
 // Static meshes (io/mesh_instances.h: environmental objects, snow, icicles): each entry one vertex/index
-// buffer and one per-instance buffer (render_data.h GpuStaticInstance), culled as a whole by the union of
-// its instances' boxes and drawn with one glDrawElementsInstanced, lit like the details (lit_surface.frag,
+// buffer and one per-instance buffer (render_data.h GpuStaticInstance, sorted into 8 m chunks), culled as a
+// whole by the union of its instances' boxes, then per chunk, and drawn with one glDrawElementsInstanced-
+// BaseInstance per run of visible chunks, lit like the details (lit_surface.frag,
 // box-projected texture), casting into and receiving from the shadow map, and in the occlusion target.
 // The terrain keeps its own path (terrain.vert's slope tint, world-XY texture with a turned second
 // lookup), so today's pictures are unchanged.
@@ -53,7 +54,7 @@ struct RenderStats {
     uint64_t static_meshes_drawn = 0;   // static-mesh entries that passed the frustum test this frame
     uint64_t static_meshes_culled = 0;
     uint64_t points = 0;      // impostor point sprites drawn this frame (one per far instance)
-    uint64_t draw_calls = 0;  // scene draw calls: sky, ground, one per visible static mesh, one multi-draw per non-empty type x LOD; not UI
+    uint64_t draw_calls = 0;  // scene draw calls: sky, ground, one per run of visible chunks of a static mesh, one multi-draw per non-empty type x LOD; not UI
     uint64_t indirect_commands = 0;  // commands the multi-draws ran (one per visible tile run x type)
     uint64_t instances_drawn = 0;
     std::array<uint64_t, kLodCount> lod_instances{};  // instances drawn per LOD (3 = impostors)
@@ -172,8 +173,9 @@ private:
     TextureCache textures_;  // material images -> GL textures (the scene's)
     struct StaticBuffers {
         unsigned vao = 0, vertex_buffer = 0, index_buffer = 0, instance_buffer = 0;
-        uint32_t index_count = 0, instance_count = 0;
+        uint32_t index_count = 0;
         Bounds bounds;  // engine space, all instances
+        std::vector<StaticInstanceChunks::Chunk> chunks;  // the instance buffer's ranges, culled each
         SurfaceMaterial material;
         glm::vec3 color{0.6f};
         unsigned texture = 0;  // owned by static_textures_
