@@ -36,7 +36,7 @@ struct OffscreenRenderResult {
     int width = 0, height = 0;
     OrbitCamera camera;         // the camera used
     uint64_t instances = 0;
-    uint64_t triangles = 0;     // the last frame's (terrain + detail meshes)
+    uint64_t triangles = 0;     // the last frame's (terrain + static meshes + detail meshes)
     uint64_t points = 0;        // the last frame's impostor point sprites
     uint64_t draw_calls = 0;
     std::array<uint64_t, kLodCount> lod_instances{};

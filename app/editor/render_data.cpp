@@ -6,6 +6,8 @@
 #include <cassert>
 #include <cmath>
 
+#include <glm/gtc/quaternion.hpp>
+
 #include <meshoptimizer.h>
 
 #include "instancer/tile_coord.h"
@@ -455,6 +457,106 @@ void buildIndirectDraws(const ResidentTiles& in, const std::vector<DetailLodMesh
         g.first = uint32_t(points_first);
         g.count = uint32_t(out->points.size() - points_first);
     }
+}
+
+std::vector<GpuStaticInstance> packStaticInstances(const MeshInstances& entry) {
+    if (entry.instances.empty()) return {GpuStaticInstance{}};
+    std::vector<GpuStaticInstance> out(entry.instances.size());
+    for (size_t i = 0; i < out.size(); ++i) {
+        const InstanceTransform& t = entry.instances[i];
+        const float norm = glm::length(t.rotation);
+        const glm::quat q = norm > 0.0f ? t.rotation / norm : glm::quat(1.0f, 0.0f, 0.0f, 0.0f);
+        out[i].position_scale = glm::vec4(t.position, t.scale);
+        out[i].rotation = glm::vec4(q.x, q.y, q.z, q.w);
+    }
+    return out;
+}
+
+glm::mat4 staticInstanceMatrix(const GpuStaticInstance& g) {
+    const glm::quat q(g.rotation.w, g.rotation.x, g.rotation.y, g.rotation.z);
+    const glm::mat3 rs = glm::mat3_cast(q) * g.position_scale.w;
+    glm::mat4 m(rs);
+    m[3] = glm::vec4(glm::vec3(g.position_scale), 1.0f);
+    return m;
+}
+
+namespace {
+
+// The mesh's object-space box as centre and half extents; false without vertices.
+bool localBox(const MeshInstances& entry, glm::vec3* centre, glm::vec3* half) {
+    if (!entry.mesh || entry.mesh->positions.empty()) return false;
+    Bounds local;
+    for (const glm::vec3& p : entry.mesh->positions) local = unite(local, Bounds{p, p});
+    *centre = 0.5f * (local.lo + local.hi);
+    *half = 0.5f * (local.hi - local.lo);
+    return true;
+}
+
+// The engine-space box of that box turned by one instance: exact for the box (centre moved, half extents
+// through |R| s).
+Bounds instanceBox(const GpuStaticInstance& g, glm::vec3 centre, glm::vec3 half) {
+    const glm::mat4 m = staticInstanceMatrix(g);
+    const glm::mat3 abs_rs(glm::abs(glm::vec3(m[0])), glm::abs(glm::vec3(m[1])), glm::abs(glm::vec3(m[2])));
+    const glm::vec3 c = glm::vec3(m * glm::vec4(centre, 1.0f)), h = abs_rs * half;
+    return Bounds{c - h, c + h};
+}
+
+// A chunk index, clamped so that absurd positions still sort (they only lose culling precision).
+int64_t chunkIndex(float v, float chunk_m) {
+    return int64_t(std::clamp(std::floor(double(v) / double(chunk_m)), -1e15, 1e15));
+}
+
+}  // namespace
+
+Bounds staticMeshBounds(const MeshInstances& entry) {
+    Bounds out;
+    glm::vec3 centre, half;
+    if (!localBox(entry, &centre, &half)) return out;
+    for (const GpuStaticInstance& g : packStaticInstances(entry)) out = unite(out, instanceBox(g, centre, half));
+    return out;
+}
+
+StaticInstanceChunks chunkStaticInstances(const MeshInstances& entry, float chunk_m) {
+    StaticInstanceChunks out;
+    glm::vec3 centre, half;
+    if (!localBox(entry, &centre, &half)) return out;
+    const std::vector<GpuStaticInstance> packed = packStaticInstances(entry);
+    struct Key {
+        int64_t ix, iy;
+        uint32_t index;
+    };
+    std::vector<Key> keys(packed.size());
+    for (size_t i = 0; i < packed.size(); ++i)
+        keys[i] = {chunkIndex(packed[i].position_scale.x, chunk_m), chunkIndex(packed[i].position_scale.y, chunk_m),
+                   uint32_t(i)};
+    std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+        if (a.ix != b.ix) return a.ix < b.ix;
+        if (a.iy != b.iy) return a.iy < b.iy;
+        return a.index < b.index;
+    });
+    out.instances.reserve(packed.size());
+    for (size_t k = 0; k < keys.size(); ++k) {
+        const GpuStaticInstance& g = packed[keys[k].index];
+        const Bounds box = instanceBox(g, centre, half);
+        if (k == 0 || keys[k].ix != keys[k - 1].ix || keys[k].iy != keys[k - 1].iy)
+            out.chunks.push_back({uint32_t(k), 0, Bounds{}});
+        StaticInstanceChunks::Chunk& chunk = out.chunks.back();
+        ++chunk.count;
+        chunk.bounds = unite(chunk.bounds, box);
+        out.bounds = unite(out.bounds, box);
+        out.instances.push_back(g);
+    }
+    return out;
+}
+
+Bounds staticMeshesBounds(const std::vector<MeshInstances>& meshes) {
+    Bounds out;
+    for (const MeshInstances& entry : meshes) out = unite(out, staticMeshBounds(entry));
+    return out;
+}
+
+bool boxInFrustum(const glm::mat4& view_proj, const Bounds& box) {
+    return !box.empty() && !boxOutside(frustumPlanes(view_proj), box.lo, box.hi);
 }
 
 }  // namespace ug::editor

@@ -28,6 +28,7 @@
 #include "editor/tile_slots.h"
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instance_store.h"
+#include "io/mesh_instances.h"
 #include "instancer/settling.h"
 #include "material/material.h"
 #include "mesh/detail_model.h"
@@ -244,5 +245,47 @@ struct IndirectDraws {
 // from the tile's distance to the eye; then the commands.
 void buildIndirectDraws(const ResidentTiles& tiles, const std::vector<DetailLodMesh>& meshes,
                         const ViewParams& view, const LodSettings& lod, IndirectDraws* out);
+
+// ---- Static meshes (io/mesh_instances.h: the terrain-like geometry of environmental objects, snow,
+// icicles): one mesh drawn at its instances by glDrawElementsInstanced, culled per entry. ----
+
+// One instance as static_mesh.vert reads it (two vec4 per-instance attributes): world =
+// position + rotate(rotation, scale * v); the normal is rotate(rotation, n) (uniform scale).
+struct GpuStaticInstance {
+    glm::vec4 position_scale{0.0f, 0.0f, 0.0f, 1.0f};  // xyz: engine-space position, w: uniform scale
+    glm::vec4 rotation{0.0f, 0.0f, 0.0f, 1.0f};        // unit quaternion (x, y, z, w), renormalized
+};
+static_assert(sizeof(GpuStaticInstance) == 32);
+
+// The entry's instances packed for the GPU; no instances: one at the identity (MeshInstances' rule).
+std::vector<GpuStaticInstance> packStaticInstances(const MeshInstances& entry);
+// The model matrix an instance stands for (what the shader computes, for tests and CPU-side checks).
+glm::mat4 staticInstanceMatrix(const GpuStaticInstance& instance);
+
+// Engine-space box of the whole entry: the union over its instances of the mesh's object-space box turned
+// by each instance (exact for the box: centre moved, half extents through |R| s). Empty without a mesh
+// or vertices.
+Bounds staticMeshBounds(const MeshInstances& entry);
+// The union over a list (empty list: the empty box).
+Bounds staticMeshesBounds(const std::vector<MeshInstances>& meshes);
+
+// An entry's instances grouped into square XY chunks (chunk (floor(x / chunk_m), floor(y / chunk_m)) of the
+// instance's position; sorted by (ix, iy), input order within a chunk), each with the box of its instances:
+// the renderer culls the entry by `bounds`, then each chunk, and draws the runs of visible chunks (so
+// thousands of icicles spread over a scene cost what the view holds). No mesh: nothing.
+constexpr float kStaticChunkM = 8.0f;
+struct StaticInstanceChunks {
+    struct Chunk {
+        uint32_t first = 0, count = 0;  // into `instances`
+        Bounds bounds;
+    };
+    std::vector<GpuStaticInstance> instances;
+    std::vector<Chunk> chunks;
+    Bounds bounds;  // staticMeshBounds
+};
+StaticInstanceChunks chunkStaticInstances(const MeshInstances& entry, float chunk_m = kStaticChunkM);
+// False when `box` is wholly outside the view-projection's frustum (the tiles' test); the empty box is
+// never visible.
+bool boxInFrustum(const glm::mat4& view_proj, const Bounds& box);
 
 }  // namespace ug::editor

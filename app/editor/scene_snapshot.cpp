@@ -15,7 +15,10 @@ double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>
 const Bounds& SceneSnapshot::extent() const { return scene.doc->compiled().extent; }
 const CandidateSet& SceneSnapshot::candidates() const { return scene.doc->ghostTile().candidates; }
 float SceneSnapshot::tileSize() const { return scene.doc->ghostTile().settings.tile_size_m; }
-Bounds SceneSnapshot::framing() const { return openingBounds(extent(), terrain(), &tiles, scene.meshes); }
+Bounds SceneSnapshot::framing() const {
+    const Bounds opening = openingBounds(extent(), terrain(), &tiles, scene.meshes);
+    return static_meshes.empty() ? opening : unite(opening, staticMeshesBounds(static_meshes));
+}
 
 bool loadSceneSnapshot(const SceneSnapshotOptions& options, SceneSnapshot* out, std::string* error) {
     const auto t0 = Clock::now();

@@ -7,14 +7,17 @@
 //   SceneSnapshot snap;
 //   if (!loadSceneSnapshot({.scene_path = "assets/scenes/meadow.json"}, &snap, &error)) ...;
 //   renderer.setScene(snap.extent(), snap.terrain(), &snap.scene.meshes, snap.candidates(), snap.tileSize());
+//   renderer.setStaticMeshes(&snap.static_meshes);
 //   renderer.uploadTiles(&snap.tiles, snap.uploads);
 #pragma once
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "editor/document_loader.h"
 #include "editor/render_data.h"
+#include "io/mesh_instances.h"
 
 namespace ug::editor {
 
@@ -30,6 +33,9 @@ struct SceneSnapshot {
     ResidentTiles tiles;  // `store` packed for the GPU; the renderer keeps a pointer: keep the snapshot alive
     TileUploads uploads;  // a full upload of `tiles`
     InstanceStats stats;
+    // Static geometry (io/mesh_instances.h: environmental objects, snow, icicles), drawn by the renderer
+    // (Renderer::setStaticMeshes) and included in the framing; empty for scenes without it.
+    std::vector<MeshInstances> static_meshes;
     double load_seconds = 0.0;  // opening the document (models, Ghost Tile, terrain mesh, LODs)
     double instantiate_seconds = 0.0;  // from the end of the open to the settled result, packed
 
@@ -37,7 +43,7 @@ struct SceneSnapshot {
     const TriangleMesh* terrain() const { return scene.has_terrain ? &scene.terrain : nullptr; }
     const CandidateSet& candidates() const;
     float tileSize() const;
-    Bounds framing() const;  // default_view.h framingBounds: what the default view shows
+    Bounds framing() const;  // default_view.h openingBounds, grown to hold the static meshes when there are any
 };
 
 // Fails with the document's error (naming the scene file, the place and the reason) or the instancer's.

@@ -41,6 +41,7 @@ constexpr int kFilterLinear = 9729;
 constexpr int kFilterLinearMipmapLinear = 9987;
 constexpr int kWrapRepeat = 10497;
 constexpr const char* kInstancingExtension = "EXT_mesh_gpu_instancing";
+constexpr const char* kTerrainName = "terrain";
 // glTF forbids the largest value of the index type (primitive restart), so uint16 holds 65,535 vertices.
 constexpr size_t kMaxUint16Vertices = 65535;
 // GLB lengths are uint32; data URIs that large are not read by anyone either.
@@ -140,6 +141,34 @@ bool validMaterial(const SurfaceMaterial& m, std::string* why) {
     return true;
 }
 
+// An instance list: finite, unit rotations, positive scales, chunk indices that fit an int32.
+bool validInstances(const std::string& where, const std::vector<InstanceTransform>& instances, float chunk_size_m,
+                    std::string* why) {
+    for (size_t i = 0; i < instances.size(); ++i) {
+        const InstanceTransform& inst = instances[i];
+        const std::string at = where + " instance " + std::to_string(i) + ": ";
+        if (!isFinite(inst.position) || !isFinite(inst.rotation) || !std::isfinite(inst.scale)) {
+            *why = at + "non-finite position, rotation or scale";
+            return false;
+        }
+        const float norm = glm::length(inst.rotation);
+        if (std::fabs(norm - 1.0f) > 1e-3f) {
+            *why = at + "rotation is not a unit quaternion (|q| = " + formatFloat(norm) + ")";
+            return false;
+        }
+        if (!(inst.scale > 0.0f)) {
+            *why = at + "scale must be > 0 (got " + formatFloat(inst.scale) + ")";
+            return false;
+        }
+        int32_t ix = 0, iy = 0;
+        if (!chunkOf(inst.position, chunk_size_m, &ix, &iy)) {
+            *why = at + "position is too far from the origin for chunk_size_m " + formatFloat(chunk_size_m);
+            return false;
+        }
+    }
+    return true;
+}
+
 // Everything the caller can get wrong, checked before any allocation proportional to the scene.
 bool validateScene(const SceneExport& scene, std::string* why) {
     if (!(std::isfinite(scene.chunk_size_m) && scene.chunk_size_m > 0.0f)) {
@@ -184,35 +213,8 @@ bool validateScene(const SceneExport& scene, std::string* why) {
                 return false;
             }
         }
-        for (size_t i = 0; i < type.instances.size(); ++i) {
-            const InstanceTransform& inst = type.instances[i];
-            const std::string at = where + " instance " + std::to_string(i) + ": ";
-            if (!isFinite(inst.position) || !isFinite(inst.rotation) || !std::isfinite(inst.scale)) {
-                *why = at + "non-finite position, rotation or scale";
-                return false;
-            }
-            const float norm = glm::length(inst.rotation);
-            if (std::fabs(norm - 1.0f) > 1e-3f) {
-                *why = at + "rotation is not a unit quaternion (|q| = " + formatFloat(norm) + ")";
-                return false;
-            }
-            if (!(inst.scale > 0.0f)) {
-                *why = at + "scale must be > 0 (got " + formatFloat(inst.scale) + ")";
-                return false;
-            }
-            int32_t ix = 0, iy = 0;
-            if (!chunkOf(inst.position, scene.chunk_size_m, &ix, &iy)) {
-                *why = at + "position is too far from the origin for chunk_size_m " +
-                       formatFloat(scene.chunk_size_m);
-                return false;
-            }
-        }
+        if (!validInstances(where, type.instances, scene.chunk_size_m, why)) return false;
         total_instances += type.instances.size();
-    }
-    if (!scene.use_instancing_extension && total_instances > kMaxPlainNodeInstances) {
-        *why = std::to_string(total_instances) + " instances are too many for one plain node each (limit " +
-               std::to_string(kMaxPlainNodeInstances) + "); export with EXT_mesh_gpu_instancing instead";
-        return false;
     }
     if (scene.terrain) {
         std::string mesh_why;
@@ -224,6 +226,50 @@ bool validateScene(const SceneExport& scene, std::string* why) {
             *why = "terrain material: " + mesh_why;
             return false;
         }
+        if (!names.insert(kTerrainName).second) {
+            *why = std::string("the terrain's name '") + kTerrainName + "' is taken by a detail type";
+            return false;
+        }
+    }
+    for (size_t m = 0; m < scene.meshes.size(); ++m) {
+        const MeshInstances& entry = scene.meshes[m];
+        const std::string where = "static mesh " + std::to_string(m) + " '" + entry.name + "'";
+        if (entry.name.empty()) {
+            *why = "static mesh " + std::to_string(m) + " has an empty name";
+            return false;
+        }
+        if (!names.insert(entry.name).second) {
+            *why = where + ": duplicate name (the detail types, the terrain and the static meshes each become one "
+                           "named mesh)";
+            return false;
+        }
+        if (!entry.mesh) {
+            *why = where + ": mesh is null";
+            return false;
+        }
+        std::string mesh_why;
+        if (!validateMesh(*entry.mesh, &mesh_why)) {
+            *why = where + ": mesh: " + mesh_why;
+            return false;
+        }
+        if (entry.material && !validMaterial(*entry.material, &mesh_why)) {
+            *why = where + ": material: " + mesh_why;
+            return false;
+        }
+        if (!validInstances(where, entry.instances, scene.chunk_size_m, why)) return false;
+        if (!entry.extras_json.empty()) {
+            const Json extras = Json::parse(entry.extras_json, nullptr, /*allow_exceptions=*/false);
+            if (!extras.is_object()) {
+                *why = where + ": extras_json must be empty or a JSON object";
+                return false;
+            }
+        }
+        total_instances += entry.instances.size();
+    }
+    if (!scene.use_instancing_extension && total_instances > kMaxPlainNodeInstances) {
+        *why = std::to_string(total_instances) + " instances are too many for one plain node each (limit " +
+               std::to_string(kMaxPlainNodeInstances) + "); export with EXT_mesh_gpu_instancing instead";
+        return false;
     }
     return true;
 }
@@ -439,15 +485,15 @@ Json toYUpArray(double cx, double cy) {
 struct ChunkedInstance {
     int32_t ix = 0;
     int32_t iy = 0;
-    uint32_t index = 0;  // into ExportDetailType::instances
+    uint32_t index = 0;  // into the instance list
 };
 
-// The instances of one type sorted by chunk (ix, then iy), input order within a chunk.
-std::vector<ChunkedInstance> sortIntoChunks(const ExportDetailType& type, double chunk_size_m) {
-    std::vector<ChunkedInstance> sorted(type.instances.size());
+// The instances of one type or static mesh sorted by chunk (ix, then iy), input order within a chunk.
+std::vector<ChunkedInstance> sortIntoChunks(const std::vector<InstanceTransform>& instances, double chunk_size_m) {
+    std::vector<ChunkedInstance> sorted(instances.size());
     for (size_t i = 0; i < sorted.size(); ++i) {
         sorted[i].index = uint32_t(i);
-        chunkOf(type.instances[i].position, chunk_size_m, &sorted[i].ix, &sorted[i].iy);  // checked before
+        chunkOf(instances[i].position, chunk_size_m, &sorted[i].ix, &sorted[i].iy);  // checked before
     }
     std::sort(sorted.begin(), sorted.end(), [](const ChunkedInstance& a, const ChunkedInstance& b) {
         if (a.ix != b.ix) return a.ix < b.ix;
@@ -472,10 +518,12 @@ FileTransform fileTransform(const InstanceTransform& inst, double cx, double cy)
     return {toYUp(rel), toYUp(glm::normalize(inst.rotation)), inst.scale};
 }
 
-void addInstancedType(GltfBuilder* doc, const ExportDetailType& type, int mesh, double chunk_size_m) {
-    const size_t n = type.instances.size();
+// The chunk nodes of `name` (a detail type or a static mesh) with EXT_mesh_gpu_instancing.
+void addInstancedNodes(GltfBuilder* doc, const std::string& name, const std::vector<InstanceTransform>& instances,
+                       int mesh, double chunk_size_m) {
+    const size_t n = instances.size();
     if (n == 0) return;
-    const std::vector<ChunkedInstance> sorted = sortIntoChunks(type, chunk_size_m);
+    const std::vector<ChunkedInstance> sorted = sortIntoChunks(instances, chunk_size_m);
     // One region (and buffer view) per attribute for the whole type; each chunk's accessors are windows
     // into them. Fewer views keep the JSON small when there are thousands of chunks.
     const size_t t_off = doc->grow(n * 12), r_off = doc->grow(n * 16), s_off = doc->grow(n * 12);
@@ -488,7 +536,7 @@ void addInstancedType(GltfBuilder* doc, const ExportDetailType& type, int mesh, 
         const int32_t ix = sorted[begin].ix, iy = sorted[begin].iy;
         const double cx = (double(ix) + 0.5) * chunk_size_m, cy = (double(iy) + 0.5) * chunk_size_m;
         for (size_t k = begin; k < end; ++k) {
-            const FileTransform f = fileTransform(type.instances[sorted[k].index], cx, cy);
+            const FileTransform f = fileTransform(instances[sorted[k].index], cx, cy);
             const float t[3] = {f.translation.x, f.translation.y, f.translation.z};
             const float r[4] = {f.rotation.x, f.rotation.y, f.rotation.z, f.rotation.w};  // glTF: x, y, z, w
             const float s[3] = {f.scale, f.scale, f.scale};
@@ -500,7 +548,7 @@ void addInstancedType(GltfBuilder* doc, const ExportDetailType& type, int mesh, 
         const int t_acc = doc->addAccessor(t_view, begin * 12, kComponentFloat, count, "VEC3");
         const int r_acc = doc->addAccessor(r_view, begin * 16, kComponentFloat, count, "VEC4");
         const int s_acc = doc->addAccessor(s_view, begin * 12, kComponentFloat, count, "VEC3");
-        Json node = {{"name", type.name + "/chunk_" + std::to_string(ix) + "_" + std::to_string(iy)},
+        Json node = {{"name", name + "/chunk_" + std::to_string(ix) + "_" + std::to_string(iy)},
                      {"mesh", mesh},
                      {"translation", toYUpArray(cx, cy)},
                      {"extensions",
@@ -511,9 +559,11 @@ void addInstancedType(GltfBuilder* doc, const ExportDetailType& type, int mesh, 
     }
 }
 
-void addPlainType(GltfBuilder* doc, const ExportDetailType& type, int mesh, double chunk_size_m) {
-    const size_t n = type.instances.size();
-    const std::vector<ChunkedInstance> sorted = sortIntoChunks(type, chunk_size_m);
+// The chunk nodes of `name` with one plain child node per instance.
+void addPlainNodes(GltfBuilder* doc, const std::string& name, const std::vector<InstanceTransform>& instances,
+                   int mesh, double chunk_size_m) {
+    const size_t n = instances.size();
+    const std::vector<ChunkedInstance> sorted = sortIntoChunks(instances, chunk_size_m);
     for (size_t begin = 0; begin < n;) {
         size_t end = begin;
         while (end < n && sorted[end].ix == sorted[begin].ix && sorted[end].iy == sorted[begin].iy) ++end;
@@ -522,15 +572,15 @@ void addPlainType(GltfBuilder* doc, const ExportDetailType& type, int mesh, doub
         Json children = Json::array();
         for (size_t k = begin; k < end; ++k) {
             const uint32_t index = sorted[k].index;
-            const FileTransform f = fileTransform(type.instances[index], cx, cy);
-            Json node = {{"name", type.name + "/" + std::to_string(index)},
+            const FileTransform f = fileTransform(instances[index], cx, cy);
+            Json node = {{"name", name + "/" + std::to_string(index)},
                          {"mesh", mesh},
                          {"translation", {f.translation.x, f.translation.y, f.translation.z}},
                          {"rotation", {f.rotation.x, f.rotation.y, f.rotation.z, f.rotation.w}},
                          {"scale", {f.scale, f.scale, f.scale}}};
             children.push_back(doc->addNode(std::move(node)));
         }
-        Json parent = {{"name", type.name + "/chunk_" + std::to_string(ix) + "_" + std::to_string(iy)},
+        Json parent = {{"name", name + "/chunk_" + std::to_string(ix) + "_" + std::to_string(iy)},
                        {"translation", toYUpArray(cx, cy)},
                        {"children", std::move(children)}};
         doc->scene_nodes.push_back(doc->addNode(std::move(parent)));
@@ -545,6 +595,33 @@ Json meshExtras(const ExportDetailType& type, float delta_m) {
         spheres.push_back({c.x, c.y, c.z, sphere.radius});
     }
     return {{"collision_spheres", std::move(spheres)}, {"delta", delta_m}};
+}
+
+// One static mesh as the writer sees it: the terrain or a MeshInstances entry (not owned).
+struct StaticEntry {
+    std::string name;
+    const TriangleMesh* mesh;
+    const SurfaceMaterial* material;
+    const std::vector<InstanceTransform>* instances;
+    std::string extras_json;  // empty or a JSON object (validated)
+    GltfBuilder::UvRule uv_rule;
+};
+
+// Its mesh, then its nodes: one node at the identity without instances, chunk nodes with them. False when
+// its texture could not be encoded.
+bool addStaticMesh(GltfBuilder* doc, const StaticEntry& entry, const SceneExport& scene, bool* instanced_nodes) {
+    Json extras = entry.extras_json.empty() ? Json() : Json::parse(entry.extras_json);
+    const int mesh = doc->addMesh(entry.name, *entry.mesh, std::move(extras), entry.material, entry.uv_rule);
+    if (mesh < 0) return false;
+    if (entry.instances->empty()) {
+        doc->scene_nodes.push_back(doc->addNode({{"name", entry.name}, {"mesh", mesh}}));
+    } else if (scene.use_instancing_extension) {
+        addInstancedNodes(doc, entry.name, *entry.instances, mesh, scene.chunk_size_m);
+        *instanced_nodes = true;
+    } else {
+        addPlainNodes(doc, entry.name, *entry.instances, mesh, scene.chunk_size_m);
+    }
+    return true;
 }
 
 std::string lowerExtension(const std::string& path) {
@@ -580,6 +657,8 @@ bool writeSceneGltf(const std::string& path, const SceneExport& scene, std::stri
     for (const ExportDetailType& type : scene.types)
         estimate += meshBytes(*type.mesh) + type.instances.size() * 40 + 48;
     if (scene.terrain) estimate += meshBytes(*scene.terrain);
+    for (const MeshInstances& entry : scene.meshes)
+        estimate += meshBytes(*entry.mesh) + entry.instances.size() * 40 + 48;
     if (estimate > kMaxBinaryBytes)
         return fail(error, path,
                     "the scene needs about " + std::to_string(estimate) +
@@ -593,17 +672,24 @@ bool writeSceneGltf(const std::string& path, const SceneExport& scene, std::stri
                                      GltfBuilder::UvRule::Box);
         if (mesh < 0) return fail(error, path, "detail type '" + type.name + "': could not encode its texture as PNG");
         if (scene.use_instancing_extension) {
-            addInstancedType(&doc, type, mesh, chunk_size_m);
+            addInstancedNodes(&doc, type.name, type.instances, mesh, chunk_size_m);
             instanced_nodes = instanced_nodes || !type.instances.empty();
         } else {
-            addPlainType(&doc, type, mesh, chunk_size_m);
+            addPlainNodes(&doc, type.name, type.instances, mesh, chunk_size_m);
         }
     }
-    if (scene.terrain) {
-        const int mesh = doc.addMesh("terrain", *scene.terrain, nullptr, scene.terrain_material,
-                                     GltfBuilder::UvRule::PlanarXy);
-        if (mesh < 0) return fail(error, path, "terrain: could not encode its texture as PNG");
-        doc.scene_nodes.push_back(doc.addNode({{"name", "terrain"}, {"mesh", mesh}}));
+    // The terrain is the first static mesh (one copy at the identity, its texture planar in world XY).
+    std::vector<StaticEntry> statics;
+    static const std::vector<InstanceTransform> kNoInstances;
+    if (scene.terrain)
+        statics.push_back({kTerrainName, scene.terrain, scene.terrain_material, &kNoInstances, "",
+                           GltfBuilder::UvRule::PlanarXy});
+    for (const MeshInstances& entry : scene.meshes)
+        statics.push_back({entry.name, entry.mesh.get(), entry.material.get(), &entry.instances, entry.extras_json,
+                           GltfBuilder::UvRule::Box});
+    for (const StaticEntry& entry : statics) {
+        if (!addStaticMesh(&doc, entry, scene, &instanced_nodes))
+            return fail(error, path, "static mesh '" + entry.name + "': could not encode its texture as PNG");
     }
     doc.bin.resize((doc.bin.size() + 3) & ~size_t(3));  // the GLB BIN chunk must be 4-byte aligned
     if (doc.bin.size() > kMaxBinaryBytes)

@@ -4,11 +4,13 @@
 //
 // creates DIR if needed, writes the samples, and prints one line per file: "<file name> <instances>
 // <types>", where <instances> is every mesh copy the file draws (detail instances, plus one for a
-// terrain) as check_gltf.mjs counts them, and <types> the number of detail types; the samples with
-// materials add "<images> <textured materials>": the distinct texture images the file must hold and the
-// materials with a baseColorTexture.
+// terrain and for each static mesh copy) as check_gltf.mjs counts them, and <types> the number of detail
+// types; the samples with materials or static meshes add "<images> <textured materials>": the distinct
+// texture images the file must hold and the materials with a baseColorTexture. The static-mesh samples
+// (io/mesh_instances.h) add a mesh at the identity with extras and an instanced, textured one.
 #include <cstdio>
 #include <filesystem>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -50,6 +52,7 @@ struct Sample {
     bool terrain = false;
     size_t per_type = 0;
     bool materials = false;
+    bool statics = false;  // two static meshes (SceneExport::meshes)
 };
 
 Material makeMaterial(glm::vec3 color, TextureKind texture, float scale_m, float tint, bool cutout) {
@@ -124,7 +127,15 @@ int main(int argc, char** argv) {
         {"materials.glb", true, true, 400, true},
         {"materials.gltf", true, true, 120, true},
         {"materials_plain_nodes.glb", false, true, 60, true},
+        {"static_meshes.glb", true, true, 100, false, true},
+        {"static_meshes_plain_nodes.gltf", false, true, 40, false, true},
     };
+    // The static meshes: a "bench" (the rock mesh, one copy at the identity, with extras) and 300 textured
+    // "icicles" (the twig mesh with the rock's material: one image, one textured material).
+    const auto bench_mesh = std::make_shared<const TriangleMesh>(meshes[0]);
+    const auto icicle_mesh = std::make_shared<const TriangleMesh>(meshes[2]);
+    const auto icicle_look = std::make_shared<const SurfaceMaterial>(surfaces[0]);
+    const size_t icicle_count = 300;
     for (const Sample& sample : samples) {
         SceneExport scene;
         scene.delta_m = 0.01f;
@@ -144,14 +155,28 @@ int main(int argc, char** argv) {
             if (sample.materials) type.material = &surfaces[t];
             scene.types.push_back(std::move(type));
         }
+        if (sample.statics) {
+            MeshInstances bench;
+            bench.name = "env/bench";
+            bench.mesh = bench_mesh;
+            bench.extras_json = R"({"kind": "bench"})";
+            MeshInstances icicles;
+            icicles.name = "icicles/shape_0";
+            icicles.mesh = icicle_mesh;
+            icicles.material = icicle_look;
+            icicles.instances = scatter(icicle_count, 20.0f, 900);
+            scene.meshes = {bench, icicles};
+        }
         const std::string path = dir + "/" + sample.file;
         if (!writeSceneGltf(path, scene, &error)) {
             std::fprintf(stderr, "%s\n", error.c_str());
             return 1;
         }
-        std::printf("%s %zu %zu", sample.file.c_str(), sample.per_type * type_count + (sample.terrain ? 1 : 0),
-                    type_count);
+        const size_t static_copies = sample.statics ? 1 + icicle_count : 0;
+        std::printf("%s %zu %zu", sample.file.c_str(),
+                    sample.per_type * type_count + (sample.terrain ? 1 : 0) + static_copies, type_count);
         if (sample.materials) std::printf(" %zu %zu", images, textured_materials);
+        else if (sample.statics) std::printf(" 1 1");
         std::printf("\n");
     }
     return 0;

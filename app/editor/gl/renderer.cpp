@@ -40,6 +40,30 @@ void setSampling(GLenum target, GLint min_filter, GLint mag_filter, GLint wrap) 
     glTexParameteri(target, GL_TEXTURE_WRAP_T, wrap);
 }
 
+// Interleaved position + normal, shared by the terrain, the detail meshes and the static meshes.
+void uploadMesh(const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals,
+                const std::vector<uint32_t>& indices, GLuint* vao, GLuint* vbo, GLuint* ebo) {
+    std::vector<float> interleaved(positions.size() * 6);
+    for (size_t i = 0; i < positions.size(); ++i) {
+        std::memcpy(&interleaved[i * 6], &positions[i].x, 3 * sizeof(float));
+        const glm::vec3 n = i < normals.size() ? normals[i] : glm::vec3(0.0f, 0.0f, 1.0f);
+        std::memcpy(&interleaved[i * 6 + 3], &n.x, 3 * sizeof(float));
+    }
+    glGenVertexArrays(1, vao);
+    glBindVertexArray(*vao);
+    glGenBuffers(1, vbo);
+    glBindBuffer(GL_ARRAY_BUFFER, *vbo);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data(), GL_STATIC_DRAW);
+    glEnableVertexAttribArray(0);
+    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
+    glEnableVertexAttribArray(1);
+    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
+    glGenBuffers(1, ebo);
+    glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, *ebo);
+    glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), GL_STATIC_DRAW);
+    glBindVertexArray(0);
+}
+
 // A full mip chain's level count for a w x h image.
 int mipLevels(int w, int h) { return int(std::floor(std::log2(float(std::max({w, h, 1}))))) + 1; }
 
@@ -59,9 +83,10 @@ void Renderer::setLighting(const ShaderProgram& p, const glm::vec3& eye, float f
 
 Renderer::~Renderer() {
     releaseScene();
+    releaseStaticMeshes();
     releaseTargets();
     for (ShaderProgram* p : {&sky_, &terrain_, &detail_, &impostor_, &grid_, &marker_, &hull_, &shadow_detail_,
-                             &ambient_occlusion_, &ao_blur_, &composite_})
+                             &ambient_occlusion_, &ao_blur_, &composite_, &static_mesh_, &shadow_static_})
         destroyProgram(p);
     if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
     if (marker_vao_) glDeleteVertexArrays(1, &marker_vao_);
@@ -100,7 +125,10 @@ bool Renderer::init(const std::string& dir, std::string* error) {
         !loadProgram(dir, "screen_pass.vert", "ambient_occlusion.frag",
                      {"u_depth", "u_near_far", "u_tan_half_fov", "u_ao_radius_m"}, &ambient_occlusion_, error) ||
         !loadProgram(dir, "screen_pass.vert", "ao_blur.frag", {"u_ao"}, &ao_blur_, error) ||
-        !loadProgram(dir, "screen_pass.vert", "composite.frag", {"u_color", "u_ao"}, &composite_, error))
+        !loadProgram(dir, "screen_pass.vert", "composite.frag", {"u_color", "u_ao"}, &composite_, error) ||
+        !loadProgram(dir, "static_mesh.vert", "lit_surface.frag", with({"u_view_proj", "u_color"}, true), &static_mesh_,
+                     error) ||
+        !loadProgram(dir, "static_mesh.vert", "shadow_depth.frag", {"u_view_proj"}, &shadow_static_, error))
         return false;
     glGenBuffers(1, &indirect_.id);
     glGenBuffers(1, &shadow_indirect_.id);
@@ -150,9 +178,9 @@ void Renderer::releaseTargets() {
     shadow_px_ = scene_w_ = scene_h_ = 0;
 }
 
-unsigned Renderer::uploadTexture(const std::shared_ptr<const TextureImage>& image) {
+unsigned Renderer::uploadTexture(const std::shared_ptr<const TextureImage>& image, TextureCache* cache) {
     if (!image || image->width <= 0 || image->height <= 0) return 0;
-    for (const auto& [img, id] : textures_)
+    for (const auto& [img, id] : *cache)
         if (img == image.get()) return id;
     GLuint id = 0;
     glGenTextures(1, &id);
@@ -166,7 +194,7 @@ unsigned Renderer::uploadTexture(const std::shared_ptr<const TextureImage>& imag
     // Bilinear within the nearest mip level: trilinear filtering doubles llvmpipe's cost per lookup.
     setSampling(GL_TEXTURE_2D, GL_LINEAR_MIPMAP_NEAREST, GL_LINEAR, GL_REPEAT);
     glBindTexture(GL_TEXTURE_2D, 0);
-    textures_.push_back({image.get(), id});
+    cache->push_back({image.get(), id});
     return id;
 }
 
@@ -185,34 +213,10 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
     releaseScene();
     terrain_material_ = terrain_material ? *terrain_material : SurfaceMaterial{};
     if (!terrain_material) terrain_material_.base_color = glm::vec3(0.20f, 0.15f, 0.09f);  // bare earth under grass
-    terrain_texture_ = uploadTexture(terrain_material_.texture);
+    terrain_texture_ = uploadTexture(terrain_material_.texture, &textures_);
     extent_ = extent;
     tile_size_m_ = tile_size_m;
     meshes_ = meshes;
-
-    // Interleaved position + normal, shared by the terrain and the detail meshes.
-    auto uploadMesh = [](const std::vector<glm::vec3>& positions, const std::vector<glm::vec3>& normals,
-                         const std::vector<uint32_t>& indices, GLuint* vao, GLuint* vbo, GLuint* ebo) {
-        std::vector<float> interleaved(positions.size() * 6);
-        for (size_t i = 0; i < positions.size(); ++i) {
-            std::memcpy(&interleaved[i * 6], &positions[i].x, 3 * sizeof(float));
-            const glm::vec3 n = i < normals.size() ? normals[i] : glm::vec3(0.0f, 0.0f, 1.0f);
-            std::memcpy(&interleaved[i * 6 + 3], &n.x, 3 * sizeof(float));
-        }
-        glGenVertexArrays(1, vao);
-        glBindVertexArray(*vao);
-        glGenBuffers(1, vbo);
-        glBindBuffer(GL_ARRAY_BUFFER, *vbo);
-        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(interleaved.size() * sizeof(float)), interleaved.data(), GL_STATIC_DRAW);
-        glEnableVertexAttribArray(0);
-        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), nullptr);
-        glEnableVertexAttribArray(1);
-        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, 6 * sizeof(float), reinterpret_cast<void*>(3 * sizeof(float)));
-        glGenBuffers(1, ebo);
-        glBindBuffer(GL_ELEMENT_ARRAY_BUFFER, *ebo);
-        glBufferData(GL_ELEMENT_ARRAY_BUFFER, GLsizeiptr(indices.size() * sizeof(uint32_t)), indices.data(), GL_STATIC_DRAW);
-        glBindVertexArray(0);
-    };
 
     if (terrain && !terrain->indices.empty()) {
         uploadMesh(terrain->positions, terrain->normals, terrain->indices, &terrain_vao_, &terrain_vertices_,
@@ -237,7 +241,7 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
         const DetailLodMesh& m = (*meshes)[i];
         TypeBuffers& t = types_[i];
         uploadMesh(m.positions, m.normals, m.indices, &t.vao, &t.vertex_buffer, &t.index_buffer);
-        t.texture = uploadTexture(m.material.texture);
+        t.texture = uploadTexture(m.material.texture, &textures_);
         glGenBuffers(1, &t.instance_buffer);
         // The instance attribute: two unsigned ints, advancing once per instance of the mesh, from the
         // command's baseInstance on (the tile's slot). The impostor VAO reads the same buffer one instance
@@ -280,6 +284,98 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
     ao_radius_m_ = std::clamp(1.2f * reach, 0.03f, 2.0f);
     has_scene_ = true;
     draws_dirty_ = shadow_draws_dirty_ = shadow_map_dirty_ = true;
+}
+
+void Renderer::releaseStaticMeshes() {
+    for (StaticBuffers& b : statics_) {
+        glDeleteVertexArrays(1, &b.vao);
+        GLuint buffers[] = {b.vertex_buffer, b.index_buffer, b.instance_buffer};
+        glDeleteBuffers(3, buffers);
+    }
+    statics_.clear();
+    for (const auto& [img, id] : static_textures_) glDeleteTextures(1, &id);
+    static_textures_.clear();
+}
+
+void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
+    releaseStaticMeshes();
+    shadow_map_dirty_ = true;
+    if (!meshes) return;
+    statics_.reserve(meshes->size());
+    for (const MeshInstances& entry : *meshes) {
+        if (!entry.mesh || entry.mesh->indices.empty()) continue;
+        const TriangleMesh& mesh = *entry.mesh;
+        StaticBuffers b;
+        if (mesh.normals.size() == mesh.positions.size()) {
+            uploadMesh(mesh.positions, mesh.normals, mesh.indices, &b.vao, &b.vertex_buffer, &b.index_buffer);
+        } else {  // MeshInstances allows meshes without normals: computed here, as the exporter does
+            TriangleMesh with_normals = mesh;
+            computeNormals(&with_normals);
+            uploadMesh(with_normals.positions, with_normals.normals, with_normals.indices, &b.vao, &b.vertex_buffer,
+                       &b.index_buffer);
+        }
+        StaticInstanceChunks chunked = chunkStaticInstances(entry);
+        const std::vector<GpuStaticInstance>& instances = chunked.instances;
+        glBindVertexArray(b.vao);
+        glGenBuffers(1, &b.instance_buffer);
+        glBindBuffer(GL_ARRAY_BUFFER, b.instance_buffer);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(instances.size() * sizeof(GpuStaticInstance)), instances.data(),
+                     GL_STATIC_DRAW);
+        for (GLuint attribute : {2u, 3u}) {
+            glEnableVertexAttribArray(attribute);
+            glVertexAttribPointer(attribute, 4, GL_FLOAT, GL_FALSE, sizeof(GpuStaticInstance),
+                                  reinterpret_cast<void*>(uintptr_t(attribute - 2) * sizeof(glm::vec4)));
+            glVertexAttribDivisor(attribute, 1);
+        }
+        glBindVertexArray(0);
+        b.index_count = uint32_t(mesh.indices.size());
+        b.bounds = chunked.bounds;
+        b.chunks = std::move(chunked.chunks);
+        b.material = entry.material ? *entry.material : SurfaceMaterial{};
+        b.color = entry.material ? entry.material->base_color : mesh.base_color;
+        b.texture = uploadTexture(b.material.texture, &static_textures_);
+        statics_.push_back(std::move(b));
+    }
+}
+
+void Renderer::drawStaticMeshes(const ShaderProgram& program, const glm::mat4& view_proj, bool shadow) {
+    for (const StaticBuffers& b : statics_) {
+        if (!boxInFrustum(view_proj, b.bounds)) {
+            if (!shadow) ++stats_.static_meshes_culled;
+            continue;
+        }
+        if (!shadow) {
+            glUniform3fv(loc(program, "u_color"), 1, glm::value_ptr(b.color));
+            bindMaterial(program, b.material, b.texture, kTextureBoxModel);
+            if (b.texture && b.material.alpha_cutout) glDisable(GL_CULL_FACE);
+            else glEnable(GL_CULL_FACE);
+        }
+        glBindVertexArray(b.vao);
+        // One instanced draw per run of consecutive visible chunks (baseInstance = the run's first
+        // instance; the per-instance attributes honour it).
+        uint64_t drawn = 0;
+        for (size_t c = 0; c < b.chunks.size();) {
+            if (!boxInFrustum(view_proj, b.chunks[c].bounds)) {
+                ++c;
+                continue;
+            }
+            const uint32_t first = b.chunks[c].first;
+            uint32_t count = 0;
+            for (; c < b.chunks.size() && boxInFrustum(view_proj, b.chunks[c].bounds); ++c) count += b.chunks[c].count;
+            glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(b.index_count), GL_UNSIGNED_INT, nullptr,
+                                                GLsizei(count), first);
+            drawn += count;
+            if (!shadow) ++stats_.draw_calls;
+        }
+        const uint64_t triangles = uint64_t(b.index_count / 3) * drawn;
+        if (shadow) {
+            stats_.shadow_triangles += triangles;
+            continue;
+        }
+        ++stats_.static_meshes_drawn;
+        stats_.triangles += triangles;
+    }
+    glEnable(GL_CULL_FACE);
 }
 
 void Renderer::uploadTiles(const ResidentTiles* tiles, const TileUploads& uploads) {
@@ -398,6 +494,12 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
         ++stats_.draw_calls;
     }
 
+    if (has_scene_ && !statics_.empty()) {
+        glUseProgram(static_mesh_.id);
+        glUniformMatrix4fv(loc(static_mesh_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+        setLighting(static_mesh_, eye, fog_density);
+        drawStaticMeshes(static_mesh_, view_proj, false);
+    }
     if (tiles_ && meshes_) drawDetails(cam, view, view_proj, eye, height, lod, fog_density);
 
     // The sky last, at the far plane: depth test LEQUAL keeps it to the pixels nothing covered.
@@ -459,7 +561,13 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
     glEnable(GL_POLYGON_OFFSET_FILL);
     glPolygonOffset(1.5f, 2.0f);
     // The terrain receives shadows but casts none: on llvmpipe its triangles would fill every texel of
-    // the map each time it is drawn, and the sun term already darkens slopes turned away from it.
+    // the map each time it is drawn, and the sun term already darkens slopes turned away from it. The
+    // static meshes (benches, snow, icicles) cast: their shadows are what places them on the ground.
+    if (!statics_.empty()) {
+        glUseProgram(shadow_static_.id);
+        glUniformMatrix4fv(loc(shadow_static_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(frame.view_proj));
+        drawStaticMeshes(shadow_static_, frame.view_proj, true);
+    }
     if (tiles_ && meshes_) {
         // The casters: the tiles the sun's box holds, as meshes where the camera draws meshes (the same
         // impostor switch, so a shadow belongs to what is drawn) but one mesh level coarser sooner: a

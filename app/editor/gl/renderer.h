@@ -9,6 +9,13 @@
 // gl_BaseInstance); a frame then issues one glMultiDrawElementsIndirect per type and mesh LOD and one
 // glMultiDrawArraysIndirect per type for the impostor point sprites. After the scene: the primitives'
 // translucent hulls (blended, depth-tested, no depth write), then the overlay lines and points.
+// Static meshes (io/mesh_instances.h: environmental objects, snow, icicles): each entry one vertex/index
+// buffer and one per-instance buffer (render_data.h GpuStaticInstance, sorted into 8 m chunks), culled as a
+// whole by the union of its instances' boxes, then per chunk, and drawn with one glDrawElementsInstanced-
+// BaseInstance per run of visible chunks, lit like the details (lit_surface.frag,
+// box-projected texture), casting into and receiving from the shadow map, and in the occlusion target.
+// The terrain keeps its own path (terrain.vert's slope tint, world-XY texture with a turned second
+// lookup), so today's pictures are unchanged.
 // The renderer only draws what it is given and exposes numbers; it decides nothing about instances.
 //
 // Light that shows contact (ViewportLook): before the scene, a depth-only pass from the sun into a shadow
@@ -42,10 +49,12 @@
 namespace ug::editor::gl {
 
 struct RenderStats {
-    uint64_t triangles = 0;   // terrain + detail meshes (LOD 0-2) drawn this frame; not sky, grid, UI
-    uint64_t shadow_triangles = 0;  // drawn again into the shadow map (terrain + detail meshes)
+    uint64_t triangles = 0;   // terrain + static meshes + detail meshes (LOD 0-2) drawn this frame; not sky, grid, UI
+    uint64_t shadow_triangles = 0;  // drawn again into the shadow map (static meshes + detail meshes)
+    uint64_t static_meshes_drawn = 0;   // static-mesh entries that passed the frustum test this frame
+    uint64_t static_meshes_culled = 0;
     uint64_t points = 0;      // impostor point sprites drawn this frame (one per far instance)
-    uint64_t draw_calls = 0;  // scene draw calls: sky, ground, one multi-draw per non-empty type x LOD; not UI
+    uint64_t draw_calls = 0;  // scene draw calls: sky, ground, one per run of visible chunks of a static mesh, one multi-draw per non-empty type x LOD; not UI
     uint64_t indirect_commands = 0;  // commands the multi-draws ran (one per visible tile run x type)
     uint64_t instances_drawn = 0;
     std::array<uint64_t, kLodCount> lod_instances{};  // instances drawn per LOD (3 = impostors)
@@ -81,6 +90,9 @@ public:
     // resident, so showing them again costs nothing). View state only: not an edit, never saved. All types
     // are visible after setScene().
     void setTypeVisible(size_t type, bool visible);
+    // The static meshes, copied into GPU buffers now (the list need not outlive the call; null or empty:
+    // none). Independent of setScene(); drawn only while a scene is set. Replaces the previous list.
+    void setStaticMeshes(const std::vector<MeshInstances>* meshes);
     // Forgets the scene and the instances (before the document they point into goes away).
     void clearScene() { releaseScene(); }
     // Hull triangles (translucent) and overlay lines and points (skeletons, brush, tile grid, anchors,
@@ -106,8 +118,12 @@ private:
     };
     // A material's GL state: its texture (0: none) and the uniforms lit_surface.frag reads.
     void bindMaterial(const ShaderProgram& program, const SurfaceMaterial& m, unsigned texture, int mode) const;
-    unsigned uploadTexture(const std::shared_ptr<const TextureImage>& image);
+    using TextureCache = std::vector<std::pair<const TextureImage*, unsigned>>;
+    unsigned uploadTexture(const std::shared_ptr<const TextureImage>& image, TextureCache* cache);
     void releaseScene();
+    void releaseStaticMeshes();
+    // The static meshes in the frustum of `view_proj`: lit (shadow false) or depth only.
+    void drawStaticMeshes(const ShaderProgram& program, const glm::mat4& view_proj, bool shadow);
     void releaseTargets();
     // (Re)builds the commands of `draws` when its view, the LOD settings or the tiles changed.
     struct IndirectBuffer {
@@ -129,7 +145,7 @@ private:
     void setLighting(const ShaderProgram& program, const glm::vec3& eye, float fog_density) const;
 
     ShaderProgram sky_, terrain_, detail_, impostor_, grid_, marker_, hull_;
-    ShaderProgram shadow_detail_, ambient_occlusion_, ao_blur_, composite_;
+    ShaderProgram shadow_detail_, ambient_occlusion_, ao_blur_, composite_, static_mesh_, shadow_static_;
     ViewportLook look_;
     // The shadow map (a depth texture with compare mode) and its framebuffer; the offscreen scene target.
     unsigned shadow_fbo_ = 0, shadow_depth_ = 0;
@@ -154,7 +170,18 @@ private:
     uint32_t terrain_index_count_ = 0;
     unsigned candidate_buffer_ = 0;
     unsigned silhouette_array_ = 0;
-    std::vector<std::pair<const TextureImage*, unsigned>> textures_;  // material images -> GL textures
+    TextureCache textures_;  // material images -> GL textures (the scene's)
+    struct StaticBuffers {
+        unsigned vao = 0, vertex_buffer = 0, index_buffer = 0, instance_buffer = 0;
+        uint32_t index_count = 0;
+        Bounds bounds;  // engine space, all instances
+        std::vector<StaticInstanceChunks::Chunk> chunks;  // the instance buffer's ranges, culled each
+        SurfaceMaterial material;
+        glm::vec3 color{0.6f};
+        unsigned texture = 0;  // owned by static_textures_
+    };
+    std::vector<StaticBuffers> statics_;
+    TextureCache static_textures_;
     SurfaceMaterial terrain_material_;
     unsigned terrain_texture_ = 0;  // impostor silhouettes, kCoverageElevations layers per type
     std::vector<TypeBuffers> types_;
