@@ -88,20 +88,21 @@ def segment(a, b, radius):
 WINTER = [field("snow", 0.12), field("icicles", 1.0), field("temperature", -3.0), field("humidity", 0.2)]
 
 TYPES = [
-    env_type("road_segment", snow={"target_edge_m": 0.06}, icicles={"enabled": False},
+    env_type("road_segment", snow={"target_edge_m": 0.06, "d0_m": 0.01}, icicles={"enabled": False},
              material={"base_color": [0.09, 0.09, 0.10], "roughness": 0.9}),
-    env_type("pavement_slab", snow={"target_edge_m": 0.05}, icicles={"enabled": False},
+    env_type("pavement_slab", snow={"target_edge_m": 0.05, "d0_m": 0.01}, icicles={"enabled": False},
              material={"base_color": [0.45, 0.43, 0.40], "roughness": 0.9, "texture": "rock", "texture_scale_m": 0.5}),
     env_type("bench", snow={"target_edge_m": 0.02, "d0_m": 0.02}, icicles={"spacing_m": 0.05, "max_length_m": 0.08}),
     env_type("lamppost", snow={"target_edge_m": 0.02, "d0_m": 0.02}, icicles={"spacing_m": 0.04, "max_length_m": 0.25},
-             fields=[field("temperature", 4.0, point([0, 0.72, 3.8], 0.6))]),
+             fields=[field("temperature", 4.0, point([0, 0.72, 3.8], 0.6)),
+                     field("temperature", 2.5, point([0, 0.72, 3.8], 1.8))]),
     env_type("trash_can", snow={"target_edge_m": 0.02, "d0_m": 0.03}, icicles={"spacing_m": 0.05, "max_length_m": 0.1}),
     env_type("bus_shelter", snow={"target_edge_m": 0.04}, icicles={"spacing_m": 0.07, "max_length_m": 0.3}),
     env_type("fence_segment", snow={"target_edge_m": 0.015, "d0_m": 0.01}, icicles={"spacing_m": 0.05, "max_length_m": 0.12}),
     env_type("tree", snow={"target_edge_m": 0.03, "d0_m": 0.02, "max_face_angle_deg": 70},
              icicles={"enabled": False}, fields=[field("occlusion", 0.5, point([0, 0, 3.5], 2.5))]),
     env_type("fountain", snow={"target_edge_m": 0.03}, icicles={"spacing_m": 0.05, "max_length_m": 0.25}),
-    env_type("facade", snow={"target_edge_m": 0.04, "d0_m": 0.03}, icicles={"spacing_m": 0.06, "max_length_m": 0.3},
+    env_type("facade", snow={"target_edge_m": 0.04, "d0_m": 0.03}, icicles={"spacing_m": 0.1, "max_length_m": 0.2},
              material={"base_color": [0.72, 0.66, 0.56], "roughness": 0.9}),
     env_type("steps", snow={"target_edge_m": 0.04}, icicles={"spacing_m": 0.06, "max_length_m": 0.1}),
 ]
@@ -139,8 +140,8 @@ def street_winter():
         ln = math.hypot(dx, dy)
         side = 0.1 if k % 2 == 0 else -0.1
         steps.append(field("occlusion", 0.85, point([x - dy / ln * side, y + dx / ln * side, 0.0], 0.13)))
-    tracks = [field("occlusion", 0.9, segment([0, y, 0.08], [10, y, 0.08], 0.16)) for y in (0.9, 2.45)]
-    pipe = [field("temperature", 9.0, segment([0.0, 7.4, 0.0], [4.6, 7.4, 0.0], 0.5))]
+    tracks = [field("occlusion", 0.9, segment([0, y, 0.08], [10, y, 0.08], 0.3)) for y in (0.9, 2.45)]
+    pipe = [field("temperature", 15.0, segment([0.0, 7.4, 0.0], [4.6, 7.4, 0.0], 0.6))]
     p["environment"] = {
         "types": TYPES,
         "tree": tree,
@@ -175,6 +176,9 @@ def road_winter():
     p["detail_types"] = twigs([6.0, 6.0, 0.0], 1.5)
     groups = {"tree_a": tree_with_pavers("tree_a", 109, 6, 0), "tree_b": tree_with_pavers("tree_b", 109, 6, 140)}
     tree = [obj("road_segment", [-34 + 4 * i + 2, 0, 0]) for i in range(17)]
+    # Fences along both verges (their rails and pickets grow icicles).
+    tree += [obj("fence_segment", [-34 + 2 * i + 1, 2.6 * side, 0], yaw=0 if side > 0 else 180)
+             for side in (-1, 1) for i in range(34)]
     k = 0
     for side in (-1, 1):
         for i in range(12):
@@ -187,7 +191,7 @@ def road_winter():
         "groups": groups,
         "tree": tree,
         "global_fields": WINTER + tracks,
-        "terrain": {"snow": True, "snow_cell_m": 0.05},
+        "terrain": {"snow": True, "snow_cell_m": 0.025},
     }
     return p
 
@@ -202,7 +206,9 @@ def montmartre_winter():
                           [obj("steps", [0, 0.8, 0])]}}
     # A cobbled patch: 11 x 11 pavers of 4/11 m (road_segment at 1/11 scale), one group.
     c = 4.0 / 11.0
-    cobbles = {"group": {"children": [obj("road_segment", [(i - 5) * c, (j - 5) * c, 0], scale=1.0 / 11.0)
+    # Procedural box snow (§5.1) for the cobbles: a few dozen triangles each instead of the asphalt grid's 2,048.
+    cobbles = {"group": {"snow": {"mode": "box"},
+                         "children": [obj("road_segment", [(i - 5) * c, (j - 5) * c, 0], scale=1.0 / 11.0)
                                       for j in range(11) for i in range(11)]}}
     groups = {"building": building, "cobbles": cobbles}
     tree = []
@@ -218,12 +224,10 @@ def montmartre_winter():
         for j in range(50):
             tree.append(obj("pavement_slab", [7.0 * side, -49 + 2 * j, 0], yaw=90 * side))
             tree.append(obj("pavement_slab", [9.0 * side, -49 + 2 * j, 0], yaw=-90 * side))
-    lamps = []
     for side in (-1, 1):
         for i in range(10):
             y = -45 + 10 * i
-            tree.append(obj("lamppost", [7.6 * side, y, 0.12], yaw=90 * side))
-            lamps.append((7.6 * side, y))
+            tree.append(obj("lamppost", [9.7 * side, y, 0.12], yaw=90 * side))  # the head warms the sills
     for i in range(8):
         tree.append(obj("bench", [-8.8, -42 + 12 * i, 0.12], yaw=-90))
         tree.append(obj("trash_can", [8.8, -38 + 12 * i, 0.12]))

@@ -10,6 +10,7 @@
 
 #include "cli/cli_args.h"
 #include "cli/commands.h"
+#include "cli/env_job.h"
 #include "cli/scene_job.h"
 #include "cli/scene_metrics.h"
 #include "core/atomic_file.h"
@@ -196,8 +197,12 @@ int runInstantiateCommand(int argc, char** argv) {
     if (args.has("--measure"))
         stats["measurements"] =
             sceneMetricsJson(measureScene(job, store, settle.settings.enabled ? &drops : nullptr, threads));
+    SceneEnvironmentOutput env;
+    if (!computeSceneEnvironment(job, threads, has_region ? &region : nullptr, false, &env, &error)) return fail(error);
+    if (!env.stats.is_null()) stats["environment"] = env.stats;
     const SceneMaterials looks = compileSceneMaterials(job.project, job.models);
     InstanceExportOptions export_options;
+    export_options.static_meshes = &env.meshes;
     export_options.materials = &looks;
     export_options.chunk_size_m = chunk > 0.0f ? chunk : job.project.chunk_size_m;
     export_options.use_instancing_extension = !args.has("--plain-nodes");

@@ -10,6 +10,7 @@
 
 #include "cli/cli_args.h"
 #include "cli/commands.h"
+#include "cli/env_job.h"
 #include "cli/scene_job.h"
 #include "core/parallel.h"
 #include "editor/viewer.h"
@@ -201,10 +202,14 @@ int runHeadlessJob(const std::string& scene, const std::string& out_dir, int thr
         return fail("run", scene + ": " + error);
     const std::string scene_path = (fs::path(out_dir) / (stem + ".glb")).string();
     const std::string scene_stats_path = (fs::path(out_dir) / (stem + ".stats.json")).string();
-    const nlohmann::json istats = instanceStatsJson(job, ist, seed, resolveThreadCount(threads), nullptr);
+    nlohmann::json istats = instanceStatsJson(job, ist, seed, resolveThreadCount(threads), nullptr);
+    SceneEnvironmentOutput env;
+    if (!computeSceneEnvironment(job, threads, nullptr, false, &env, &error)) return fail("run", error);
+    if (!env.stats.is_null()) istats["environment"] = env.stats;
     const SceneMaterials looks = compileSceneMaterials(job.project, job.models);
     InstanceExportOptions export_options;
     export_options.materials = &looks;
+    export_options.static_meshes = &env.meshes;
     export_options.chunk_size_m = job.project.chunk_size_m;
     // Settled like `instantiate` and the editor, so the main job's export rests where they show it.
     const SettleInput settle = settleInput(job.project, job.compiled.terrain, job.tile, job.models);

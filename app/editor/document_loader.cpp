@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "env/env_outputs.h"
 #include "mesh/terrain_mesh.h"
 
 namespace ug::editor {
@@ -54,6 +55,14 @@ void DocumentLoader::work() {
     const SceneMaterials looks = doc.materials();
     s.meshes = buildTypeMeshes(doc.models(), doc.ghostTile().candidates, &looks);
     s.terrain_material = looks.terrain;
+    if (!doc.environment()->empty()) {
+        progress_.store(0.9f);
+        auto fx = std::make_shared<EnvEffects>();
+        if (!computeEnvEffects(*doc.environment(), {.threads = request_.options.threads}, fx.get(), &error))
+            return failWith(request_.scene_path + ": " + error);
+        s.static_meshes = envMeshInstances(*doc.environment(), *fx);
+        s.env_effects = std::move(fx);
+    }
     progress_.store(1.0f);
     phase_.store(LoadPhase::Ready, std::memory_order_release);
 }

@@ -11,6 +11,8 @@
 #include <thread>
 #include <vector>
 
+#include "env/env_effects.h"
+#include "io/mesh_instances.h"
 #include "editor/render_data.h"
 #include "mesh/triangle_mesh.h"
 #include "scene/document.h"
@@ -26,6 +28,10 @@ struct EditorScene {
     TriangleMesh terrain;               // world space; empty without terrain
     std::vector<DetailLodMesh> meshes;  // one per detail type, with its material
     SurfaceMaterial terrain_material;
+    // The environmental objects' base geometry and effects (snow, icicles) as the renderer draws them
+    // (env/env_outputs.h); empty without an environment.
+    std::shared_ptr<const EnvEffects> env_effects;
+    std::vector<MeshInstances> static_meshes;
 };
 
 struct LoadRequest {

@@ -41,7 +41,7 @@ OffscreenRenderStatus renderSceneOffscreen(const OffscreenRenderOptions& options
     renderer.setLook(options.look);
     renderer.setScene(snap.extent(), snap.terrain(), &snap.scene.meshes, snap.candidates(), snap.tileSize(),
                       &snap.scene.terrain_material);
-    renderer.setStaticMeshes(&snap.static_meshes);
+    renderer.setStaticMeshes(&snap.scene.static_meshes);
     renderer.uploadTiles(&snap.tiles, snap.uploads);
 
     const float aspect = float(options.width) / float(options.height);

@@ -17,7 +17,7 @@ const CandidateSet& SceneSnapshot::candidates() const { return scene.doc->ghostT
 float SceneSnapshot::tileSize() const { return scene.doc->ghostTile().settings.tile_size_m; }
 Bounds SceneSnapshot::framing() const {
     const Bounds opening = openingBounds(extent(), terrain(), &tiles, scene.meshes);
-    return static_meshes.empty() ? opening : unite(opening, staticMeshesBounds(static_meshes));
+    return scene.static_meshes.empty() ? opening : unite(opening, staticMeshesBounds(scene.static_meshes));
 }
 
 bool loadSceneSnapshot(const SceneSnapshotOptions& options, SceneSnapshot* out, std::string* error) {

@@ -7,7 +7,7 @@
 //   SceneSnapshot snap;
 //   if (!loadSceneSnapshot({.scene_path = "assets/scenes/meadow.json"}, &snap, &error)) ...;
 //   renderer.setScene(snap.extent(), snap.terrain(), &snap.scene.meshes, snap.candidates(), snap.tileSize());
-//   renderer.setStaticMeshes(&snap.static_meshes);
+//   renderer.setStaticMeshes(&snap.scene.static_meshes);  // environmental objects, snow, icicles
 //   renderer.uploadTiles(&snap.tiles, snap.uploads);
 #pragma once
 
@@ -33,9 +33,6 @@ struct SceneSnapshot {
     ResidentTiles tiles;  // `store` packed for the GPU; the renderer keeps a pointer: keep the snapshot alive
     TileUploads uploads;  // a full upload of `tiles`
     InstanceStats stats;
-    // Static geometry (io/mesh_instances.h: environmental objects, snow, icicles), drawn by the renderer
-    // (Renderer::setStaticMeshes) and included in the framing; empty for scenes without it.
-    std::vector<MeshInstances> static_meshes;
     double load_seconds = 0.0;  // opening the document (models, Ghost Tile, terrain mesh, LODs)
     double instantiate_seconds = 0.0;  // from the end of the open to the settled result, packed
 

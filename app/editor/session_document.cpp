@@ -109,6 +109,7 @@ void EditorSession::adoptLoadedDocument() {
     Document& d = *scene->doc;
     renderer->setScene(d.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr, &scene->meshes,
                        d.ghostTile().candidates, d.ghostTile().settings.tile_size_m, &scene->terrain_material);
+    renderer->setStaticMeshes(&scene->static_meshes);  // environmental objects, snow, icicles
     // Every document opens framed, as on startup (a camera left where the last scene was would show
     // nothing of this one); the first result frames it again by the cells that fill.
     camera_moved = false;

@@ -36,14 +36,25 @@ namespace ug::editor {
 
 using nlohmann::json;
 
+namespace {
+
+// Either view holds the environmental objects and their effects too, when the scene has any.
+Bounds withStaticMeshes(const EditorScene& s, const Bounds& b) {
+    return s.static_meshes.empty() ? b : unite(b, staticMeshesBounds(s.static_meshes));
+}
+
+}  // namespace
+
 // What "frame all" frames (default_view.h).
 Bounds framingBounds(const EditorScene& s, const ResidentTiles* instances) {
-    return editor::framingBounds(s.doc->compiled().extent, s.has_terrain ? &s.terrain : nullptr, instances);
+    return withStaticMeshes(s, editor::framingBounds(s.doc->compiled().extent, s.has_terrain ? &s.terrain : nullptr,
+                                                     instances));
 }
 
 // The view a scene opens on (default_view.h); Home frames everything (framingBounds).
 Bounds openingBounds(const EditorScene& s, const ResidentTiles& instances) {
-    return editor::openingBounds(s.doc->compiled().extent, s.has_terrain ? &s.terrain : nullptr, &instances, s.meshes);
+    return withStaticMeshes(
+        s, editor::openingBounds(s.doc->compiled().extent, s.has_terrain ? &s.terrain : nullptr, &instances, s.meshes));
 }
 
 double percentile(std::vector<double> v, double q) {

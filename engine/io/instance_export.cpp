@@ -70,6 +70,7 @@ bool exportInstancedScene(const std::string& path, const GhostTile& tile, const 
         if (options.materials) scene.terrain_material = &options.materials->terrain;
     }
     if (stopped(0.9f)) return false;
+    if (options.static_meshes) scene.meshes = *options.static_meshes;
     return writeSceneGltf(path, scene, error);
 }
 

@@ -33,6 +33,9 @@ struct InstanceExportOptions {
     // The scene's materials (scene_compile.h, compileSceneMaterials), or null: every mesh with its own
     // base colour, untextured (the look before materials). Types: one per model, same order.
     const SceneMaterials* materials = nullptr;
+    // Static meshes written after the detail types and the terrain (io/mesh_instances.h: environmental
+    // objects, snow, icicles), or null: none.
+    const std::vector<MeshInstances>* static_meshes = nullptr;
 };
 
 // The world frame of candidate j in the tile with packed key tile_key, lowered by its settled drop.

@@ -14,6 +14,8 @@
 // engine_tests does not get stb's include directory; libstb itself is linked through the engine.
 #include <stb/stb_image_write.h>
 
+#include "env/env_json.h"
+#include "env/env_scene.h"
 #include "scene/project.h"
 #include "scene/scene_compile.h"
 #include "scene_test_util.h"
@@ -430,10 +432,17 @@ TEST(SceneCompile, EveryBundledSceneLoadsAndCompiles) {
             EXPECT_TRUE(sameStructure(*scene.types[t].field, *again.types[t].field));
             EXPECT_TRUE(sameValues(*scene.types[t].field, *again.types[t].field, scene.extent, 0, 500));
         }
+        // The environment (format 3): its meshes load, its tree expands, and it is saved as it was read.
+        EXPECT_EQ(environmentToJson(back.environment).dump(), environmentToJson(p.environment).dump());
+        if (!p.environment.empty()) {
+            EnvScene env;
+            ASSERT_TRUE(compileEnvScene(p.environment, p.base_dir, path, scene.terrain, &env, &error)) << error;
+            EXPECT_GT(env.objects().size(), 10u);
+        }
     }
     std::sort(seen.begin(), seen.end());
-    EXPECT_EQ(seen,
-              (std::vector<std::string>{"beaver_dam", "default", "haystack_field", "meadow", "rock_pile", "stone_hut"}));
+    EXPECT_EQ(seen, (std::vector<std::string>{"beaver_dam", "default", "haystack_field", "meadow", "montmartre_winter",
+                                              "road_winter", "rock_pile", "stone_hut", "street_winter"}));
 }
 
 TEST(SceneCompile, BundledScenesHaveTheirDesignedShape) {
