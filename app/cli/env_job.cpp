@@ -19,6 +19,8 @@ bool computeSceneEnvironment(const SceneJob& job, int threads, const Bounds* reg
     out->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     out->meshes = envMeshInstances(*job.environment, out->effects);
     const EnvEffectsStats& st = out->effects.stats;
+    size_t copies = 0;  // every mesh copy the exported static meshes draw (an entry without instances: one)
+    for (const MeshInstances& m : out->meshes) copies += m.instances.empty() ? 1 : m.instances.size();
     out->stats = {{"objects", st.objects},
                   {"fields", job.environment->fields().size()},
                   {"effect_computations", st.effect_computations},
@@ -26,6 +28,7 @@ bool computeSceneEnvironment(const SceneJob& job, int threads, const Bounds* reg
                   {"snow_triangles_computed", st.snow_triangles_unique},
                   {"terrain_snow_chunks", st.terrain_chunks},
                   {"icicles", st.icicles},
+                  {"static_mesh_copies", copies},
                   {"seconds", out->seconds}};
     if (!quiet)
         std::fprintf(stderr, "  environment: %zu objects, %zu effect computations, %llu snow triangles, %llu icicles in %.3f s\n",

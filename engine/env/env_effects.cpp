@@ -283,7 +283,7 @@ bool run(const EnvScene& scene, const EnvEffectsOptions& opt, const Reuse& reuse
     });
     for (size_t c = 0; c < fx.classes.size(); ++c)
         if (failed[c]) {
-            *error = objects[fx.classes[c].first].where + ": snow: " + errors[c];
+            *error = objects[fx.classes[c].first].where + ": " + errors[c];
             return false;
         }
     // The terrain, chunk by chunk.
@@ -322,7 +322,7 @@ bool run(const EnvScene& scene, const EnvEffectsOptions& opt, const Reuse& reuse
         });
         for (size_t k = 0; k < chunk_failed.size(); ++k)
             if (chunk_failed[k]) {
-                *error = "/environment/terrain: snow: " + chunk_errors[k];
+                *error = "/environment/terrain: " + chunk_errors[k];
                 return false;
             }
     }
