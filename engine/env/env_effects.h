@@ -34,7 +34,7 @@
 namespace ug {
 
 constexpr int kSignaturePoints = 18;        // 3 x 3 x 2 points inside the type's bounds
-constexpr float kTerrainSnowChunkM = 8.0f;  // terrain snow is made and updated in squares of this size
+constexpr float kTerrainSnowChunkM = 4.0f;  // terrain snow is made and updated in squares of this size
 
 struct EnvEffectsOptions {
     int threads = 0;                // 0 = all hardware threads
