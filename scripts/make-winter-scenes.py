@@ -35,14 +35,14 @@ def flat_terrain(x0, y0, w, h, cell, amplitude=0.0, seed=3, feature=30.0):
                          "texture_scale_m": 0.6}}
 
 
-def twigs(center, radius):
+def twigs(center, radius, weight=0.6):
     """The one detail type every scene has: twigs fallen under the tree."""
     return [{
         "name": "twig",
         "model": {"mesh": "../models/twig.glb"},
         "material": {"base_color": [0.25, 0.18, 0.11], "roughness": 0.9, "texture": "bark", "texture_scale_m": 0.1},
         "candidates": {"count": 60, "scale": [0.7, 1.2]},
-        "density": {"point": {"center": center, "radius": radius, "weight": 0.6}},
+        "density": {"point": {"center": center, "radius": radius, "weight": weight}},
         "instancing": {"strategy": "random", "layer_m": 0.02},
     }]
 
@@ -114,7 +114,7 @@ def street_winter():
     a warm pipe melting a band of snow."""
     p = head("street_winter", [[0, 0, -0.5], [10, 10, 5.5]])
     p["terrain"] = flat_terrain(0, 0, 10, 10, 0.25)
-    p["detail_types"] = twigs([8.0, 8.2, 0.0], 1.6)
+    p["detail_types"] = twigs([6.6, 6.1, 0.0], 0.6, weight=4.0)  # blown in under the bus shelter, where no snow lies
     s = 10.0 / 12.0  # three road segments scaled to the 10 m street
     tree = []
     for i in range(3):

@@ -187,9 +187,16 @@ std::vector<IcicleInstance> classIcicles(const EnvScene& scene, const EnvObject&
     for (size_t k = 0; k < anchors.size(); ++k) at[k] = anchors[k].position;
     std::vector<EnvSample> e(anchors.size());
     env(at.data(), at.size(), e.data());
+    // Icicles need meltwater: the surface over the drip edge (the roof over its eave, the seat over its
+    // front edge) must be open to the sky; the bench under the shelter's roof does not drip. A closed
+    // anchor gets no clearance, so no icicle.
     std::vector<float> clearance(anchors.size());
-    for (size_t k = 0; k < anchors.size(); ++k)
-        clearance[k] = scene.clearanceBelow(o.placement.toWorld(at[k])) / o.placement.scale;
+    const float eps = 0.005f / o.placement.scale;
+    for (size_t k = 0; k < anchors.size(); ++k) {
+        const float top = std::max(at[k].z, type.spans->surfaceAboveNear(at[k], eps)) + 2.0f * eps;
+        const bool fed = scene.shelter(o.placement.toWorld(glm::vec3(at[k].x, at[k].y, top))) >= 0.5f;
+        clearance[k] = fed ? scene.clearanceBelow(o.placement.toWorld(at[k])) / o.placement.scale : 0.0f;
+    }
     return placeIcicles(anchors, e, clearance, s);
 }
 

@@ -73,6 +73,20 @@ bool HeightSpanMap::coveredAbove(glm::vec3 p, float eps) const {
     return z_[first_[size_t(c) + 1] - 1] > p.z + eps;
 }
 
+float HeightSpanMap::surfaceAboveNear(glm::vec3 p, float eps) const {
+    float best = -std::numeric_limits<float>::infinity();
+    for (int j = -1; j <= 1; ++j)
+        for (int i = -1; i <= 1; ++i) {
+            const long c = cellOf(p.x + float(i) * cell_, p.y + float(j) * cell_);
+            if (c < 0) continue;
+            const float* lo = z_.data() + first_[size_t(c)];
+            const float* hi = z_.data() + first_[size_t(c) + 1];
+            const float* it = std::upper_bound(lo, hi, p.z + eps);  // first crossing > z + eps
+            if (it != hi) best = std::max(best, *it);
+        }
+    return best;
+}
+
 float HeightSpanMap::highestBelow(glm::vec3 p, float eps) const {
     const long c = cellOf(p.x, p.y);
     if (c < 0) return -std::numeric_limits<float>::infinity();

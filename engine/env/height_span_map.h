@@ -34,6 +34,10 @@ public:
     bool coveredAbove(glm::vec3 p, float eps) const;
     // The highest crossing below z - eps at the cell of (x, y), or -infinity when there is none.
     float highestBelow(glm::vec3 p, float eps) const;
+    // Over the 3 x 3 cells around (x, y), the highest of each cell's first crossing above z + eps, or
+    // -infinity when there is none: the surface just over a point on the mesh's edge, whichever side of
+    // the edge the cell centres fall (an icicle's water comes from there).
+    float surfaceAboveNear(glm::vec3 p, float eps) const;
 
     float cellSize() const { return cell_; }
     glm::vec2 origin() const { return origin_; }

@@ -99,6 +99,12 @@ TEST(EnvEffects, SnowOnlyOnOpenUpFacingFacesNoneUnderTheShelter) {
     // The bench in the open takes snow on its seat; the one under the roof takes none.
     EXPECT_FALSE(worldSnow(env, fx, 1).empty());
     EXPECT_TRUE(worldSnow(env, fx, 2).empty());
+    // Icicles need meltwater from an open top: the eave and the open bench drip, the bench under the roof not.
+    EXPECT_GT(fx.classes[fx.class_of[0]].icicles.size(), 10u);
+    EXPECT_GT(fx.classes[fx.class_of[1]].icicles.size(), 0u);
+    EXPECT_EQ(fx.classes[fx.class_of[2]].icicles.size(), 0u);
+    for (const IcicleInstance& ic : fx.classes[fx.class_of[0]].icicles)  // the shelter's own bench stays dry
+        EXPECT_GT(ic.anchor.z, 2.0f) << ic.anchor.x << " " << ic.anchor.y;
     // Snow lies on top: every snow vertex is at or above the base's bottom, and the open bench's seat snow
     // rises at most s = 0.1 m above the seat (z = 0.45).
     for (glm::vec3 p : worldSnow(env, fx, 1)) EXPECT_LE(p.z, 0.89f + 0.1f + 1e-4f);
