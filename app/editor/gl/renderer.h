@@ -41,6 +41,7 @@
 #include "editor/markers.h"
 #include "editor/orbit_camera.h"
 #include "editor/render_data.h"
+#include "editor/static_lod.h"
 #include "field/bounds.h"
 #include "material/material.h"
 #include "ghosttile/ghost_tile.h"
@@ -65,6 +66,10 @@ struct RenderStats {
     uint64_t tiles_uploaded = 0;
     uint64_t bytes_uploaded = 0;
     uint64_t tiles_resident = 0;
+    // The latest setStaticMeshes(): its levels of detail built (static_lod.h) and everything uploaded.
+    double static_lod_ms = 0.0;
+    double static_upload_ms = 0.0;
+    uint64_t static_triangles = 0;  // static-mesh triangles drawn this frame (part of `triangles`)
 };
 
 class Renderer {
@@ -122,8 +127,10 @@ private:
     unsigned uploadTexture(const std::shared_ptr<const TextureImage>& image, TextureCache* cache);
     void releaseScene();
     void releaseStaticMeshes();
-    // The static meshes in the frustum of `view_proj`: lit (shadow false) or depth only.
-    void drawStaticMeshes(const ShaderProgram& program, const glm::mat4& view_proj, bool shadow);
+    // The static meshes in the frustum of `view_proj`, each piece or chunk at the level chosen from `eye`
+    // (static_lod.h; the shadow pass one level coarser): lit (shadow false) or depth only.
+    void drawStaticMeshes(const ShaderProgram& program, const glm::mat4& view_proj, const glm::vec3& eye,
+                          float pixels_per_radian, bool shadow);
     void releaseTargets();
     // (Re)builds the commands of `draws` when its view, the LOD settings or the tiles changed.
     struct IndirectBuffer {
@@ -172,15 +179,16 @@ private:
     unsigned silhouette_array_ = 0;
     TextureCache textures_;  // material images -> GL textures (the scene's)
     struct StaticBuffers {
-        unsigned vao = 0, vertex_buffer = 0, index_buffer = 0, instance_buffer = 0;
-        uint32_t index_count = 0;
+        unsigned vao = 0, vertex_buffer = 0, index_buffer = 0, instance_buffer = 0;  // indices: every level
         Bounds bounds;  // engine space, all instances
-        std::vector<StaticInstanceChunks::Chunk> chunks;  // the instance buffer's ranges, culled each
+        StaticEntryLods lods;  // levels, pieces and the instance buffer's 8 m chunks, culled and chosen each frame
         SurfaceMaterial material;
         glm::vec3 color{0.6f};
         unsigned texture = 0;  // owned by static_textures_
     };
     std::vector<StaticBuffers> statics_;
+    std::vector<StaticDrawRange> static_draws_;  // scratch, per entry per pass
+    double static_lod_ms_ = 0.0, static_upload_ms_ = 0.0;  // the latest setStaticMeshes()
     TextureCache static_textures_;
     SurfaceMaterial terrain_material_;
     unsigned terrain_texture_ = 0;  // impostor silhouettes, kCoverageElevations layers per type
