@@ -98,7 +98,7 @@ struct StaticEntryLods {
 std::vector<Bounds> staticPieceBounds(const StaticLodMesh& lods, const GpuStaticInstance& instance);
 
 // The frame's draws of one entry: per visible piece (split) or chunk, the chosen level made
-// `coarser` levels coarser (the shadow pass: 1), clamped to the piece's coarsest; consecutive chunks at
+// `coarser` levels coarser (the renderer passes 0 for both passes), clamped to the piece's coarsest; consecutive chunks at
 // the same level merge into one run. Returns the triangles drawn. `out` is cleared first.
 uint64_t buildStaticDraws(const StaticEntryLods& entry, const glm::mat4& view_proj, const glm::vec3& eye,
                           float pixels_per_radian, int coarser, std::vector<StaticDrawRange>* out);

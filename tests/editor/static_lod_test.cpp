@@ -192,6 +192,36 @@ TEST(StaticLod, LevelsShrinkAndKeepTheBoundsWithinTheirError) {
     }
 }
 
+TEST(StaticLod, NormalsThatBendAcrossWideTrianglesCountAsError) {
+    // A flat plate (z = 0: no geometric error at any level) whose rim normals lean 45 degrees outward, as on
+    // a bevelled cap: a level whose triangles reach from the rim far inward spreads the lean over the top.
+    const int n = 32;
+    const float step = 1.0f / 16.0f;
+    TriangleMesh flat = gridMesh(n, step, 0.0f, 0.0f);
+    for (glm::vec3& p : flat.positions) p.z = 0.0f;
+    flat.normals.assign(flat.positions.size(), glm::vec3(0, 0, 1));
+    TriangleMesh bevel = flat;
+    const float edge = float(n) * step;
+    for (size_t v = 0; v < bevel.positions.size(); ++v) {
+        const glm::vec3 p = bevel.positions[v];
+        glm::vec3 out(0.0f);
+        if (p.x == 0.0f) out.x = -1.0f;
+        if (p.x == edge) out.x = 1.0f;
+        if (p.y == 0.0f) out.y = -1.0f;
+        if (p.y == edge) out.y = 1.0f;
+        if (out != glm::vec3(0.0f)) bevel.normals[v] = glm::normalize(glm::normalize(out) + glm::vec3(0, 0, 1));
+    }
+    std::vector<uint32_t> indices;
+    const StaticLodPiece a = buildStaticLodPiece(flat, nullptr, &indices);
+    const StaticLodPiece b = buildStaticLodPiece(bevel, nullptr, &indices);
+    ASSERT_GT(a.level_count, 1u);
+    ASSERT_EQ(a.level_count, b.level_count);  // the same geometry simplifies alike
+    EXPECT_LT(a.error_m[1], 1e-6f);
+    // Level 0's own worst: a cell triangle (width step / sqrt 2) from the rim (chord 2 sin 22.5 deg) inward.
+    const float level0 = step / std::sqrt(2.0f) * 2.0f * std::sin(0.3927f);
+    EXPECT_GT(b.error_m[1], 2.0f * level0);
+}
+
 TEST(StaticLod, LockedBorderKeepsEveryBorderVertex) {
     const TriangleMesh mesh = gridMesh(64, 1.0f / 16.0f, 0.0f, 0.0f);
     std::vector<uint32_t> indices;
@@ -218,6 +248,29 @@ TEST(StaticLod, SameLevelsForAnyThreadCount) {
         for (size_t p = 0; p < one[m].pieces.size(); ++p) EXPECT_EQ(one[m].pieces[p].error_m, four[m].pieces[p].error_m);
     }
     EXPECT_TRUE(one[2].pieces.empty());
+}
+
+TEST(StaticLod, ChunksKnowTheirLargestScaleAndPiecesTheirEngineBoxes) {
+    MeshInstances entry;
+    auto mesh = std::make_shared<TriangleMesh>(gridMesh(4, 0.25f, 0.0f, 0.0f));  // [0, 1]^2, |z| <= 0.1
+    entry.mesh = mesh;
+    for (auto [x, s] : {std::pair{1.0f, 0.5f}, {2.0f, 2.0f}, {20.0f, 1.0f}}) {
+        InstanceTransform t;
+        t.position = {x, 0.0f, 0.0f};
+        t.scale = s;
+        entry.instances.push_back(t);
+    }
+    const StaticInstanceChunks chunks = chunkStaticInstances(entry);
+    ASSERT_EQ(chunks.chunks.size(), 2u);  // x = 1 and 2 share the 8 m chunk 0; x = 20 is chunk 2
+    EXPECT_EQ(chunks.chunks[0].scale_max, 2.0f);
+    EXPECT_EQ(chunks.chunks[1].scale_max, 1.0f);
+    // A piece box through an instance: moved and scaled (no rotation: exact).
+    GpuStaticInstance g;
+    g.position_scale = {10.0f, 0.0f, 1.0f, 2.0f};
+    const Bounds box = staticInstanceBox(g, Bounds{{0, 0, 0}, {1, 2, 3}});
+    EXPECT_EQ(box.lo, glm::vec3(10, 0, 1));
+    EXPECT_EQ(box.hi, glm::vec3(12, 4, 7));
+    EXPECT_TRUE(staticInstanceBox(g, Bounds{}).empty());
 }
 
 TEST(StaticLod, DrawsMergeRunsAtOneLevelAndSkipTheFarthest) {

@@ -9,10 +9,13 @@
 // gl_BaseInstance); a frame then issues one glMultiDrawElementsIndirect per type and mesh LOD and one
 // glMultiDrawArraysIndirect per type for the impostor point sprites. After the scene: the primitives'
 // translucent hulls (blended, depth-tested, no depth write), then the overlay lines and points.
-// Static meshes (io/mesh_instances.h: environmental objects, snow, icicles): each entry one vertex/index
-// buffer and one per-instance buffer (render_data.h GpuStaticInstance, sorted into 8 m chunks), culled as a
-// whole by the union of its instances' boxes, then per chunk, and drawn with one glDrawElementsInstanced-
-// BaseInstance per run of visible chunks, lit like the details (lit_surface.frag,
+// Static meshes (io/mesh_instances.h: environmental objects, snow, icicles): each entry one vertex buffer,
+// one index buffer holding its levels of detail (static_lod.h: up to 3 meshoptimizer levels; a large entry
+// drawn once, such as a terrain snow chunk, split into 2 m pieces first) and one per-instance buffer
+// (render_data.h GpuStaticInstance, sorted into 8 m chunks), culled as a whole by the union of its
+// instances' boxes, then per chunk or piece, each at the coarsest level whose error stays under a pixel
+// (none below half a pixel), and drawn with one glDrawElementsInstancedBaseInstance per visible piece or
+// run of visible chunks at one level, lit like the details (lit_surface.frag,
 // box-projected texture), casting into and receiving from the shadow map, and in the occlusion target.
 // The terrain keeps its own path (terrain.vert's slope tint, world-XY texture with a turned second
 // lookup), so today's pictures are unchanged.
@@ -55,7 +58,7 @@ struct RenderStats {
     uint64_t static_meshes_drawn = 0;   // static-mesh entries that passed the frustum test this frame
     uint64_t static_meshes_culled = 0;
     uint64_t points = 0;      // impostor point sprites drawn this frame (one per far instance)
-    uint64_t draw_calls = 0;  // scene draw calls: sky, ground, one per run of visible chunks of a static mesh, one multi-draw per non-empty type x LOD; not UI
+    uint64_t draw_calls = 0;  // scene draw calls: sky, ground, one per visible piece or run of visible chunks at one level of a static mesh, one multi-draw per non-empty type x LOD; not UI
     uint64_t indirect_commands = 0;  // commands the multi-draws ran (one per visible tile run x type)
     uint64_t instances_drawn = 0;
     std::array<uint64_t, kLodCount> lod_instances{};  // instances drawn per LOD (3 = impostors)
@@ -95,7 +98,8 @@ public:
     // resident, so showing them again costs nothing). View state only: not an edit, never saved. All types
     // are visible after setScene().
     void setTypeVisible(size_t type, bool visible);
-    // The static meshes, copied into GPU buffers now (the list need not outlive the call; null or empty:
+    // The static meshes, their levels of detail built (in parallel, static_lod.h) and copied into GPU
+    // buffers now (the list need not outlive the call; null or empty:
     // none). Independent of setScene(); drawn only while a scene is set. Replaces the previous list.
     void setStaticMeshes(const std::vector<MeshInstances>* meshes);
     // Forgets the scene and the instances (before the document they point into goes away).
