@@ -138,7 +138,7 @@ StaticLodPiece buildStaticLodPiece(const TriangleMesh& mesh, const std::vector<u
         if (level.empty()) break;
         const int k = int(piece.level_count);
         geometric += error_rel * scale;
-        const float shading = std::max(0.0f, shadingSpread(local, level) - shading0);
+        const float shading = kStaticShadingWeight * std::max(0.0f, shadingSpread(local, level) - shading0);
         piece.error_m[size_t(k)] = std::max({piece.error_m[size_t(k - 1)], geometric, shading});
         append(level, k);
         ++piece.level_count;
