@@ -33,9 +33,14 @@ struct LocalPiece {
     std::vector<uint32_t> indices;  // local
 };
 
-LocalPiece gatherPiece(const TriangleMesh& mesh, const std::vector<uint32_t>* triangle_ids) {
+// `local` (mesh vertex -> piece vertex, kNoVertex where unused) is the worker's scratch, sized once and
+// reset to kNoVertex where this piece wrote it: a mesh split into thousands of cells must not clear a
+// whole vertex-sized array per cell.
+LocalPiece gatherPiece(const TriangleMesh& mesh, const std::vector<uint32_t>* triangle_ids,
+                       std::vector<uint32_t>* scratch) {
     LocalPiece out;
-    std::vector<uint32_t> local(mesh.positions.size(), kNoVertex);
+    std::vector<uint32_t>& local = *scratch;
+    if (local.size() < mesh.positions.size()) local.assign(mesh.positions.size(), kNoVertex);
     const size_t triangles = triangle_ids ? triangle_ids->size() : mesh.indices.size() / 3;
     out.indices.reserve(triangles * 3);
     for (size_t t = 0; t < triangles; ++t) {
@@ -52,6 +57,7 @@ LocalPiece gatherPiece(const TriangleMesh& mesh, const std::vector<uint32_t>* tr
             out.indices.push_back(local[v]);
         }
     }
+    for (uint32_t v : out.global) local[v] = kNoVertex;
     return out;
 }
 
@@ -114,10 +120,21 @@ std::vector<std::vector<uint32_t>> splitTrianglesIntoCells(const TriangleMesh& m
     return out;
 }
 
+float splitCellSize(const TriangleMesh& mesh) {
+    const size_t triangles = mesh.indices.size() / 3;
+    if (triangles == 0) return kStaticCellM;
+    Bounds box;
+    for (uint32_t v : mesh.indices) box = unite(box, Bounds{mesh.positions[v], mesh.positions[v]});
+    const double area = double(box.hi.x - box.lo.x) * double(box.hi.y - box.lo.y);
+    const double cell = std::sqrt(area * double(kStaticCellMinTriangles) / double(triangles));
+    return float(std::clamp(cell, double(kStaticCellM), 1e6));
+}
+
 StaticLodPiece buildStaticLodPiece(const TriangleMesh& mesh, const std::vector<uint32_t>* triangle_ids,
-                                   std::vector<uint32_t>* indices) {
+                                   std::vector<uint32_t>* indices, std::vector<uint32_t>* scratch) {
     StaticLodPiece piece;
-    const LocalPiece local = gatherPiece(mesh, triangle_ids);
+    std::vector<uint32_t> own;
+    const LocalPiece local = gatherPiece(mesh, triangle_ids, scratch ? scratch : &own);
     for (const glm::vec3& p : local.positions) piece.bounds = unite(piece.bounds, Bounds{p, p});
     auto append = [&](const std::vector<uint32_t>& level, int k) {
         piece.first[size_t(k)] = uint32_t(indices->size());
@@ -167,13 +184,16 @@ std::vector<StaticLodMesh> buildStaticLodMeshes(const std::vector<const Triangle
             jobs.push_back(Job{m, {}, true, {}, {}});
             continue;
         }
-        for (std::vector<uint32_t>& ids : splitTrianglesIntoCells(*meshes[m], kStaticCellM))
+        for (std::vector<uint32_t>& ids : splitTrianglesIntoCells(*meshes[m], splitCellSize(*meshes[m])))
             jobs.push_back(Job{m, std::move(ids), false, {}, {}});
     }
-    parallelFor(jobs.size(), resolveThreadCount(threads), 1, [&](size_t begin, size_t end, int) {
+    const int workers = resolveThreadCount(threads);
+    std::vector<std::vector<uint32_t>> scratch(static_cast<size_t>(workers));
+    parallelFor(jobs.size(), workers, 1, [&](size_t begin, size_t end, int worker) {
         for (size_t j = begin; j < end; ++j) {
             Job& job = jobs[j];
-            job.piece = buildStaticLodPiece(*meshes[job.mesh], job.whole ? nullptr : &job.triangle_ids, &job.indices);
+            job.piece = buildStaticLodPiece(*meshes[job.mesh], job.whole ? nullptr : &job.triangle_ids, &job.indices,
+                                            &scratch[size_t(worker)]);
             job.triangle_ids = {};
         }
     });

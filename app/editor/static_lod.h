@@ -25,7 +25,8 @@ constexpr float kStaticLodErrorPx = 1.0f;           // a level's error may cover
 constexpr float kStaticSkipPx = 0.5f;               // a chunk whose mesh covers less is not drawn
 constexpr float kStaticLevelShrink = 0.5f;          // a level is kept at <= this share of the previous one's triangles
 constexpr uint32_t kStaticSplitTriangles = 50'000;  // entries drawn once with more triangles are split
-constexpr float kStaticCellM = 2.0f;                // the split's cell side (object-space XY)
+constexpr float kStaticCellM = 2.0f;                // the split's cell side (object-space XY), at least
+constexpr uint32_t kStaticCellMinTriangles = 16'384;  // cells grow so that they hold about this many on average
 // How much a level's shading error counts against its geometric one (StaticLodPiece::error_m). 1 keeps the
 // winter scenes' pictures within 1 % of their pixels of the full meshes'; 0.5 draws montmartre_winter's
 // street view in 0.89 s instead of 1.36 s (llvmpipe, 960 x 540) with 1.1 % instead of 0.96 % of its pixels
@@ -59,13 +60,18 @@ struct StaticLodMesh {
 // (ix, iy), triangle ids ascending within a cell: every triangle in exactly one cell. Empty mesh: none.
 std::vector<std::vector<uint32_t>> splitTrianglesIntoCells(const TriangleMesh& mesh, float cell_m);
 
+// The cell side a split of `mesh` uses: kStaticCellM, or larger where the mesh is sparse over its XY box
+// (cells of about kStaticCellMinTriangles on average), so a wide mesh does not become thousands of draws.
+float splitCellSize(const TriangleMesh& mesh);
+
 // Level 0 is the piece's triangles as given (in their order, so near pictures are unchanged); each further
 // level is meshopt_simplify of the previous one toward a quarter of its triangles under a growing error
 // bound (relative 1 %, 3 %, 10 %, 30 %), borders locked (meshopt_SimplifyLockBorder: a snow patch keeps its
 // rim on the object, a split piece meets its neighbours), kept only at <= kStaticLevelShrink of the previous
-// level's triangles. `triangle_ids` (null: all) selects the piece's triangles.
+// level's triangles. `triangle_ids` (null: all) selects the piece's triangles. `scratch` (optional, reused
+// across calls on one thread): a mesh-vertex-sized map, left all unset on return.
 StaticLodPiece buildStaticLodPiece(const TriangleMesh& mesh, const std::vector<uint32_t>* triangle_ids,
-                                   std::vector<uint32_t>* indices);
+                                   std::vector<uint32_t>* indices, std::vector<uint32_t>* scratch = nullptr);
 
 // Whether an entry with `instance_count` instances (0: one copy at the identity) and `triangles` triangles
 // is split into cells.
@@ -73,7 +79,7 @@ inline bool splitsStaticEntry(size_t instance_count, size_t triangles) {
     return instance_count <= 1 && triangles > kStaticSplitTriangles;
 }
 
-// Every mesh's levels (split[i]: as cells of kStaticCellM), the pieces simplified in parallel on `threads`
+// Every mesh's levels (split[i]: as cells of splitCellSize), the pieces simplified in parallel on `threads`
 // workers (0: all hardware threads); the result does not depend on the thread count.
 std::vector<StaticLodMesh> buildStaticLodMeshes(const std::vector<const TriangleMesh*>& meshes,
                                                 const std::vector<bool>& split, int threads);

@@ -144,8 +144,15 @@ TEST(StaticLod, SplitPutsEveryTriangleInExactlyOneCell) {
     EXPECT_TRUE(splitTrianglesIntoCells(TriangleMesh{}, 2.0f).empty());
 }
 
+TEST(StaticLod, SparseMeshesSplitIntoLargerCells) {
+    // 100 x 100 m in 1 m quads: 20,000 triangles; cells of 16,384 on average: sqrt(1e4 16384 / 2e4) m.
+    EXPECT_NEAR(splitCellSize(gridMesh(100, 1.0f, 0.0f, 0.0f)), std::sqrt(1e4f * 16384.0f / 2e4f), 1e-3f);
+    EXPECT_EQ(splitCellSize(TriangleMesh{}), kStaticCellM);
+}
+
 TEST(StaticLod, SplitPiecesHaveTheirTrianglesBoundsAndMeetAtTheirBorders) {
-    const TriangleMesh mesh = gridMesh(40, 0.1f, 0.0f, 0.0f);  // 4 x 4 m: four 2 m cells
+    const TriangleMesh mesh = gridMesh(184, 4.0f / 184.0f, 0.0f, 0.0f);  // 4 x 4 m, 67,712 triangles: 2 m cells
+    ASSERT_EQ(splitCellSize(mesh), kStaticCellM);
     const std::vector<StaticLodMesh> lods = buildStaticLodMeshes({&mesh}, {true}, 2);
     ASSERT_EQ(lods.size(), 1u);
     const StaticLodMesh& l = lods[0];
@@ -158,7 +165,7 @@ TEST(StaticLod, SplitPiecesHaveTheirTrianglesBoundsAndMeetAtTheirBorders) {
         EXPECT_EQ(b.lo, p.bounds.lo);
         EXPECT_EQ(b.hi, p.bounds.hi);
         EXPECT_GE(p.bounds.lo.x, -1e-6f);
-        EXPECT_LE(p.bounds.hi.x - p.bounds.lo.x, 2.0f + 1e-4f);  // one cell: 20 quads of 0.1 m
+        EXPECT_LE(p.bounds.hi.x - p.bounds.lo.x, 2.0f + 4.0f / 184.0f + 1e-4f);  // one cell and a quad
         EXPECT_GT(p.level_count, 1u);
         // Every vertex of the piece's own border (the grid's rim and the cell seams) stays at every level.
         const std::set<uint32_t> border = borderVertices(l.indices, p.first[0], p.count[0]);
@@ -238,7 +245,7 @@ TEST(StaticLod, LockedBorderKeepsEveryBorderVertex) {
 }
 
 TEST(StaticLod, SameLevelsForAnyThreadCount) {
-    const TriangleMesh a = gridMesh(40, 0.1f, 0.0f, 0.0f), b = sphereMesh(24, 48);
+    const TriangleMesh a = gridMesh(184, 4.0f / 184.0f, 0.0f, 0.0f), b = sphereMesh(24, 48);
     const auto one = buildStaticLodMeshes({&a, &b, nullptr}, {true, false, false}, 1);
     const auto four = buildStaticLodMeshes({&a, &b, nullptr}, {true, false, false}, 4);
     ASSERT_EQ(one.size(), 3u);
