@@ -127,7 +127,8 @@ float splitCellSize(const TriangleMesh& mesh) {
     for (uint32_t v : mesh.indices) box = unite(box, Bounds{mesh.positions[v], mesh.positions[v]});
     const double area = double(box.hi.x - box.lo.x) * double(box.hi.y - box.lo.y);
     const double cell = std::sqrt(area * double(kStaticCellMinTriangles) / double(triangles));
-    return float(std::clamp(cell, double(kStaticCellM), 1e6));
+    if (!(cell > double(kStaticCellM))) return kStaticCellM;  // dense, flat in XY (a wall), or not finite
+    return float(std::min(cell, 1e6));
 }
 
 StaticLodPiece buildStaticLodPiece(const TriangleMesh& mesh, const std::vector<uint32_t>* triangle_ids,

@@ -28,9 +28,9 @@ constexpr uint32_t kStaticSplitTriangles = 50'000;  // entries drawn once with m
 constexpr float kStaticCellM = 2.0f;                // the split's cell side (object-space XY), at least
 constexpr uint32_t kStaticCellMinTriangles = 16'384;  // cells grow so that they hold about this many on average
 // How much a level's shading error counts against its geometric one (StaticLodPiece::error_m). 1 keeps the
-// winter scenes' pictures within 1 % of their pixels of the full meshes'; 0.5 draws montmartre_winter's
-// street view in 0.89 s instead of 1.36 s (llvmpipe, 960 x 540) with 1.1 % instead of 0.96 % of its pixels
-// off; 0 (geometry only) puts flat cobble caps' rim normals across their tops (3 %).
+// winter scenes' pictures within 1 % of their pixels of the full meshes'; 0.5 draws montmartre_winter from
+// --camera 0,-30,3,16,-60,12 in 0.89 s instead of 1.36 s (llvmpipe, 960 x 540) with 1.1 % instead of
+// 0.96 % of its pixels off; 0 (geometry only) spreads flat cobble caps' rim normals over their tops (3 %).
 constexpr float kStaticShadingWeight = 1.0f;
 
 // One piece of a static mesh (the whole mesh, or a cell of a split one): its levels' index ranges in
