@@ -1,7 +1,7 @@
 // Levels of detail for the renderer's static meshes (io/mesh_instances.h: environmental objects, their snow,
 // icicles, terrain snow chunks), GL-free. At upload each entry's mesh gets up to three coarser levels from
 // meshoptimizer, each with the error it made (metres, object space); a large entry drawn once (a terrain snow
-// chunk: 8 x 8 m, ~1 M triangles) is first split into spatial pieces (kStaticCellM cells by triangle
+// chunk: 8 x 8 m, ~1 M triangles) is first split into spatial pieces (splitCellSize cells by triangle
 // centroid) simplified one by one with their borders locked, so neighbouring pieces meet at any levels.
 // Per frame every visible piece (split entries) or 8 m instance chunk (render_data.h chunkStaticInstances)
 // is drawn at the coarsest level whose error projects below kStaticLodErrorPx at the chunk's nearest

@@ -132,7 +132,7 @@ private:
     void releaseScene();
     void releaseStaticMeshes();
     // The static meshes in the frustum of `view_proj`, each piece or chunk at the level chosen from `eye`
-    // (static_lod.h; the shadow pass one level coarser): lit (shadow false) or depth only.
+    // (static_lod.h; the shadow pass makes the same choice): lit (shadow false) or depth only.
     void drawStaticMeshes(const ShaderProgram& program, const glm::mat4& view_proj, const glm::vec3& eye,
                           float pixels_per_radian, bool shadow);
     void releaseTargets();
