@@ -508,6 +508,11 @@ int64_t chunkIndex(float v, float chunk_m) {
 
 }  // namespace
 
+Bounds staticInstanceBox(const GpuStaticInstance& instance, const Bounds& local) {
+    if (local.empty()) return local;
+    return instanceBox(instance, 0.5f * (local.lo + local.hi), 0.5f * (local.hi - local.lo));
+}
+
 Bounds staticMeshBounds(const MeshInstances& entry) {
     Bounds out;
     glm::vec3 centre, half;
@@ -542,6 +547,7 @@ StaticInstanceChunks chunkStaticInstances(const MeshInstances& entry, float chun
             out.chunks.push_back({uint32_t(k), 0, Bounds{}});
         StaticInstanceChunks::Chunk& chunk = out.chunks.back();
         ++chunk.count;
+        chunk.scale_max = std::max(chunk.scale_max, g.position_scale.w);
         chunk.bounds = unite(chunk.bounds, box);
         out.bounds = unite(out.bounds, box);
         out.instances.push_back(g);

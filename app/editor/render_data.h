@@ -266,6 +266,9 @@ glm::mat4 staticInstanceMatrix(const GpuStaticInstance& instance);
 // by each instance (exact for the box: centre moved, half extents through |R| s). Empty without a mesh
 // or vertices.
 Bounds staticMeshBounds(const MeshInstances& entry);
+// The engine-space box of an object-space box turned by one instance (exact for the box: centre moved,
+// half extents through |R| s). Empty in, empty out.
+Bounds staticInstanceBox(const GpuStaticInstance& instance, const Bounds& local);
 // The union over a list (empty list: the empty box).
 Bounds staticMeshesBounds(const std::vector<MeshInstances>& meshes);
 
@@ -278,6 +281,7 @@ struct StaticInstanceChunks {
     struct Chunk {
         uint32_t first = 0, count = 0;  // into `instances`
         Bounds bounds;
+        float scale_max = 0.0f;  // the largest instance scale (what the LOD choice scales errors by)
     };
     std::vector<GpuStaticInstance> instances;
     std::vector<Chunk> chunks;

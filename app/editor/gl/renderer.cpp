@@ -302,16 +302,29 @@ void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
     shadow_map_dirty_ = true;
     if (!meshes) return;
     statics_.reserve(meshes->size());
+    // Levels of detail first, for all entries at once (the pieces of every entry spread over the workers).
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<const MeshInstances*> entries;
+    std::vector<const TriangleMesh*> lod_meshes;
+    std::vector<bool> split;
     for (const MeshInstances& entry : *meshes) {
         if (!entry.mesh || entry.mesh->indices.empty()) continue;
+        entries.push_back(&entry);
+        lod_meshes.push_back(entry.mesh.get());
+        split.push_back(splitsStaticEntry(entry.instances.size(), entry.mesh->indices.size() / 3));
+    }
+    std::vector<StaticLodMesh> lods = buildStaticLodMeshes(lod_meshes, split, 0);
+    const auto t1 = std::chrono::steady_clock::now();
+    for (size_t e = 0; e < entries.size(); ++e) {
+        const MeshInstances& entry = *entries[e];
         const TriangleMesh& mesh = *entry.mesh;
         StaticBuffers b;
         if (mesh.normals.size() == mesh.positions.size()) {
-            uploadMesh(mesh.positions, mesh.normals, mesh.indices, &b.vao, &b.vertex_buffer, &b.index_buffer);
+            uploadMesh(mesh.positions, mesh.normals, lods[e].indices, &b.vao, &b.vertex_buffer, &b.index_buffer);
         } else {  // MeshInstances allows meshes without normals: computed here, as the exporter does
             TriangleMesh with_normals = mesh;
             computeNormals(&with_normals);
-            uploadMesh(with_normals.positions, with_normals.normals, with_normals.indices, &b.vao, &b.vertex_buffer,
+            uploadMesh(with_normals.positions, with_normals.normals, lods[e].indices, &b.vao, &b.vertex_buffer,
                        &b.index_buffer);
         }
         StaticInstanceChunks chunked = chunkStaticInstances(entry);
@@ -328,17 +341,22 @@ void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
             glVertexAttribDivisor(attribute, 1);
         }
         glBindVertexArray(0);
-        b.index_count = uint32_t(mesh.indices.size());
         b.bounds = chunked.bounds;
-        b.chunks = std::move(chunked.chunks);
+        b.lods.piece_bounds = staticPieceBounds(lods[e], instances.front());
+        b.lods.lods = std::move(lods[e]);
+        b.lods.chunks = std::move(chunked.chunks);
         b.material = entry.material ? *entry.material : SurfaceMaterial{};
         b.color = entry.material ? entry.material->base_color : mesh.base_color;
         b.texture = uploadTexture(b.material.texture, &static_textures_);
         statics_.push_back(std::move(b));
     }
+    const auto t2 = std::chrono::steady_clock::now();
+    static_lod_ms_ = stats_.static_lod_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    static_upload_ms_ = stats_.static_upload_ms = std::chrono::duration<double, std::milli>(t2 - t0).count();
 }
 
-void Renderer::drawStaticMeshes(const ShaderProgram& program, const glm::mat4& view_proj, bool shadow) {
+void Renderer::drawStaticMeshes(const ShaderProgram& program, const glm::mat4& view_proj, const glm::vec3& eye,
+                                float pixels_per_radian, bool shadow) {
     for (const StaticBuffers& b : statics_) {
         if (!boxInFrustum(view_proj, b.bounds)) {
             if (!shadow) ++stats_.static_meshes_culled;
@@ -351,29 +369,24 @@ void Renderer::drawStaticMeshes(const ShaderProgram& program, const glm::mat4& v
             else glEnable(GL_CULL_FACE);
         }
         glBindVertexArray(b.vao);
-        // One instanced draw per run of consecutive visible chunks (baseInstance = the run's first
-        // instance; the per-instance attributes honour it).
-        uint64_t drawn = 0;
-        for (size_t c = 0; c < b.chunks.size();) {
-            if (!boxInFrustum(view_proj, b.chunks[c].bounds)) {
-                ++c;
-                continue;
-            }
-            const uint32_t first = b.chunks[c].first;
-            uint32_t count = 0;
-            for (; c < b.chunks.size() && boxInFrustum(view_proj, b.chunks[c].bounds); ++c) count += b.chunks[c].count;
-            glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(b.index_count), GL_UNSIGNED_INT, nullptr,
-                                                GLsizei(count), first);
-            drawn += count;
-            if (!shadow) ++stats_.draw_calls;
-        }
-        const uint64_t triangles = uint64_t(b.index_count / 3) * drawn;
+        // One instanced draw per visible piece, or per run of consecutive visible chunks at one level
+        // (baseInstance = the run's first instance; the per-instance attributes honour it). The shadow
+        // pass makes the camera's choice (culled by the sun's frustum): one level coarser lightened the
+        // shadows of thin branches visibly, for a few percent of frame time.
+        const uint64_t triangles =
+            buildStaticDraws(b.lods, view_proj, eye, pixels_per_radian, 0, &static_draws_);
+        for (const StaticDrawRange& d : static_draws_)
+            glDrawElementsInstancedBaseInstance(GL_TRIANGLES, GLsizei(d.index_count), GL_UNSIGNED_INT,
+                                                reinterpret_cast<const void*>(uintptr_t(d.first_index) * 4u),
+                                                GLsizei(d.instance_count), d.first_instance);
         if (shadow) {
             stats_.shadow_triangles += triangles;
             continue;
         }
+        stats_.draw_calls += static_draws_.size();
         ++stats_.static_meshes_drawn;
         stats_.triangles += triangles;
+        stats_.static_triangles += triangles;
     }
     glEnable(GL_CULL_FACE);
 }
@@ -431,6 +444,8 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
     stats_.tiles_uploaded = upload_tiles_;
     stats_.bytes_uploaded = upload_bytes_;
     stats_.tiles_resident = tiles_ ? tiles_->tileCount() : 0;
+    stats_.static_lod_ms = static_lod_ms_;
+    stats_.static_upload_ms = static_upload_ms_;
     GLint target_fbo = 0;
     glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_fbo);
     OrbitCamera cam = camera;
@@ -498,7 +513,7 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
         glUseProgram(static_mesh_.id);
         glUniformMatrix4fv(loc(static_mesh_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
         setLighting(static_mesh_, eye, fog_density);
-        drawStaticMeshes(static_mesh_, view_proj, false);
+        drawStaticMeshes(static_mesh_, view_proj, eye, float(height) / cam.fov_y_rad, false);
     }
     if (tiles_ && meshes_) drawDetails(cam, view, view_proj, eye, height, lod, fog_density);
 
@@ -566,7 +581,7 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
     if (!statics_.empty()) {
         glUseProgram(shadow_static_.id);
         glUniformMatrix4fv(loc(shadow_static_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(frame.view_proj));
-        drawStaticMeshes(shadow_static_, frame.view_proj, true);
+        drawStaticMeshes(shadow_static_, frame.view_proj, eye, float(height) / cam.fov_y_rad, true);
     }
     if (tiles_ && meshes_) {
         // The casters: the tiles the sun's box holds, as meshes where the camera draws meshes (the same

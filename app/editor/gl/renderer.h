@@ -9,10 +9,13 @@
 // gl_BaseInstance); a frame then issues one glMultiDrawElementsIndirect per type and mesh LOD and one
 // glMultiDrawArraysIndirect per type for the impostor point sprites. After the scene: the primitives'
 // translucent hulls (blended, depth-tested, no depth write), then the overlay lines and points.
-// Static meshes (io/mesh_instances.h: environmental objects, snow, icicles): each entry one vertex/index
-// buffer and one per-instance buffer (render_data.h GpuStaticInstance, sorted into 8 m chunks), culled as a
-// whole by the union of its instances' boxes, then per chunk, and drawn with one glDrawElementsInstanced-
-// BaseInstance per run of visible chunks, lit like the details (lit_surface.frag,
+// Static meshes (io/mesh_instances.h: environmental objects, snow, icicles): each entry one vertex buffer,
+// one index buffer holding its levels of detail (static_lod.h: up to 3 meshoptimizer levels; a large entry
+// drawn once, such as a terrain snow chunk, split into 2 m pieces first) and one per-instance buffer
+// (render_data.h GpuStaticInstance, sorted into 8 m chunks), culled as a whole by the union of its
+// instances' boxes, then per chunk or piece, each at the coarsest level whose error stays under a pixel
+// (none below half a pixel), and drawn with one glDrawElementsInstancedBaseInstance per visible piece or
+// run of visible chunks at one level, lit like the details (lit_surface.frag,
 // box-projected texture), casting into and receiving from the shadow map, and in the occlusion target.
 // The terrain keeps its own path (terrain.vert's slope tint, world-XY texture with a turned second
 // lookup), so today's pictures are unchanged.
@@ -41,6 +44,7 @@
 #include "editor/markers.h"
 #include "editor/orbit_camera.h"
 #include "editor/render_data.h"
+#include "editor/static_lod.h"
 #include "field/bounds.h"
 #include "material/material.h"
 #include "ghosttile/ghost_tile.h"
@@ -54,7 +58,7 @@ struct RenderStats {
     uint64_t static_meshes_drawn = 0;   // static-mesh entries that passed the frustum test this frame
     uint64_t static_meshes_culled = 0;
     uint64_t points = 0;      // impostor point sprites drawn this frame (one per far instance)
-    uint64_t draw_calls = 0;  // scene draw calls: sky, ground, one per run of visible chunks of a static mesh, one multi-draw per non-empty type x LOD; not UI
+    uint64_t draw_calls = 0;  // scene draw calls: sky, ground, one per visible piece or run of visible chunks at one level of a static mesh, one multi-draw per non-empty type x LOD; not UI
     uint64_t indirect_commands = 0;  // commands the multi-draws ran (one per visible tile run x type)
     uint64_t instances_drawn = 0;
     std::array<uint64_t, kLodCount> lod_instances{};  // instances drawn per LOD (3 = impostors)
@@ -65,6 +69,10 @@ struct RenderStats {
     uint64_t tiles_uploaded = 0;
     uint64_t bytes_uploaded = 0;
     uint64_t tiles_resident = 0;
+    // The latest setStaticMeshes(): its levels of detail built (static_lod.h) and everything uploaded.
+    double static_lod_ms = 0.0;
+    double static_upload_ms = 0.0;
+    uint64_t static_triangles = 0;  // static-mesh triangles drawn this frame (part of `triangles`)
 };
 
 class Renderer {
@@ -90,7 +98,8 @@ public:
     // resident, so showing them again costs nothing). View state only: not an edit, never saved. All types
     // are visible after setScene().
     void setTypeVisible(size_t type, bool visible);
-    // The static meshes, copied into GPU buffers now (the list need not outlive the call; null or empty:
+    // The static meshes, their levels of detail built (in parallel, static_lod.h) and copied into GPU
+    // buffers now (the list need not outlive the call; null or empty:
     // none). Independent of setScene(); drawn only while a scene is set. Replaces the previous list.
     void setStaticMeshes(const std::vector<MeshInstances>* meshes);
     // Forgets the scene and the instances (before the document they point into goes away).
@@ -122,8 +131,10 @@ private:
     unsigned uploadTexture(const std::shared_ptr<const TextureImage>& image, TextureCache* cache);
     void releaseScene();
     void releaseStaticMeshes();
-    // The static meshes in the frustum of `view_proj`: lit (shadow false) or depth only.
-    void drawStaticMeshes(const ShaderProgram& program, const glm::mat4& view_proj, bool shadow);
+    // The static meshes in the frustum of `view_proj`, each piece or chunk at the level chosen from `eye`
+    // (static_lod.h; the shadow pass makes the same choice): lit (shadow false) or depth only.
+    void drawStaticMeshes(const ShaderProgram& program, const glm::mat4& view_proj, const glm::vec3& eye,
+                          float pixels_per_radian, bool shadow);
     void releaseTargets();
     // (Re)builds the commands of `draws` when its view, the LOD settings or the tiles changed.
     struct IndirectBuffer {
@@ -172,15 +183,16 @@ private:
     unsigned silhouette_array_ = 0;
     TextureCache textures_;  // material images -> GL textures (the scene's)
     struct StaticBuffers {
-        unsigned vao = 0, vertex_buffer = 0, index_buffer = 0, instance_buffer = 0;
-        uint32_t index_count = 0;
+        unsigned vao = 0, vertex_buffer = 0, index_buffer = 0, instance_buffer = 0;  // indices: every level
         Bounds bounds;  // engine space, all instances
-        std::vector<StaticInstanceChunks::Chunk> chunks;  // the instance buffer's ranges, culled each
+        StaticEntryLods lods;  // levels, pieces and the instance buffer's 8 m chunks, culled and chosen each frame
         SurfaceMaterial material;
         glm::vec3 color{0.6f};
         unsigned texture = 0;  // owned by static_textures_
     };
     std::vector<StaticBuffers> statics_;
+    std::vector<StaticDrawRange> static_draws_;  // scratch, per entry per pass
+    double static_lod_ms_ = 0.0, static_upload_ms_ = 0.0;  // the latest setStaticMeshes()
     TextureCache static_textures_;
     SurfaceMaterial terrain_material_;
     unsigned terrain_texture_ = 0;  // impostor silhouettes, kCoverageElevations layers per type
