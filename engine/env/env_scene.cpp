@@ -398,13 +398,12 @@ size_t EnvScene::candidateFieldCount(const Bounds& box) const {
     return n;
 }
 
-void EnvScene::objectsAt(float x, float y, std::vector<uint32_t>* out) const {
-    out->clear();
-    if (grid_nx_ == 0) return;
+std::span<const uint32_t> EnvScene::objectsAt(float x, float y) const {
+    if (grid_nx_ == 0) return {};
     const float fx = (x - grid_origin_.x) / grid_cell_, fy = (y - grid_origin_.y) / grid_cell_;
-    if (!(fx >= 0.0f && fy >= 0.0f && fx < float(grid_nx_) && fy < float(grid_ny_))) return;
+    if (!(fx >= 0.0f && fy >= 0.0f && fx < float(grid_nx_) && fy < float(grid_ny_))) return {};
     const size_t c = size_t(int(fy)) * grid_nx_ + size_t(int(fx));
-    out->assign(grid_ids_.begin() + grid_first_[c], grid_ids_.begin() + grid_first_[c + 1]);
+    return {grid_ids_.data() + grid_first_[c], grid_first_[c + 1] - grid_first_[c]};
 }
 
 // ---- evaluation ------------------------------------------------------------------------------------------
@@ -439,35 +438,41 @@ EnvSample EnvScene::channels(glm::vec3 p) const {
 }
 
 float EnvScene::shelter(glm::vec3 p) const {
-    std::vector<uint32_t> objs;
-    int open = 0;
-    for (int j = -1; j <= 1; ++j)
-        for (int i = -1; i <= 1; ++i) {
-            const glm::vec3 q = p + glm::vec3(float(i) * kShelterCellM, float(j) * kShelterCellM, 0.0f);
-            objectsAt(q.x, q.y, &objs);
-            bool covered = false;
-            for (uint32_t o : objs) {
-                const EnvObject& obj = objects_[o];
-                if (q.x < obj.bounds.lo.x || q.x > obj.bounds.hi.x || q.y < obj.bounds.lo.y || q.y > obj.bounds.hi.y ||
-                    obj.bounds.hi.z <= q.z + kShelterEpsM)
-                    continue;
-                const glm::vec3 local = obj.placement.toLocal(q);
-                if (types_[obj.type].spans->coveredAbove(local, kShelterEpsM / obj.placement.scale)) {
-                    covered = true;
-                    break;
-                }
+    // The 9 rays lie within kShelterCellM of p on each axis, and the grid pads every object's bounds by
+    // that much: the objects of p's cell are every object any ray can meet.
+    bool covered[9] = {};
+    int open = 9;
+    for (uint32_t o : objectsAt(p.x, p.y)) {
+        const EnvObject& obj = objects_[o];
+        if (obj.bounds.hi.z <= p.z + kShelterEpsM || p.x < obj.bounds.lo.x - kShelterCellM ||
+            p.x > obj.bounds.hi.x + kShelterCellM || p.y < obj.bounds.lo.y - kShelterCellM ||
+            p.y > obj.bounds.hi.y + kShelterCellM)
+            continue;
+        const HeightSpanMap& spans = *types_[obj.type].spans;
+        const glm::vec3 local = obj.placement.toLocal(p);
+        // The world offsets (i, j) * cell turned into the object's space.
+        const float inv = kShelterCellM / obj.placement.scale;
+        const glm::vec2 ex(obj.placement.c * inv, -obj.placement.s * inv);  // world +X in object space
+        const glm::vec2 ey(obj.placement.s * inv, obj.placement.c * inv);   // world +Y
+        const float eps = kShelterEpsM / obj.placement.scale;
+        for (int k = 0; k < 9; ++k) {
+            if (covered[k]) continue;
+            const float i = float(k % 3 - 1), j = float(k / 3 - 1);
+            const glm::vec3 q(local.x + i * ex.x + j * ey.x, local.y + i * ex.y + j * ey.y, local.z);
+            if (spans.coveredAbove(q, eps)) {
+                covered[k] = true;
+                --open;
             }
-            open += covered ? 0 : 1;
         }
+        if (open == 0) break;
+    }
     return float(open) / 9.0f;
 }
 
 float EnvScene::clearanceBelow(glm::vec3 p) const {
     float floor_z = -std::numeric_limits<float>::infinity();
     if (terrain_ && !terrain_->empty()) floor_z = terrain_->sample(p.x, p.y);
-    std::vector<uint32_t> objs;
-    objectsAt(p.x, p.y, &objs);
-    for (uint32_t o : objs) {
+    for (uint32_t o : objectsAt(p.x, p.y)) {
         const EnvObject& obj = objects_[o];
         if (!contains(Bounds{glm::vec3(obj.bounds.lo.x, obj.bounds.lo.y, -INFINITY),
                              glm::vec3(obj.bounds.hi.x, obj.bounds.hi.y, p.z)},

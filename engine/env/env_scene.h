@@ -20,6 +20,7 @@
 #pragma once
 
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -104,7 +105,8 @@ private:
     void buildIndex();
     // Appends the indices (ascending) of fields whose bounds hold p.
     void fieldsAt(glm::vec3 p, std::vector<uint32_t>* out) const;
-    void objectsAt(float x, float y, std::vector<uint32_t>* out) const;
+    // The objects whose XY bounds, padded by kShelterCellM, hold (x, y) (ascending ids; empty outside).
+    std::span<const uint32_t> objectsAt(float x, float y) const;
     EnvSample accumulate(glm::vec3 p, const uint32_t* ids, size_t n) const;
 
     EnvironmentDesc desc_;
