@@ -21,5 +21,5 @@ shot beaver_dam beaver_dam
 shot haystack_field haystack_field
 shot street_winter street_winter --camera 5,5,0.5,13,-115,32
 shot street_winter_close street_winter --camera 6.6,6.5,1,7,-110,18
-shot montmartre_winter montmartre_winter --camera -9,-20,4,8,-20,10
+shot montmartre_winter montmartre_winter --camera 0,-20,0.2,14,-90,20
 shot road_winter road_winter --camera 0,6,1,14,-120,22

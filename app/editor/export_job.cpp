@@ -23,7 +23,8 @@ const char* exportStageName(ExportStage stage) {
 }
 
 ExportJob::ExportJob(const Document& doc, std::shared_ptr<const InstanceStore> store,
-                     std::shared_ptr<const SettledDrops> drops, ExportSettings settings, std::string stats_json)
+                     std::shared_ptr<const SettledDrops> drops, ExportSettings settings, std::string stats_json,
+                     std::vector<MeshInstances> static_meshes)
     : settings_(std::move(settings)),
       stats_json_(std::move(stats_json)),
       models_(doc.models()),
@@ -31,7 +32,8 @@ ExportJob::ExportJob(const Document& doc, std::shared_ptr<const InstanceStore> s
       extent_(doc.compiled().extent),
       store_(std::move(store)),
       drops_(std::move(drops)),
-      materials_(doc.materials()) {
+      materials_(doc.materials()),
+      static_meshes_(std::move(static_meshes)) {
     tile_.settings = doc.ghostTile().settings;
     tile_.candidates = doc.ghostTile().candidates;
     thread_ = std::thread([this] { work(); });
@@ -49,6 +51,7 @@ void ExportJob::work() {
     options.use_instancing_extension = !settings_.plain_nodes;
     options.drops = drops_.get();
     options.materials = &materials_;
+    options.static_meshes = &static_meshes_;
     options.progress = [this](float fraction) {
         progress_.store(fraction, std::memory_order_relaxed);
         if (cancelRequested()) return false;

@@ -21,6 +21,7 @@
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instance_store.h"
 #include "instancer/settling.h"
+#include "io/mesh_instances.h"
 #include "material/material.h"
 #include "mesh/detail_model.h"
 #include "scene/document.h"
@@ -39,9 +40,12 @@ const char* exportStageName(ExportStage stage);  // "gathering instances", "writ
 class ExportJob {
   public:
     // `store` must not be null. `stats_json` (a JSON object) goes into the scene's extras.
-    // `drops`: the store's settled drops (null: the scene does not settle).
+    // `drops`: the store's settled drops (null: the scene does not settle). `static_meshes`: the
+    // environmental objects and their effects as shown (EditorScene::static_meshes), written after the
+    // details and the terrain like `instantiate` writes them (copied: the entries share their meshes).
     ExportJob(const Document& doc, std::shared_ptr<const InstanceStore> store,
-              std::shared_ptr<const SettledDrops> drops, ExportSettings settings, std::string stats_json);
+              std::shared_ptr<const SettledDrops> drops, ExportSettings settings, std::string stats_json,
+              std::vector<MeshInstances> static_meshes = {});
     ~ExportJob();  // cancels (when still possible) and waits for the thread
     ExportJob(const ExportJob&) = delete;
     ExportJob& operator=(const ExportJob&) = delete;
@@ -70,6 +74,7 @@ class ExportJob {
     std::shared_ptr<const InstanceStore> store_;
     std::shared_ptr<const SettledDrops> drops_;
     SceneMaterials materials_;
+    std::vector<MeshInstances> static_meshes_;
 
     std::atomic<bool> cancel_{false};
     std::atomic<float> progress_{0.0f};

@@ -191,7 +191,8 @@ void EditorSession::handleFileRequests() {
                          {"seed", doc->project().instantiation_seed},
                          {"instances", store->instanceCount()},
                          {"instances_per_type", perTypeJson(view.type_names, perTypeCounts(*store, c))}};
-        export_job = std::make_unique<ExportJob>(*doc, store, drops, export_settings, stats.dump());
+        export_job = std::make_unique<ExportJob>(*doc, store, drops, export_settings, stats.dump(),
+                                                 scene ? scene->static_meshes : std::vector<MeshInstances>{});
         export_result.clear();
     }
     if (requests.cancel_export && export_job) export_job->cancel();
