@@ -1,7 +1,6 @@
 // The env starter set's registry and writer; the generators are in env_models_*.cpp.
 #include "env/env_models.h"
 
-#include <filesystem>
 
 #include "env/env_model_makers.h"
 #include "io/gltf_mesh_io.h"
@@ -37,19 +36,8 @@ bool makeEnvStarterModel(const std::string& name, uint64_t seed, TriangleMesh* o
 }
 
 bool writeEnvStarterModels(const std::string& dir, std::string* error) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) {
-        if (error) *error = dir + ": cannot create the folder: " + ec.message();
-        return false;
-    }
-    for (const std::string& name : envStarterNames()) {
-        TriangleMesh mesh;
-        makeEnvStarterModel(name, kEnvStarterSeed, &mesh);
-        const std::string path = (std::filesystem::path(dir) / (name + ".glb")).string();
-        if (!writeGltfMeshes(path, {{name, &mesh}}, error)) return false;
-    }
-    return true;
+    return writeModelFolder(
+        dir, envStarterNames(), [](const std::string& name, TriangleMesh* mesh) { makeEnvStarterModel(name, kEnvStarterSeed, mesh); }, error);
 }
 
 }  // namespace ug

@@ -379,23 +379,30 @@ void EnvScene::fieldsAt(glm::vec3 p, std::vector<uint32_t>* out) const {
     std::sort(out->begin(), out->end());
 }
 
-size_t EnvScene::candidateFieldCount(const Bounds& box) const {
-    size_t n = global_ids_.size();
-    if (nodes_.empty()) return n;
-    std::vector<uint32_t> stack = {0};
-    while (!stack.empty()) {
-        const Node& node = nodes_[stack.back()];
-        stack.pop_back();
-        if (!overlaps(node.box, box)) continue;
-        if (node.count > 0) {
-            for (uint32_t k = node.first; k < node.first + node.count; ++k)
-                n += overlaps(fields_[leaf_ids_[k]].bounds, box) ? 1 : 0;
-        } else {
-            stack.push_back(node.first);
-            stack.push_back(node.first + 1);
+void EnvScene::fieldsMeeting(const Bounds& box, std::vector<uint32_t>* out) const {
+    out->assign(global_ids_.begin(), global_ids_.end());
+    if (!nodes_.empty()) {
+        std::vector<uint32_t> stack = {0};
+        while (!stack.empty()) {
+            const Node& node = nodes_[stack.back()];
+            stack.pop_back();
+            if (!overlaps(node.box, box)) continue;
+            if (node.count > 0) {
+                for (uint32_t k = node.first; k < node.first + node.count; ++k)
+                    if (overlaps(fields_[leaf_ids_[k]].bounds, box)) out->push_back(leaf_ids_[k]);
+            } else {
+                stack.push_back(node.first);
+                stack.push_back(node.first + 1);
+            }
         }
     }
-    return n;
+    std::sort(out->begin(), out->end());
+}
+
+size_t EnvScene::candidateFieldCount(const Bounds& box) const {
+    std::vector<uint32_t> ids;
+    fieldsMeeting(box, &ids);
+    return ids.size();
 }
 
 std::span<const uint32_t> EnvScene::objectsAt(float x, float y) const {
@@ -500,23 +507,8 @@ void EnvScene::sampleBatch(const glm::vec3* points, size_t n, EnvSample* out) co
         box.lo = glm::min(box.lo, points[k]);
         box.hi = glm::max(box.hi, points[k]);
     }
-    std::vector<uint32_t> near = global_ids_;
-    if (!nodes_.empty()) {
-        std::vector<uint32_t> stack = {0};
-        while (!stack.empty()) {
-            const Node& node = nodes_[stack.back()];
-            stack.pop_back();
-            if (!overlaps(node.box, box)) continue;
-            if (node.count > 0) {
-                for (uint32_t k = node.first; k < node.first + node.count; ++k)
-                    if (overlaps(fields_[leaf_ids_[k]].bounds, box)) near.push_back(leaf_ids_[k]);
-            } else {
-                stack.push_back(node.first);
-                stack.push_back(node.first + 1);
-            }
-        }
-    }
-    std::sort(near.begin(), near.end());
+    std::vector<uint32_t> near;
+    fieldsMeeting(box, &near);
     std::vector<uint32_t> ids;
     ids.reserve(near.size());
     for (size_t k = 0; k < n; ++k) {

@@ -103,6 +103,8 @@ private:
     friend bool compileEnvScene(const EnvironmentDesc&, const std::string&, const std::string&,
                                 std::shared_ptr<const HeightField>, EnvScene*, std::string*, const EnvScene*);
     void buildIndex();
+    // The indices (ascending) of the fields whose bounds meet `box` (the global ones always).
+    void fieldsMeeting(const Bounds& box, std::vector<uint32_t>* out) const;
     // Appends the indices (ascending) of fields whose bounds hold p.
     void fieldsAt(glm::vec3 p, std::vector<uint32_t>* out) const;
     // The objects whose XY bounds, padded by kShelterCellM, hold (x, y) (ascending ids; empty outside).

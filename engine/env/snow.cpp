@@ -62,6 +62,15 @@ float snowDisplacement(const EnvSample& e, float d_m, float d0_m) {
 
 namespace snow_detail {
 
+void appendGridTriangles(uint32_t nx, uint32_t ny, std::vector<uint32_t>* indices) {
+    indices->reserve(indices->size() + size_t(6) * nx * ny);
+    for (uint32_t j = 0; j < ny; ++j)
+        for (uint32_t i = 0; i < nx; ++i) {
+            const uint32_t a = j * (nx + 1) + i, b = a + 1, c = a + (nx + 1) + 1, d = a + (nx + 1);
+            indices->insert(indices->end(), {a, b, c, a, c, d});
+        }
+}
+
 namespace {
 
 // The triangles that keep some snow, and the vertices they use renumbered in their original order.

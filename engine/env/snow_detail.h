@@ -22,6 +22,10 @@ struct SnowLayout {
     std::vector<uint32_t> tri_face;
 };
 
+// Two counter-clockwise triangles per cell of an (nx + 1) x (ny + 1) vertex grid stored row by row
+// (vertex (i, j) at j * (nx + 1) + i), appended to *indices.
+void appendGridTriangles(uint32_t nx, uint32_t ny, std::vector<uint32_t>* indices);
+
 // Queries `env` once for every vertex, displaces each along `up` by snowDisplacement (0 on the border,
 // d = 0, whatever θ says, so the snow never lifts off its base there; 0 where zero_below_min_open is set
 // and shelter < min_open), drops the triangles whose three vertices stay put,

@@ -64,12 +64,7 @@ bool buildTerrainSnow(const HeightField& hf, const Bounds& region, float cell_m,
             layout.surface.emplace_back(x, y, hf.sample(x, y));
         }
     }
-    layout.indices.reserve(size_t(6) * nx * ny);
-    for (uint32_t j = 0; j < ny; ++j)
-        for (uint32_t i = 0; i < nx; ++i) {
-            const uint32_t a = j * (nx + 1) + i, b = a + 1, c = a + (nx + 1) + 1, d = a + (nx + 1);
-            layout.indices.insert(layout.indices.end(), {a, b, c, a, c, d});
-        }
+    snow_detail::appendGridTriangles(nx, ny, &layout.indices);
     return snow_detail::finishSnowCover(std::move(layout), s, env, /*zero_below_min_open=*/true, 1, 1, out,
                                         error);
 }

@@ -530,4 +530,22 @@ bool writeGltfMeshes(const std::string& path,
     return writeFileAtomically(path, data.data(), data.size(), error);
 }
 
+bool writeModelFolder(const std::string& dir, const std::vector<std::string>& names,
+                      const std::function<void(const std::string& name, TriangleMesh* mesh)>& make,
+                      std::string* error) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec) {
+        if (error) *error = dir + ": cannot create the folder: " + ec.message();
+        return false;
+    }
+    for (const std::string& name : names) {
+        TriangleMesh mesh;
+        make(name, &mesh);
+        const std::string path = (std::filesystem::path(dir) / (name + ".glb")).string();
+        if (!writeGltfMeshes(path, {{name, &mesh}}, error)) return false;
+    }
+    return true;
+}
+
 }  // namespace ug

@@ -9,6 +9,7 @@
 // moves single meshes in and out.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -43,5 +44,12 @@ bool loadGltfMesh(const std::string& path, TriangleMesh* out, std::string* error
 bool writeGltfMeshes(const std::string& path,
                      const std::vector<std::pair<std::string, const TriangleMesh*>>& meshes,
                      std::string* error);
+
+// A folder of generated models (the starter sets): <dir>/<name>.glb for each name, one mesh each, made by
+// `make(name, &mesh)`; the folder is created when missing. False with "<path>: <reason>" on the first
+// failure.
+bool writeModelFolder(const std::string& dir, const std::vector<std::string>& names,
+                      const std::function<void(const std::string& name, TriangleMesh* mesh)>& make,
+                      std::string* error);
 
 }  // namespace ug

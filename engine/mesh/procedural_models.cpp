@@ -9,7 +9,6 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-#include <filesystem>
 #include <functional>
 #include <map>
 
@@ -518,19 +517,8 @@ bool makeStarterAsset(const std::string& name, uint64_t seed, TriangleMesh* out)
 }
 
 bool writeStarterAssets(const std::string& dir, std::string* error) {
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec) {
-        if (error) *error = dir + ": cannot create the folder: " + ec.message();
-        return false;
-    }
-    for (const std::string& name : starterAssetNames()) {
-        TriangleMesh mesh;
-        makeStarterAsset(name, kStarterAssetSeed, &mesh);
-        const std::string path = (std::filesystem::path(dir) / (name + ".glb")).string();
-        if (!writeGltfMeshes(path, {{name, &mesh}}, error)) return false;
-    }
-    return true;
+    return writeModelFolder(
+        dir, starterAssetNames(), [](const std::string& name, TriangleMesh* mesh) { makeStarterAsset(name, kStarterAssetSeed, mesh); }, error);
 }
 
 }  // namespace ug
