@@ -118,7 +118,15 @@ struct TerrainEffectsDesc {
     float snow_cell_m = 0.1f;  // > 0
 };
 
+// The steepest snowfall the shelter term follows: beyond it the marching through the height-span maps
+// gets long and wind-driven snow is better modelled by other means.
+constexpr float kMaxSnowTiltDeg = 45.0f;
+
 struct EnvironmentDesc {
+    // The direction snow falls in, world space, unit, at most kMaxSnowTiltDeg from straight down: faces
+    // take snow when they face against it, and shelter looks back along it (wind-driven snow reaches
+    // the windward sills under a cornice).
+    glm::vec3 snow_direction{0.0f, 0.0f, -1.0f};
     std::vector<EnvTypeDesc> types;
     std::vector<NamedEnvGroup> groups;  // instanced by references; not part of the scene by themselves
     std::vector<EnvNode> roots;         // the tree's top level

@@ -299,9 +299,21 @@ json nodeJson(const EnvNode& n, const EnvironmentDesc& env) {
 
 bool readEnvironment(JsonReader& r, const json& j, const std::string& p, EnvironmentDesc* out) {
     if (!r.expectObject(j, p) ||
-        !r.onlyKeys(j, p, {"types", "groups", "tree", "global_fields", "terrain", "use_lod_nodes", "sharing_threshold"}))
+        !r.onlyKeys(j, p, {"types", "groups", "tree", "global_fields", "terrain", "use_lod_nodes", "sharing_threshold",
+                           "snow_direction"}))
         return false;
     EnvironmentDesc env;
+    if (j.contains("snow_direction")) {
+        glm::vec3 d(0.0f);
+        if (!readVec3(r, j, p, "snow_direction", &d)) return false;
+        const float len = glm::length(d);
+        if (!(len > 1e-6f)) return r.fail(p + "/snow_direction", "must not be zero");
+        d = documentUnitVector(d);
+        if (!(-d.z >= std::cos(kMaxSnowTiltDeg * 0.017453292519943295f) - 1e-6f))
+            return r.fail(p + "/snow_direction", "must point down, at most " + std::to_string(int(kMaxSnowTiltDeg)) +
+                                                     " degrees from straight down");
+        env.snow_direction = d;
+    }
     if (auto it = j.find("types"); it != j.end()) {
         const std::string tp = p + "/types";
         if (!r.expectArray(*it, tp)) return false;
@@ -347,6 +359,7 @@ bool readEnvironment(JsonReader& r, const json& j, const std::string& p, Environ
 
 json environmentToJson(const EnvironmentDesc& env) {
     json j = json::object();
+    if (env.snow_direction != glm::vec3(0.0f, 0.0f, -1.0f)) j["snow_direction"] = vec3Json(env.snow_direction);
     json types = json::array();
     for (const EnvTypeDesc& t : env.types) {
         json jt = {{"name", t.name}, {"mesh", t.mesh_path}, {"scale", jsonFloat(t.scale)}, {"y_up", t.y_up}};

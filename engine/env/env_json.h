@@ -13,6 +13,7 @@
 //     "global_fields": [<field>, ...],                     (world space)
 //     "terrain": {"snow": true, "snow_cell_m": 0.1},
 //     "use_lod_nodes": true,
+//     "snow_direction": [0, 0, -1],                       (unit after reading; at most 45 degrees from down)
 //     "sharing_threshold": 0.0001                          (negative: never share effects)
 //   }
 //   <node>  = {"object": "<type name>", <placement>, "fields": [...], "snow": {...}, "icicles": {...}}

@@ -326,7 +326,8 @@ void EnvScene::buildIndex() {
     grid_first_.clear();
     grid_nx_ = grid_ny_ = 0;
     if (objects_.empty()) return;
-    const glm::vec2 lo(object_bounds_.lo), hi(object_bounds_.hi);
+    // Every object's bounds are padded by the shelter rays' 3 x 3 spread; the grid covers the padded bounds.
+    const glm::vec2 lo = glm::vec2(object_bounds_.lo) - kShelterCellM, hi = glm::vec2(object_bounds_.hi) + kShelterCellM;
     const float area = std::max((hi.x - lo.x) * (hi.y - lo.y), 1e-4f);
     grid_cell_ = std::max(std::sqrt(area * 4.0f / float(objects_.size())), 0.25f);
     grid_origin_ = lo;
@@ -336,10 +337,11 @@ void EnvScene::buildIndex() {
     const size_t cells = size_t(grid_nx_) * size_t(grid_ny_);
     std::vector<uint32_t> count(cells + 1, 0);
     auto range = [&](const Bounds& b, int* i0, int* i1, int* j0, int* j1) {
-        *i0 = std::clamp(int((b.lo.x - kShelterCellM - grid_origin_.x) / grid_cell_), 0, grid_nx_ - 1);
-        *i1 = std::clamp(int((b.hi.x + kShelterCellM - grid_origin_.x) / grid_cell_), 0, grid_nx_ - 1);
-        *j0 = std::clamp(int((b.lo.y - kShelterCellM - grid_origin_.y) / grid_cell_), 0, grid_ny_ - 1);
-        *j1 = std::clamp(int((b.hi.y + kShelterCellM - grid_origin_.y) / grid_cell_), 0, grid_ny_ - 1);
+        const float pad = kShelterCellM;
+        *i0 = std::clamp(int((b.lo.x - pad - grid_origin_.x) / grid_cell_), 0, grid_nx_ - 1);
+        *i1 = std::clamp(int((b.hi.x + pad - grid_origin_.x) / grid_cell_), 0, grid_nx_ - 1);
+        *j0 = std::clamp(int((b.lo.y - pad - grid_origin_.y) / grid_cell_), 0, grid_ny_ - 1);
+        *j1 = std::clamp(int((b.hi.y + pad - grid_origin_.y) / grid_cell_), 0, grid_ny_ - 1);
     };
     for (const EnvObject& o : objects_) {
         int i0, i1, j0, j1;
@@ -444,36 +446,61 @@ EnvSample EnvScene::channels(glm::vec3 p) const {
     return accumulate(p, ids.data(), ids.size());
 }
 
-float EnvScene::shelter(glm::vec3 p) const {
-    // The 9 rays lie within kShelterCellM of p on each axis, and the grid pads every object's bounds by
-    // that much: the objects of p's cell are every object any ray can meet.
+float EnvScene::shelterRays(glm::vec3 p, bool centre_only) const {
+    // The 9 rays start within kShelterCellM of p on each axis (the grid pads every object by that much) and
+    // drift by `slope` per metre of rise: the candidates are the objects of the grid cells along the
+    // drift's path, up to the top of the scene.
     bool covered[9] = {};
-    int open = 9;
-    for (uint32_t o : objectsAt(p.x, p.y)) {
+    const int rays = centre_only ? 1 : 9;
+    int open = rays;
+    const glm::vec2 slope = snowSlope();
+    const float drift = glm::length(slope);
+    thread_local std::vector<uint32_t> candidates;
+    candidates.clear();
+    const float rise = std::max(0.0f, object_bounds_.hi.z - p.z);
+    const int steps = drift > 0.0f ? int(std::ceil(2.0f * drift * rise / grid_cell_)) : 0;
+    for (int k = 0; k <= steps; ++k) {
+        const glm::vec2 at = glm::vec2(p) + slope * (rise * float(k) / float(std::max(steps, 1)));
+        for (uint32_t o : objectsAt(at.x, at.y))
+            if (objects_[o].bounds.hi.z > p.z + kShelterEpsM) candidates.push_back(o);  // can reach above p
+    }
+    if (steps > 0) {
+        std::sort(candidates.begin(), candidates.end());
+        candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
+    }
+    for (uint32_t o : candidates) {
         const EnvObject& obj = objects_[o];
-        if (obj.bounds.hi.z <= p.z + kShelterEpsM || p.x < obj.bounds.lo.x - kShelterCellM ||
-            p.x > obj.bounds.hi.x + kShelterCellM || p.y < obj.bounds.lo.y - kShelterCellM ||
-            p.y > obj.bounds.hi.y + kShelterCellM)
+        const float reach = kShelterCellM + drift * std::max(0.0f, obj.bounds.hi.z - p.z);
+        if (obj.bounds.hi.z <= p.z + kShelterEpsM || p.x < obj.bounds.lo.x - reach || p.x > obj.bounds.hi.x + reach ||
+            p.y < obj.bounds.lo.y - reach || p.y > obj.bounds.hi.y + reach)
             continue;
-        const HeightSpanMap& spans = *types_[obj.type].spans;
+        const EnvObjectType& type = types_[obj.type];
         const glm::vec3 local = obj.placement.toLocal(p);
-        // The world offsets (i, j) * cell turned into the object's space.
+        // The world offsets (i, j) * cell and the drift turned into the object's space.
         const float inv = kShelterCellM / obj.placement.scale;
         const glm::vec2 ex(obj.placement.c * inv, -obj.placement.s * inv);  // world +X in object space
         const glm::vec2 ey(obj.placement.s * inv, obj.placement.c * inv);   // world +Y
+        const glm::vec2 local_slope(obj.placement.c * slope.x + obj.placement.s * slope.y,
+                                    -obj.placement.s * slope.x + obj.placement.c * slope.y);
         const float eps = kShelterEpsM / obj.placement.scale;
-        for (int k = 0; k < 9; ++k) {
+        for (int k = 0; k < rays; ++k) {
             if (covered[k]) continue;
-            const float i = float(k % 3 - 1), j = float(k / 3 - 1);
+            const int ray = centre_only ? 4 : k;  // 4: the centre of the 3 x 3
+            const float i = float(ray % 3 - 1), j = float(ray / 3 - 1);
             const glm::vec3 q(local.x + i * ex.x + j * ey.x, local.y + i * ex.y + j * ey.y, local.z);
-            if (spans.coveredAbove(q, eps)) {
+            if (type.spans->coveredAlong(q, local_slope, eps, type.bounds.min.z, type.bounds.max.z)) {
                 covered[k] = true;
                 --open;
             }
         }
         if (open == 0) break;
     }
-    return float(open) / 9.0f;
+    return float(open) / float(rays);
+}
+
+glm::vec2 EnvScene::snowSlope() const {
+    const glm::vec3 up = -desc_.snow_direction;  // back along the snowfall
+    return glm::vec2(up.x, up.y) / up.z;
 }
 
 float EnvScene::clearanceBelow(glm::vec3 p) const {

@@ -14,9 +14,10 @@
 // bit for bit. An LOD node's own fields replace its subtree's for these queries when use_lod_nodes is on
 // (§6.1); with it off, LOD nodes act as groups.
 //
-// Shelter: the fraction of 9 vertical rays, on a 3 x 3 grid of kShelterCellM around the point, that no
-// object's base geometry crosses above the point by more than kShelterEpsM (height_span_map.h). The
-// terrain shelters nothing (it is below).
+// Shelter: the fraction of 9 rays, from a 3 x 3 grid of kShelterCellM around the point and going back up
+// along the snowfall (EnvironmentDesc::snow_direction; straight up by default), that no object's base
+// geometry crosses more than kShelterEpsM above the point (height_span_map.h). The terrain shelters
+// nothing (it is below).
 #pragma once
 
 #include <memory>
@@ -90,7 +91,9 @@ public:
     void sampleBatch(const glm::vec3* points, size_t n, EnvSample* out) const;
     // The channels only (shelter left at 1).
     EnvSample channels(glm::vec3 p) const;
-    float shelter(glm::vec3 p) const;
+    float shelter(glm::vec3 p) const { return shelterRays(p, false); }
+    // Only the centre ray (0 or 1): what effect sharing compares objects by (a ninth of the cost).
+    float shelterCentre(glm::vec3 p) const { return shelterRays(p, true); }
     // The free fall below p: p.z minus the highest base geometry or terrain under it (+inf over nothing).
     float clearanceBelow(glm::vec3 p) const;
     // The environment at object-space points of `object` (EnvQuery for the effects).
@@ -107,9 +110,13 @@ private:
     void fieldsMeeting(const Bounds& box, std::vector<uint32_t>* out) const;
     // Appends the indices (ascending) of fields whose bounds hold p.
     void fieldsAt(glm::vec3 p, std::vector<uint32_t>* out) const;
-    // The objects whose XY bounds, padded by kShelterCellM, hold (x, y) (ascending ids; empty outside).
+    // Horizontal drift per metre of rise back along the snowfall ((0, 0) for snow falling straight down).
+    glm::vec2 snowSlope() const;
+    // The objects whose XY bounds, padded by the shelter rays' reach, hold (x, y) (ascending ids; empty
+    // outside the grid).
     std::span<const uint32_t> objectsAt(float x, float y) const;
     EnvSample accumulate(glm::vec3 p, const uint32_t* ids, size_t n) const;
+    float shelterRays(glm::vec3 p, bool centre_only) const;
 
     EnvironmentDesc desc_;
     std::vector<EnvObjectType> types_;

@@ -73,6 +73,38 @@ bool HeightSpanMap::coveredAbove(glm::vec3 p, float eps) const {
     return z_[first_[size_t(c) + 1] - 1] > p.z + eps;
 }
 
+bool HeightSpanMap::coveredAlong(glm::vec3 p, glm::vec2 slope, float eps, float z_bottom, float z_top) const {
+    const float drift = glm::length(slope);
+    if (drift < 1e-4f) return coveredAbove(p, eps);
+    if (nx_ == 0) return false;
+    // The heights over which the ray is above the grid (a 2D slab test on its XY path), within the mesh's.
+    float lo_z = std::max(p.z + eps, z_bottom), hi_z = z_top;
+    const glm::vec2 box_lo = origin_, box_hi = origin_ + glm::vec2(float(nx_), float(ny_)) * cell_;
+    for (int a = 0; a < 2; ++a) {
+        const float o = a == 0 ? p.x : p.y, d = slope[a];
+        if (std::fabs(d) < 1e-9f) {
+            if (o < box_lo[a] || o >= box_hi[a]) return false;
+            continue;
+        }
+        float z0 = p.z + (box_lo[a] - o) / d, z1 = p.z + (box_hi[a] - o) / d;
+        if (z0 > z1) std::swap(z0, z1);
+        lo_z = std::max(lo_z, z0);
+        hi_z = std::min(hi_z, z1);
+    }
+    const float dz = 0.5f * cell_ / drift;  // rise per half-cell step
+    for (float z0 = lo_z - dz; z0 < hi_z; z0 += dz) {
+        const float z1 = z0 + dz;
+        const glm::vec2 mid = glm::vec2(p.x, p.y) + slope * (0.5f * (z0 + z1) - p.z);
+        const long c = cellOf(mid.x, mid.y);
+        if (c < 0) continue;
+        const float* first = z_.data() + first_[size_t(c)];
+        const float* last = z_.data() + first_[size_t(c) + 1];
+        const float* it = std::lower_bound(first, last, std::max(z0, p.z + eps));
+        if (it != last && *it <= z1) return true;
+    }
+    return false;
+}
+
 float HeightSpanMap::surfaceAboveNear(glm::vec3 p, float eps) const {
     float best = -std::numeric_limits<float>::infinity();
     for (int j = -1; j <= 1; ++j)

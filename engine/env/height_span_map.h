@@ -32,6 +32,12 @@ public:
     // The highest crossing above z + eps at the cell of (x, y); false when there is none (or (x, y) is
     // outside the grid).
     bool coveredAbove(glm::vec3 p, float eps) const;
+    // Whether the mesh crosses the ray from p going up with horizontal drift `slope` (metres per metre of
+    // rise) more than eps above p, between the heights z_bottom and z_top (the mesh's): the ray is followed
+    // up through the grid at half a cell per step from max(p.z + eps, z_bottom), and at each step the cell
+    // it is in is searched for a crossing between the step's heights; it stops where it leaves the grid
+    // for good. slope (0, 0) is coveredAbove.
+    bool coveredAlong(glm::vec3 p, glm::vec2 slope, float eps, float z_bottom, float z_top) const;
     // The highest crossing below z - eps at the cell of (x, y), or -infinity when there is none.
     float highestBelow(glm::vec3 p, float eps) const;
     // Over the 3 x 3 cells around (x, y), the highest of each cell's first crossing above z + eps, or

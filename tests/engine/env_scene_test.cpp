@@ -190,6 +190,29 @@ TEST(EnvScene, ShelterAndClearanceFollowTheGeometry) {
     EXPECT_TRUE(std::isinf(env.clearanceBelow({5.0f, 0.0f, 1.0f})));  // no terrain, nothing below
 }
 
+TEST(EnvScene, ShelterLooksBackAlongSlantingSnow) {
+    EnvFixture f;
+    EnvScene straight, slanting;
+    std::string error;
+    const std::string tree = R"(, "tree": [{"object": "roof"}]})";
+    ASSERT_TRUE(f.compile(R"({)" + kTypes + tree, &straight, &error)) << error;
+    // Snow falling at 45 degrees towards +X: looking back, a ray from x = 1.5 rises through the roof
+    // (x in [-1, 1], z in [2, 2.1]) at x = 1.5 - 2 = -0.5.
+    ASSERT_TRUE(f.compile(R"({"snow_direction": [1, 0, -1], )" + kTypes.substr(0) + tree, &slanting, &error)) << error;
+    EXPECT_NEAR(slanting.desc().snow_direction.x, 0.70710677f, 1e-6f);
+    EXPECT_EQ(straight.shelter({1.5f, 0.0f, 0.0f}), 1.0f);
+    EXPECT_EQ(slanting.shelter({1.5f, 0.0f, 0.0f}), 0.0f);
+    EXPECT_EQ(slanting.shelter({-1.5f, 0.0f, 0.0f}), 1.0f);  // upwind of the roof: open
+    EXPECT_EQ(straight.shelter({0.0f, 0.0f, 0.0f}), 0.0f);   // under its middle, straight snow is kept off
+    EXPECT_EQ(slanting.shelter({0.0f, 0.0f, 0.0f}), 1.0f);   // slanting snow comes in under it (at z = 2, x = -2)
+    EXPECT_EQ(slanting.shelter({3.5f, 0.0f, 0.0f}), 1.0f);   // the ray reaches z = 2 at x = 1.5, beyond the roof
+    Project p;
+    EXPECT_FALSE(f.load(R"({"snow_direction": [1, 0, 0], )" + kTypes + "}", &p, &error));
+    EXPECT_NE(error.find("/environment/snow_direction: must point down"), std::string::npos) << error;
+    EXPECT_FALSE(f.load(R"({"snow_direction": [0, 0, 0], )" + kTypes + "}", &p, &error));
+    EXPECT_NE(error.find("/environment/snow_direction: must not be zero"), std::string::npos) << error;
+}
+
 TEST(EnvScene, BadTreesAreRefusedWithThePlace) {
     EnvFixture f;
     EnvScene env;
