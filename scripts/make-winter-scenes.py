@@ -237,9 +237,9 @@ def montmartre_winter():
         steps.append(field("occlusion", 0.85, point([-7.2 + (0.12 if k % 2 else -0.12), y, 0.12], 0.13)))
     tracks = [field("occlusion", 0.9, segment([x, -50, 0.0], [x, 50, 0.0], 0.18)) for x in (-1.8, 1.8)]
     p["environment"] = {
-        # A wind from the west: the snow falls 20 degrees off vertical onto the east row's windward sills
-        # and balconies, and the west row's stay sheltered under their cornices.
-        "snow_direction": [0.364, 0, -1],
+        # A wind from the west: the snow falls 10 degrees off vertical onto the east row's windward sills
+        # and balconies; the west row's stay sheltered under their cornices, and its pavement in its lee.
+        "snow_direction": [0.176, 0, -1],
         "types": TYPES,
         "groups": groups,
         "tree": tree,

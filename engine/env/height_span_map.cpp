@@ -7,8 +7,9 @@ namespace ug {
 
 namespace {
 
-// Calls f(cell index, z) for every cell centre inside the triangle's XY projection (edges included: a
-// centre on an edge shared by two triangles is counted by both, which only repeats a crossing).
+// Calls f(cell index, z, step) for every cell centre inside the triangle's XY projection (edges included:
+// a centre on an edge shared by two triangles is counted by both, which only repeats a crossing); step is
+// +1 where the vertical line going up enters the solid (a down-facing face), -1 where it leaves it.
 template <typename F>
 void rasterTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec2 origin, float cell, int nx, int ny, F&& f) {
     const float area = (b.x - a.x) * (c.y - a.y) - (c.x - a.x) * (b.y - a.y);
@@ -29,7 +30,8 @@ void rasterTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec2 origin, flo
             const float w2 = 1.0f - w0 - w1;
             const float tol = -1e-6f;
             if (w0 < tol || w1 < tol || w2 < tol) continue;
-            f(size_t(j) * size_t(nx) + size_t(i), w0 * a.z + w1 * b.z + w2 * c.z);
+            // Counter-clockwise seen from above: the face looks up, so going up the line leaves the solid.
+            f(size_t(j) * size_t(nx) + size_t(i), w0 * a.z + w1 * b.z + w2 * c.z, area > 0.0f ? -1 : 1);
         }
     }
 }
@@ -52,12 +54,31 @@ HeightSpanMap::HeightSpanMap(const TriangleMesh& mesh) {
             rasterTriangle(mesh.positions[mesh.indices[t]], mesh.positions[mesh.indices[t + 1]],
                            mesh.positions[mesh.indices[t + 2]], origin_, cell_, nx_, ny_, f);
     };
-    each([&](size_t cell, float) { ++count[cell + 1]; });
+    each([&](size_t cell, float, int) { ++count[cell + 1]; });
     for (size_t c = 0; c < cells; ++c) count[c + 1] += count[c];
     first_ = count;
-    z_.resize(first_[cells]);
-    each([&](size_t cell, float z) { z_[count[cell]++] = z; });
-    for (size_t c = 0; c < cells; ++c) std::sort(z_.begin() + first_[c], z_.begin() + first_[c + 1]);
+    std::vector<std::pair<float, int>> crossings(first_[cells]);
+    each([&](size_t cell, float z, int step) { crossings[count[cell]++] = {z, step}; });
+    z_.resize(crossings.size());
+    depth_.resize(crossings.size());
+    for (size_t c = 0; c < cells; ++c) {
+        // By height, and at one height the entries before the exits (a face shared by two parts).
+        std::sort(crossings.begin() + first_[c], crossings.begin() + first_[c + 1],
+                  [](const auto& l, const auto& r) { return l.first < r.first || (l.first == r.first && l.second > r.second); });
+        int depth = 0;
+        for (uint32_t k = first_[c]; k < first_[c + 1]; ++k) {
+            z_[k] = crossings[k].first;
+            depth += crossings[k].second;
+            depth_[k] = int16_t(std::clamp(depth, -32000, 32000));
+        }
+    }
+}
+
+bool HeightSpanMap::insideSolid(long cell, float z) const {
+    const float* lo = z_.data() + first_[size_t(cell)];
+    const float* hi = z_.data() + first_[size_t(cell) + 1];
+    const float* it = std::upper_bound(lo, hi, z);  // first crossing above z
+    return it != lo && depth_[size_t(it - z_.data()) - 1] > 0;
 }
 
 long HeightSpanMap::cellOf(float x, float y) const {
@@ -101,6 +122,8 @@ bool HeightSpanMap::coveredAlong(glm::vec3 p, glm::vec2 slope, float eps, float 
         const float* last = z_.data() + first_[size_t(c) + 1];
         const float* it = std::lower_bound(first, last, std::max(z0, p.z + eps));
         if (it != last && *it <= z1) return true;
+        // Inside a part (a wall seen edge-on by the vertical lines: its faces cross none of them).
+        if (insideSolid(c, 0.5f * (z0 + z1))) return true;
     }
     return false;
 }

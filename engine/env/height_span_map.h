@@ -32,11 +32,11 @@ public:
     // The highest crossing above z + eps at the cell of (x, y); false when there is none (or (x, y) is
     // outside the grid).
     bool coveredAbove(glm::vec3 p, float eps) const;
-    // Whether the mesh crosses the ray from p going up with horizontal drift `slope` (metres per metre of
-    // rise) more than eps above p, between the heights z_bottom and z_top (the mesh's): the ray is followed
-    // up through the grid at half a cell per step from max(p.z + eps, z_bottom), and at each step the cell
-    // it is in is searched for a crossing between the step's heights; it stops where it leaves the grid
-    // for good. slope (0, 0) is coveredAbove.
+    // Whether the ray from p going up with horizontal drift `slope` (metres per metre of rise) meets the
+    // mesh more than eps above p, between the heights z_bottom and z_top (the mesh's): the ray is followed
+    // through the part of the grid it crosses at half a cell per step, and a step is blocked by a crossing
+    // of its cell between the step's heights or by being inside a part (walls, which the vertical lines
+    // see only as their tops and bottoms). slope (0, 0) is coveredAbove.
     bool coveredAlong(glm::vec3 p, glm::vec2 slope, float eps, float z_bottom, float z_top) const;
     // The highest crossing below z - eps at the cell of (x, y), or -infinity when there is none.
     float highestBelow(glm::vec3 p, float eps) const;
@@ -54,12 +54,16 @@ public:
 private:
     // The cell holding (x, y), or -1 outside the grid.
     long cellOf(float x, float y) const;
+    // Whether height z of the cell's line lies inside the mesh's closed, outward-wound parts: more faces
+    // entered (down-facing) than left (up-facing) below it. Overlapping parts count once each.
+    bool insideSolid(long cell, float z) const;
 
     glm::vec2 origin_{0.0f};  // XY of cell (0, 0)'s lower corner
     float cell_ = kShelterCellM;
     int nx_ = 0, ny_ = 0;
     std::vector<uint32_t> first_;  // nx*ny + 1 offsets into z_
     std::vector<float> z_;         // per cell, ascending
+    std::vector<int16_t> depth_;   // per crossing: how many parts the line is inside just above it
 };
 
 }  // namespace ug

@@ -31,6 +31,7 @@ struct EnvFixture {
     EnvFixture() {
         std::ofstream(dir.path() / "cube.obj") << boxObj({-0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 1.0f});
         std::ofstream(dir.path() / "roof.obj") << boxObj({-1.0f, -1.0f, 2.0f}, {1.0f, 1.0f, 2.1f});
+        std::ofstream(dir.path() / "wall.obj") << boxObj({-0.1f, -1.0f, 0.0f}, {0.1f, 1.0f, 3.0f});
     }
     // A project with `env` as its environment; false with the error.
     bool load(const std::string& env, Project* p, std::string* error) {
@@ -52,7 +53,8 @@ struct EnvFixture {
 const std::string kTypes = R"("types": [
     {"name": "cube", "mesh": "cube.obj", "y_up": false,
      "fields": [{"channel": "temperature", "value": 2, "shape": {"point": {"center": [0, 0, 1], "radius": 1}}}]},
-    {"name": "roof", "mesh": "roof.obj", "y_up": false}])";
+    {"name": "roof", "mesh": "roof.obj", "y_up": false},
+    {"name": "wall", "mesh": "wall.obj", "y_up": false}])";
 
 TEST(EnvScene, ChannelsSumAndOcclusionMultiplies) {
     EnvFixture f;
@@ -206,6 +208,17 @@ TEST(EnvScene, ShelterLooksBackAlongSlantingSnow) {
     EXPECT_EQ(straight.shelter({0.0f, 0.0f, 0.0f}), 0.0f);   // under its middle, straight snow is kept off
     EXPECT_EQ(slanting.shelter({0.0f, 0.0f, 0.0f}), 1.0f);   // slanting snow comes in under it (at z = 2, x = -2)
     EXPECT_EQ(slanting.shelter({3.5f, 0.0f, 0.0f}), 1.0f);   // the ray reaches z = 2 at x = 1.5, beyond the roof
+    // A wall blocks slanting snow on its lee side (the vertical lines see only its top and bottom: the
+    // ray is inside the wall's solid on its way up), not straight-down snow.
+    EnvScene wall_straight, wall_slanting;
+    ASSERT_TRUE(f.compile(R"({)" + kTypes + R"(, "tree": [{"object": "wall"}]})", &wall_straight, &error)) << error;
+    ASSERT_TRUE(f.compile(R"({"snow_direction": [1, 0, -1], )" + kTypes + R"(, "tree": [{"object": "wall"}]})",
+                          &wall_slanting, &error))
+        << error;
+    EXPECT_EQ(wall_straight.shelter({0.5f, 0.0f, 0.0f}), 1.0f);
+    EXPECT_EQ(wall_slanting.shelter({0.5f, 0.0f, 0.0f}), 0.0f);
+    EXPECT_EQ(wall_slanting.shelter({-0.5f, 0.0f, 0.0f}), 1.0f);
+    EXPECT_EQ(wall_slanting.shelter({3.5f, 0.0f, 0.0f}), 1.0f);  // passes over the wall's top (3 m)
     Project p;
     EXPECT_FALSE(f.load(R"({"snow_direction": [1, 0, 0], )" + kTypes + "}", &p, &error));
     EXPECT_NE(error.find("/environment/snow_direction: must point down"), std::string::npos) << error;
