@@ -58,9 +58,11 @@ uint64_t fieldKey(const EnvWorldField& f) {
     return h.value();
 }
 
-// The vertical column over a box: shelter looks up it and icicle clearance down it.
-Bounds column(const Bounds& b) {
-    const float pad = 2.0f * kShelterCellM;
+// The column over a box that its effects read: shelter looks up it (slanting back along the snowfall, so
+// widened by the drift up to the scene's top) and icicle clearance down it.
+Bounds column(const EnvScene& scene, const Bounds& b) {
+    const float rise = std::max(0.0f, scene.objectBounds().hi.z - b.lo.z);
+    const float pad = 2.0f * kShelterCellM + glm::length(scene.snowSlope()) * (std::isfinite(rise) ? rise : 0.0f);
     return Bounds{glm::vec3(b.lo.x - pad, b.lo.y - pad, -INFINITY), glm::vec3(b.hi.x + pad, b.hi.y + pad, INFINITY)};
 }
 
@@ -261,7 +263,7 @@ bool run(const EnvScene& scene, const EnvEffectsOptions& opt, const Reuse& reuse
         for (uint32_t c = 0; c < reuse.previous->classes.size(); ++c)
             if (reuse.previous->classes[c].computed) old_classes.emplace(objectKey(reuse.previous->classes[c].source), c);
     auto previousOf = [&](uint32_t o) -> const EffectClass* {
-        if (!reuse.previous || meetsAny(column(objects[o].bounds), *reuse.dirty)) return nullptr;
+        if (!reuse.previous || meetsAny(column(scene, objects[o].bounds), *reuse.dirty)) return nullptr;
         auto [a, b] = old_classes.equal_range(objectKey(objects[o]));
         for (auto it = a; it != b; ++it)
             if (sameObject(reuse.previous->classes[it->second].source, objects[o])) return &reuse.previous->classes[it->second];
@@ -320,7 +322,7 @@ bool run(const EnvScene& scene, const EnvEffectsOptions& opt, const Reuse& reuse
             for (size_t k = b; k < e; ++k) {
                 TerrainSnowChunk& ch = fx.terrain_snow[k];
                 const Bounds box = chunkBounds(hf, ch.ix, ch.iy);
-                if (reuse.previous && !meetsAny(column(box), *reuse.dirty))
+                if (reuse.previous && !meetsAny(column(scene, box), *reuse.dirty))
                     for (const TerrainSnowChunk& old : reuse.previous->terrain_snow)
                         if (old.ix == ch.ix && old.iy == ch.iy) {
                             ch.mesh = old.mesh;

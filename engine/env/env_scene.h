@@ -99,6 +99,8 @@ public:
     // The environment at object-space points of `object` (EnvQuery for the effects).
     EnvQuery objectQuery(size_t object) const;
 
+    // Horizontal drift per metre of rise back along the snowfall ((0, 0) for snow falling straight down).
+    glm::vec2 snowSlope() const;
     // How many fields a query in `box` has to look at (the LOD nodes' gain, §6.1, in the bench).
     size_t candidateFieldCount(const Bounds& box) const;
 
@@ -110,8 +112,6 @@ private:
     void fieldsMeeting(const Bounds& box, std::vector<uint32_t>* out) const;
     // Appends the indices (ascending) of fields whose bounds hold p.
     void fieldsAt(glm::vec3 p, std::vector<uint32_t>* out) const;
-    // Horizontal drift per metre of rise back along the snowfall ((0, 0) for snow falling straight down).
-    glm::vec2 snowSlope() const;
     // The objects whose XY bounds, padded by the shelter rays' reach, hold (x, y) (ascending ids; empty
     // outside the grid).
     std::span<const uint32_t> objectsAt(float x, float y) const;

@@ -153,7 +153,9 @@ TEST(EnvEffects, SharedEffectsEqualTheIndividuallyComputedOnes) {
     EXPECT_TRUE(sameEffects(shared, a, b));
 }
 
-TEST(EnvEffects, IncrementalEqualsFullAfterRandomEdits) {
+// Random edits (moves, footprints, warm spots, turns, the global snow), each updated incrementally and
+// compared with a full computation; `extra` adds settings to the environment.
+void checkIncrementalEqualsFull(const std::string& extra) {
     std::mt19937 rng(11);
     std::uniform_real_distribution<float> u(0.0f, 8.0f);
     struct Obj {
@@ -172,7 +174,7 @@ TEST(EnvEffects, IncrementalEqualsFullAfterRandomEdits) {
         std::string g = R"({"channel": "snow", "value": )" + std::to_string(global_snow) +
                         R"(}, {"channel": "icicles", "value": 1}, {"channel": "temperature", "value": -3})";
         for (const std::string& l : locals) g += "," + l;
-        return R"("tree": )" + t + R"(], "global_fields": [)" + g + "]";
+        return extra + R"("tree": )" + t + R"(], "global_fields": [)" + g + "]";
     };
     std::string error;
     EnvScene before;
@@ -207,6 +209,34 @@ TEST(EnvEffects, IncrementalEqualsFullAfterRandomEdits) {
         fx = std::move(incremental);
     }
     EXPECT_GT(reused_total, 20u);  // the updates did reuse most of the unchanged objects' effects
+}
+
+TEST(EnvEffects, IncrementalEqualsFullAfterRandomEdits) { checkIncrementalEqualsFull(""); }
+
+TEST(EnvEffects, IncrementalEqualsFullWithSlantingSnow) {
+    checkIncrementalEqualsFull(R"("snow_direction": [0.3, 0.2, -1], )");
+}
+
+// Snow at 45 degrees: a shelter moved in upwind of a bench covers it from 2 m away (outside the bench's
+// vertical column), so the update must look back along the snowfall to see that the bench changed.
+TEST(EnvEffects, AnUpwindEditReachesAlongSlantingSnow) {
+    const std::string head = R"("snow_direction": [1, 0, -1], "tree": [{"object": "bench"}, {"object": "bus_shelter", "at": [)";
+    const std::string tail = R"(, 0, 0]}], "global_fields": [)" + kCold + "]";
+    std::string error;
+    EnvScene before, after;
+    ASSERT_TRUE(compileEnv(head + "-20" + tail, &before, &error)) << error;
+    ASSERT_TRUE(compileEnv(head + "-2.5" + tail, &after, &error)) << error;
+    EnvEffects fx, incremental, full;
+    ASSERT_TRUE(computeEnvEffects(before, {}, &fx, &error)) << error;
+    ASSERT_TRUE(updateEnvEffects(after, fx, envDirtyRegion(before, after), {}, &incremental, &error)) << error;
+    ASSERT_TRUE(computeEnvEffects(after, {}, &full, &error)) << error;
+    EXPECT_TRUE(sameEffects(after, incremental, full));
+    // The bench's seat went under the roof's lee: less snow than in the open.
+    const auto tris = [](const EnvEffects& e) {
+        const EffectClass& c = e.classes[e.class_of[0]];
+        return c.snow ? c.snow->triangleCount() : size_t(0);
+    };
+    EXPECT_LT(tris(full), tris(fx));
 }
 
 TEST(EnvEffects, SameForAnyThreadCountAndRegionSplit) {
