@@ -113,8 +113,12 @@ bool HeightSpanMap::coveredAlong(glm::vec3 p, glm::vec2 slope, float eps, float 
         hi_z = std::min(hi_z, z1);
     }
     const float dz = 0.5f * cell_ / drift;  // rise per half-cell step
-    for (float z0 = lo_z - dz; z0 < hi_z; z0 += dz) {
-        const float z1 = z0 + dz;
+    if (!(lo_z < hi_z)) return false;
+    // Counted steps, not an accumulated height: far from the origin a float would stop advancing.
+    const double steps = std::ceil(double(hi_z - lo_z) / double(dz)) + 1.0;
+    const long n = long(std::min(steps, 1.0e6));
+    for (long k = 0; k < n; ++k) {
+        const float z0 = lo_z + float(double(k - 1) * double(dz)), z1 = z0 + dz;
         const glm::vec2 mid = glm::vec2(p.x, p.y) + slope * (0.5f * (z0 + z1) - p.z);
         const long c = cellOf(mid.x, mid.y);
         if (c < 0) continue;
