@@ -78,7 +78,7 @@ bool benchMeadowStamps(const BenchContext& ctx, SceneJob& job, Instantiator& ins
             dirty.push_back(primitiveBounds(ball, nullptr));
         }
         std::vector<InstanceTypeSettings> types = inst.input().types;
-        if (!compileDetailType(job.project, edited, job.compiled.terrain, &types[edited], error)) return false;
+        if (!compileDetailType(job.project, edited, job.compiled.terrain, &types[edited], error, job.compiled.environment)) return false;
         std::vector<uint64_t> changed;
         InstanceStats st;
         if (!inst.update(std::move(types), dirty, {.threads = ctx.threads}, &st, &changed, error)) return false;
@@ -94,7 +94,7 @@ bool benchMeadowStamps(const BenchContext& ctx, SceneJob& job, Instantiator& ins
     // The stamps' final state must equal instantiating the edited scene from scratch.
     InstancerInput fresh_input = inst.input();
     for (size_t t = 0; t < job.project.detail_types.size(); ++t)
-        if (!compileDetailType(job.project, t, job.compiled.terrain, &fresh_input.types[t], error)) return false;
+        if (!compileDetailType(job.project, t, job.compiled.terrain, &fresh_input.types[t], error, job.compiled.environment)) return false;
     Instantiator fresh;
     InstanceStats fresh_stats;
     if (!fresh.setInput(fresh_input, error) || !fresh.instantiateAll({.threads = ctx.threads}, &fresh_stats, error))

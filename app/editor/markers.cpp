@@ -178,6 +178,7 @@ void addPrimitiveMarkers(const Document& doc, const std::vector<DetailLodMesh>& 
                 break;
             case PrimitiveKind::TerrainLayer:
             case PrimitiveKind::TerrainSolid:
+            case PrimitiveKind::External:
                 break;
         }
     });
@@ -206,6 +207,7 @@ void addPrimitiveHulls(const Document& doc, const std::vector<DetailLodMesh>& me
             case PrimitiveKind::HalfSpace:
             case PrimitiveKind::TerrainLayer:
             case PrimitiveKind::TerrainSolid:
+            case PrimitiveKind::External:
                 break;  // unbounded or following the terrain: no hull
         }
     });

@@ -74,6 +74,12 @@ struct EffectOverrides {
     bool empty() const;
 };
 
+// Which scattered channels (leaves, grass, trash: env/env_scatter.h) come to rest on a surface, as a set
+// of bits 1 << EnvChannel.
+constexpr uint32_t envChannelBit(EnvChannel c) { return 1u << uint32_t(c); }
+constexpr uint32_t kScatterChannels =
+    envChannelBit(EnvChannel::Leaves) | envChannelBit(EnvChannel::Grass) | envChannelBit(EnvChannel::Trash);
+
 struct EnvTypeDesc {
     std::string name;
     std::string mesh_path;   // as written (relative to the project file): glTF, OBJ, PLY, STL, OFF
@@ -83,6 +89,12 @@ struct EnvTypeDesc {
     SnowEffectDesc snow;
     IcicleEffectDesc icicles;
     Material material;
+    // Scattered effects (§5.3-5.4) that rest on the type's up-facing, unsheltered surfaces: a bench seat
+    // takes leaves and trash, a lawn grass; none by default (a lamppost's top collects nothing).
+    uint32_t receives = 0;  // bits of kScatterChannels
+    // false: the base geometry keeps nothing off what is below it (a tree's crown lets snow and leaves
+    // through); it still supports what lands on it when it receives.
+    bool shelters = true;
 };
 
 struct EnvTransform {
@@ -116,6 +128,7 @@ struct NamedEnvGroup {
 struct TerrainEffectsDesc {
     bool snow = true;
     float snow_cell_m = 0.1f;  // > 0
+    uint32_t receives = kScatterChannels;  // the scattered effects that rest on the ground
 };
 
 // The steepest snowfall the shelter term follows: beyond it the marching through the height-span maps

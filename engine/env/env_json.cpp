@@ -212,9 +212,38 @@ struct TreeReader {
     }
 };
 
+// "receives": ["leaves", "grass", "trash"] (any subset, no repeats).
+bool readReceives(JsonReader& r, const json& j, const std::string& p, uint32_t* out) {
+    auto it = j.find("receives");
+    if (it == j.end()) return true;
+    const std::string rp = p + "/receives";
+    if (!r.expectArray(*it, rp)) return false;
+    uint32_t bits = 0;
+    for (size_t k = 0; k < it->size(); ++k) {
+        const std::string ep = rp + "/" + std::to_string(k);
+        EnvChannel c;
+        if (!(*it)[k].is_string() || !envChannelFromName((*it)[k].get<std::string>(), &c) ||
+            !(envChannelBit(c) & kScatterChannels))
+            return r.fail(ep, "expected \"leaves\", \"grass\" or \"trash\"");
+        if (bits & envChannelBit(c)) return r.fail(ep, "\"" + std::string(envChannelName(c)) + "\" is listed twice");
+        bits |= envChannelBit(c);
+    }
+    *out = bits;
+    return true;
+}
+
+json receivesJson(uint32_t bits) {
+    json a = json::array();
+    for (EnvChannel c : {EnvChannel::Leaves, EnvChannel::Grass, EnvChannel::Trash})
+        if (bits & envChannelBit(c)) a.push_back(envChannelName(c));
+    return a;
+}
+
 bool readType(JsonReader& r, const json& j, const std::string& p, EnvTypeDesc* t) {
     if (!r.expectObject(j, p) ||
-        !r.onlyKeys(j, p, {"name", "mesh", "scale", "y_up", "fields", "snow", "icicles", "material"}) ||
+        !r.onlyKeys(j, p, {"name", "mesh", "scale", "y_up", "fields", "snow", "icicles", "material", "receives",
+                           "shelters"}) ||
+        !readReceives(r, j, p, &t->receives) || !r.boolean(j, p, "shelters", &t->shelters) ||
         !r.string(j, p, "name", &t->name, true) || !r.string(j, p, "mesh", &t->mesh_path, true) ||
         !positive(r, j, p, "scale", &t->scale, 1e4) || !r.boolean(j, p, "y_up", &t->y_up) ||
         !readFields(r, j, p, &t->fields) || !readSnow(r, j, p, &t->snow, nullptr) ||
@@ -345,8 +374,8 @@ bool readEnvironment(JsonReader& r, const json& j, const std::string& p, Environ
     if (!readFields(r, j, p, &env.global_fields, "global_fields")) return false;
     if (auto it = j.find("terrain"); it != j.end()) {
         const std::string tp = p + "/terrain";
-        if (!r.expectObject(*it, tp) || !r.onlyKeys(*it, tp, {"snow", "snow_cell_m"}) ||
-            !r.boolean(*it, tp, "snow", &env.terrain.snow) ||
+        if (!r.expectObject(*it, tp) || !r.onlyKeys(*it, tp, {"snow", "snow_cell_m", "receives"}) ||
+            !r.boolean(*it, tp, "snow", &env.terrain.snow) || !readReceives(r, *it, tp, &env.terrain.receives) ||
             !positive(r, *it, tp, "snow_cell_m", &env.terrain.snow_cell_m, 100.0))
             return false;
     }
@@ -377,6 +406,8 @@ json environmentToJson(const EnvironmentDesc& env) {
                          {"max_length_m", jsonFloat(t.icicles.max_length_m)},
                          {"length_per_degree_m", jsonFloat(t.icicles.length_per_degree_m)}};
         if (!(t.material == Material{})) jt["material"] = materialToJson(t.material);
+        if (t.receives) jt["receives"] = receivesJson(t.receives);
+        if (!t.shelters) jt["shelters"] = false;
         types.push_back(jt);
     }
     j["types"] = types;
@@ -392,6 +423,7 @@ json environmentToJson(const EnvironmentDesc& env) {
     for (const EnvFieldDesc& f : env.global_fields) globals.push_back(fieldJson(f));
     j["global_fields"] = globals;
     j["terrain"] = {{"snow", env.terrain.snow}, {"snow_cell_m", jsonFloat(env.terrain.snow_cell_m)}};
+    if (env.terrain.receives != kScatterChannels) j["terrain"]["receives"] = receivesJson(env.terrain.receives);
     j["use_lod_nodes"] = env.use_lod_nodes;
     j["sharing_threshold"] = jsonFloat(env.sharing_threshold);
     return j;

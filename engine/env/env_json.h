@@ -7,11 +7,13 @@
 //                         "max_face_angle_deg": 60, "d0_m": 0.05, "target_edge_m": 0.05},
 //                "icicles": {"enabled": true, "automatic_anchors": true, "anchors": [[x, y, z], ...],
 //                            "spacing_m": 0.06, "max_length_m": 0.35, "length_per_degree_m": 0.03},
-//                "material": <material>}, ...],
+//                "material": <material>,
+//                "receives": ["leaves", "grass", "trash"],     (scattered effects resting on it; default none)
+//                "shelters": true}, ...],                       (false: keeps nothing off what is below)
 //     "groups": {"<name>": <group or lod node>, ...},     (instanced by "ref" nodes only)
 //     "tree": [<node>, ...],
 //     "global_fields": [<field>, ...],                     (world space)
-//     "terrain": {"snow": true, "snow_cell_m": 0.1},
+//     "terrain": {"snow": true, "snow_cell_m": 0.1, "receives": [...]},   (receives: default all three)
 //     "use_lod_nodes": true,
 //     "snow_direction": [0, 0, -1],                       (unit after reading; at most 45 degrees from down)
 //     "sharing_threshold": 0.0001                          (negative: never share effects)

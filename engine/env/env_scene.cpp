@@ -441,7 +441,7 @@ EnvSample EnvScene::accumulate(glm::vec3 p, const uint32_t* ids, size_t n) const
 }
 
 EnvSample EnvScene::channels(glm::vec3 p) const {
-    std::vector<uint32_t> ids;
+    thread_local std::vector<uint32_t> ids;  // millions of calls per scattered layer: no allocation each
     fieldsAt(p, &ids);
     return accumulate(p, ids.data(), ids.size());
 }
@@ -462,7 +462,8 @@ float EnvScene::shelterRays(glm::vec3 p, bool centre_only) const {
     for (int k = 0; k <= steps; ++k) {
         const glm::vec2 at = glm::vec2(p) + slope * (rise * float(k) / float(std::max(steps, 1)));
         for (uint32_t o : objectsAt(at.x, at.y))
-            if (objects_[o].bounds.hi.z > p.z + kShelterEpsM) candidates.push_back(o);  // can reach above p
+            if (objects_[o].bounds.hi.z > p.z + kShelterEpsM && types_[objects_[o].type].desc.shelters)
+                candidates.push_back(o);  // can reach above p and keeps things off
     }
     if (steps > 0) {
         std::sort(candidates.begin(), candidates.end());
@@ -517,6 +518,45 @@ float EnvScene::clearanceBelow(glm::vec3 p) const {
             floor_z = std::max(floor_z, obj.placement.toWorld(glm::vec3(0.0f, 0.0f, below)).z);
     }
     return p.z - floor_z;
+}
+
+EnvScene::Support EnvScene::supportBelow(glm::vec3 p) const {
+    Support s;
+    if (terrain_ && !terrain_->empty()) {
+        const float h = terrain_->sample(p.x, p.y);
+        if (h <= p.z) s.z = h;
+    }
+    for (uint32_t o : objectsAt(p.x, p.y)) {
+        const EnvObject& obj = objects_[o];
+        if (!contains(Bounds{glm::vec3(obj.bounds.lo.x, obj.bounds.lo.y, -INFINITY),
+                             glm::vec3(obj.bounds.hi.x, obj.bounds.hi.y, INFINITY)},
+                      p) ||
+            obj.bounds.lo.z > p.z)
+            continue;
+        bool inside = false;
+        const float below = types_[obj.type].spans->supportBelow(obj.placement.toLocal(p), &inside);
+        if (inside) {
+            s.inside = true;
+            s.object = o;
+            return s;
+        }
+        if (!(below > -std::numeric_limits<float>::infinity())) continue;
+        const float z = obj.placement.toWorld(glm::vec3(0.0f, 0.0f, below)).z;
+        if (z > s.z) {
+            s.z = z;
+            s.object = o;
+        }
+    }
+    return s;
+}
+
+float EnvScene::channelBound(EnvChannel c, const Bounds& box) const {
+    thread_local std::vector<uint32_t> ids;
+    fieldsMeeting(box, &ids);
+    float bound = 0.0f;
+    for (uint32_t k : ids)
+        if (fields_[k].channel == c) bound += std::max(0.0f, fields_[k].value);
+    return bound;
 }
 
 EnvSample EnvScene::sample(glm::vec3 p) const {

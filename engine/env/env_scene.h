@@ -20,6 +20,8 @@
 // nothing (it is below).
 #pragma once
 
+#include <cmath>
+#include <limits>
 #include <memory>
 #include <span>
 #include <string>
@@ -96,6 +98,19 @@ public:
     float shelterCentre(glm::vec3 p) const { return shelterRays(p, true); }
     // The free fall below p: p.z minus the highest base geometry or terrain under it (+inf over nothing).
     float clearanceBelow(glm::vec3 p) const;
+    // What p would rest on (env_scatter.h): the highest up-facing surface at or below it, the terrain's or
+    // an object's.
+    struct Support {
+        float z = -std::numeric_limits<float>::infinity();  // -inf: nothing below
+        int64_t object = -1;  // the object whose surface it is; -1: the terrain (or nothing)
+        bool inside = false;  // p lies inside an object's base geometry: nothing rests there
+    };
+    Support supportBelow(glm::vec3 p) const;
+    // The largest value channel c can take in box (the sum of its fields' positive values meeting it).
+    float channelBound(EnvChannel c, const Bounds& box) const;
+    // Calls fn(object id) for every object whose XY bounds may meet box's XY (ids may repeat).
+    template <typename Fn>
+    void forObjectsNearXY(const Bounds& box, Fn fn) const;
     // The environment at object-space points of `object` (EnvQuery for the effects).
     EnvQuery objectQuery(size_t object) const;
 
@@ -139,6 +154,24 @@ private:
     int grid_nx_ = 0, grid_ny_ = 0;
     std::vector<uint32_t> grid_first_, grid_ids_;
 };
+
+template <typename Fn>
+void EnvScene::forObjectsNearXY(const Bounds& box, Fn fn) const {
+    if (grid_nx_ == 0) return;
+    const auto cell = [&](float v, float origin, int n) {
+        return std::clamp(int(std::floor((v - origin) / grid_cell_)), 0, n - 1);
+    };
+    if (box.hi.x < grid_origin_.x || box.hi.y < grid_origin_.y ||
+        box.lo.x >= grid_origin_.x + grid_cell_ * float(grid_nx_) || box.lo.y >= grid_origin_.y + grid_cell_ * float(grid_ny_))
+        return;
+    const int i0 = cell(box.lo.x, grid_origin_.x, grid_nx_), i1 = cell(box.hi.x, grid_origin_.x, grid_nx_);
+    const int j0 = cell(box.lo.y, grid_origin_.y, grid_ny_), j1 = cell(box.hi.y, grid_origin_.y, grid_ny_);
+    for (int j = j0; j <= j1; ++j)
+        for (int i = i0; i <= i1; ++i) {
+            const size_t c = size_t(j) * size_t(grid_nx_) + size_t(i);
+            for (uint32_t k = grid_first_[c]; k < grid_first_[c + 1]; ++k) fn(grid_ids_[k]);
+        }
+}
 
 // Loads every type's mesh (relative paths against base_dir), expands the tree and indexes the fields.
 // Errors: "<name>: /environment/...: <reason>" (a missing or corrupt mesh names the file too; a reference to

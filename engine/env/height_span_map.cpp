@@ -146,6 +146,18 @@ float HeightSpanMap::surfaceAboveNear(glm::vec3 p, float eps) const {
     return best;
 }
 
+float HeightSpanMap::supportBelow(glm::vec3 p, bool* inside) const {
+    *inside = false;
+    const long c = cellOf(p.x, p.y);
+    if (c < 0) return -std::numeric_limits<float>::infinity();
+    const float* lo = z_.data() + first_[size_t(c)];
+    const float* hi = z_.data() + first_[size_t(c) + 1];
+    const float* it = std::upper_bound(lo, hi, p.z);  // first crossing above z
+    if (it == lo) return -std::numeric_limits<float>::infinity();
+    *inside = depth_[size_t(it - z_.data()) - 1] > 0;
+    return *(it - 1);
+}
+
 float HeightSpanMap::highestBelow(glm::vec3 p, float eps) const {
     const long c = cellOf(p.x, p.y);
     if (c < 0) return -std::numeric_limits<float>::infinity();

@@ -38,6 +38,11 @@ public:
     // of its cell between the step's heights or by being inside a part (walls, which the vertical lines
     // see only as their tops and bottoms). slope (0, 0) is coveredAbove.
     bool coveredAlong(glm::vec3 p, glm::vec2 slope, float eps, float z_bottom, float z_top) const;
+    // What a point rests on: the highest crossing at or below z at the cell of (x, y), or -infinity when
+    // there is none (or (x, y) is outside the grid); *inside tells whether z lies inside one of the mesh's
+    // parts (then nothing rests there). For a point outside every part the crossing is an up-facing
+    // surface: a seat's top, not its underside.
+    float supportBelow(glm::vec3 p, bool* inside) const;
     // The highest crossing below z - eps at the cell of (x, y), or -infinity when there is none.
     float highestBelow(glm::vec3 p, float eps) const;
     // Over the 3 x 3 cells around (x, y), the highest of each cell's first crossing above z + eps, or

@@ -51,12 +51,33 @@ inline const HeightField* heightFieldOf(const DensityField& f, const Primitive& 
     return isTerrain(pr) ? f.height_fields[pr.height_field].get() : nullptr;
 }
 
+// An External primitive's support and positive part come from its field (external_field.h).
+Bounds primitiveBoundsOf(const DensityField& f, const Primitive& pr) {
+    if (pr.kind == PrimitiveKind::External) return f.externals[pr.external]->bounds();
+    return primitiveBounds(pr, heightFieldOf(f, pr));
+}
+
+Bounds primitivePositiveBoundsOf(const DensityField& f, const Primitive& pr, const Bounds& box) {
+    if (pr.kind != PrimitiveKind::External) return primitivePositiveBoundsIn(pr, heightFieldOf(f, pr), box);
+    if (!(pr.weight > 0.0f) || box.empty()) return Bounds{};
+    const Bounds b = intersect(f.externals[pr.external]->positiveBoundsIn(box), box);
+    return b.empty() ? Bounds{} : b;
+}
+
+template <bool kGrad>
+inline Sample<kGrad> externalSample(const DensityField& f, const Primitive& pr, glm::vec3 p) {
+    const float v = f.externals[pr.external]->value(p);
+    // +0 stays +0 (a left-out External must give the same bits as one evaluated outside its support).
+    return Sample<kGrad>(v == 0.0f ? 0.0f : pr.weight * v);
+}
+
 template <bool kGrad>
 inline Sample<kGrad> childSample(const DensityField& f, const Sample<kGrad>* slots, uint32_t ref, glm::vec3 p,
                                  field_detail::HeightCache* cache) {
     if (ref == kZeroChild) return Sample<kGrad>(0.0f);
     if (ref & kPrimitiveChildBit) {
         const Primitive& pr = f.primitives[ref & ~kPrimitiveChildBit];
+        if (pr.kind == PrimitiveKind::External) return externalSample<kGrad>(f, pr, p);
         return field_detail::evalPrimitive<kGrad>(pr, heightFieldOf(f, pr), p, cache);
     }
     return slots[ref];
@@ -166,6 +187,12 @@ uint32_t addNode(DensityField* field, FieldOp op, std::span<const uint32_t> chil
     return uint32_t(field->nodes.size() - 1);
 }
 
+uint32_t addExternal(DensityField* field, std::shared_ptr<const ExternalField> external) {
+    assert(field && external);
+    field->externals.push_back(std::move(external));
+    return uint32_t(field->externals.size() - 1);
+}
+
 uint32_t addHeightField(DensityField* field, std::shared_ptr<const HeightField> height_field) {
     assert(field && height_field && !height_field->empty());
     field->height_fields.push_back(std::move(height_field));
@@ -241,8 +268,15 @@ bool validate(const DensityField& f, std::string* error) {
             return fail("height field " + std::to_string(i) + ": missing or empty");
     if (f.primitives.size() >= kPrimitiveChildBit - 1) return fail("too many primitives");
     if (f.nodes.size() >= kPrimitiveChildBit - 1) return fail("too many nodes");
-    for (size_t i = 0; i < f.primitives.size(); ++i)
+    for (size_t i = 0; i < f.externals.size(); ++i)
+        if (!f.externals[i]) return fail("external field " + std::to_string(i) + ": missing");
+    for (size_t i = 0; i < f.primitives.size(); ++i) {
         if (!validatePrimitive(f.primitives[i], i, f.height_fields.size(), error)) return false;
+        if (f.primitives[i].kind == PrimitiveKind::External && f.primitives[i].external >= f.externals.size())
+            return fail("primitive " + std::to_string(i) + " (external): external " +
+                        std::to_string(f.primitives[i].external) + " is out of range (" +
+                        std::to_string(f.externals.size()) + " external fields)");
+    }
     for (size_t n = 0; n < f.nodes.size(); ++n) {
         const FieldNode& node = f.nodes[n];
         const std::string where = "node " + std::to_string(n) + " (" + fieldOpName(node.op) + "): ";
@@ -308,8 +342,7 @@ void buildTileList(const DensityField& f, const Bounds& box, TileFieldList* out,
     out->root_live = false;
 
     auto primitiveLive = [&](uint32_t i) {
-        const Primitive& pr = f.primitives[i];
-        return overlaps(primitiveBounds(pr, heightFieldOf(f, pr)), box);
+        return overlaps(primitiveBoundsOf(f, f.primitives[i]), box);
     };
     if (parent) {
         for (uint32_t i : parent->primitives)
@@ -377,7 +410,7 @@ Bounds positiveBounds(const DensityField& f) {
     auto childBounds = [&](uint32_t ref) {
         if (isPrimitiveChild(ref)) {
             const Primitive& pr = f.primitives[childIndex(ref)];
-            return pr.weight > 0.0f ? primitiveBounds(pr, heightFieldOf(f, pr)) : Bounds{};
+            return pr.weight > 0.0f ? primitiveBoundsOf(f, pr) : Bounds{};
         }
         return node_bounds[ref];
     };
@@ -415,7 +448,7 @@ Bounds positiveBoundsIn(const DensityField& f, const TileFieldList& list) {
         if (ref == kZeroChild) return Bounds{};
         if (isPrimitiveChild(ref)) {
             const Primitive& pr = f.primitives[childIndex(ref)];
-            return primitivePositiveBoundsIn(pr, heightFieldOf(f, pr), list.box);
+            return primitivePositiveBoundsOf(f, pr, list.box);
         }
         return node_bounds[slot_of_node[ref]];
     };

@@ -48,6 +48,7 @@
 #include <glm/glm.hpp>
 
 #include "field/bounds.h"
+#include "field/external_field.h"
 #include "field/height_field.h"
 #include "field/primitive.h"
 
@@ -79,6 +80,8 @@ struct DensityField {
     std::vector<uint32_t> children;
     uint32_t root = kNoNode;  // kNoNode: the field is 0 everywhere
     std::vector<std::shared_ptr<const HeightField>> height_fields;
+    // External terms referred to by External primitives (external_field.h): scattered effects.
+    std::vector<std::shared_ptr<const ExternalField>> externals;
 };
 
 // ---- building --------------------------------------------------------------------------------------
@@ -86,6 +89,7 @@ struct DensityField {
 uint32_t addPrimitive(DensityField* field, const Primitive& primitive);
 uint32_t addNode(DensityField* field, FieldOp op, std::span<const uint32_t> child_refs);
 uint32_t addHeightField(DensityField* field, std::shared_ptr<const HeightField> height_field);
+uint32_t addExternal(DensityField* field, std::shared_ptr<const ExternalField> external);
 
 // A generalized cylinder along a polyline: vertices_m[k] = (x, y, z, radius at that vertex). Adds one
 // Segment primitive per edge (radius interpolated along it) under a Union node (an Intersection node when

@@ -26,6 +26,7 @@ const char* primitiveKindName(PrimitiveKind kind) {
         case PrimitiveKind::HalfSpace: return "half-space";
         case PrimitiveKind::TerrainLayer: return "terrain layer";
         case PrimitiveKind::TerrainSolid: return "terrain solid";
+        case PrimitiveKind::External: return "external";
     }
     return "unknown";
 }
@@ -113,8 +114,18 @@ Primitive makeTerrainSolid(uint32_t height_field, float falloff_depth_m, float w
     return p;
 }
 
+Primitive makeExternal(uint32_t external, float weight) {
+    Primitive p;
+    p.kind = PrimitiveKind::External;
+    p.external = external;
+    p.weight = weight;
+    return p;
+}
+
 Primitive translatedPrimitive(Primitive prim, glm::vec3 offset_m) {
-    if (prim.kind == PrimitiveKind::TerrainLayer || prim.kind == PrimitiveKind::TerrainSolid) return prim;
+    if (prim.kind == PrimitiveKind::TerrainLayer || prim.kind == PrimitiveKind::TerrainSolid ||
+        prim.kind == PrimitiveKind::External)
+        return prim;
     prim.center_m += offset_m;
     if (prim.kind == PrimitiveKind::Segment) prim.end_m += offset_m;
     return prim;
@@ -138,12 +149,12 @@ bool validatePrimitive(const Primitive& pr, size_t index, size_t height_field_co
         if (error) *error = where + what;
         return false;
     };
-    if (int(pr.kind) > int(PrimitiveKind::TerrainSolid)) return fail("kind " + std::to_string(int(pr.kind)) + " is unknown");
+    if (int(pr.kind) > int(PrimitiveKind::External)) return fail("kind " + std::to_string(int(pr.kind)) + " is unknown");
     if (!std::isfinite(pr.weight)) return fail("weight " + number(pr.weight) + " is not finite");
     if (!std::isfinite(pr.radius_m) || !(pr.radius_m > 0.0f))
         return fail("radius_m " + number(pr.radius_m) + " must be finite and > 0");
     const bool terrain = pr.kind == PrimitiveKind::TerrainLayer || pr.kind == PrimitiveKind::TerrainSolid;
-    if (!terrain && !finite3(pr.center_m)) return fail("center_m is not finite");
+    if (!terrain && pr.kind != PrimitiveKind::External && !finite3(pr.center_m)) return fail("center_m is not finite");
     auto checkNormal = [&]() {
         if (!finite3(pr.normal)) return fail("normal is not finite");
         const float len = glm::length(pr.normal);
@@ -180,6 +191,7 @@ bool validatePrimitive(const Primitive& pr, size_t index, size_t height_field_co
                 return fail("height_field " + std::to_string(pr.height_field) + " is out of range (" +
                             std::to_string(height_field_count) + " height fields)");
             break;
+        case PrimitiveKind::External: break;  // the index is checked by validate(DensityField)
     }
     return true;
 }
@@ -234,6 +246,7 @@ Bounds primitiveBounds(const Primitive& pr, const HeightField* hf) {
         case PrimitiveKind::TerrainSolid:
             assert(hf);
             return padded(Bounds{glm::vec3(-inf), glm::vec3(inf, inf, hf->maxHeight())});
+        case PrimitiveKind::External: return Bounds::everything();
     }
     return Bounds::everything();
 }

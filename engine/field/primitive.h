@@ -19,6 +19,8 @@
 // | TerrainLayer | height_field, thickness_m (>= 0), radius_m                    | vertical: 0 for h <= z <=     |
 // |              |                                                               | h + thickness, else the gap   |
 // | TerrainSolid | height_field, radius_m                                        | see below                     |
+// | External     | external, weight                                              | weight · the external field's |
+// |              |                                                               | value (external_field.h)      |
 //
 // TerrainSolid: the ground as a solid to subtract from details (docs/architecture.md "solids subtract so
 // details never sink"): full weight at depth >= radius_m below the surface, falling to exactly 0 at the
@@ -46,7 +48,7 @@ namespace ug {
 
 class HeightField;
 
-enum class PrimitiveKind : uint8_t { Point, Segment, Disc, Box, HalfSpace, TerrainLayer, TerrainSolid };
+enum class PrimitiveKind : uint8_t { Point, Segment, Disc, Box, HalfSpace, TerrainLayer, TerrainSolid, External };
 
 // A weight for solids that dominates any sensible detail density (detail fields are O(1)).
 constexpr float kSolidWeight = 1.0e4f;
@@ -65,6 +67,7 @@ struct Primitive {
     glm::vec3 half_extents_m{0.0f};      // Box: >= 0 per axis
     float thickness_m = 0.0f;            // TerrainLayer: >= 0
     uint32_t height_field = 0;           // TerrainLayer, TerrainSolid: index into the field's height fields
+    uint32_t external = 0;               // External: index into the field's external fields
 };
 
 // Builders fill the fields their kind uses; normals are normalized here (a zero normal stays zero and
@@ -77,6 +80,9 @@ Primitive makeBox(glm::vec3 center_m, glm::vec3 half_extents_m, float radius_m, 
 Primitive makeHalfSpace(glm::vec3 point_m, glm::vec3 outward_normal, float radius_m, float weight = 1.0f);
 Primitive makeTerrainLayer(uint32_t height_field, float thickness_m, float radius_m, float weight = 1.0f);
 Primitive makeTerrainSolid(uint32_t height_field, float falloff_depth_m, float weight = kSolidWeight);
+// External kinds never reach the functions below with their field: DensityField resolves them
+// (density_field.cpp); here they are bounded by everything and evaluate to 0.
+Primitive makeExternal(uint32_t external, float weight = 1.0f);
 
 // The primitive with its skeleton moved by offset_m (centre, and a segment's end). Terrain kinds follow
 // their height field and are returned unchanged.

@@ -133,6 +133,7 @@ inline Sample<kGrad> evalPrimitive(const Primitive& pr, const HeightField* hf, g
             if (d <= 0.0f) return kernel<kGrad>(pr.weight, 0.0f, r2, glm::vec3(0.0f));
             return kernel<kGrad>(pr.weight, d * d, r2, d * glm::vec3(-hs.y, -hs.z, 1.0f));
         }
+        case PrimitiveKind::External: return Sample<kGrad>(0.0f);  // resolved by density_field.cpp
     }
     return Sample<kGrad>(0.0f);
 }

@@ -264,9 +264,10 @@ bool Document::findPrimitive(uint64_t id, size_t* type, Primitive* out) const {
 bool Document::commit(const EditEffect& effect, std::string* error) {
     CompiledScene next;
     next.terrain = compiled_.terrain;
+    next.environment = compiled_.environment;
     next.types = compiled_.types;
     for (size_t t : effect.types)
-        if (!compileDetailType(project_, t, terrain_, &next.types[t], error)) return false;
+        if (!compileDetailType(project_, t, terrain_, &next.types[t], error, next.environment)) return false;
     if (!documentExtent(project_, next, path_.empty() ? project_.name : path_, &next.extent, error)) return false;
     const bool extent_changed = !sameBounds(next.extent, compiled_.extent);
     compiled_ = std::move(next);

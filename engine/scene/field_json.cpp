@@ -276,6 +276,8 @@ json primitiveJson(const Primitive& p) {
                       {"weight", jsonFloat(p.weight)}}}};
         case PrimitiveKind::TerrainSolid:
             return {{"terrain_solid", {{"radius", jsonFloat(p.radius_m)}, {"weight", jsonFloat(p.weight)}}}};
+        case PrimitiveKind::External:
+            break;  // compiled from a type's scatter settings (scene_compile.h), never part of a document
     }
     return nullptr;
 }

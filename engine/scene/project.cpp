@@ -286,6 +286,55 @@ bool readModel(JsonReader& r, const json& j, const std::string& p, DetailModelSo
     return true;
 }
 
+// "scatter" (format 3): see project.h. Variant names are checked against every type's later, when all
+// are known.
+bool readScatter(JsonReader& r, const json& j, const std::string& p, ScatterDesc* out) {
+    ScatterDesc sc;
+    sc.enabled = true;
+    if (!r.expectObject(j, p) || !r.onlyKeys(j, p, {"channel", "thickness_m", "ramp_m", "sheltered", "variants"}) ||
+        !r.require(j, p, "channel"))
+        return false;
+    std::string channel;
+    if (!r.string(j, p, "channel", &channel, true)) return false;
+    if (!envChannelFromName(channel, &sc.settings.channel) || !(envChannelBit(sc.settings.channel) & kScatterChannels))
+        return r.fail(p + "/channel", "expected \"leaves\", \"grass\" or \"trash\", got \"" + channel + "\"");
+    sc.settings.sheltered = sc.settings.channel != EnvChannel::Grass;
+    if (!r.number(j, p, "thickness_m", &sc.settings.thickness_m, 1e-6, 100.0) ||
+        !r.number(j, p, "ramp_m", &sc.settings.ramp_m, 1e-6, 100.0) ||
+        !r.boolean(j, p, "sheltered", &sc.settings.sheltered))
+        return false;
+    if (auto it = j.find("variants"); it != j.end()) {
+        const std::string vp = p + "/variants";
+        if (!r.expectArray(*it, vp)) return false;
+        for (size_t k = 0; k < it->size(); ++k) {
+            const json& jv = (*it)[k];
+            const std::string kp = vp + "/" + std::to_string(k);
+            ScatterVariantDesc v;
+            if (!r.expectObject(jv, kp) || !r.onlyKeys(jv, kp, {"name", "model", "material", "when"}) ||
+                !r.require(jv, kp, "name") || !r.string(jv, kp, "name", &v.model.name, true) ||
+                !r.require(jv, kp, "model") || !readModel(r, jv["model"], kp + "/model", &v.model) ||
+                !r.require(jv, kp, "when"))
+                return false;
+            if (v.model.name.empty()) return r.fail(kp + "/name", "must not be empty");
+            if (auto m = jv.find("material"); m != jv.end() && !readMaterial(r, *m, kp + "/material", &v.material))
+                return false;
+            const json& w = jv["when"];
+            const std::string wp = kp + "/when";
+            std::string wc;
+            if (!r.expectObject(w, wp) || !r.onlyKeys(w, wp, {"channel", "min", "max"}) || !r.require(w, wp, "channel") ||
+                !r.string(w, wp, "channel", &wc, true))
+                return false;
+            if (!envChannelFromName(wc, &v.when.channel)) return r.fail(wp + "/channel", "unknown channel \"" + wc + "\"");
+            if (!r.number(w, wp, "min", &v.when.min, -1e30, 1e30) || !r.number(w, wp, "max", &v.when.max, -1e30, 1e30))
+                return false;
+            if (!(v.when.min < v.when.max)) return r.fail(wp, "min must be less than max");
+            sc.variants.push_back(std::move(v));
+        }
+    }
+    *out = std::move(sc);
+    return true;
+}
+
 bool readCandidates(JsonReader& r, const json& j, const std::string& p, DetailTypeSettings* d) {
     if (!r.expectObject(j, p) || !r.onlyKeys(j, p, {"count", "orientation", "scale", "position"})) return false;
     if (!r.integer(j, p, "count", &d->candidate_count, 1, kMaxCandidatesPerTile)) return false;
@@ -417,7 +466,8 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
         if (!r.expectObject(jt, tp) ||
             !versionedKeys(r, jt, tp, version, {"name", "model", "candidates"},
                            {"density", "subtract_terrain", "terrain_falloff_m", "angle_of_repose_deg", "instancing",
-                            "material"}))
+                            "material"},
+                           {"scatter"}))
             return false;
         DetailTypeDesc d;
         if (!r.string(jt, tp, "name", &d.model.name, true)) return false;
@@ -454,8 +504,17 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
             return false;
         if (auto it = jt.find("material"); it != jt.end() && !readMaterial(r, *it, tp + "/material", &d.material))
             return false;
+        if (auto it = jt.find("scatter"); it != jt.end() && !readScatter(r, *it, tp + "/scatter", &d.scatter))
+            return false;
         p.detail_types.push_back(std::move(d));
     }
+    // Variants are exported and drawn as meshes of their own, named like the types.
+    for (size_t t = 0; t < p.detail_types.size(); ++t)
+        for (size_t k = 0; k < p.detail_types[t].scatter.variants.size(); ++k)
+            if (!type_names.insert(p.detail_types[t].scatter.variants[k].model.name).second)
+                return r.fail("/detail_types/" + std::to_string(t) + "/scatter/variants/" + std::to_string(k) + "/name",
+                              "'" + p.detail_types[t].scatter.variants[k].model.name +
+                                  "' is already the name of a detail type or variant");
     if (auto it = doc.find("environment");
         it != doc.end() && !readEnvironment(r, *it, "/environment", &p.environment))
         return false;
@@ -480,6 +539,51 @@ json vec3Json(glm::vec3 v) {
 }
 json vec2Json(glm::vec2 v) {
     return json::array({jsonFloat(v.x), jsonFloat(v.y)});
+}
+
+json modelJson(const DetailModelSource& m) {
+    json model = {
+        {"mesh", m.mesh_path}, {"scale", jsonFloat(m.scale)}, {"y_up", m.y_up}};
+    if (!m.authored_spheres.empty()) {
+        json spheres = json::array();
+        for (const Sphere& s : m.authored_spheres)
+            spheres.push_back({jsonFloat(s.center.x), jsonFloat(s.center.y), jsonFloat(s.center.z),
+                               jsonFloat(s.radius)});
+        model["spheres"] = spheres;
+    } else {
+        model["spheres"] = {{"max_spheres", m.fit.max_spheres},
+                            {"tolerance_m", jsonFloat(m.fit.tolerance_m)},
+                            {"tolerance_rel", jsonFloat(m.fit.tolerance_rel)},
+                            {"surface_samples", m.fit.surface_samples},
+                            {"seed", m.fit.seed}};
+    }
+    json anchors = {{"mode", anchorModeName(m.anchor_mode)}, {"count", m.anchor_count}};
+    if (!m.authored_anchors.empty()) {
+        json pts = json::array();
+        for (const glm::vec3& a : m.authored_anchors) pts.push_back(vec3Json(a));
+        anchors["points"] = pts;
+    }
+    model["anchors"] = anchors;
+    return model;
+}
+
+json scatterJson(const ScatterDesc& sc) {
+    json j = {{"channel", envChannelName(sc.settings.channel)},
+              {"thickness_m", jsonFloat(sc.settings.thickness_m)},
+              {"ramp_m", jsonFloat(sc.settings.ramp_m)},
+              {"sheltered", sc.settings.sheltered}};
+    if (sc.variants.empty()) return j;
+    json variants = json::array();
+    for (const ScatterVariantDesc& v : sc.variants) {
+        json when = {{"channel", envChannelName(v.when.channel)}};
+        if (std::isfinite(v.when.min)) when["min"] = jsonFloat(v.when.min);
+        if (std::isfinite(v.when.max)) when["max"] = jsonFloat(v.when.max);
+        json jv = {{"name", v.model.name}, {"model", modelJson(v.model)}, {"when", when}};
+        if (v.material != Material{}) jv["material"] = materialToJson(v.material);
+        variants.push_back(std::move(jv));
+    }
+    j["variants"] = variants;
+    return j;
 }
 
 json terrainShapeJson(const TerrainDesc& t) {
@@ -602,7 +706,9 @@ std::string projectToJson(const Project& project) {
     json doc;
     doc["format"] = "undergrowth-project";
     // A project without environmental objects is a format 2 file, which older builds still read.
-    doc["format_version"] = project.environment.empty() ? 2 : kProjectFormatVersion;
+    bool scatters = false;
+    for (const DetailTypeDesc& d : project.detail_types) scatters = scatters || d.scatter.enabled;
+    doc["format_version"] = project.environment.empty() && !scatters ? 2 : kProjectFormatVersion;
     doc["name"] = project.name;
     doc["ghost_tile"] = {{"tile_size_m", jsonFloat(project.ghost_tile.tile_size_m)},
                          {"delta_m", jsonFloat(project.ghost_tile.delta_m)},
@@ -622,28 +728,7 @@ std::string projectToJson(const Project& project) {
     }
     json types = json::array();
     for (const DetailTypeDesc& d : project.detail_types) {
-        json model = {
-            {"mesh", d.model.mesh_path}, {"scale", jsonFloat(d.model.scale)}, {"y_up", d.model.y_up}};
-        if (!d.model.authored_spheres.empty()) {
-            json spheres = json::array();
-            for (const Sphere& s : d.model.authored_spheres)
-                spheres.push_back({jsonFloat(s.center.x), jsonFloat(s.center.y), jsonFloat(s.center.z),
-                                   jsonFloat(s.radius)});
-            model["spheres"] = spheres;
-        } else {
-            model["spheres"] = {{"max_spheres", d.model.fit.max_spheres},
-                                {"tolerance_m", jsonFloat(d.model.fit.tolerance_m)},
-                                {"tolerance_rel", jsonFloat(d.model.fit.tolerance_rel)},
-                                {"surface_samples", d.model.fit.surface_samples},
-                                {"seed", d.model.fit.seed}};
-        }
-        json anchors = {{"mode", anchorModeName(d.model.anchor_mode)}, {"count", d.model.anchor_count}};
-        if (!d.model.authored_anchors.empty()) {
-            json pts = json::array();
-            for (const glm::vec3& a : d.model.authored_anchors) pts.push_back(vec3Json(a));
-            anchors["points"] = pts;
-        }
-        model["anchors"] = anchors;
+        const json model = modelJson(d.model);
         json orientation = {{"mode", d.ghost.orientation.mode == OrientationMode::Tilt ? "tilt" : "uniform"}};
         if (d.ghost.orientation.mode == OrientationMode::Tilt) {
             json ranges = json::array();
@@ -664,6 +749,7 @@ std::string projectToJson(const Project& project) {
                      {"instancing", instancingJson(d.instancing)}};
         if (d.density.root != kNoNode) type["density"] = densityFieldToJson(d.density);
         if (d.material != Material{}) type["material"] = materialToJson(d.material);
+        if (d.scatter.enabled) type["scatter"] = scatterJson(d.scatter);
         types.push_back(std::move(type));
     }
     doc["detail_types"] = types;
@@ -696,6 +782,25 @@ bool loadProjectModels(const Project& project, std::vector<DetailModel>* models,
             *error = (project.source.empty() ? std::string() : project.source + ": ") + "/detail_types/" +
                      std::to_string(t) + "/model: " + model_error;
             return false;
+        }
+    }
+    return true;
+}
+
+bool loadScatterVariantModels(const Project& project, std::vector<std::vector<DetailModel>>* out, std::string* error) {
+    out->assign(project.detail_types.size(), {});
+    for (size_t t = 0; t < project.detail_types.size(); ++t) {
+        const std::vector<ScatterVariantDesc>& variants = project.detail_types[t].scatter.variants;
+        (*out)[t].resize(variants.size());
+        for (size_t k = 0; k < variants.size(); ++k) {
+            DetailModelSource source = variants[k].model;
+            source.mesh_path = resolveProjectPath(project, source.mesh_path);
+            std::string model_error;
+            if (!loadDetailModel(source, &(*out)[t][k], &model_error)) {
+                *error = (project.source.empty() ? std::string() : project.source + ": ") + "/detail_types/" +
+                         std::to_string(t) + "/scatter/variants/" + std::to_string(k) + "/model: " + model_error;
+                return false;
+            }
         }
     }
     return true;

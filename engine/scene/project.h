@@ -31,6 +31,14 @@
 //        "angle_of_repose_deg": 35,      (optional: the steepest slope a sculpted pile of this type keeps,
 //                                         in (0, 89]; the sculpt brush grows cones this steep, tools.h)
 //        "material": <material>,         (optional: the look; never changes what is instantiated)
+//        "scatter": {                    (optional, format 3: an environmental effect that scatters,
+//            "channel": "leaves" | "grass" | "trash",      env/env_scatter.h: density (α·c·h − d) / s)
+//            "thickness_m": 0.05,                          (h, in (0, 100])
+//            "ramp_m": 0.01,                               (s, in (0, 100])
+//            "sheltered": true,                            (default: true for leaves and trash, false for grass)
+//            "variants": [{"name": "leaf_oak_wet", "model": {...}, "material": <material>,
+//                          "when": {"channel": "humidity", "min": 0, "max": 1e30}}, ...]},
+//                                        (when: any channel; min / max optional; the first that holds wins)
 //        "instancing": {                 (optional)
 //            "strategy": "random" | "elevation" | "distance_to_boundary",   (default random)
 //            "layer_m": 0.02,                                                (> 0)
@@ -60,6 +68,7 @@
 #include "field/direction_field.h"
 #include "field/height_field.h"
 #include "env/env_desc.h"
+#include "env/env_scatter.h"
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instancing_settings.h"
 #include "instancer/settling.h"
@@ -104,6 +113,22 @@ struct InstancingDesc {
     SizeDesc size;
 };
 
+// A look of a scattered type chosen per instance from the environment at its origin (Fig. 12: wet, flat
+// leaves where η >= 0; Fig. 14: dried grass where θ is high); the selection never sees it.
+struct ScatterVariantDesc {
+    DetailModelSource model;  // model.name: the variant's name, unique among types and variants
+    Material material;
+    ScatterCondition when;
+};
+
+// The type is an environmental effect that scatters (env/env_scatter.h): its density is the effect's
+// term (α·c·h − d)/s, blended with the type's own brushes.
+struct ScatterDesc {
+    bool enabled = false;
+    ScatterSettings settings;
+    std::vector<ScatterVariantDesc> variants;  // the first whose condition holds wins; none: the type's own
+};
+
 struct DetailTypeDesc {
     DetailModelSource model;    // model.name is the type's name
     DetailTypeSettings ghost;   // ghost.name == model.name
@@ -118,6 +143,7 @@ struct DetailTypeDesc {
     float angle_of_repose_deg = 35.0f;
     InstancingDesc instancing;
     Material material;  // the look only: instantiation never reads it
+    ScatterDesc scatter;  // format 3
 };
 
 enum class TerrainKind : uint8_t { None, Procedural, Image };
@@ -170,6 +196,9 @@ bool saveProject(const std::string& path, const Project& project, std::string* e
 // ("meadow.json: /detail_types/2/model: detail model 'rock' (rock.ply): rock.ply: line 7: ...").
 bool loadProjectModels(const Project& project, std::vector<DetailModel>* models, std::string* error);
 GhostTileInput ghostTileInput(const Project& project, const std::vector<DetailModel>& models);
+// The scattered types' variant models: (*out)[t][k] is type t's variant k (empty for other types). Errors
+// as loadProjectModels', naming /detail_types/<t>/scatter/variants/<k>/model.
+bool loadScatterVariantModels(const Project& project, std::vector<std::vector<DetailModel>>* out, std::string* error);
 
 // Resolves a project-relative path.
 std::string resolveProjectPath(const Project& project, const std::string& path);

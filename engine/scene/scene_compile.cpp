@@ -109,7 +109,7 @@ bool loadTerrain(const Project& project, std::shared_ptr<const HeightField>* out
 
 bool compileDetailType(const Project& project, size_t type_index,
                        const std::shared_ptr<const HeightField>& terrain, InstanceTypeSettings* out,
-                       std::string* error) {
+                       std::string* error, const std::shared_ptr<const EnvScene>& environment) {
     if (type_index >= project.detail_types.size())
         return fail(error, project, "/detail_types",
                     "no detail type " + std::to_string(type_index) + " (there are " +
@@ -124,6 +124,22 @@ bool compileDetailType(const Project& project, size_t type_index,
     if (!attachTerrain(d.density, terrain, field.get(), &why))
         return fail(error, project, tp + "/density", why);
     if (!validate(*field, &why)) return fail(error, project, tp + "/density", why);
+    if (d.scatter.enabled) {
+        if (!environment)
+            return fail(error, project, tp + "/scatter", "a scattered type needs the environment (none was compiled)");
+        if (!validateScatterSettings(d.scatter.settings, tp + "/scatter", &why)) {
+            if (error) *error = sceneLabel(project) + ": " + why;
+            return false;
+        }
+        const uint32_t e = addExternal(field.get(), std::make_shared<ScatterField>(environment, d.scatter.settings));
+        const uint32_t term = primitiveChild(addPrimitive(field.get(), makeExternal(e)));
+        if (field->root == kNoNode) {
+            field->root = addNode(field.get(), FieldOp::Blend, std::span<const uint32_t>(&term, 1));
+        } else {
+            const uint32_t pair[2] = {nodeChild(field->root), term};
+            field->root = addNode(field.get(), FieldOp::Blend, pair);
+        }
+    }
     if (terrain && d.subtract_terrain) {
         if (!std::isfinite(d.terrain_falloff_m) || !(d.terrain_falloff_m > 0.0f))
             return fail(error, project, tp + "/terrain_falloff_m", "must be finite and > 0");
@@ -189,13 +205,14 @@ Bounds computeSceneExtent(const Project& project, const CompiledScene& scene) {
 }
 
 bool compileScene(const Project& project, std::shared_ptr<const HeightField> terrain, CompiledScene* out,
-                  std::string* error) {
+                  std::string* error, std::shared_ptr<const EnvScene> environment) {
     if (!terrainMatches(project, terrain.get(), error)) return false;
     CompiledScene scene;
     scene.terrain = std::move(terrain);
+    scene.environment = std::move(environment);
     scene.types.resize(project.detail_types.size());
     for (size_t t = 0; t < project.detail_types.size(); ++t)
-        if (!compileDetailType(project, t, scene.terrain, &scene.types[t], error)) return false;
+        if (!compileDetailType(project, t, scene.terrain, &scene.types[t], error, scene.environment)) return false;
 
     if (project.extent) {
         const Bounds& e = *project.extent;

@@ -28,6 +28,7 @@
 #include "instancer/instancing_settings.h"
 #include "instancer/settling.h"
 #include "material/material.h"
+#include "env/env_scene.h"
 #include "scene/project.h"
 
 namespace ug {
@@ -37,6 +38,9 @@ constexpr float kTerrainExtentPadM = 2.0f;
 
 struct CompiledScene {
     std::shared_ptr<const HeightField> terrain;  // null when the project has none
+    // What scattered types (DetailTypeDesc::scatter) read their density from; null when the project has
+    // no environment (then no type may scatter).
+    std::shared_ptr<const EnvScene> environment;
     std::vector<InstanceTypeSettings> types;     // one per detail type, same order
     Bounds extent;                               // finite, lo < hi on every axis
 };
@@ -49,8 +53,10 @@ bool loadTerrain(const Project& project, std::shared_ptr<const HeightField>* out
 // loadTerrain returned for this project (null exactly when it has none). Fails when the extent is not
 // given and cannot be derived: "<scene>: /extent: required because the density of '<type>' is
 // unbounded", or "... because no detail type has any density" when every field is empty.
+// `environment`: the project's compiled environment (env_scene.h), needed by scattered types (an error
+// names the first one when it is missing).
 bool compileScene(const Project& project, std::shared_ptr<const HeightField> terrain, CompiledScene* out,
-                  std::string* error);
+                  std::string* error, std::shared_ptr<const EnvScene> environment = nullptr);
 
 // One type, for the editor's per-edit recompile:
 //   field        the document's density with `terrain` attached as height field 0, then
@@ -59,10 +65,12 @@ bool compileScene(const Project& project, std::shared_ptr<const HeightField> ter
 //   orientation  Constant: the direction; Gradient: of `field` (the same shared object);
 //                min_cos = cos(max_angle_deg);
 //   size         Constant: the target; Ramp: its own field, with the terrain attached (no subtraction).
+// A scattered type's field is Blend(its density, External(ScatterField on `environment`)) before the
+// ground solid is subtracted.
 // *out is untouched on failure.
 bool compileDetailType(const Project& project, size_t type_index,
                        const std::shared_ptr<const HeightField>& terrain, InstanceTypeSettings* out,
-                       std::string* error);
+                       std::string* error, const std::shared_ptr<const EnvScene>& environment = nullptr);
 
 // The project's extent when it has one. Otherwise the union over types of the positive bounds of their
 // compiled fields (positiveBounds: conservative), where, when there is a terrain,

@@ -12,13 +12,14 @@ std::string sceneName(const Project& project) { return project.source.empty() ? 
 // The editor's extent for a project the compiler refuses only for having no density yet: the project's
 // own, else empty. Any other reason (an unbounded field without an extent) still stands.
 bool emptyExtentScene(const Project& project, const std::shared_ptr<const HeightField>& terrain,
-                      CompiledScene* out, std::string* error) {
+                      const std::shared_ptr<const EnvScene>& environment, CompiledScene* out, std::string* error) {
     if (project.extent) return false;
     CompiledScene scene;
     scene.terrain = terrain;
+    scene.environment = environment;
     scene.types.resize(project.detail_types.size());
     for (size_t t = 0; t < scene.types.size(); ++t)
-        if (!compileDetailType(project, t, terrain, &scene.types[t], error)) return false;
+        if (!compileDetailType(project, t, terrain, &scene.types[t], error, environment)) return false;
     const Bounds e = computeSceneExtent(project, scene);
     bool flat = false;
     for (int a = 0; a < 3; ++a) flat = flat || !(e.lo[a] < e.hi[a]);
@@ -49,16 +50,23 @@ bool loadScene(const Project& project, const SceneLoadOptions& options, LoadedSc
         *error = name + ": " + *error;
         return false;
     }
-    if (!compileScene(project, scene.terrain, &scene.compiled, error)) {
+    // The environment before the densities: scattered types read theirs from it.
+    auto env = std::make_shared<EnvScene>();
+    if (!compileEnvScene(project.environment, project.base_dir, name, scene.terrain, env.get(), error)) return false;
+    scene.environment = std::move(env);
+    if (!compileScene(project, scene.terrain, &scene.compiled, error, scene.environment)) {
         std::string first = *error;
-        if (!options.allow_empty_extent || !emptyExtentScene(project, scene.terrain, &scene.compiled, error)) {
+        if (!options.allow_empty_extent ||
+            !emptyExtentScene(project, scene.terrain, scene.environment, &scene.compiled, error)) {
             *error = first;
             return false;
         }
     }
-    auto env = std::make_shared<EnvScene>();
-    if (!compileEnvScene(project.environment, project.base_dir, name, scene.terrain, env.get(), error)) return false;
-    scene.environment = std::move(env);
+    scene.variant_models = std::make_shared<std::vector<std::vector<DetailModel>>>();
+    if (!loadScatterVariantModels(project, scene.variant_models.get(), error)) {
+        if (project.source.empty()) *error = name + ": " + *error;
+        return false;
+    }
     *out = std::move(scene);
     return true;
 }

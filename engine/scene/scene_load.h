@@ -42,6 +42,8 @@ struct LoadedScene {
     double models_seconds = 0.0;   // loading and fitting the detail models
     CompiledScene compiled;
     std::shared_ptr<const EnvScene> environment;  // never null: empty for a project without one
+    // Scattered types' variants (loadScatterVariantModels): [type][variant], empty for other types.
+    std::shared_ptr<std::vector<std::vector<DetailModel>>> variant_models;
 };
 
 bool loadScene(const Project& project, const SceneLoadOptions& options, LoadedScene* out, std::string* error);

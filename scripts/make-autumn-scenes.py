@@ -1,0 +1,153 @@
+#!/usr/bin/env python3
+"""Writes the three autumn sample scenes (assets/scenes/{street,park,road}_autumn.json) after the
+environmental-objects paper's scattered effects (Grosbellet et al. 2016, §5.3-5.4, Fig. 12, 14, 19-21,
+Table 1): fallen leaves, trash and grass as detail types whose density comes from the environment
+(env/env_scatter.h). The environmental objects and helpers are the winter scenes' (make-winter-scenes.py).
+Deterministic."""
+import importlib.util
+import json
+import math
+import os
+import sys
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+OUT = os.path.join(HERE, "..", "assets", "scenes")
+_spec = importlib.util.spec_from_file_location("winter", os.path.join(HERE, "make-winter-scenes.py"))
+W = importlib.util.module_from_spec(_spec)
+_spec.loader.exec_module(W)
+r, obj, field, point, segment, env_type = W.r, W.obj, W.field, W.point, W.segment, W.env_type
+
+FLAT = {"mode": "tilt", "tilt_ranges": [[0, 25, 0.8], [25, 50, 0.2]]}  # leaves lie nearly flat
+UPRIGHT = {"mode": "tilt", "tilt_ranges": [[0, 12, 1]]}                 # grass tufts stand
+LYING = {"mode": "tilt", "tilt_ranges": [[0, 10, 1]]}                   # trash lies on its side
+CENTRE = {"mode": "center"}  # one anchor: a scattered layer is tested where each candidate's origin is
+
+
+def leaf(name, color, wet_color, count, thickness=0.12):
+    """A leaf type: dry and wrinkled where the humidity is below 0, wet and flat at or above it (Fig. 12)."""
+    return {
+        "name": name,
+        "model": {"mesh": "../models/%s_dry.glb" % name, "anchors": CENTRE},
+        "material": {"base_color": color, "roughness": 0.8, "texture": "leaf", "texture_scale_m": 0.1,
+                     "tint_variation": 0.35},
+        "candidates": {"count": count, "scale": [0.8, 1.25], "orientation": FLAT},
+        "scatter": {"channel": "leaves", "thickness_m": thickness,
+                    "variants": [{"name": name + "_wet", "model": {"mesh": "../models/%s_wet.glb" % name},
+                                  "material": {"base_color": wet_color, "roughness": 0.35, "texture": "leaf",
+                                               "texture_scale_m": 0.1, "tint_variation": 0.2},
+                                  "when": {"channel": "humidity", "min": 0}}]},
+    }
+
+
+def trash(name, mesh, color, count):
+    return {
+        "name": name,
+        "model": {"mesh": "../models/%s.glb" % mesh, "anchors": CENTRE},
+        "material": {"base_color": color, "roughness": 0.5},
+        "candidates": {"count": count, "scale": [0.9, 1.1], "orientation": LYING},
+        "scatter": {"channel": "trash", "thickness_m": 0.12},
+    }
+
+
+def grass(count, thickness=0.09):
+    """Grass tufts standing on the ground, thinned where the occlusion is low (trails), dried where it is
+    warm (Fig. 14)."""
+    return {
+        "name": "grass_tuft",
+        "model": {"mesh": "../models/grass_tuft.glb", "anchors": CENTRE},
+        "material": {"base_color": [0.22, 0.42, 0.12], "roughness": 0.8, "texture": "grass", "texture_scale_m": 0.1,
+                     "tint_variation": 0.3},
+        "candidates": {"count": count, "scale": [0.8, 1.3], "orientation": UPRIGHT},
+        "scatter": {"channel": "grass", "thickness_m": thickness,
+                    "variants": [{"name": "grass_tuft_dry", "model": {"mesh": "../models/grass_tuft_dry.glb"},
+                                  "material": {"base_color": [0.55, 0.47, 0.25], "roughness": 0.9, "texture": "grass",
+                                               "texture_scale_m": 0.1, "tint_variation": 0.3},
+                                  "when": {"channel": "temperature", "min": 22}}]},
+    }
+
+
+LEAVES = ["leaves"]
+LEAVES_TRASH = ["leaves", "trash"]
+
+
+def autumn_types():
+    """The winter scenes' objects, told what rests on them: roads, pavements, benches, steps take leaves and
+    trash; roofs and the fountain's rim leaves; trees let leaves through (their crown is where the leaves
+    come from)."""
+    receives = {"road_segment": LEAVES_TRASH, "pavement_slab": LEAVES_TRASH, "bench": LEAVES_TRASH,
+                "steps": LEAVES_TRASH, "bus_shelter": LEAVES, "fountain": LEAVES}
+    types = []
+    for t in W.TYPES:
+        t = json.loads(json.dumps(t))
+        if t["name"] in receives:
+            t["receives"] = receives[t["name"]]
+        if t["name"] == "tree":
+            t["shelters"] = False
+            # A large spherical leaf field around the crown (Fig. 20), and the shade under it.
+            t["fields"] = [field("leaves", 1.2, point([0, 0, 3.2], 7.0)), field("occlusion", 0.3, point([0, 0, 3.5], 2.5))]
+        types.append(t)
+    return types
+
+
+AUTUMN = [field("humidity", -0.3), field("temperature", 14.0)]
+
+
+def head(name, extent):
+    p = W.head(name, extent)
+    p["settling"] = {"enabled": True, "passes": 8, "max_drop_m": 0.1}
+    return p
+
+
+def street_autumn():
+    """10 x 10 m (Fig. 20, Table 1 "Street"): a tree whose large spherical leaf field covers road and
+    pavement, two small leaf piles, a bench and a bus shelter that keep leaves off the ground beneath them
+    (their shelter), leaves on the bench's seat, a wet puddle with flat wet leaves, trash around the trash
+    can and grass on the verge behind the pavement, trampled along a path."""
+    p = head("street_autumn", [[0, 0, -0.5], [10, 10, 5.5]])
+    p["terrain"] = W.flat_terrain(0, 0, 10, 10, 0.25)
+    p["detail_types"] = [
+        leaf("leaf_oak", [0.55, 0.27, 0.08], [0.32, 0.14, 0.05], 220),
+        leaf("leaf_birch", [0.80, 0.62, 0.14], [0.48, 0.34, 0.07], 220),
+        trash("can", "trash_can", [0.75, 0.1, 0.1], 2),
+        trash("crumpled_paper", "trash_paper", [0.9, 0.88, 0.82], 2),
+        trash("paper_cup", "trash_cup", [0.95, 0.95, 0.93], 2),
+        trash("bottle", "trash_bottle", [0.35, 0.6, 0.4], 1),
+        grass(160),
+    ]
+    s = 10.0 / 12.0
+    tree = [obj("road_segment", [(2 + 4 * i) * s, 2 * s, 0], scale=s) for i in range(3)]
+    tree += [obj("pavement_slab", [1 + 2 * i, 4 * s + 1, 0], yaw=180) for i in range(5)]
+    tree += [
+        obj("tree", [5.0, 5.4, 0.15], yaw=20),
+        obj("trash_can", [8.4, 5.9, 0.15]),
+        obj("lamppost", [2.0, 4.6, 0.12], yaw=180),
+        obj("bus_shelter", [2.4, 7.6, 0], yaw=180),
+        obj("bench", [6.6, 7.2, 0], yaw=180),
+    ]
+    piles = [field("leaves", 3.0, point([7.6, 4.9, 0.15], 0.7)), field("leaves", 2.5, point([3.9, 2.6, 0.0], 0.6))]
+    puddle = [field("humidity", 1.5, point([6.2, 2.2, 0.0], 0.9))]
+    litter = [field("trash", 1.0, point([8.4, 5.9, 0.15], 1.4))]
+    lawn = [field("grass", 1.0, {"box": {"center": [5, 8.2, 0], "half_extents": [5, 1.8, 0.5], "radius": 0.3}})]
+    path = [field("occlusion", 0.9, segment([4.6, 6.4, 0.0], [5.4, 10.0, 0.0], 0.45))]
+    p["environment"] = {
+        "types": autumn_types(),
+        "tree": tree,
+        "global_fields": AUTUMN + piles + puddle + litter + lawn + path,
+        "terrain": {"snow": False, "receives": ["leaves", "grass", "trash"]},
+    }
+    return p
+
+
+def main():
+    for make in (street_autumn,):
+        scene = make()
+        path = os.path.join(OUT, scene["name"] + ".json")
+        with open(path, "w") as f:
+            json.dump(scene, f, indent=1)
+            f.write("\n")
+        print("wrote", os.path.relpath(path))
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
