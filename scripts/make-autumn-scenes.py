@@ -49,7 +49,7 @@ def trash(name, mesh, color, count):
     }
 
 
-def grass(count, thickness=0.09):
+def grass(count, thickness=0.09, scale=(0.8, 1.3)):
     """Grass tufts standing on the ground, thinned where the occlusion is low (trails), dried where it is
     warm (Fig. 14)."""
     return {
@@ -57,7 +57,7 @@ def grass(count, thickness=0.09):
         "model": {"mesh": "../models/grass_tuft.glb", "anchors": CENTRE},
         "material": {"base_color": [0.22, 0.42, 0.12], "roughness": 0.8, "texture": "grass", "texture_scale_m": 0.1,
                      "tint_variation": 0.3},
-        "candidates": {"count": count, "scale": [0.8, 1.3], "orientation": UPRIGHT},
+        "candidates": {"count": count, "scale": list(scale), "orientation": UPRIGHT},
         "scatter": {"channel": "grass", "thickness_m": thickness,
                     "variants": [{"name": "grass_tuft_dry", "model": {"mesh": "../models/grass_tuft_dry.glb"},
                                   "material": {"base_color": [0.55, 0.47, 0.25], "roughness": 0.9, "texture": "grass",
@@ -84,7 +84,7 @@ def autumn_types():
         if t["name"] == "tree":
             t["shelters"] = False
             # A large spherical leaf field around the crown (Fig. 20), and the shade under it.
-            t["fields"] = [field("leaves", 1.2, point([0, 0, 3.2], 7.0)), field("occlusion", 0.3, point([0, 0, 3.5], 2.5))]
+            t["fields"] = [field("leaves", 1.5, point([0, 0, 3.2], 8.5)), field("occlusion", 0.3, point([0, 0, 3.5], 2.5))]
         types.append(t)
     return types
 
@@ -92,8 +92,9 @@ def autumn_types():
 AUTUMN = [field("humidity", -0.3), field("temperature", 14.0)]
 
 
-def head(name, extent):
+def head(name, extent, tile=0.5):
     p = W.head(name, extent)
+    p["ghost_tile"]["tile_size_m"] = tile
     p["settling"] = {"enabled": True, "passes": 8, "max_drop_m": 0.1}
     return p
 
@@ -138,8 +139,81 @@ def street_autumn():
     return p
 
 
+def leaf_types(count, thickness=0.12):
+    return [leaf("leaf_oak", [0.55, 0.27, 0.08], [0.32, 0.14, 0.05], count, thickness),
+            leaf("leaf_birch", [0.80, 0.62, 0.14], [0.48, 0.34, 0.07], count, thickness)]
+
+
+def park_autumn():
+    """115 x 90 m (Fig. 19, Table 1 "Park"): a lawn crossed by two paved paths, 18 trees shedding their
+    leaves on it, benches along the paths (leaves on their seats, none under them), a fountain whose rim
+    collects leaves, a warm, dry corner where the grass has dried (Fig. 14) and trampled trails across the
+    lawn (low occlusion: sparse grass)."""
+    p = head("park_autumn", [[-57.5, -45, -1], [57.5, 45, 8]])
+    p["terrain"] = W.flat_terrain(-57.5, -45, 115, 90, 0.5, amplitude=0.4, feature=40.0)
+    p["detail_types"] = leaf_types(160) + [grass(150, scale=(0.7, 1.0))]
+    tree = []
+    # Two paths of pavement slabs crossing at the fountain.
+    for i in range(-28, 28):
+        if abs(i) > 1:
+            tree.append(obj("pavement_slab", [2 * i + 1, 0, 0]))
+    for j in range(-22, 22):
+        if abs(j) > 1:
+            tree.append(obj("pavement_slab", [0, 2 * j + 1, 0], yaw=90))
+    tree.append(obj("fountain", [0, 0, 0]))
+    k = 0
+    for (x, y) in [(-40, 20), (-25, 28), (-10, 22), (12, 24), (28, 30), (44, 18), (-45, -15), (-30, -28),
+                   (-14, -20), (15, -26), (30, -18), (46, -30), (-20, 8), (22, 9), (-35, 5), (38, -5),
+                   (8, -12), (-8, 36)]:
+        tree.append(obj("tree", [x, y, 0], yaw=37 * k))
+        k += 1
+    for i, x in enumerate([-44, -30, -16, 16, 30, 44]):
+        tree.append(obj("bench", [x, 2.2, 0], yaw=180))
+        tree.append(obj("bench", [2.2, (x * 0.8), 0], yaw=90))
+    trails = [field("occlusion", 0.8, segment([-50, -40, 0], [-5, -3, 0], 0.6)),
+              field("occlusion", 0.8, segment([50, 38, 0], [6, 4, 0], 0.6))]
+    dry = [field("temperature", 12.0, point([45, -35, 0], 14.0))]
+    lawn = [field("grass", 1.0)]
+    p["environment"] = {
+        "types": autumn_types(),
+        "tree": tree,
+        "global_fields": AUTUMN + lawn + trails + dry,
+        "terrain": {"snow": False, "receives": ["leaves", "grass", "trash"]},
+    }
+    return p
+
+
+def road_autumn():
+    """70 x 70 m (Fig. 21, Table 1 "Road"): the winter road in autumn — a road and its fences between two
+    grass verges, 24 trees in rings of pavers, their leaves over the verges and the road, tyre tracks."""
+    p = head("road_autumn", [[-35, -35, -1], [35, 35, 8]], tile=0.25)
+    p["terrain"] = W.flat_terrain(-35, -35, 70, 70, 0.5, amplitude=0.0)
+    p["detail_types"] = leaf_types(150, thickness=0.1) + [grass(520, thickness=0.07, scale=(0.45, 0.6))]
+    groups = {"tree_a": W.tree_with_pavers("tree_a", 109, 6, 0), "tree_b": W.tree_with_pavers("tree_b", 109, 6, 140)}
+    tree = [obj("road_segment", [-34 + 4 * i + 2, 0, 0]) for i in range(17)]
+    tree += [obj("fence_segment", [-34 + 2 * i + 1, 2.6 * side, 0], yaw=0 if side > 0 else 180)
+             for side in (-1, 1) for i in range(34)]
+    k = 0
+    for side in (-1, 1):
+        for i in range(12):
+            x = -30 + i * 5.4
+            tree.append({"ref": "tree_a" if (i + side) % 2 == 0 else "tree_b", "at": [r(x), 6.0 * side, 0],
+                         "yaw_deg": 30 * k})
+            k += 1
+    tracks = [field("occlusion", 0.9, segment([-35, y, 0.1], [35, y, 0.1], 0.18)) for y in (-0.9, 0.9)]
+    verges = [field("grass", 1.0)]
+    p["environment"] = {
+        "types": autumn_types(),
+        "groups": groups,
+        "tree": tree,
+        "global_fields": AUTUMN + verges + tracks + [field("leaves", 0.1)],
+        "terrain": {"snow": False, "receives": ["leaves", "grass", "trash"]},
+    }
+    return p
+
+
 def main():
-    for make in (street_autumn,):
+    for make in (street_autumn, park_autumn, road_autumn):
         scene = make()
         path = os.path.join(OUT, scene["name"] + ".json")
         with open(path, "w") as f:

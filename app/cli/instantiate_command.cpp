@@ -200,10 +200,11 @@ int runInstantiateCommand(int argc, char** argv) {
     SceneEnvironmentOutput env;
     if (!computeSceneEnvironment(job, threads, has_region ? &region : nullptr, false, &env, &error)) return fail(error);
     if (!env.stats.is_null()) stats["environment"] = env.stats;
-    const SceneMaterials looks = compileSceneMaterials(job.project, job.models);
+    const SceneLooks looks = sceneLooks(job);
+    stats["instances_per_look"] = lookCountsJson(job, looks, store);
     InstanceExportOptions export_options;
     export_options.static_meshes = &env.meshes;
-    export_options.materials = &looks;
+    useLooks(looks, &export_options);
     export_options.chunk_size_m = chunk > 0.0f ? chunk : job.project.chunk_size_m;
     export_options.use_instancing_extension = !args.has("--plain-nodes");
     if (settle.settings.enabled) export_options.drops = &drops;

@@ -2,6 +2,7 @@
 
 #include <cstdio>
 
+#include "instancer/tile_coord.h"
 #include "scene/scene_load.h"
 
 namespace ug::cli {
@@ -30,7 +31,35 @@ bool loadSceneJob(const std::string& scene, const std::string& cache_dir, int th
     job->models_seconds = loaded.models_seconds;
     job->compiled = std::move(loaded.compiled);
     job->environment = std::move(loaded.environment);
+    job->variant_models = std::move(*loaded.variant_models);
     return true;
+}
+
+SceneLooks sceneLooks(const SceneJob& job) {
+    SceneLooks out;
+    out.materials = compileSceneMaterials(job.project, job.models, &job.variant_models);
+    out.looks = detailLooks(job.project, job.models, job.variant_models, job.environment);
+    return out;
+}
+
+nlohmann::json lookCountsJson(const SceneJob& job, const SceneLooks& looks, const InstanceStore& store) {
+    std::vector<uint64_t> counts(looks.looks.size(), 0);
+    const CandidateSet& c = job.tile.candidates;
+    store.forEach([&](uint64_t key, uint32_t j) {
+        const glm::vec3 origin = tileOrigin(unpackTile(key), job.tile.settings.tile_size_m) + c.position[j];
+        ++counts[looks.looks.lookOf(c.type[j], origin)];
+    });
+    nlohmann::json out = nlohmann::json::object();
+    for (size_t l = 0; l < counts.size(); ++l) out[looks.looks.models[l]->name] = counts[l];
+    return out;
+}
+
+void useLooks(const SceneLooks& looks, InstanceExportOptions* options) {
+    options->materials = &looks.materials;
+    if (!looks.looks.hasVariants()) return;
+    options->look_models = looks.looks.models;
+    const DetailLooks* l = &looks.looks;
+    options->look_of = [l](uint32_t type, glm::vec3 origin) { return l->lookOf(type, origin); };
 }
 
 InstancerInput instancerInput(const SceneJob& job, uint64_t seed) {

@@ -11,6 +11,8 @@
 #include "ghosttile/ghost_tile.h"
 #include "ghosttile/ghost_tile_cache.h"
 #include "instancer/instantiator.h"
+#include "io/instance_export.h"
+#include "scene/detail_looks.h"
 #include "scene/project.h"
 #include "env/env_scene.h"
 #include "scene/scene_compile.h"
@@ -26,7 +28,20 @@ struct SceneJob {
     double models_seconds = 0.0;
     CompiledScene compiled;
     std::shared_ptr<const EnvScene> environment;  // never null after a load
+    std::vector<std::vector<DetailModel>> variant_models;  // scattered types' variants, [type][k]
 };
+
+// What a job's exports look like: a material per look and the looks themselves (scene/detail_looks.h).
+struct SceneLooks {
+    SceneMaterials materials;
+    DetailLooks looks;
+};
+SceneLooks sceneLooks(const SceneJob& job);
+// Points the export's materials and looks at `looks`, which must outlive the options.
+void useLooks(const SceneLooks& looks, InstanceExportOptions* options);
+// {"<look name>": instances, ...}: what each exported detail mesh holds (the types' counts when no type
+// has variants).
+nlohmann::json lookCountsJson(const SceneJob& job, const SceneLooks& looks, const InstanceStore& store);
 
 // Loads the project, fits its models, loads or builds the Ghost Tile (progress on stderr unless quiet) and
 // compiles the fields. Errors name the scene file.

@@ -206,9 +206,10 @@ int runHeadlessJob(const std::string& scene, const std::string& out_dir, int thr
     SceneEnvironmentOutput env;
     if (!computeSceneEnvironment(job, threads, nullptr, false, &env, &error)) return fail("run", error);
     if (!env.stats.is_null()) istats["environment"] = env.stats;
-    const SceneMaterials looks = compileSceneMaterials(job.project, job.models);
+    const SceneLooks looks = sceneLooks(job);
+    istats["instances_per_look"] = lookCountsJson(job, looks, inst.store());
     InstanceExportOptions export_options;
-    export_options.materials = &looks;
+    useLooks(looks, &export_options);
     export_options.static_meshes = &env.meshes;
     export_options.chunk_size_m = job.project.chunk_size_m;
     // Settled like `instantiate` and the editor, so the main job's export rests where they show it.

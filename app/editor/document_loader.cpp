@@ -53,7 +53,8 @@ void DocumentLoader::work() {
     progress_.store(0.85f);
     // The materials bake their textures (a few hundred ms): here, off the UI thread.
     const SceneMaterials looks = doc.materials();
-    s.meshes = buildTypeMeshes(doc.models(), doc.ghostTile().candidates, &looks);
+    s.looks = doc.looks();
+    s.meshes = buildLookMeshes(s.looks, doc.ghostTile().candidates, &looks);
     s.terrain_material = looks.terrain;
     if (!doc.environment()->empty()) {
         progress_.store(0.9f);

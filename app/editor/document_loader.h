@@ -26,7 +26,8 @@ struct EditorScene {
     std::unique_ptr<Document> doc;
     bool has_terrain = false;
     TriangleMesh terrain;               // world space; empty without terrain
-    std::vector<DetailLodMesh> meshes;  // one per detail type, with its material
+    std::vector<DetailLodMesh> meshes;  // one per look (doc->looks()): the types', then their variants'
+    DetailLooks looks;                  // which mesh each instance takes; points into doc's models
     SurfaceMaterial terrain_material;
     // The environmental objects' base geometry and effects (snow, icicles) as the renderer draws them
     // (env/env_outputs.h); empty without an environment.

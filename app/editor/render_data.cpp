@@ -152,6 +152,21 @@ std::vector<DetailLodMesh> buildTypeMeshes(const std::vector<DetailModel>& model
     return meshes;
 }
 
+std::vector<DetailLodMesh> buildLookMeshes(const DetailLooks& looks, const CandidateSet& candidates,
+                                           const SceneMaterials* materials) {
+    std::vector<DetailLodMesh> meshes;
+    for (size_t l = 0; l < looks.size(); ++l) {
+        meshes.push_back(buildDetailLods(*looks.models[l], candidateScaleMax(candidates, looks.look_type[l])));
+        if (materials && l < materials->types.size()) {
+            meshes.back().material = materials->types[l];
+            meshes.back().color = materials->types[l].base_color;
+        } else {
+            meshes.back().material.base_color = meshes.back().color;
+        }
+    }
+    return meshes;
+}
+
 uint64_t ResidentTiles::instanceCount() const {
     uint64_t n = 0;
     for (uint64_t c : instances_per_type) n += c;
@@ -190,6 +205,37 @@ void countByType(const std::vector<uint32_t>& ids, const CandidateSet& c, std::v
         while (k < ids.size() && ids[k] < c.type_begin[type + 1]) ++k;
         (*counts)[type] = uint32_t(k - begin);
     }
+}
+
+// With looks that have variants: regroups a tile's ids (and their drops) by look, ascending within each,
+// into *ids / *drops, and counts[look]. Otherwise countByType.
+void groupTile(uint64_t key, const CandidateSet& c, float tile_size_m, const DetailLooks* looks,
+               std::vector<uint32_t>* ids, std::span<const uint16_t>* drops, std::vector<uint16_t>* drop_scratch,
+               std::vector<uint32_t>* counts) {
+    if (!looks || !looks->hasVariants()) {
+        countByType(*ids, c, counts);
+        return;
+    }
+    const glm::vec3 origin = tileOrigin(unpackTile(key), tile_size_m);
+    thread_local std::vector<uint32_t> look_of, sorted;
+    look_of.resize(ids->size());
+    counts->assign(looks->size(), 0);
+    for (size_t k = 0; k < ids->size(); ++k) {
+        const uint32_t j = (*ids)[k];
+        look_of[k] = looks->lookOf(c.type[j], origin + c.position[j]);
+        ++(*counts)[look_of[k]];
+    }
+    std::vector<uint32_t> start(looks->size() + 1, 0);
+    for (size_t l = 0; l < looks->size(); ++l) start[l + 1] = start[l] + (*counts)[l];
+    sorted.resize(ids->size());
+    drop_scratch->assign(drops->empty() ? 0 : ids->size(), 0);
+    for (size_t k = 0; k < ids->size(); ++k) {
+        const uint32_t at = start[look_of[k]]++;
+        sorted[at] = (*ids)[k];
+        if (!drops->empty() && k < drops->size()) (*drop_scratch)[at] = (*drops)[k];
+    }
+    ids->swap(sorted);
+    *drops = std::span<const uint16_t>(*drop_scratch);
 }
 
 // Writes tile `t`'s instances of every type into its slots (allocating or moving them as needed) and
@@ -284,7 +330,7 @@ void startUploads(uint32_t type_count, TileUploads* uploads) {
 
 bool rebuildResidentTiles(const InstanceStore& store, const SettledDrops* drops, const CandidateSet& candidates,
                           float tile_size_m, float drop_unit_m, ResidentTiles* out, TileUploads* uploads,
-                          std::string* error) {
+                          std::string* error, const DetailLooks* looks) {
     if (candidates.size() > kPackedCandidateLimit) {
         *error = "the Ghost Tile has " + std::to_string(candidates.size()) + " candidates; the renderer packs at most " +
                  std::to_string(kPackedCandidateLimit);
@@ -293,7 +339,7 @@ bool rebuildResidentTiles(const InstanceStore& store, const SettledDrops* drops,
     for (size_t t = 0; t < store.tileCount(); ++t)
         if (!checkTile(unpackTile(store.tileKey(t)), error)) return false;
     ResidentTiles r;
-    r.type_count = candidates.typeCount();
+    r.type_count = looks && looks->hasVariants() ? uint32_t(looks->size()) : candidates.typeCount();
     r.tile_size_m = tile_size_m;
     r.drop_unit_m = drop_unit_m;
     r.types.resize(r.type_count);
@@ -303,12 +349,14 @@ bool rebuildResidentTiles(const InstanceStore& store, const SettledDrops* drops,
     r.tile_index.reserve(store.tileCount());
     startUploads(r.type_count, uploads);
     std::vector<uint32_t> ids, counts;
+    std::vector<uint16_t> drop_scratch;
     for (size_t i = 0; i < store.tileCount(); ++i) {
         const uint64_t key = store.tileKey(i);
         store.tileIds(i, &ids);
-        countByType(ids, candidates, &counts);
+        std::span<const uint16_t> tile_drops = drops ? drops->tile(key) : std::span<const uint16_t>();
+        groupTile(key, candidates, tile_size_m, looks, &ids, &tile_drops, &drop_scratch, &counts);
         const uint32_t t = addTile(&r, key, unpackTile(key));
-        writeTile(&r, t, ids, drops ? drops->tile(key) : std::span<const uint16_t>(), counts, SlotFit::Exact, uploads);
+        writeTile(&r, t, ids, tile_drops, counts, SlotFit::Exact, uploads);
         uploads->tiles.push_back(r.tile_coord[t]);
     }
     // Everything is new: each type's array goes up whole.
@@ -324,10 +372,11 @@ bool rebuildResidentTiles(const InstanceStore& store, const SettledDrops* drops,
 
 bool updateResidentTiles(const InstanceStore& store, const SettledDrops* drops, const CandidateSet& candidates,
                          const std::vector<uint64_t>& changed_keys, ResidentTiles* r, TileUploads* uploads,
-                         std::string* error) {
-    assert(r->type_count == candidates.typeCount());
+                         std::string* error, const DetailLooks* looks) {
+    assert(r->type_count == (looks && looks->hasVariants() ? uint32_t(looks->size()) : candidates.typeCount()));
     startUploads(r->type_count, uploads);
     std::vector<uint32_t> ids, counts;
+    std::vector<uint16_t> drop_scratch;
     for (const uint64_t key : changed_keys) {
         const glm::ivec3 coord = unpackTile(key);
         const int64_t in_store = store.findTile(key);
@@ -340,9 +389,10 @@ bool updateResidentTiles(const InstanceStore& store, const SettledDrops* drops, 
         }
         if (!checkTile(coord, error)) return false;
         store.tileIds(size_t(in_store), &ids);
-        countByType(ids, candidates, &counts);
+        std::span<const uint16_t> tile_drops = drops ? drops->tile(key) : std::span<const uint16_t>();
+        groupTile(key, candidates, r->tile_size_m, looks, &ids, &tile_drops, &drop_scratch, &counts);
         const uint32_t t = it != r->tile_index.end() ? it->second : addTile(r, key, coord);
-        writeTile(r, t, ids, drops ? drops->tile(key) : std::span<const uint16_t>(), counts, SlotFit::Rounded, uploads);
+        writeTile(r, t, ids, tile_drops, counts, SlotFit::Rounded, uploads);
         uploads->tiles.push_back(coord);
     }
     for (TileUploads::Type& u : uploads->types)

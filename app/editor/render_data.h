@@ -32,6 +32,7 @@
 #include "instancer/settling.h"
 #include "material/material.h"
 #include "mesh/detail_model.h"
+#include "scene/detail_looks.h"
 
 namespace ug::editor {
 
@@ -132,6 +133,10 @@ float candidateScaleMax(const CandidateSet& candidates, size_t type);
 // and, when `looks` is given (Document::materials()), its material (and colour = the material's base).
 std::vector<DetailLodMesh> buildTypeMeshes(const std::vector<DetailModel>& models, const CandidateSet& candidates,
                                            const SceneMaterials* looks = nullptr);
+// The same for every look (scene/detail_looks.h: the types', then their scatter variants'), a variant with
+// its type's largest scale; `materials` holds one per look (Document::materials()).
+std::vector<DetailLodMesh> buildLookMeshes(const DetailLooks& looks, const CandidateSet& candidates,
+                                           const SceneMaterials* materials);
 
 // The instances as they live on the GPU: per detail type one instance array (the CPU mirror of the
 // type's GPU buffer) in which every resident tile owns a slot (tile_slots.h). A live result rewrites only
@@ -177,16 +182,18 @@ struct TileUploads {
 // Fails (with the reason) when a tile or a candidate id does not fit the packed format. Leaves *out as it
 // was on failure. Rebuilds everything: tiles in key order, packed tightly (SlotFit::Exact).
 // `drops` (optional): the store's settled drops, packed with drop_unit_m (packedDropUnit).
+// `looks` (optional, with variants): the arrays are per look instead of per type, each instance in its
+// look's (DetailLooks::lookOf at its candidate's origin).
 bool rebuildResidentTiles(const InstanceStore& store, const SettledDrops* drops, const CandidateSet& candidates,
                           float tile_size_m, float drop_unit_m, ResidentTiles* out, TileUploads* uploads,
-                          std::string* error);
+                          std::string* error, const DetailLooks* looks = nullptr);
 // Re-packs only the tiles in `changed_keys` (packed tile keys, any order) from `store`: a tile whose
 // instances fit its slots is rewritten in place, one that outgrew a slot moves to a new one
 // (SlotFit::Rounded), one the store no longer holds is dropped. `out` must have been rebuilt from the
 // same candidates. On failure (a tile out of the packed range) *out may be partly updated; rebuild it.
 bool updateResidentTiles(const InstanceStore& store, const SettledDrops* drops, const CandidateSet& candidates,
                          const std::vector<uint64_t>& changed_keys, ResidentTiles* out, TileUploads* uploads,
-                         std::string* error);
+                         std::string* error, const DetailLooks* looks = nullptr);
 
 
 // The mesh-to-impostor switch, per instance: an instance whose bounding diameter covers `px` pixels is

@@ -52,7 +52,7 @@ bool loadSceneSnapshot(const SceneSnapshotOptions& options, SceneSnapshot* out, 
     const SettleSettings& settle = doc.project().settling.settle;
     if (!rebuildResidentTiles(*live.store, live.drops.get(), doc.ghostTile().candidates,
                               doc.ghostTile().settings.tile_size_m, packedDropUnit(settle.enabled, settle.max_drop_m),
-                              &out->tiles, &out->uploads, error)) {
+                              &out->tiles, &out->uploads, error, &out->scene.looks)) {
         *error = options.scene_path + ": " + *error;
         return false;
     }

@@ -26,7 +26,8 @@ void EditorSession::syncTile() {
     scene_tile_generation = d.tileGeneration();
     const CandidateSet& c = d.ghostTile().candidates;
     const SceneMaterials looks = d.materials();
-    scene->meshes = buildTypeMeshes(d.models(), c, &looks);
+    scene->looks = d.looks();
+    scene->meshes = buildLookMeshes(scene->looks, c, &looks);
     renderer->setScene(d.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr, &scene->meshes, c,
                        d.ghostTile().settings.tile_size_m, &scene->terrain_material);
     // What is on screen indexes the old tile's candidates: nothing is shown until the new result.
@@ -51,9 +52,9 @@ bool EditorSession::takeLiveResult() {
                 ? rebuildResidentTiles(*live.store, live.drops.get(), candidates,
                                        d.ghostTile().settings.tile_size_m,
                                        packedDropUnit(settle.enabled, settle.max_drop_m), &instances, &uploads,
-                                       &pack_error)
+                                       &pack_error, &scene->looks)
                 : updateResidentTiles(*live.store, live.drops.get(), candidates, live.changed_tiles, &instances,
-                                      &uploads, &pack_error);
+                                      &uploads, &pack_error, &scene->looks);
         if (!packed) {
             if (scripted) {
                 *error = pack_error;

@@ -86,14 +86,41 @@ float ScatterField::value(glm::vec3 p) const {
     if (!contains(bounds_, p)) return 0.0f;
     const EnvScene::Support s = env_->supportBelow(p);
     if (s.inside || !(s.z > -std::numeric_limits<float>::infinity()) || !receives(s.object)) return 0.0f;
-    const float d = p.z - s.z;
-    const EnvSample e = env_->channels(p);
+    return fromChannels(p, p.z - s.z, env_->channels(p));
+}
+
+float ScatterField::fromChannels(glm::vec3 p, float d, const EnvSample& e) const {
     const float c = channelValue(e, settings_.channel);
     // α ≤ 1: where even the open value cannot reach p, the shelter's rays are not cast.
     if (!(e.occlusion * c * settings_.thickness_m - d > 0.0f)) return 0.0f;
     const float alpha = settings_.sheltered ? e.occlusion * env_->shelter(p) : e.occlusion;
     const float v = (alpha * c * settings_.thickness_m - d) / settings_.ramp_m;
     return v > 0.0f ? v : 0.0f;
+}
+
+void ScatterField::valueBatch(const glm::vec3* points, size_t n, float* out) const {
+    // Supports first (cheap): only the points that rest on a receiving surface within the layer's
+    // greatest reach ask for the channels.
+    thread_local std::vector<glm::vec3> ask;
+    thread_local std::vector<float> ask_d;
+    thread_local std::vector<uint32_t> ask_k;
+    thread_local std::vector<EnvSample> samples;
+    ask.clear();
+    ask_d.clear();
+    ask_k.clear();
+    for (size_t k = 0; k < n; ++k) {
+        out[k] = 0.0f;
+        const glm::vec3 p = points[k];
+        if (!contains(bounds_, p)) continue;
+        const EnvScene::Support s = env_->supportBelow(p);
+        if (s.inside || !(s.z > -std::numeric_limits<float>::infinity()) || !receives(s.object)) continue;
+        ask.push_back(p);
+        ask_d.push_back(p.z - s.z);
+        ask_k.push_back(uint32_t(k));
+    }
+    samples.resize(ask.size());
+    env_->channelsBatch(ask.data(), ask.size(), samples.data());
+    for (size_t i = 0; i < ask.size(); ++i) out[ask_k[i]] = fromChannels(ask[i], ask_d[i], samples[i]);
 }
 
 Bounds ScatterField::positiveBoundsIn(const Bounds& box) const {

@@ -42,6 +42,8 @@ public:
     ScatterField(std::shared_ptr<const EnvScene> env, ScatterSettings settings);
 
     float value(glm::vec3 p) const override;
+    // The batch's supports one by one, its channels together (EnvScene::channelsBatch): the same bits.
+    void valueBatch(const glm::vec3* points, size_t n, float* out) const override;
     Bounds bounds() const override { return bounds_; }
     Bounds positiveBoundsIn(const Bounds& box) const override;
 
@@ -50,6 +52,9 @@ public:
 
 private:
     bool receives(int64_t object) const;
+    // What value() computes once the channels are known: (α·c·h − d)/s, with the shelter's rays cast only
+    // where the open value is positive.
+    float fromChannels(glm::vec3 p, float d, const EnvSample& e) const;
 
     std::shared_ptr<const EnvScene> env_;
     ScatterSettings settings_;

@@ -384,7 +384,8 @@ void EnvScene::fieldsAt(glm::vec3 p, std::vector<uint32_t>* out) const {
 void EnvScene::fieldsMeeting(const Bounds& box, std::vector<uint32_t>* out) const {
     out->assign(global_ids_.begin(), global_ids_.end());
     if (!nodes_.empty()) {
-        std::vector<uint32_t> stack = {0};
+        thread_local std::vector<uint32_t> stack;
+        stack.assign(1, 0);
         while (!stack.empty()) {
             const Node& node = nodes_[stack.back()];
             stack.pop_back();
@@ -565,26 +566,29 @@ EnvSample EnvScene::sample(glm::vec3 p) const {
     return e;
 }
 
-void EnvScene::sampleBatch(const glm::vec3* points, size_t n, EnvSample* out) const {
+void EnvScene::channelsBatch(const glm::vec3* points, size_t n, EnvSample* out) const {
     if (n == 0) return;
     // The fields whose bounds meet the batch's box, in index order; per point those holding it, in the
-    // same order sample() sums them: the same value bit for bit.
+    // same order channels() sums them: the same value bit for bit.
     Bounds box;
     for (size_t k = 0; k < n; ++k) {
         box.lo = glm::min(box.lo, points[k]);
         box.hi = glm::max(box.hi, points[k]);
     }
-    std::vector<uint32_t> near;
+    thread_local std::vector<uint32_t> near, ids;
     fieldsMeeting(box, &near);
-    std::vector<uint32_t> ids;
     ids.reserve(near.size());
     for (size_t k = 0; k < n; ++k) {
         ids.clear();
         for (uint32_t f : near)
             if (contains(fields_[f].bounds, points[k])) ids.push_back(f);
         out[k] = accumulate(points[k], ids.data(), ids.size());
-        out[k].shelter = shelter(points[k]);
     }
+}
+
+void EnvScene::sampleBatch(const glm::vec3* points, size_t n, EnvSample* out) const {
+    channelsBatch(points, n, out);
+    for (size_t k = 0; k < n; ++k) out[k].shelter = shelter(points[k]);
 }
 
 EnvQuery EnvScene::objectQuery(size_t object) const {

@@ -91,8 +91,9 @@ public:
 
     EnvSample sample(glm::vec3 p) const;
     void sampleBatch(const glm::vec3* points, size_t n, EnvSample* out) const;
-    // The channels only (shelter left at 1).
+    // The channels only (shelter left at 1); the batch is bit-identical to channels() per point.
     EnvSample channels(glm::vec3 p) const;
+    void channelsBatch(const glm::vec3* points, size_t n, EnvSample* out) const;
     float shelter(glm::vec3 p) const { return shelterRays(p, false); }
     // Only the centre ray (0 or 1): what effect sharing compares objects by (a ninth of the cost).
     float shelterCentre(glm::vec3 p) const { return shelterRays(p, true); }

@@ -64,9 +64,30 @@ Bounds primitivePositiveBoundsOf(const DensityField& f, const Primitive& pr, con
     return b.empty() ? Bounds{} : b;
 }
 
+// A batch's External values, evaluated together before its points are (evalBatch): the k-th point's
+// value of primitive `primitive` is values[slot * count + k]. Thread-local because the evaluation routine
+// below runs one batch at a time per thread.
+struct ExternalBatch {
+    const DensityField* field = nullptr;
+    std::vector<uint32_t> primitive;  // External primitives of the batch, in the order of `values`
+    std::vector<float> values;
+    size_t count = 0, k = 0;
+};
+thread_local ExternalBatch* t_external_batch = nullptr;
+
 template <bool kGrad>
 inline Sample<kGrad> externalSample(const DensityField& f, const Primitive& pr, glm::vec3 p) {
-    const float v = f.externals[pr.external]->value(p);
+    float v;
+    const ExternalBatch* b = t_external_batch;
+    size_t slot = 0;
+    if (b && b->field == &f) {
+        const uint32_t index = uint32_t(&pr - f.primitives.data());
+        while (slot < b->primitive.size() && b->primitive[slot] != index) ++slot;
+    }
+    if (b && b->field == &f && slot < b->primitive.size())
+        v = b->values[slot * b->count + b->k];
+    else
+        v = f.externals[pr.external]->value(p);
     // +0 stays +0 (a left-out External must give the same bits as one evaluated outside its support).
     return Sample<kGrad>(v == 0.0f ? 0.0f : pr.weight * v);
 }
@@ -159,7 +180,34 @@ void evalBatch(const DensityField& f, const TileFieldList* list, const glm::vec3
         if (big.size() < f.nodes.size()) big.resize(f.nodes.size());
         slots = big.data();
     }
-    for (size_t k = 0; k < count; ++k) out[k] = evalPoint<kGrad>(f, list, slots, points[k]);
+    if (f.externals.empty() || count < 2) {
+        for (size_t k = 0; k < count; ++k) out[k] = evalPoint<kGrad>(f, list, slots, points[k]);
+        return;
+    }
+    // External terms first, for the whole batch (the same bits as one by one: value() is pure).
+    thread_local ExternalBatch batch;
+    batch.field = &f;
+    batch.primitive.clear();
+    batch.count = count;
+    auto consider = [&](uint32_t i) {
+        if (f.primitives[i].kind == PrimitiveKind::External) batch.primitive.push_back(i);
+    };
+    if (list) {
+        for (uint32_t i : list->primitives) consider(i);
+    } else {
+        for (uint32_t i = 0; i < f.primitives.size(); ++i) consider(i);
+    }
+    batch.values.resize(batch.primitive.size() * count);
+    for (size_t slot = 0; slot < batch.primitive.size(); ++slot)
+        f.externals[f.primitives[batch.primitive[slot]].external]->valueBatch(points, count,
+                                                                               batch.values.data() + slot * count);
+    ExternalBatch* previous = t_external_batch;
+    t_external_batch = &batch;
+    for (size_t k = 0; k < count; ++k) {
+        batch.k = k;
+        out[k] = evalPoint<kGrad>(f, list, slots, points[k]);
+    }
+    t_external_batch = previous;
 }
 
 }  // namespace

@@ -11,6 +11,8 @@
 // The gradient of an External primitive is taken as 0 (orientation "gradient" constraints do not see it).
 #pragma once
 
+#include <cstddef>
+
 #include <glm/glm.hpp>
 
 #include "field/bounds.h"
@@ -21,6 +23,11 @@ class ExternalField {
 public:
     virtual ~ExternalField() = default;
     virtual float value(glm::vec3 p) const = 0;
+    // out[k] = value(points[k]), bit for bit; a field may share work between the points (a tile's anchors
+    // ask the environment together).
+    virtual void valueBatch(const glm::vec3* points, size_t n, float* out) const {
+        for (size_t k = 0; k < n; ++k) out[k] = value(points[k]);
+    }
     // Every point where value() != 0 lies inside.
     virtual Bounds bounds() const = 0;
     // A conservative AABB of {p in box : value(p) > 0} (empty when there is none).

@@ -24,9 +24,20 @@ bool exportInstancedScene(const std::string& path, const GhostTile& tile, const 
                             std::to_string(c.typeCount()) + " detail types";
         return false;
     }
-    if (options.materials && options.materials->types.size() != models.size()) {
+    // Without looks each type is its own look.
+    std::vector<const DetailModel*> looks = options.look_models;
+    if (!options.look_of) {
+        looks.clear();
+        for (const DetailModel& m : models) looks.push_back(&m);
+    }
+    if (looks.size() < models.size()) {
+        if (error) *error = path + ": " + std::to_string(looks.size()) + " looks for " + std::to_string(models.size()) +
+                            " detail types";
+        return false;
+    }
+    if (options.materials && options.materials->types.size() < looks.size()) {
         if (error) *error = path + ": " + std::to_string(options.materials->types.size()) + " materials for " +
-                            std::to_string(models.size()) + " detail types";
+                            std::to_string(looks.size()) + " detail looks";
         return false;
     }
     SceneExport scene;
@@ -34,11 +45,11 @@ bool exportInstancedScene(const std::string& path, const GhostTile& tile, const 
     scene.chunk_size_m = options.chunk_size_m;
     scene.use_instancing_extension = options.use_instancing_extension;
     scene.scene_extras_json = stats_json;
-    scene.types.resize(models.size());
-    for (size_t i = 0; i < models.size(); ++i) {
-        scene.types[i].name = models[i].name;
-        scene.types[i].mesh = &models[i].mesh;
-        scene.types[i].collision_spheres = models[i].spheres;
+    scene.types.resize(looks.size());
+    for (size_t i = 0; i < looks.size(); ++i) {
+        scene.types[i].name = looks[i]->name;
+        scene.types[i].mesh = &looks[i]->mesh;
+        scene.types[i].collision_spheres = looks[i]->spheres;
         if (options.materials) scene.types[i].material = &options.materials->types[i];
     }
     // Gathering is most of the work before the write: 0.8 of the reported fraction, polled every 16k
@@ -48,7 +59,13 @@ bool exportInstancedScene(const std::string& path, const GhostTile& tile, const 
     bool cancelled = false;
     forEachSettled(store, options.drops, [&](uint64_t key, uint32_t j, float drop_m) {
         if (cancelled) return;
-        scene.types[c.type[j]].instances.push_back(instanceTransform(tile, key, j, drop_m));
+        const InstanceTransform t = instanceTransform(tile, key, j, drop_m);
+        uint32_t look = c.type[j];
+        if (options.look_of) {
+            const glm::vec3 origin = tileOrigin(unpackTile(key), tile.settings.tile_size_m) + c.position[j];
+            look = options.look_of(look, origin);
+        }
+        scene.types[look].instances.push_back(t);
         if (options.progress && (++done & 0x3fff) == 0)
             cancelled = !options.progress(0.8f * float(done) / float(total));
     });

@@ -68,7 +68,8 @@ struct SurfaceMaterial {
     std::shared_ptr<const TextureImage> texture;
 };
 
-// Every surface of a scene: one per detail type (the project's order) and the terrain's.
+// Every surface of a scene: one per detail look (the project's types in order, then their scatter variants,
+// scene/detail_looks.h) and the terrain's.
 struct SceneMaterials {
     std::vector<SurfaceMaterial> types;
     SurfaceMaterial terrain;

@@ -217,6 +217,7 @@ bool Document::load(Project project, const std::string& path, const DocumentOpti
     live_assets_ = assets_;
     compiled_ = std::move(scene.compiled);
     environment_ = std::move(scene.environment);
+    variant_models_ = std::move(scene.variant_models);
     densities_.clear();
     for (const DetailTypeDesc& t : project_.detail_types) densities_.push_back(editableDensityFor(t.density, &next_id_));
     live_ = std::make_unique<LiveInstancer>(options.threads);

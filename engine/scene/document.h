@@ -41,6 +41,7 @@
 #include "ghosttile/ghost_tile_cache.h"
 #include "instancer/instantiator.h"
 #include "mesh/detail_model.h"
+#include "scene/detail_looks.h"
 #include "scene/edit_commands.h"
 #include "scene/ghost_tile_command.h"
 #include "scene/ghost_tile_job.h"
@@ -113,7 +114,9 @@ public:
     // Every surface's look now (compileSceneMaterials on project() and models()): one SurfaceMaterial per
     // detail type and the terrain's, textures baked. Computed on each call (a few hundred ms for the
     // default scene's five kinds): call it when the project or tileGeneration() changes, not per frame.
-    SceneMaterials materials() const { return compileSceneMaterials(project_, models()); }
+    SceneMaterials materials() const { return compileSceneMaterials(project_, models(), variant_models_.get()); }
+    // Every look of the detail instances (scene/detail_looks.h): the types', then their scatter variants'.
+    DetailLooks looks() const { return detailLooks(project_, models(), *variant_models_, environment_); }
     CacheOutcome cacheOutcome() const { return assets_.outcome; }
     // Changes whenever the Ghost Tile and models are swapped (a build applied, its undo or redo): candidate
     // frames, models and meshes derived from them must be made again.
@@ -212,6 +215,8 @@ private:
     std::vector<TileAssets> retired_;
     std::shared_ptr<const HeightField> terrain_;
     std::shared_ptr<const EnvScene> environment_;
+    std::shared_ptr<const std::vector<std::vector<DetailModel>>> variant_models_ =
+        std::make_shared<const std::vector<std::vector<DetailModel>>>();
     CompiledScene compiled_;
     std::vector<EditableDensity> densities_;
     uint64_t next_id_ = 1;

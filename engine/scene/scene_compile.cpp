@@ -251,7 +251,8 @@ SettleInput settleInput(const Project& project, const std::shared_ptr<const Heig
     return in;
 }
 
-SceneMaterials compileSceneMaterials(const Project& project, const std::vector<DetailModel>& models) {
+SceneMaterials compileSceneMaterials(const Project& project, const std::vector<DetailModel>& models,
+                                     const std::vector<std::vector<DetailModel>>* variant_models) {
     SceneMaterials out;
     // The detail map is the slow part (tens of ms) and depends only on the kind and the cut-out; the
     // bake per colour is cheap. Identical baked textures are shared, not copied.
@@ -288,6 +289,17 @@ SceneMaterials compileSceneMaterials(const Project& project, const std::vector<D
         out.types.push_back(resolve(project.detail_types[t].material,
                                     t < models.size() ? models[t].mesh.base_color : TriangleMesh{}.base_color));
     out.terrain = resolve(project.terrain.material, kTerrainColor);
+    // The scattered types' variants, after every type (detail_looks.h: the looks' order), against their
+    // own models' colours when given.
+    for (size_t t = 0; t < project.detail_types.size(); ++t) {
+        const std::vector<ScatterVariantDesc>& variants = project.detail_types[t].scatter.variants;
+        for (size_t k = 0; k < variants.size(); ++k) {
+            const glm::vec3 own = variant_models && t < variant_models->size() && k < (*variant_models)[t].size()
+                                      ? (*variant_models)[t][k].mesh.base_color
+                                      : TriangleMesh{}.base_color;
+            out.types.push_back(resolve(variants[k].material, own));
+        }
+    }
     return out;
 }
 

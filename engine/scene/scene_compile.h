@@ -94,6 +94,9 @@ SettleInput settleInput(const Project& project, const std::shared_ptr<const Heig
 // cut-out and colour) are shared. `models` is loadProjectModels' result (one per type); a missing model
 // resolves against the default mesh colour. Cost: 5-110 ms per distinct kind (256 x 256, measured on
 // the loaded 2-core build machine; rock is the slowest), about 1 ms per further colour.
-SceneMaterials compileSceneMaterials(const Project& project, const std::vector<DetailModel>& models);
+// SceneMaterials::types holds one material per look (detail_looks.h): the types', then their scatter
+// variants' (resolved against `variant_models`' colours when given, else the default mesh colour).
+SceneMaterials compileSceneMaterials(const Project& project, const std::vector<DetailModel>& models,
+                                     const std::vector<std::vector<DetailModel>>* variant_models = nullptr);
 
 }  // namespace ug
