@@ -24,15 +24,16 @@ CENTRE = {"mode": "center"}  # one anchor: a scattered layer is tested where eac
 
 
 def leaf(name, color, wet_color, count, thickness=0.12):
-    """A leaf type: dry and wrinkled where the humidity is below 0, wet and flat at or above it (Fig. 12)."""
+    """A leaf type: dry where the humidity is below 0, wet at or above it (Fig. 12). The wet look is the same
+    leaf with a darker, glossier material until flat wet leaf meshes exist (issue 12, not done)."""
     return {
         "name": name,
-        "model": {"mesh": "../models/%s_dry.glb" % name, "anchors": CENTRE},
+        "model": {"mesh": "../models/%s.glb" % name, "anchors": CENTRE},
         "material": {"base_color": color, "roughness": 0.8, "texture": "leaf", "texture_scale_m": 0.1,
                      "tint_variation": 0.35},
         "candidates": {"count": count, "scale": [0.8, 1.25], "orientation": FLAT},
         "scatter": {"channel": "leaves", "thickness_m": thickness,
-                    "variants": [{"name": name + "_wet", "model": {"mesh": "../models/%s_wet.glb" % name},
+                    "variants": [{"name": name + "_wet", "model": {"mesh": "../models/%s.glb" % name},
                                   "material": {"base_color": wet_color, "roughness": 0.35, "texture": "leaf",
                                                "texture_scale_m": 0.1, "tint_variation": 0.2},
                                   "when": {"channel": "humidity", "min": 0}}]},
@@ -59,7 +60,7 @@ def grass(count, thickness=0.09, scale=(0.8, 1.3)):
                      "tint_variation": 0.3},
         "candidates": {"count": count, "scale": list(scale), "orientation": UPRIGHT},
         "scatter": {"channel": "grass", "thickness_m": thickness,
-                    "variants": [{"name": "grass_tuft_dry", "model": {"mesh": "../models/grass_tuft_dry.glb"},
+                    "variants": [{"name": "grass_tuft_dry", "model": {"mesh": "../models/grass_tuft.glb"},
                                   "material": {"base_color": [0.55, 0.47, 0.25], "roughness": 0.9, "texture": "grass",
                                                "texture_scale_m": 0.1, "tint_variation": 0.3},
                                   "when": {"channel": "temperature", "min": 22}}]},
@@ -109,10 +110,6 @@ def street_autumn():
     p["detail_types"] = [
         leaf("leaf_oak", [0.55, 0.27, 0.08], [0.32, 0.14, 0.05], 220),
         leaf("leaf_birch", [0.80, 0.62, 0.14], [0.48, 0.34, 0.07], 220),
-        trash("can", "trash_can", [0.75, 0.1, 0.1], 2),
-        trash("crumpled_paper", "trash_paper", [0.9, 0.88, 0.82], 2),
-        trash("paper_cup", "trash_cup", [0.95, 0.95, 0.93], 2),
-        trash("bottle", "trash_bottle", [0.35, 0.6, 0.4], 1),
         grass(160),
     ]
     s = 10.0 / 12.0

@@ -57,7 +57,13 @@ bool compile(const Project& p, CompiledScene* out) {
         ADD_FAILURE() << error;
         return false;
     }
-    const bool ok = compileScene(p, terrain, out, &error);
+    // Scattered types read their density from the environment: compile it first, as loadScene does.
+    auto env = std::make_shared<EnvScene>();
+    if (!compileEnvScene(p.environment, p.base_dir, p.name, terrain, env.get(), &error)) {
+        ADD_FAILURE() << error;
+        return false;
+    }
+    const bool ok = compileScene(p, terrain, out, &error, env);
     EXPECT_TRUE(ok) << error;
     return ok;
 }
@@ -420,7 +426,8 @@ TEST(SceneCompile, EveryBundledSceneLoadsAndCompiles) {
         for (size_t t = 0; t < p.detail_types.size(); ++t) {
             EXPECT_TRUE(std::filesystem::exists(resolveProjectPath(p, p.detail_types[t].model.mesh_path)))
                 << p.detail_types[t].model.mesh_path;
-            EXPECT_NE(p.detail_types[t].density.root, kNoNode)
+            // A scattered type's density is its effect's term (env_scatter.h).
+            EXPECT_TRUE(p.detail_types[t].density.root != kNoNode || p.detail_types[t].scatter.enabled)
                 << p.detail_types[t].model.name << " has no density";
         }
         Project back;
@@ -442,7 +449,8 @@ TEST(SceneCompile, EveryBundledSceneLoadsAndCompiles) {
     }
     std::sort(seen.begin(), seen.end());
     EXPECT_EQ(seen, (std::vector<std::string>{"beaver_dam", "default", "haystack_field", "meadow", "montmartre_winter",
-                                              "road_winter", "rock_pile", "stone_hut", "street_winter"}));
+                                              "park_autumn", "road_autumn", "road_winter", "rock_pile", "stone_hut",
+                                              "street_autumn", "street_winter"}));
 }
 
 TEST(SceneCompile, BundledScenesHaveTheirDesignedShape) {
