@@ -215,32 +215,124 @@ TriangleMesh displacedEllipsoid(uint64_t seed, const glm::vec3& axes_m, float ro
     return finish(&b, color);
 }
 
-// A leaf blade along +X from the origin, width profile `half_width_m(s)`, with a stem behind it.
-TriangleMesh leaf(uint64_t seed, float length_m, const std::function<float(float)>& half_width_m, float max_half_width_m,
-                  int rows, const glm::vec3& color) {
+// How a leaf blade is shaped. The defaults are the fresh autumn leaf (leaf_oak, leaf_birch); the dry and
+// wet variants change the ranges and add the rolled edges and crinkles, so every leaf shares one outline
+// and one builder.
+struct LeafShape {
+    float length_m = 0.09f;
+    std::function<float(float)> half_width_m;  // outline over s in [0, 1], base to tip
+    float max_half_width_m = 0.03f;
+    int rows = 32;
+    int cols = 10;
+    glm::vec3 color{0.5f};
+    // Ranges the seed picks from: across-blade cupping (rim lift over the widest half width), lengthwise
+    // curl (z over the length, about a point 35 % along) and twist.
+    glm::vec2 cup{0.25f, 0.45f}, bend{0.10f, 0.20f}, twist{-0.15f, 0.15f};
+    // Rolling the cross-section on an arc of this curvature (rad/m), which keeps the blade's width as
+    // arc length, so the edges curl up and over as a drying leaf's do; 0 leaves the parabolic cup alone.
+    float roll_per_m = 0.0f;
+    float crinkle_m = 0.0f;          // amplitude of the wrinkles across the blade (0: smooth)
+    float crinkle_wavelength_m = 0.01f;
+    bool stem = true;
+};
+
+// A leaf blade along +X from the origin, with a stem behind it.
+TriangleMesh leaf(uint64_t seed, const LeafShape& shape) {
     Builder b;
-    const float cup = rnd(seed, 2, 0, 0.25f, 0.45f);    // across-blade cupping
-    const float bend = rnd(seed, 2, 1, 0.10f, 0.20f);   // lengthwise curl
-    const float twist = rnd(seed, 2, 2, -0.15f, 0.15f);
+    const float length_m = shape.length_m, max_half_width_m = shape.max_half_width_m;
+    const float cup = rnd(seed, 2, 0, shape.cup.x, shape.cup.y);    // across-blade cupping
+    const float bend = rnd(seed, 2, 1, shape.bend.x, shape.bend.y);   // lengthwise curl
+    const float twist = rnd(seed, 2, 2, shape.twist.x, shape.twist.y);
+    const uint64_t crinkle_seed = hashWords(seed, 20);
     auto pos = [&](float s, float t) {
-        const float y = t * half_width_m(s);
-        const float z = cup * y * y / max_half_width_m + bend * length_m * (s - 0.35f) * (s - 0.35f) + twist * y * s;
+        float y = t * shape.half_width_m(s);
+        float z = cup * y * y / max_half_width_m + bend * length_m * (s - 0.35f) * (s - 0.35f) + twist * y * s;
+        // Only the variants take these branches: the fresh leaves' vertices stay bit for bit what they were.
+        if (shape.roll_per_m > 0.0f) {
+            const float a = shape.roll_per_m * y;  // y is the arc length from the midrib here
+            z += (1.0f - std::cos(a)) / shape.roll_per_m;
+            y = std::sin(a) / shape.roll_per_m;
+        }
+        if (shape.crinkle_m > 0.0f) {
+            const glm::vec3 q(s * length_m, t * shape.half_width_m(s), 0.0f);
+            z += shape.crinkle_m * fbm(q / shape.crinkle_wavelength_m, crinkle_seed, 2);
+        }
         return glm::vec3(s * length_m, y, z);
     };
-    addSheet(&b, rows, 10, pos, [&](float s) { return 0.0006f * (1.0f - 0.6f * s); });
-    // Stem: from behind the blade into its base, bending down a little.
-    const float stem_m = 0.2f * length_m;
-    const glm::vec3 base = pos(0.0f, 0.0f);
-    std::vector<glm::vec3> line;
-    std::vector<float> radii;
-    for (int k = 0; k <= 6; ++k) {
-        const float u = float(k) / 6.0f;
-        line.push_back(base + glm::vec3(-stem_m * (1.0f - u) + 0.04f * length_m * u, 0.0f,
-                                        -0.15f * stem_m * (1.0f - u) * (1.0f - u)));
-        radii.push_back(0.0009f - 0.0003f * u);
+    addSheet(&b, shape.rows, shape.cols, pos, [&](float s) { return 0.0006f * (1.0f - 0.6f * s); });
+    if (shape.stem) {
+        // Stem: from behind the blade into its base, bending down a little.
+        const float stem_m = 0.2f * length_m;
+        const glm::vec3 base = pos(0.0f, 0.0f);
+        std::vector<glm::vec3> line;
+        std::vector<float> radii;
+        for (int k = 0; k <= 6; ++k) {
+            const float u = float(k) / 6.0f;
+            line.push_back(base + glm::vec3(-stem_m * (1.0f - u) + 0.04f * length_m * u, 0.0f,
+                                            -0.15f * stem_m * (1.0f - u) * (1.0f - u)));
+            radii.push_back(0.0009f - 0.0003f * u);
+        }
+        addTube(&b, line, radii, 6);
     }
-    addTube(&b, line, radii, 6);
-    return finish(&b, color);
+    return finish(&b, shape.color);
+}
+
+// The oak and birch outlines, shared by the fresh, dry and wet leaves (`seed` already salted per model).
+LeafShape oakLeafShape(uint64_t seed) {
+    LeafShape shape;
+    shape.length_m = rnd(seed, 3, 0, 0.085f, 0.095f);
+    const float width_m = 0.032f;
+    const float lobes = 4.5f;
+    shape.half_width_m = [=](float s) {
+        // Obovate outline (widest beyond the middle) cut into rounded lobes.
+        const float envelope = std::pow(std::max(0.0f, std::sin(kPi * s)), 0.8f) * (0.55f + 0.45f * s);
+        const float lobe = 0.55f + 0.45f * std::pow(std::abs(std::cos(kPi * lobes * s)), 0.6f);
+        return std::max(width_m * envelope * lobe, 0.0008f);
+    };
+    shape.max_half_width_m = width_m;
+    shape.rows = 48;
+    shape.color = {0.55f, 0.30f, 0.09f};
+    return shape;
+}
+
+LeafShape birchLeafShape(uint64_t seed) {
+    LeafShape shape;
+    shape.length_m = rnd(seed, 3, 0, 0.070f, 0.080f);
+    const float width_m = 0.016f;
+    shape.half_width_m = [=](float s) {
+        // Narrow, pointed (lanceolate), widest at about a third of the length, finely serrated.
+        const float envelope = std::pow(std::max(0.0f, std::sin(kPi * std::pow(s, 0.75f))), 1.1f);
+        const float serration = 1.0f - 0.06f * std::abs(std::sin(kPi * 14.0f * s));
+        return std::max(width_m * envelope * serration, 0.0006f);
+    };
+    shape.max_half_width_m = width_m;
+    shape.rows = 32;
+    shape.color = {0.80f, 0.62f, 0.12f};
+    return shape;
+}
+
+// Dry: strongly cupped and curled, the edges rolled up (1.9 rad, about 110 degrees, where the half width
+// reaches max_half_width_m) and crinkled; browner and duller than the fresh leaf.
+LeafShape dryLeafShape(LeafShape shape, const glm::vec3& color) {
+    shape.cup = {0.35f, 0.55f};
+    shape.bend = {0.45f, 0.65f};
+    shape.twist = {-0.35f, 0.35f};
+    shape.roll_per_m = 1.9f / shape.max_half_width_m;
+    // More columns for the crinkles, whose wavelength spans about three of them across the blade.
+    shape.cols = 14;
+    shape.crinkle_wavelength_m = 6.0f * shape.max_half_width_m / float(shape.cols);
+    shape.crinkle_m = 0.16f * shape.crinkle_wavelength_m;  // steep enough to see, not folding the 1 mm sheet
+    shape.color = color;
+    return shape;
+}
+
+// Wet: lying flat on the ground (a few mm of relief at most), darker and more saturated.
+LeafShape wetLeafShape(LeafShape shape, const glm::vec3& color) {
+    shape.cup = {0.0f, 0.04f};
+    shape.bend = {0.0f, 0.02f};
+    shape.twist = {-0.02f, 0.02f};
+    shape.color = color;
+    return shape;
 }
 
 }  // namespace
@@ -259,27 +351,186 @@ TriangleMesh makePebble(uint64_t seed) {
 
 TriangleMesh makeOakLeaf(uint64_t seed) {
     seed = hashWords(seed, 104);
-    const float length_m = rnd(seed, 3, 0, 0.085f, 0.095f), width_m = 0.032f;
-    const float lobes = 4.5f;
-    auto half_width = [=](float s) {
-        // Obovate outline (widest beyond the middle) cut into rounded lobes.
-        const float envelope = std::pow(std::max(0.0f, std::sin(kPi * s)), 0.8f) * (0.55f + 0.45f * s);
-        const float lobe = 0.55f + 0.45f * std::pow(std::abs(std::cos(kPi * lobes * s)), 0.6f);
-        return std::max(width_m * envelope * lobe, 0.0008f);
-    };
-    return leaf(seed, length_m, half_width, width_m, 48, {0.55f, 0.30f, 0.09f});
+    return leaf(seed, oakLeafShape(seed));
 }
 
 TriangleMesh makeBirchLeaf(uint64_t seed) {
     seed = hashWords(seed, 105);
-    const float length_m = rnd(seed, 3, 0, 0.070f, 0.080f), width_m = 0.016f;
-    auto half_width = [=](float s) {
-        // Narrow, pointed (lanceolate), widest at about a third of the length, finely serrated.
-        const float envelope = std::pow(std::max(0.0f, std::sin(kPi * std::pow(s, 0.75f))), 1.1f);
-        const float serration = 1.0f - 0.06f * std::abs(std::sin(kPi * 14.0f * s));
-        return std::max(width_m * envelope * serration, 0.0006f);
+    return leaf(seed, birchLeafShape(seed));
+}
+
+TriangleMesh makeOakLeafDry(uint64_t seed) {
+    seed = hashWords(seed, 112);
+    return leaf(seed, dryLeafShape(oakLeafShape(seed), {0.42f, 0.29f, 0.16f}));
+}
+
+TriangleMesh makeBirchLeafDry(uint64_t seed) {
+    seed = hashWords(seed, 113);
+    return leaf(seed, dryLeafShape(birchLeafShape(seed), {0.60f, 0.48f, 0.24f}));
+}
+
+TriangleMesh makeOakLeafWet(uint64_t seed) {
+    seed = hashWords(seed, 114);
+    return leaf(seed, wetLeafShape(oakLeafShape(seed), {0.36f, 0.14f, 0.03f}));
+}
+
+TriangleMesh makeBirchLeafWet(uint64_t seed) {
+    seed = hashWords(seed, 115);
+    return leaf(seed, wetLeafShape(birchLeafShape(seed), {0.62f, 0.40f, 0.02f}));
+}
+
+TriangleMesh makePetal(uint64_t seed) {
+    seed = hashWords(seed, 116);
+    LeafShape shape;
+    shape.length_m = rnd(seed, 3, 0, 0.032f, 0.038f);
+    const float width_m = 0.6f * shape.length_m;
+    const float widest = 0.62f;  // obovate: widest beyond the middle
+    shape.half_width_m = [=](float s) {
+        // A narrow claw widening to the broadest point, then a semicircle-like rounded tip.
+        const float u = s < widest ? std::pow(s / widest, 0.7f)
+                                   : std::sqrt(std::max(0.0f, 1.0f - std::pow((s - widest) / (1.0f - widest), 2.0f)));
+        return std::max(0.5f * width_m * u, 0.0004f);
     };
-    return leaf(seed, length_m, half_width, width_m, 32, {0.80f, 0.62f, 0.12f});
+    shape.max_half_width_m = 0.5f * width_m;
+    shape.rows = 26;
+    shape.cup = {0.30f, 0.45f};  // slightly cupped
+    shape.bend = {0.10f, 0.18f};
+    shape.twist = {-0.08f, 0.08f};
+    shape.stem = false;
+    shape.color = {0.96f, 0.76f, 0.82f};
+    return leaf(seed, shape);
+}
+
+TriangleMesh makeTrashCan(uint64_t seed) {
+    seed = hashWords(seed, 117);
+    Builder b;
+    // A 330 ml can standing on the origin: recessed lid, rim, neck, body, tapered foot and domed base.
+    const float h = 0.118f, r = 0.033f;
+    std::vector<glm::vec2> profile = {{0.0f, h - 0.004f}, {0.020f, h - 0.004f}, {0.0265f, h - 0.002f}, {0.0272f, h},
+                                      {0.0285f, h - 0.002f}, {0.0300f, h - 0.008f}, {0.0322f, h - 0.014f}};
+    const int body = 16;
+    for (int i = 0; i <= body; ++i) profile.push_back({r, glm::mix(h - 0.018f, 0.014f, float(i) / float(body))});
+    profile.insert(profile.end(), {{0.0310f, 0.008f}, {0.0270f, 0.002f}, {0.0250f, 0.0f}, {0.0225f, 0.002f},
+                                   {0.0150f, 0.006f}, {0.0f, 0.008f}});
+    addRevolution(&b, {0, 0, 0}, profile, 24);
+    // Crushed as by a foot: the middle pressed flat (squeezed in x, which is the vertical once the can
+    // lies on its side, and, the metal keeping its length around, spread in y) with crumpled folds there and a slight kink, and a dent in the lower part.
+    // Each step moves vertices by a one-to-one, orientation-preserving map of space, so the surface stays
+    // closed and outward.
+    const float pinch = rnd(seed, 21, 0, 0.60f, 0.70f), pinch_z = rnd(seed, 21, 1, 0.50f, 0.58f) * h;
+    const float dent_phi = rnd(seed, 21, 2, 0.0f, 2.0f * kPi), dent_z = rnd(seed, 21, 3, 0.18f, 0.26f) * h;
+    const float kink = rnd(seed, 21, 4, -0.12f, 0.12f);
+    const uint64_t folds_seed = hashWords(seed, 22);
+    for (glm::vec3& p : b.mesh.positions) {
+        const float rr = std::sqrt(p.x * p.x + p.y * p.y);
+        const float phi = std::atan2(p.y, p.x);
+        // A flat-topped band (super-Gaussian) with short transitions to the round ends.
+        const float g = std::exp(-std::pow((p.z - pinch_z) / (0.17f * h), 4.0f));
+        // Folds: the radius rippled around and along the band (at most 12 %, so still one-to-one).
+        const float fold =
+            1.0f + 0.12f * g * valueNoise(glm::vec3(3.0f * std::cos(phi), 3.0f * std::sin(phi), p.z / 0.010f), folds_seed);
+        const float dphi = std::remainder(phi - dent_phi, 2.0f * kPi);
+        const float dent = 0.40f * std::exp(-std::pow(dphi / 0.55f, 2.0f) - std::pow((p.z - dent_z) / (0.09f * h), 2.0f));
+        const float scale = rr > 1e-6f ? fold * (1.0f - dent) : 1.0f;
+        p.x *= scale * (1.0f - pinch * g);
+        p.y *= scale * (1.0f + 0.75f * pinch * g);
+        p.y += kink * std::max(0.0f, p.z - pinch_z);  // a shear: the top end leans over a little
+    }
+    // Lying on its side: the axis along X (a proper rotation about Y, so the winding stays outward).
+    for (glm::vec3& p : b.mesh.positions) p = glm::vec3(p.z, p.y, -p.x);
+    return finish(&b, {0.72f, 0.08f, 0.09f});
+}
+
+TriangleMesh makeTrashPaper(uint64_t seed) {
+    seed = hashWords(seed, 118);
+    Builder b;
+    b.mesh = icosphere(3);  // 1280 triangles
+    // Crumpled paper is flat facets meeting at sharp edges, with a few creases pressed in. The facets:
+    // the ball is cut by random planes (the radius in each direction is the nearest plane's, a random
+    // convex polyhedron); the creases: V-shaped grooves along other planes. Both only move vertices
+    // radially, so the ball stays star-shaped about its centre and never self-intersects.
+    auto direction = [&](uint64_t part, int k) {
+        const float z = rnd(seed, part, uint64_t(2 * k), -1.0f, 1.0f);
+        const float phi = rnd(seed, part, uint64_t(2 * k + 1), 0.0f, 2.0f * kPi);
+        const float rxy = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        return glm::vec3(rxy * std::cos(phi), rxy * std::sin(phi), z);
+    };
+    const int facets = 16, creases = 6;
+    for (size_t v = 0; v < b.mesh.positions.size(); ++v) {
+        const glm::vec3 p = b.mesh.positions[v];
+        float r = 1.0f;
+        for (int k = 0; k < facets; ++k) {
+            const float c = glm::dot(p, direction(22, k));
+            if (c > 0.05f) r = std::min(r, rnd(seed, 23, uint64_t(k), 0.70f, 0.90f) / c);
+        }
+        for (int k = 0; k < creases; ++k) {
+            const float d = std::abs(glm::dot(p, direction(24, k)) - rnd(seed, 25, uint64_t(k), -0.4f, 0.4f));
+            r -= 0.13f * std::max(0.0f, 1.0f - d / 0.16f);
+        }
+        r += 0.04f * (unitFloat(hashWords(seed, 26, v)) - 0.5f);
+        b.mesh.positions[v] = p * std::max(r, 0.5f) * glm::vec3(0.038f, 0.036f, 0.033f);
+    }
+    return finish(&b, {0.90f, 0.89f, 0.84f});
+}
+
+TriangleMesh makeTrashCup(uint64_t seed) {
+    seed = hashWords(seed, 119);
+    Builder b;
+    // An open paper cup as one closed revolution with a 1 mm wall: from the middle of the inside floor out
+    // and up the inner wall, over the rolled lip, down the outer wall, round the recessed foot to the
+    // middle underneath.
+    const float h = rnd(seed, 26, 0, 0.086f, 0.092f), r_top = 0.037f, r_foot = 0.0255f, wall = 0.001f;
+    const float floor_z = 0.008f, lip = 0.0018f;
+    auto outer = [=](float z) { return glm::mix(r_foot, r_top, z / h); };
+    std::vector<glm::vec2> profile = {{0.0f, floor_z}, {0.012f, floor_z}};
+    const int wall_rows = 10;
+    for (int i = 0; i <= wall_rows; ++i) {
+        const float z = glm::mix(floor_z, h - lip, float(i) / float(wall_rows));
+        profile.push_back({outer(z) - wall, z});
+    }
+    const glm::vec2 bead(outer(h - lip) + lip - 0.5f * wall, h - lip);
+    for (int i = 1; i < 9; ++i) {  // from the inner side over the top to underneath the bead
+        const float a = kPi - 1.5f * kPi * float(i) / 9.0f;
+        profile.push_back(bead + lip * glm::vec2(std::cos(a), std::sin(a)));
+    }
+    for (int i = 0; i <= wall_rows; ++i) {
+        const float z = glm::mix(h - 2.0f * lip, 0.0f, float(i) / float(wall_rows));
+        profile.push_back({outer(z), z});
+    }
+    profile.insert(profile.end(), {{r_foot - wall, 0.0f}, {r_foot - wall, floor_z - wall}, {0.012f, floor_z - wall},
+                                   {0.0f, floor_z - wall}});
+    addRevolution(&b, {0, 0, 0}, profile, 32);
+    // Lying on its side.
+    for (glm::vec3& p : b.mesh.positions) p = glm::vec3(p.z, p.y, -p.x);
+    return finish(&b, {0.93f, 0.93f, 0.91f});
+}
+
+TriangleMesh makeTrashBottle(uint64_t seed) {
+    seed = hashWords(seed, 120);
+    Builder b;
+    // A 0.5 l bottle: base, body with two grooves, shoulder, neck with its collar, and a ribbed cap.
+    const float h = rnd(seed, 27, 0, 0.190f, 0.200f), r = 0.032f;
+    std::vector<glm::vec2> profile = {{0.0f, h}, {0.011f, h}, {0.0145f, h - 0.001f}, {0.0150f, h - 0.004f},
+                                      {0.0150f, h - 0.016f}, {0.0148f, h - 0.018f}, {0.0128f, h - 0.018f},
+                                      {0.0128f, h - 0.021f}, {0.0165f, h - 0.022f}, {0.0165f, h - 0.024f},
+                                      {0.0130f, h - 0.025f}, {0.0130f, h - 0.030f}};
+    const float shoulder_top = h - 0.030f, shoulder_bottom = h - 0.080f;
+    for (int i = 1; i <= 8; ++i) {
+        const float u = float(i) / 8.0f;
+        profile.push_back({glm::mix(0.0130f, r, 0.5f - 0.5f * std::cos(kPi * u)), glm::mix(shoulder_top, shoulder_bottom, u)});
+    }
+    const int body = 14;
+    for (int i = 1; i <= body; ++i) {
+        const float z = glm::mix(shoulder_bottom, 0.012f, float(i) / float(body));
+        const float groove = 0.0025f * (std::exp(-std::pow((z - 0.45f * h) / 0.004f, 2.0f)) +
+                                        std::exp(-std::pow((z - 0.30f * h) / 0.004f, 2.0f)));
+        profile.push_back({r - groove, z});
+    }
+    profile.insert(profile.end(), {{0.030f, 0.004f}, {0.026f, 0.0f}, {0.016f, 0.0015f}, {0.0f, 0.004f}});
+    addRevolution(&b, {0, 0, 0}, profile, 24);
+    // Lying on its side, the cap towards +X.
+    for (glm::vec3& p : b.mesh.positions) p = glm::vec3(p.z, p.y, -p.x);
+    return finish(&b, {0.36f, 0.64f, 0.62f});
 }
 
 TriangleMesh makeTwig(uint64_t seed) {
@@ -333,6 +584,43 @@ TriangleMesh makeGrassTuft(uint64_t seed) {
         addSheet(&b, 10, 2, pos, [](float s) { return 0.0003f * (1.0f - 0.7f * s); });
     }
     return finish(&b, {0.24f, 0.48f, 0.12f});
+}
+
+TriangleMesh makeGrassTuftDried(uint64_t seed) {
+    seed = hashWords(seed, 121);
+    Builder b;
+    const int blades = 16;
+    for (int k = 0; k < blades; ++k) {
+        const float phi = 2.0f * kPi * (float(k) + rnd(seed, 4, uint64_t(k), 0.0f, 0.8f)) / float(blades);
+        const float ring_m = rnd(seed, 5, uint64_t(k), 0.0f, 0.008f);
+        const float length_m = rnd(seed, 6, uint64_t(k), 0.070f, 0.110f);
+        const float width_m = rnd(seed, 8, uint64_t(k), 0.0011f, 0.0018f);
+        // Angle from the vertical: a lean at the foot that droops further towards the tip, and for about
+        // one blade in three a sharp fold part way up where the dry stalk gave way.
+        const float lean = rnd(seed, 7, uint64_t(k), 0.25f, 0.75f);
+        const float droop = rnd(seed, 9, uint64_t(k), 0.5f, 1.3f);
+        const bool bent = rnd(seed, 10, uint64_t(k), 0.0f, 1.0f) < 0.35f;
+        const float fold_s = rnd(seed, 11, uint64_t(k), 0.35f, 0.65f), fold = bent ? rnd(seed, 12, uint64_t(k), 0.9f, 1.4f) : 0.0f;
+        const glm::vec3 out(std::cos(phi), std::sin(phi), 0.0f), across(-std::sin(phi), std::cos(phi), 0.0f);
+        const glm::vec3 base = ring_m * out;
+        auto angle = [=](float s) {
+            const float f = glm::clamp((s - fold_s) / 0.06f + 0.5f, 0.0f, 1.0f);
+            return std::min(lean + droop * s * s + fold * f * f * (3.0f - 2.0f * f), 0.55f * kPi);
+        };
+        auto pos = [=](float s, float t) {
+            // The centre line integrates its heading (midpoint rule, a fixed number of steps so it is smooth in s).
+            const int steps = 24;
+            glm::vec2 rz(0.0f);
+            for (int i = 0; i < steps; ++i) {
+                const float a = angle(s * (float(i) + 0.5f) / float(steps));
+                rz += (s * length_m / float(steps)) * glm::vec2(std::sin(a), std::cos(a));
+            }
+            const float w = width_m * std::min(1.0f, 0.35f + 6.0f * s) * std::pow(std::max(0.0f, 1.0f - s), 0.8f);
+            return base + rz.x * out + glm::vec3(0, 0, rz.y) + t * w * across;
+        };
+        addSheet(&b, 14, 2, pos, [](float s) { return 0.00025f * (1.0f - 0.7f * s); });
+    }
+    return finish(&b, {0.71f, 0.61f, 0.36f});
 }
 
 TriangleMesh makeMushroom(uint64_t seed) {
@@ -497,7 +785,11 @@ TriangleMesh makeScannedRock(uint32_t target_triangles, uint64_t seed) {
 const std::vector<std::string>& starterAssetNames() {
     static const std::vector<std::string> names = {"rock",      "flat_stone", "pebble",   "leaf_oak",    "leaf_birch",
                                                    "twig",      "grass_tuft", "mushroom", "pine_needles",
-                                                   "hay_wisp"};
+                                                   "hay_wisp",
+                                                   // Appended (the order above is the committed assets' order).
+                                                   "leaf_oak_dry", "leaf_birch_dry", "leaf_oak_wet", "leaf_birch_wet",
+                                                   "petal", "trash_can", "trash_paper", "trash_cup", "trash_bottle",
+                                                   "grass_tuft_dried"};
     return names;
 }
 
@@ -507,7 +799,11 @@ bool makeStarterAsset(const std::string& name, uint64_t seed, TriangleMesh* out)
         {"rock", makeRock},         {"flat_stone", makeFlatStone}, {"pebble", makePebble},
         {"leaf_oak", makeOakLeaf},  {"leaf_birch", makeBirchLeaf}, {"twig", makeTwig},
         {"grass_tuft", makeGrassTuft}, {"mushroom", makeMushroom}, {"pine_needles", makePineNeedles},
-        {"hay_wisp", makeHayWisp}};
+        {"hay_wisp", makeHayWisp},
+        {"leaf_oak_dry", makeOakLeafDry}, {"leaf_birch_dry", makeBirchLeafDry},
+        {"leaf_oak_wet", makeOakLeafWet}, {"leaf_birch_wet", makeBirchLeafWet}, {"petal", makePetal},
+        {"trash_can", makeTrashCan},      {"trash_paper", makeTrashPaper},    {"trash_cup", makeTrashCup},
+        {"trash_bottle", makeTrashBottle}, {"grass_tuft_dried", makeGrassTuftDried}};
     for (const auto& [n, make] : makers)
         if (name == n) {
             *out = make(seed);

@@ -25,6 +25,18 @@ TriangleMesh makeGrassTuft(uint64_t seed);     // ~10 cm tall clump of curved ta
 TriangleMesh makeMushroom(uint64_t seed);      // ~10 cm, stem + domed cap, tan-red
 TriangleMesh makePineNeedles(uint64_t seed);   // ~8 cm bundle of thin needles from a sheath, dark green
 TriangleMesh makeHayWisp(uint64_t seed);       // ~18 cm, loose straws lying across each other, straw yellow
+// Autumn scattered effects. Dry leaves: the same outlines strongly cupped and curled, edges rolled up,
+// crinkled, browner and duller. Wet leaves: lying flat (a few mm of relief), darker and more saturated.
+TriangleMesh makeOakLeafDry(uint64_t seed);
+TriangleMesh makeBirchLeafDry(uint64_t seed);
+TriangleMesh makeOakLeafWet(uint64_t seed);
+TriangleMesh makeBirchLeafWet(uint64_t seed);
+TriangleMesh makePetal(uint64_t seed);         // ~3.5 cm, rounded obovate, slightly cupped, pale pink
+TriangleMesh makeTrashCan(uint64_t seed);      // ~12 cm drink can lying on its side, pinched and dented, red
+TriangleMesh makeTrashPaper(uint64_t seed);    // ~7 cm crumpled paper ball with sharp creases, off-white
+TriangleMesh makeTrashCup(uint64_t seed);      // ~9 cm open paper cup (1 mm wall, rolled lip) on its side, white
+TriangleMesh makeTrashBottle(uint64_t seed);   // ~20 cm plastic bottle with neck and cap, lying, green-blue
+TriangleMesh makeGrassTuftDried(uint64_t seed);  // ~10 cm, thin drooping blades, some folded over, straw
 
 // A "scanned" boulder for performance work, like what photogrammetry gives artists: about 1 m across,
 // a lumpy ellipsoid with mid-scale knobs, fine bumps and per-vertex scan noise, as a uniformly
@@ -37,7 +49,8 @@ TriangleMesh makeHayWisp(uint64_t seed);       // ~18 cm, loose straws lying acr
 TriangleMesh makeScannedRock(uint32_t target_triangles, uint64_t seed);
 
 // The starter set, in a fixed order: rock, flat_stone, pebble, leaf_oak, leaf_birch, twig, grass_tuft,
-// mushroom, pine_needles, hay_wisp.
+// mushroom, pine_needles, hay_wisp, leaf_oak_dry, leaf_birch_dry, leaf_oak_wet, leaf_birch_wet, petal,
+// trash_can, trash_paper, trash_cup, trash_bottle, grass_tuft_dried.
 const std::vector<std::string>& starterAssetNames();
 
 // The generator for `name` (one of starterAssetNames()); false for an unknown name.

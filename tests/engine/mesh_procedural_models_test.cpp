@@ -13,7 +13,10 @@ TEST(ProceduralModels, AreClosedOutwardCentredAndModest) {
         {"rock", {0.10f, 0.15f}},     {"flat_stone", {0.12f, 0.18f}}, {"pebble", {0.03f, 0.05f}},
         {"leaf_oak", {0.08f, 0.13f}}, {"leaf_birch", {0.07f, 0.12f}}, {"twig", {0.25f, 0.35f}},
         {"grass_tuft", {0.07f, 0.13f}}, {"mushroom", {0.08f, 0.15f}}, {"pine_needles", {0.06f, 0.10f}},
-        {"hay_wisp", {0.15f, 0.25f}}};
+        {"hay_wisp", {0.15f, 0.25f}},   {"leaf_oak_dry", {0.06f, 0.12f}}, {"leaf_birch_dry", {0.06f, 0.11f}},
+        {"leaf_oak_wet", {0.08f, 0.13f}}, {"leaf_birch_wet", {0.07f, 0.12f}}, {"petal", {0.03f, 0.045f}},
+        {"trash_can", {0.10f, 0.14f}}, {"trash_paper", {0.055f, 0.085f}}, {"trash_cup", {0.08f, 0.10f}},
+        {"trash_bottle", {0.17f, 0.23f}}, {"grass_tuft_dried", {0.07f, 0.18f}}};
     for (const std::string& name : starterAssetNames()) {
         SCOPED_TRACE(name);
         TriangleMesh m;
