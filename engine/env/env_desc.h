@@ -77,6 +77,7 @@ struct EffectOverrides {
 // Which scattered channels (leaves, grass, trash: env/env_scatter.h) come to rest on a surface, as a set
 // of bits 1 << EnvChannel.
 constexpr uint32_t envChannelBit(EnvChannel c) { return 1u << uint32_t(c); }
+constexpr uint32_t kAllEnvChannels = ~0u;
 constexpr uint32_t kScatterChannels =
     envChannelBit(EnvChannel::Leaves) | envChannelBit(EnvChannel::Grass) | envChannelBit(EnvChannel::Trash);
 

@@ -118,9 +118,28 @@ void ScatterField::valueBatch(const glm::vec3* points, size_t n, float* out) con
         ask_d.push_back(p.z - s.z);
         ask_k.push_back(uint32_t(k));
     }
+    // The channel next, alone: where even α = 1 cannot lift the layer to p (c·h <= d), the occlusion's
+    // fields are not summed either. Only c and α are read, each summed in channels()'s order.
     samples.resize(ask.size());
-    env_->channelsBatch(ask.data(), ask.size(), samples.data());
-    for (size_t i = 0; i < ask.size(); ++i) out[ask_k[i]] = fromChannels(ask[i], ask_d[i], samples[i]);
+    env_->channelsBatch(ask.data(), ask.size(), samples.data(), bit_);
+    size_t kept = 0;
+    for (size_t i = 0; i < ask.size(); ++i) {
+        const float c = channelValue(samples[i], settings_.channel);
+        if (!(c * settings_.thickness_m - ask_d[i] > 0.0f)) continue;
+        ask[kept] = ask[i];
+        ask_d[kept] = ask_d[i];
+        ask_k[kept] = ask_k[i];
+        samples[kept] = samples[i];
+        ++kept;
+    }
+    ask.resize(kept);
+    thread_local std::vector<EnvSample> occlusion;
+    occlusion.resize(kept);
+    env_->channelsBatch(ask.data(), kept, occlusion.data(), envChannelBit(EnvChannel::Occlusion));
+    for (size_t i = 0; i < kept; ++i) {
+        samples[i].occlusion = occlusion[i].occlusion;
+        out[ask_k[i]] = fromChannels(ask[i], ask_d[i], samples[i]);
+    }
 }
 
 Bounds ScatterField::positiveBoundsIn(const Bounds& box) const {

@@ -93,7 +93,9 @@ public:
     void sampleBatch(const glm::vec3* points, size_t n, EnvSample* out) const;
     // The channels only (shelter left at 1); the batch is bit-identical to channels() per point.
     EnvSample channels(glm::vec3 p) const;
-    void channelsBatch(const glm::vec3* points, size_t n, EnvSample* out) const;
+    // `channels` (envChannelBit bits) restricts the sums to those channels: the others read 0 (occlusion
+    // 1), the asked ones are bit-identical to channels().
+    void channelsBatch(const glm::vec3* points, size_t n, EnvSample* out, uint32_t channels = kAllEnvChannels) const;
     float shelter(glm::vec3 p) const { return shelterRays(p, false); }
     // Only the centre ray (0 or 1): what effect sharing compares objects by (a ninth of the cost).
     float shelterCentre(glm::vec3 p) const { return shelterRays(p, true); }
@@ -107,7 +109,9 @@ public:
         bool inside = false;  // p lies inside an object's base geometry: nothing rests there
     };
     Support supportBelow(glm::vec3 p) const;
-    // The largest value channel c can take in box (the sum of its fields' positive values meeting it).
+    // An upper bound of channel c over box: the sum over the fields meeting it of each one's largest value in
+    // the box (value·K at the box's distance from the field's skeleton; the value itself where that is not
+    // known).
     float channelBound(EnvChannel c, const Bounds& box) const;
     // Calls fn(object id) for every object whose XY bounds may meet box's XY (ids may repeat).
     template <typename Fn>

@@ -140,6 +140,53 @@ TEST(EnvScene, BatchIsBitIdenticalToScalar) {
     EXPECT_GT(touched, 20);  // the points do meet the fields
 }
 
+// channelBound (what a scattered type's tiles are culled by) is an upper bound of the channel at every
+// point of the box, and follows the fields' falloff: a box near the rim of a field gets a small bound,
+// not the field's peak. The masked batch sums exactly what the full one does for the channels asked.
+TEST(EnvScene, ChannelBoundHoldsInEveryBoxAndFollowsTheFalloff) {
+    EnvFixture f;
+    EnvScene env;
+    std::string error;
+    const char* shapes[] = {R"({"point": {"center": [0.3, 0, 1], "radius": 1.5}})",
+                            R"({"segment": {"a": [-1, 0, 0.5], "b": [1, 0.5, 1], "radius": 0.8}})",
+                            R"({"box": {"center": [0, 0, 0.5], "half_extents": [0.4, 0.2, 0.1], "radius": 0.6}})",
+                            R"({"disc": {"center": [0, 0, 1], "normal": [0, 0.6, 0.8], "disc_radius": 0.5, "radius": 0.7}})"};
+    std::string tree = "[";
+    for (int i = 0; i < 24; ++i)
+        tree += std::string(i ? "," : "") + R"({"object": "cube", "at": [)" + std::to_string(1.3 * (i % 6)) + ", " +
+                std::to_string(1.1 * (i / 6)) + R"(, 0], "yaw_deg": )" + std::to_string(i * 41) + R"(, "scale": )" +
+                std::to_string(0.7 + 0.05 * i) + R"(, "fields": [{"channel": "leaves", "value": )" +
+                std::to_string(0.5 + 0.1 * (i % 5)) + R"(, "shape": )" + shapes[i % 4] + "}]}";
+    tree += "]";
+    ASSERT_TRUE(f.compile(R"({)" + kTypes + R"(, "tree": )" + tree +
+                              R"(, "global_fields": [{"channel": "leaves", "value": 0.05}, {"channel": "grass", "value": 1}]})",
+                          &env, &error))
+        << error;
+    std::mt19937 rng(8);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    int tight = 0;
+    for (int b = 0; b < 300; ++b) {
+        const glm::vec3 lo(-2.0f + 11.0f * u(rng), -2.0f + 7.0f * u(rng), -0.5f + 2.5f * u(rng));
+        const Bounds box{lo, lo + glm::vec3(0.05f + 0.6f * u(rng), 0.05f + 0.6f * u(rng), 0.05f + 0.4f * u(rng))};
+        const float bound = env.channelBound(EnvChannel::Leaves, box);
+        float peak = 0.0f;  // what the bound was before it followed the falloff
+        for (const EnvWorldField& w : env.fields())
+            if (w.channel == EnvChannel::Leaves && overlaps(w.bounds, box)) peak += w.value;
+        tight += bound < 0.5f * peak;
+        std::vector<glm::vec3> pts(60);
+        for (glm::vec3& p : pts) p = glm::mix(box.lo, box.hi, glm::vec3(u(rng), u(rng), u(rng)));
+        std::vector<EnvSample> masked(pts.size());
+        env.channelsBatch(pts.data(), pts.size(), masked.data(), envChannelBit(EnvChannel::Leaves));
+        for (size_t k = 0; k < pts.size(); ++k) {
+            const EnvSample full = env.channels(pts[k]);
+            ASSERT_LE(full.leaves, bound) << "box " << b << " point " << k;
+            ASSERT_TRUE(test::sameBits(full.leaves, masked[k].leaves)) << "box " << b << " point " << k;
+            ASSERT_EQ(masked[k].grass, 0.0f);  // not asked for
+        }
+    }
+    EXPECT_GT(tight, 60);  // many boxes lie in the fields' outer parts
+}
+
 TEST(EnvScene, LodNodeFieldsReplaceTheSubtreesForQueries) {
     EnvFixture f;
     const std::string tree = R"("tree": [{"lod": {"fields": [{"channel": "leaves", "value": 0.4,
