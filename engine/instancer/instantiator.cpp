@@ -70,6 +70,12 @@ struct Prepared {
     float max_reach = 0.0f;
     // The sink test's spheres: per candidate its kSinkSpheres lowest (by bottom), relative to its origin.
     std::vector<glm::vec4> low_spheres;   // xyz centre offset, w radius; kSinkSpheres per candidate
+    // Every (type, variant) range [b, e) of candidate ids, permuted by the lowest anchor's z (tile space):
+    // z_order[b..e) and z_low[k] = that z of z_order[k]. A thin layer's positive box holds a few percent of
+    // a tile's height; two binary searches find the candidates whose anchors can lie in it, so the others
+    // are never looked at (they would all be culled).
+    std::vector<uint32_t> z_order;
+    std::vector<float> z_low;
 };
 
 constexpr uint32_t kSinkSpheres = 4;
@@ -100,6 +106,19 @@ Prepared prepare(const InstancerInput& in) {
         for (uint32_t k = 0; k < kSinkSpheres; ++k)
             p.low_spheres.push_back(k < spheres.size() ? spheres[k] : (spheres.empty() ? glm::vec4(0.0f) : spheres[0]));
     }
+    p.z_order.resize(p.n);
+    p.z_low.resize(p.n);
+    std::vector<float> lowest(p.n, std::numeric_limits<float>::infinity());
+    for (uint32_t j = 0; j < p.n; ++j)
+        for (uint32_t k = p.anchor_begin[j]; k < p.anchor_begin[j + 1]; ++k) lowest[j] = std::min(lowest[j], p.anchors[k].z);
+    for (uint32_t t = 0; t < c.typeCount(); ++t)
+        for (uint32_t v = 0; v < c.variants; ++v) {
+            const uint32_t b = c.variantBegin(t, v), e = c.variantEnd(t, v);
+            for (uint32_t j = b; j < e; ++j) p.z_order[j] = j;
+            std::stable_sort(p.z_order.begin() + b, p.z_order.begin() + e,
+                             [&](uint32_t x, uint32_t y) { return lowest[x] < lowest[y]; });
+            for (uint32_t k = b; k < e; ++k) p.z_low[k] = lowest[p.z_order[k]];
+        }
     // Pad against rounding in the world-space sums: reach only decides which boxes to look at.
     for (float& r : p.reach) r = r * 1.001f + 1e-4f;
     for (float r : p.reach) p.max_reach = std::max(p.max_reach, r);
@@ -160,6 +179,7 @@ struct TileScratch {
     std::vector<float> first_values;
     std::vector<uint32_t> second;  // survivors (indices) whose first anchor is positive
     std::vector<float> values;
+    std::vector<std::pair<uint32_t, uint64_t>> by_id;  // (candidate, priority), to restore id order
 };
 
 }  // namespace
@@ -312,10 +332,20 @@ void Instantiator::Engine::computeTile(TileState* ts, const std::vector<const Ti
             ts->culled += end - begin;
             continue;
         }
-        // Cheap culling first: every anchor must lie where the field can be positive.
+        // Cheap culling first: every anchor must lie where the field can be positive. Only candidates whose
+        // lowest anchor lies in the box's z range (widened by more than the rounding of origin + anchor)
+        // can pass; the exact test below decides for those.
+        const float slack = 1e-5f + 4e-7f * (std::abs(origin.z) + prep.s);
+        const auto z_first = prep.z_low.begin() + begin, z_last = prep.z_low.begin() + end;
+        const uint32_t scan_begin = uint32_t(std::lower_bound(z_first, z_last, positive.lo.z - origin.z - slack) -
+                                             prep.z_low.begin());
+        const uint32_t scan_end = uint32_t(std::upper_bound(z_first, z_last, positive.hi.z - origin.z + slack) -
+                                           prep.z_low.begin());
+        ts->culled += (end - begin) - (scan_end - scan_begin);
         scratch->survivors.clear();
         scratch->points.clear();
-        for (uint32_t j = begin; j < end; ++j) {
+        for (uint32_t z = scan_begin; z < scan_end; ++z) {
+            const uint32_t j = prep.z_order[z];
             const glm::vec3 o = origin + c.position[j];
             bool keep = originInside(input.extent, o);
             for (uint32_t k = prep.anchor_begin[j]; keep && k < prep.anchor_begin[j + 1]; ++k)
@@ -422,6 +452,17 @@ void Instantiator::Engine::computeTile(TileState* ts, const std::vector<const Ti
         }
     }
 
+    // The scan above went in z order; TileState::find ranks candidates by id, so alive is kept by id.
+    if (!std::is_sorted(ts->alive.begin(), ts->alive.end())) {
+        auto& by_id = scratch->by_id;
+        by_id.resize(ts->alive.size());
+        for (size_t a = 0; a < by_id.size(); ++a) by_id[a] = {ts->alive[a], ts->priority[a]};
+        std::sort(by_id.begin(), by_id.end());
+        for (size_t a = 0; a < by_id.size(); ++a) {
+            ts->alive[a] = by_id[a].first;
+            ts->priority[a] = by_id[a].second;
+        }
+    }
     const uint32_t words = (prep.n + 63) / 64;
     ts->bits.assign(words, 0);
     ts->rank.assign(words, 0);
