@@ -27,6 +27,8 @@ bool benchPile(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string
 // In the editor's window where one opens, else offscreen (EGL); the editor.stamp_* rows need the window.
 // Environmental objects: snow and icicles of the winter scenes, a local edit, LOD nodes (env.*).
 bool benchEnvironment(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
+// Scattered effects: leaves and grass of the autumn scenes, LOD nodes on the park, a street edit (env.*).
+bool benchScatter(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 bool benchRender(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 
 }  // namespace ug::cli

@@ -35,6 +35,7 @@ int runBenchCommand(int argc, char** argv) {
                                 {"models", benchModels},
                                 {"pile", benchPile},
                                 {"env", benchEnvironment},
+                                {"env_scatter", benchScatter},
                                 {"render", benchRender}};
     std::vector<BenchRow> rows;
     for (const Section& s : sections) {
