@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
-# End-to-end checks of the environmental objects through the binary (issue 11): `environment --at` values
-# against hand-computed ones, the winter street exported and checked by the Khronos validator and an
-# independent glTF reader (check_gltf.mjs), the union of regions equal to the whole, and bad trees refused
-# with the file, the JSON Pointer and the reason. UG_BIN is the binary.
+# End-to-end checks of the environmental objects through the binary (issues 11, 12): `environment --at`
+# values against hand-computed ones, the winter street and the three autumn samples exported and checked
+# by the Khronos validator and an independent glTF reader (check_gltf.mjs, per mesh for the autumn looks),
+# the union of regions equal to the whole, and bad trees refused with the file, the JSON Pointer and the
+# reason. UG_BIN is the binary.
 set -u
 bin="${UG_BIN:?UG_BIN must name the undergrowth binary}"
 root="$(cd "$(dirname "$0")/../.." && pwd)"
@@ -81,7 +82,34 @@ for k in ("objects", "snow_triangles", "icicles", "terrain_snow_chunks"):
     assert a[k] + b[k] == w[k], (k, a[k], b[k], w[k])
 PY
 
-# 4. Bad input: each a clear error with the file, the place and the reason; the CLI exits non-zero.
+# 4. The autumn samples exported (issue 12): the validator finds no error, and glTF-Transform reads back
+#    every look (the scattered types and their variants, each its own instanced mesh) with the count the
+#    statistics give it; the looks add up to the instances, and the variants are really used.
+for scene in street_autumn park_autumn road_autumn; do
+  if ! "$bin" instantiate "$root/assets/scenes/$scene.json" -o "$tmp/$scene.glb" --stats "$tmp/$scene.json" \
+       >"$tmp/$scene.txt" 2>&1; then
+    bad "instantiate: $scene: $(tail -5 "$tmp/$scene.txt")"
+    continue
+  fi
+  looks="$(python3 - "$tmp/$scene.json" <<'PY'
+import json, sys
+s = json.load(open(sys.argv[1]))
+looks = s["instances_per_look"]
+assert sum(looks.values()) == s["instances"], (sum(looks.values()), s["instances"])
+assert sum(n for k, n in looks.items() if k.endswith(("_wet", "_dry"))) > 0, looks  # puddles, a warm corner
+print(json.dumps(looks))
+PY
+)" || { bad "$scene: looks do not add up: $(cat "$tmp/$scene.json" | head -c 600)"; continue; }
+  if command -v node >/dev/null 2>&1 &&
+     node "$root/tests/gltf/check_gltf.mjs" "$tmp/$scene.glb" --expect-per-mesh "$looks" >"$tmp/$scene.check" 2>&1; then
+    ok "export: $scene valid, every look's copies as counted"
+  else
+    bad "export: $scene: $(tail -c 1500 "$tmp/$scene.check")"
+  fi
+  rm -f "$tmp/$scene.glb"
+done
+
+# 5. Bad input: each a clear error with the file, the place and the reason; the CLI exits non-zero.
 mk() {  # mk NAME ENVIRONMENT_JSON: a project with the given environment
   printf '{"format": "undergrowth-project", "format_version": 3, "name": "%s",
   "detail_types": [{"name": "p", "model": {"mesh": "%s/assets/models/pebble.glb"}, "candidates": {"count": 4},

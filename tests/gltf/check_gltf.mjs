@@ -3,7 +3,9 @@
 // with independent readers, since the Khronos validator does not check that extension").
 //
 //   node check_gltf.mjs FILE [--expect-instances N] [--expect-detail-instances N] [--expect-types K]
-//                            [--expect-images N] [--expect-textured-materials N]
+//                            [--expect-images N] [--expect-textured-materials N] [--expect-per-mesh JSON]
+//   (--expect-per-mesh: {"<mesh name>": copies, ...}, e.g. the statistics' instances_per_look; a mesh the
+//    map names with 0 copies may be absent or drawn by no node)
 //   (detail instances: copies of meshes that carry collision_spheres extras, i.e. without the terrain)
 //
 // 1. The Khronos glTF-Validator: any error fails the check (its messages are printed). Warnings are
@@ -40,16 +42,28 @@ import { checkMaterials } from './check_materials.mjs';
 const kUnitTolerance = 1e-4;  // float32 quaternions normalized by a writer are within ~1e-7
 
 function usage(message) {
-    console.error(`check_gltf: ${message}\nusage: node check_gltf.mjs FILE [--expect-instances N] [--expect-detail-instances N] [--expect-types K] [--expect-images N] [--expect-textured-materials N]`);
+    console.error(`check_gltf: ${message}\nusage: node check_gltf.mjs FILE [--expect-instances N] [--expect-detail-instances N] [--expect-types K] [--expect-images N] [--expect-textured-materials N] [--expect-per-mesh JSON]`);
     process.exit(2);
 }
 
 function parseArgs(argv) {
     const args = { file: null, expectInstances: null, expectTypes: null, expectDetailInstances: null,
-                   expectImages: null, expectTexturedMaterials: null };
+                   expectImages: null, expectTexturedMaterials: null, expectPerMesh: null };
     for (let i = 0; i < argv.length; ++i) {
         const a = argv[i];
-        if (a === '--expect-instances' || a === '--expect-types' || a === '--expect-detail-instances' ||
+        if (a === '--expect-per-mesh') {
+            const value = argv[++i];
+            let map = null;
+            try {
+                map = JSON.parse(value ?? '');
+            } catch (e) {
+                usage(`--expect-per-mesh needs a JSON object: ${e.message}`);
+            }
+            if (map === null || typeof map !== 'object' || Array.isArray(map) ||
+                !Object.values(map).every((n) => Number.isInteger(n) && n >= 0))
+                usage('--expect-per-mesh needs a JSON object of non-negative integer counts');
+            args.expectPerMesh = map;
+        } else if (a === '--expect-instances' || a === '--expect-types' || a === '--expect-detail-instances' ||
             a === '--expect-images' || a === '--expect-textured-materials') {
             const value = argv[++i];
             if (value === undefined || !/^\d+$/.test(value)) usage(`${a} needs a non-negative integer`);
@@ -114,7 +128,7 @@ function countInstances(document, problems) {
     const detailMeshes = new Set(
         root.listMeshes().filter((m) => Array.isArray((m.getExtras() || {}).collision_spheres)));
     const result = { instances: 0, detail_instances: 0, instanced_nodes: 0, plain_nodes: 0,
-                     meshes: root.listMeshes().length, types: detailMeshes.size };
+                     meshes: root.listMeshes().length, types: detailMeshes.size, per_mesh: {} };
     for (const node of root.listNodes()) {
         const mesh = node.getMesh();
         const instancing = node.getExtension('EXT_mesh_gpu_instancing');
@@ -145,6 +159,10 @@ function countInstances(document, problems) {
             result.plain_nodes += 1;
         }
         result.instances += copies;
+        if (mesh) {
+            const meshName = mesh.getName() || '(unnamed mesh)';
+            result.per_mesh[meshName] = (result.per_mesh[meshName] ?? 0) + copies;
+        }
         if (mesh && detailMeshes.has(mesh)) result.detail_instances += copies;
     }
     return result;
@@ -187,6 +205,11 @@ async function main() {
         problems.push(`${counts.instances} instances, expected ${args.expectInstances}`);
     if (counts && args.expectDetailInstances !== null && counts.detail_instances !== args.expectDetailInstances)
         problems.push(`${counts.detail_instances} detail instances, expected ${args.expectDetailInstances}`);
+    if (counts && args.expectPerMesh !== null)
+        for (const [name, expected] of Object.entries(args.expectPerMesh)) {
+            const got = counts.per_mesh[name] ?? 0;
+            if (got !== expected) problems.push(`mesh ${name}: ${got} copies, expected ${expected}`);
+        }
     if (counts && args.expectTypes !== null && counts.types !== args.expectTypes)
         problems.push(`${counts.types} detail types, expected ${args.expectTypes}`);
     if (counts && args.expectImages !== null && counts.images !== args.expectImages)

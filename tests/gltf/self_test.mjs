@@ -104,6 +104,11 @@ try {
            '"instances":4');
     expect('good file, wrong count', check(good, ['--expect-instances', '5']), 1, 'expected 5');
     expect('good file, wrong type count', check(good, ['--expect-types', '2']), 1, 'expected 2');
+    expect('good file, right copies per mesh', check(good, ['--expect-per-mesh', '{"triangle": 4, "absent": 0}']), 0, '');
+    expect('good file, wrong copies per mesh', check(good, ['--expect-per-mesh', '{"triangle": 3}']), 1,
+           'mesh triangle: 4 copies, expected 3');
+    expect('good file, a mesh it lacks', check(good, ['--expect-per-mesh', '{"other": 1}']), 1,
+           'mesh other: 0 copies, expected 1');
 
     const bad_rotation = path.join(dir, 'bad_rotation.gltf');
     await writeInstanced(bad_rotation, [0, 0, 0, 1, 0, 0, 0, 2]);
