@@ -137,17 +137,27 @@ float candidateScaleMax(const CandidateSet& candidates, size_t type) {
     return scale;
 }
 
+namespace {
+
+// The mesh's material: materials' entry `index` where there is one (its colour the material's base), else
+// a plain material of the mesh's own colour.
+void useMaterial(DetailLodMesh* mesh, const SceneMaterials* materials, size_t index) {
+    if (materials && index < materials->types.size()) {
+        mesh->material = materials->types[index];
+        mesh->color = materials->types[index].base_color;
+    } else {
+        mesh->material.base_color = mesh->color;
+    }
+}
+
+}  // namespace
+
 std::vector<DetailLodMesh> buildTypeMeshes(const std::vector<DetailModel>& models, const CandidateSet& candidates,
                                            const SceneMaterials* looks) {
     std::vector<DetailLodMesh> meshes;
     for (size_t i = 0; i < models.size(); ++i) {
         meshes.push_back(buildDetailLods(models[i], candidateScaleMax(candidates, i)));
-        if (looks && i < looks->types.size()) {
-            meshes.back().material = looks->types[i];
-            meshes.back().color = looks->types[i].base_color;
-        } else {
-            meshes.back().material.base_color = meshes.back().color;
-        }
+        useMaterial(&meshes.back(), looks, i);
     }
     return meshes;
 }
@@ -157,12 +167,7 @@ std::vector<DetailLodMesh> buildLookMeshes(const DetailLooks& looks, const Candi
     std::vector<DetailLodMesh> meshes;
     for (size_t l = 0; l < looks.size(); ++l) {
         meshes.push_back(buildDetailLods(*looks.models[l], candidateScaleMax(candidates, looks.look_type[l])));
-        if (materials && l < materials->types.size()) {
-            meshes.back().material = materials->types[l];
-            meshes.back().color = materials->types[l].base_color;
-        } else {
-            meshes.back().material.base_color = meshes.back().color;
-        }
+        useMaterial(&meshes.back(), materials, l);
     }
     return meshes;
 }
