@@ -90,6 +90,12 @@ def autumn_types():
         t = json.loads(json.dumps(t))
         if t["name"] in receives:
             t["receives"] = receives[t["name"]]
+        if t["name"] == "bench":
+            # Its occlusion field keeps the leaves off the ground beneath it (Fig. 20); it stops below the
+            # seat (0.45 m), which receives them.
+            t["fields"] = t.get("fields", []) + [
+                field("occlusion", 1.0, {"box": {"center": [0, 0, 0.14], "half_extents": [0.72, 0.2, 0.12],
+                                                 "radius": 0.12}})]
         if t["name"] == "tree":
             t["shelters"] = False
             # A large spherical leaf field around the crown (Fig. 20), and the shade under it.
@@ -118,8 +124,8 @@ def street_autumn():
     p = head("street_autumn", [[0, 0, -0.5], [10, 10, 5.5]])
     p["terrain"] = W.flat_terrain(0, 0, 10, 10, 0.25)
     p["detail_types"] = [
-        leaf("leaf_oak", [0.55, 0.27, 0.08], [0.32, 0.14, 0.05], 220),
-        leaf("leaf_birch", [0.80, 0.62, 0.14], [0.48, 0.34, 0.07], 220),
+        leaf("leaf_oak", [0.55, 0.27, 0.08], [0.20, 0.08, 0.03], 1000, thickness=0.05),
+        leaf("leaf_birch", [0.80, 0.62, 0.14], [0.30, 0.20, 0.04], 1000, thickness=0.05),
         grass(1000),
         trash("can", "trash_can", [0.70, 0.12, 0.10], 48, 0.066),
         trash("paper", "trash_paper", [0.88, 0.86, 0.80], 40, 0.061),
@@ -151,8 +157,8 @@ def street_autumn():
 
 
 def leaf_types(count, thickness=0.12):
-    return [leaf("leaf_oak", [0.55, 0.27, 0.08], [0.32, 0.14, 0.05], count, thickness),
-            leaf("leaf_birch", [0.80, 0.62, 0.14], [0.48, 0.34, 0.07], count, thickness)]
+    return [leaf("leaf_oak", [0.55, 0.27, 0.08], [0.20, 0.08, 0.03], count, thickness),
+            leaf("leaf_birch", [0.80, 0.62, 0.14], [0.30, 0.20, 0.04], count, thickness)]
 
 
 def tree_clusters(trees, per_cluster=3):
