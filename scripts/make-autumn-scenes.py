@@ -118,8 +118,8 @@ def head(name, extent, tile=0.5):
 
 def street_autumn():
     """10 x 10 m (Fig. 20, Table 1 "Street"): a tree whose large spherical leaf field covers road and
-    pavement, two small leaf piles, a bench and a bus shelter that keep leaves off the ground beneath them
-    (their shelter), leaves on the bench's seat, a wet puddle with flat wet leaves, trash around the trash
+    pavement, two small leaf piles, a bench (its occlusion field) and a bus shelter (its roof) that keep
+    leaves off the ground beneath them, leaves on the bench's seat, a wet puddle with flat wet leaves, trash around the trash
     can and grass on the verge behind the pavement, trampled along a path."""
     p = head("street_autumn", [[0, 0, -0.5], [10, 10, 5.5]])
     p["terrain"] = W.flat_terrain(0, 0, 10, 10, 0.25)

@@ -14,8 +14,6 @@ namespace {
 
 constexpr float kDegToRad = 0.017453292519943295f;
 
-// Primitive bounds mapped through a placement: the local box's corners placed, then their AABB (a turn
-// about Z of an AABB stays within the placed corners' AABB; the scale and translation are exact).
 // An upper bound of a field's value over a world box, far tighter than its peak for the boxes a tile
 // asks about (a tree's 8 m leaf field seen from a 25 cm tile): value·K(d_min, R), d_min the distance from
 // the box (placed in the owner's space) to the AABB of the skeleton, which no point of the skeleton is
@@ -60,6 +58,8 @@ float fieldBoundIn(const EnvWorldField& f, const Bounds& box) {
     return peak * q * q * q;
 }
 
+// Primitive bounds mapped through a placement: the local box's corners placed, then their AABB (a turn
+// about Z of an AABB stays within the placed corners' AABB; the scale and translation are exact).
 Bounds placedBounds(const Bounds& local, const EnvPlacement& pl) {
     if (local.empty()) return local;
     for (int a = 0; a < 3; ++a)

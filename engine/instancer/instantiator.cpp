@@ -339,8 +339,8 @@ void Instantiator::Engine::computeTile(TileState* ts, const std::vector<const Ti
         const auto z_first = prep.z_low.begin() + begin, z_last = prep.z_low.begin() + end;
         const uint32_t scan_begin = uint32_t(std::lower_bound(z_first, z_last, positive.lo.z - origin.z - slack) -
                                              prep.z_low.begin());
-        const uint32_t scan_end = uint32_t(std::upper_bound(z_first, z_last, positive.hi.z - origin.z + slack) -
-                                           prep.z_low.begin());
+        const uint32_t scan_end = std::max(scan_begin, uint32_t(std::upper_bound(z_first, z_last, positive.hi.z - origin.z + slack) -
+                                                                prep.z_low.begin()));
         ts->culled += (end - begin) - (scan_end - scan_begin);
         scratch->survivors.clear();
         scratch->points.clear();
