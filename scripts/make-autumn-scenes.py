@@ -107,12 +107,13 @@ def autumn_types():
 AUTUMN = [field("humidity", -0.3), field("temperature", 14.0)]
 
 
-def head(name, extent, tile=0.5):
+def head(name, extent, tile=0.5, settle=True):
+    """Settling brings each layer down onto what it lies on — the ground, a seat, a roof, each other (the
+    environment's objects are support too). The park and the road do not settle: millions of instances
+    take minutes to settle (settling's speed is not yet that of the instantiation)."""
     p = W.head(name, extent)
     p["ghost_tile"]["tile_size_m"] = tile
-    # Scattered layers are placed on their support (the ground, a seat, a rim) by their density; settling
-    # knows only the terrain and would pull the seats' leaves down, so it stays off (issue 12: not done).
-    p["settling"] = {"enabled": False}
+    p["settling"] = {"enabled": True, "passes": 8, "max_drop_m": 0.1} if settle else {"enabled": False}
     return p
 
 
@@ -184,7 +185,7 @@ def park_autumn():
     leaves on it, benches along the paths (leaves on their seats, none under them), a fountain whose rim
     collects leaves, a warm, dry corner where the grass has dried (Fig. 14) and trampled trails across the
     lawn (low occlusion: sparse grass)."""
-    p = head("park_autumn", [[-57.5, -45, -1], [57.5, 45, 8]])
+    p = head("park_autumn", [[-57.5, -45, -1], [57.5, 45, 8]], settle=False)
     p["terrain"] = W.flat_terrain(-57.5, -45, 115, 90, 0.5, amplitude=0.4, feature=40.0)
     p["detail_types"] = leaf_types(160) + [grass(1500, scale=(0.6, 0.85))]
     tree = []
@@ -221,7 +222,7 @@ def park_autumn():
 def road_autumn():
     """70 x 70 m (Fig. 21, Table 1 "Road"): the winter road in autumn — a road and its fences between two
     grass verges, 24 trees in rings of pavers, their leaves over the verges and the road, tyre tracks."""
-    p = head("road_autumn", [[-35, -35, -1], [35, 35, 8]], tile=0.25)
+    p = head("road_autumn", [[-35, -35, -1], [35, 35, 8]], tile=0.25, settle=False)
     p["terrain"] = W.flat_terrain(-35, -35, 70, 70, 0.5, amplitude=0.0)
     p["detail_types"] = leaf_types(150, thickness=0.1) + [grass(1800, scale=(0.3, 0.4))]
     groups = {"tree_a": W.tree_with_pavers("tree_a", 109, 6, 0), "tree_b": W.tree_with_pavers("tree_b", 109, 6, 140)}

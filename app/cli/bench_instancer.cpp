@@ -45,7 +45,7 @@ bool benchMeadowStamps(const BenchContext& ctx, SceneJob& job, Instantiator& ins
     std::vector<double> ms;
     std::vector<uint64_t> changed_counts, instances_after;
     std::vector<std::pair<size_t, uint32_t>> brush_prims;  // (type, primitive index) the brush added
-    const SettleInput settle = settleInput(job.project, job.compiled.terrain, job.tile, job.models);
+    const SettleInput settle = settleInput(job.project, job.compiled.terrain, job.tile, job.models, job.environment.get());
     SettledDrops drops;
     std::vector<double> settle_ms;
     if (settle.settings.enabled) settleAll(settle, inst.store(), ctx.threads, &drops);

@@ -39,7 +39,7 @@ bool instantiateScene(const BenchContext& ctx, const std::string& scene, SceneJo
         !inst.instantiateAll({.threads = ctx.threads}, &st, error))
         return false;
     *store = inst.store();
-    const SettleInput settle = settleInput(job->project, job->compiled.terrain, job->tile, job->models);
+    const SettleInput settle = settleInput(job->project, job->compiled.terrain, job->tile, job->models, job->environment.get());
     *settle_seconds = 0.0;
     if (settle.settings.enabled) {
         std::vector<double> seconds;

@@ -143,7 +143,7 @@ int runInstantiateCommand(int argc, char** argv) {
     }
 
     const InstancerInput input = instancerInput(job, seed);
-    const SettleInput settle = settleInput(job.project, job.compiled.terrain, job.tile, job.models);
+    const SettleInput settle = settleInput(job.project, job.compiled.terrain, job.tile, job.models, job.environment.get());
     if (settle.settings.enabled && !validateSettleInput(settle, &error)) return fail(scene + ": " + error);
     InstanceStats st;
     InstanceStore store;

@@ -12,7 +12,7 @@ SceneMetrics measureScene(const SceneJob& job, const InstanceStore& store, const
     for (const DetailModel& d : job.models) models.push_back(&d);
     // What the scene rests on, as settling sees it (the plane only where the project gives one); a scene
     // without either is measured against z = 0, where the editor draws its ground grid.
-    RestSupport support = settleInput(job.project, job.compiled.terrain, job.tile, job.models).support;
+    RestSupport support = settleInput(job.project, job.compiled.terrain, job.tile, job.models, job.environment.get()).support;
     if (!support.terrain && !std::isfinite(support.ground_z)) support.ground_z = 0.0f;
     m.rest = measureRest(all, models, support, 0.02f, threads);
     m.rest_per_type = restPerType(m.rest, all, uint32_t(job.models.size()));

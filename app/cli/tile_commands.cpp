@@ -213,7 +213,7 @@ int runHeadlessJob(const std::string& scene, const std::string& out_dir, int thr
     export_options.static_meshes = &env.meshes;
     export_options.chunk_size_m = job.project.chunk_size_m;
     // Settled like `instantiate` and the editor, so the main job's export rests where they show it.
-    const SettleInput settle = settleInput(job.project, job.compiled.terrain, job.tile, job.models);
+    const SettleInput settle = settleInput(job.project, job.compiled.terrain, job.tile, job.models, job.environment.get());
     SettledDrops drops;
     if (settle.settings.enabled) {
         if (!validateSettleInput(settle, &error)) return fail("run", scene + ": " + error);

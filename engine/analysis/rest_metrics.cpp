@@ -87,7 +87,7 @@ RestReport measureRest(std::span<const PlacedInstance> instances, const std::vec
                 const glm::vec3 a = w.center[s];
                 const float ra = w.radius[s];
                 drop = std::min(drop, std::max(0.0f, supportClearance(support, a, ra)));
-                depth = std::max(depth, support.heightAt(a.x, a.y) - (a.z - ra));
+                depth = std::max(depth, support.heightBelow(a.x, a.y, a.z) - (a.z - ra));
                 grid.forEachNear(glm::vec2(a), ra + w.max_radius, [&](uint32_t o) {
                     if (w.owner[o] == i) return;
                     const glm::vec3 bc = w.center[o];

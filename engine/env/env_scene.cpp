@@ -595,6 +595,21 @@ EnvScene::Support EnvScene::supportBelow(glm::vec3 p) const {
     return s;
 }
 
+float EnvScene::surfaceBelow(float x, float y, float z) const {
+    const Support s = supportBelow(glm::vec3(x, y, z));
+    return s.inside ? z : s.z;
+}
+
+float EnvScene::surfaceTopIn(glm::vec2 lo, glm::vec2 hi) const {
+    float top = -std::numeric_limits<float>::infinity();
+    if (terrain_ && !terrain_->empty()) top = terrain_->heightRange(lo, hi).y;
+    forObjectsNearXY(Bounds{glm::vec3(lo, 0.0f), glm::vec3(hi, 0.0f)}, [&](uint32_t o) {
+        const Bounds& b = objects_[o].bounds;
+        if (b.hi.x >= lo.x && b.lo.x <= hi.x && b.hi.y >= lo.y && b.lo.y <= hi.y) top = std::max(top, b.hi.z);
+    });
+    return top;
+}
+
 float EnvScene::channelBound(EnvChannel c, const Bounds& box) const {
     thread_local std::vector<uint32_t> ids;
     fieldsMeeting(box, &ids);

@@ -31,6 +31,7 @@
 #include "env/env_sample.h"
 #include "env/height_span_map.h"
 #include "field/bounds.h"
+#include "instancer/rest_support.h"
 #include "field/height_field.h"
 #include "mesh/triangle_mesh.h"
 
@@ -78,7 +79,7 @@ struct EnvWorldField {
     Bounds bounds;            // world AABB of the support (everything for a global field)
 };
 
-class EnvScene {
+class EnvScene : public RestSurfaces {
 public:
     const std::vector<EnvObjectType>& types() const { return types_; }
     const std::vector<EnvObject>& objects() const { return objects_; }
@@ -109,6 +110,10 @@ public:
         bool inside = false;  // p lies inside an object's base geometry: nothing rests there
     };
     Support supportBelow(glm::vec3 p) const;
+    // RestSurfaces (instancer/rest_support.h): what settled details rest on — supportBelow's height over
+    // every object (receiving or not), and the tops of the objects over a rectangle.
+    float surfaceBelow(float x, float y, float z) const override;
+    float surfaceTopIn(glm::vec2 lo, glm::vec2 hi) const override;
     // An upper bound of channel c over box: the sum over the fields meeting it of each one's largest value in
     // the box (value·K at the box's distance from the field's skeleton; the value itself where that is not
     // known).

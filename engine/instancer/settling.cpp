@@ -121,11 +121,11 @@ uint16_t toUnits(float drop_m) {
 }
 
 // The highest the support reaches under a disc (centre, radius) in XY: bilinear heights lie within the
-// range of their cells' samples.
+// range of their cells' samples; the surfaces give their own bound.
 float supportTop(const RestSupport& support, glm::vec3 center, float radius) {
-    if (!support.terrain) return support.ground_z;
     const glm::vec2 c(center);
-    return support.terrain->heightRange(c - radius, c + radius).y + 1e-4f;
+    const float ground = support.terrain ? support.terrain->heightRange(c - radius, c + radius).y + 1e-4f : support.ground_z;
+    return support.surfaces ? std::max(ground, support.surfaces->surfaceTopIn(c - radius, c + radius) + 1e-4f) : ground;
 }
 
 float gapOf(const SettleInput& in) { return std::max(0.0f, in.tile->settings.delta_m); }

@@ -238,7 +238,7 @@ InstancerInput Document::instancerInput() const {
 }
 
 SettleInput Document::settleInputOf() const {
-    return settleInput(project_, terrain_, *assets_.tile, *assets_.models);
+    return settleInput(project_, terrain_, *assets_.tile, *assets_.models, environment_.get());
 }
 
 // ---- Document: primitives and edits ------------------------------------------------------------------------

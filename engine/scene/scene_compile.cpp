@@ -241,8 +241,9 @@ bool compileScene(const Project& project, std::shared_ptr<const HeightField> ter
 }
 
 SettleInput settleInput(const Project& project, const std::shared_ptr<const HeightField>& terrain,
-                        const GhostTile& tile, const std::vector<DetailModel>& models) {
+                        const GhostTile& tile, const std::vector<DetailModel>& models, const EnvScene* environment) {
     SettleInput in;
+    if (environment && !environment->objects().empty()) in.support.surfaces = environment;
     in.tile = &tile;
     for (const DetailModel& m : models) in.models.push_back(&m);
     in.settings = project.settling.settle;

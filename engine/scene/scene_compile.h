@@ -83,10 +83,12 @@ bool compileDetailType(const Project& project, size_t type_index,
 Bounds computeSceneExtent(const Project& project, const CompiledScene& scene);
 
 // The settling pass's input for the project (instancer/settling.h): the project's settings, the terrain
-// as support (or the ground plane when the project gives ground_z, or none), `tile` and `models` (one per
-// type; kept by pointer, so they must outlive the result).
+// as support (or the ground plane when the project gives ground_z, or none), and the environment's
+// objects when given (details rest on a bench's seat); `tile`, `models` (one per type) and `environment`
+// are kept by pointer, so they must outlive the result.
 SettleInput settleInput(const Project& project, const std::shared_ptr<const HeightField>& terrain,
-                        const GhostTile& tile, const std::vector<DetailModel>& models);
+                        const GhostTile& tile, const std::vector<DetailModel>& models,
+                        const EnvScene* environment = nullptr);
 
 // Every detail type's material resolved against its model's base colour, and the terrain's against
 // kTerrainColor, with their textures baked (material/procedural_texture.h): the same bytes as

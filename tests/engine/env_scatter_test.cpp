@@ -14,6 +14,7 @@
 #include "env/env_scatter.h"
 #include "env/env_scene.h"
 #include "instancer/instantiator.h"
+#include "instancer/settling.h"
 #include "instancer/tile_coord.h"
 #include "instancer_test_util.h"
 #include "scene/project.h"
@@ -283,6 +284,64 @@ TEST(EnvScatter, BenchSeatReceivesLeavesAndKeepsThemOffTheGroundBelow) {
 
 // 3. The layer is c·h thick, so with acceptance min(1, (c·h − d)/s) over candidates uniform in height the
 // expected count per unit area is ∫ min(1, max(0, (c·h − d)/s)) dd = c·h − s/2.
+// Settling (on two threads) with the environment's surfaces (RestSupport::surfaces): a thick, sparse layer over the seat
+// comes down onto the slats and stops there, never into them. With the terrain alone as support the seat
+// is not there for settling: with nothing to land on within max_drop the leaves are held where they were,
+// hovering (what the test tells apart).
+TEST(EnvScatterThreads, SettlingRestsLeavesOnTheSeatNotThroughIt) {
+    const json env = {{"types", {benchType(true)}},
+                      {"tree", {object("bench", {0, 0, 0})}},
+                      {"global_fields", {field("leaves", 1.0f)}}};
+    json p = project({-1.0f, -0.5f, -0.1f}, {1.0f, 0.5f, 0.7f},
+                     json::array({scatterType("leaf", "leaf_oak", "leaves", 120, 0.12f, 0.01f)}), env);
+    p["settling"] = {{"enabled", true}, {"passes", 8}, {"max_drop_m", 0.2}};
+    Loaded l;
+    ASSERT_TRUE(load(p, &l));
+    Instantiator inst;
+    std::string error;
+    InstanceStats st;
+    ASSERT_TRUE(inst.setInput(l.input(), &error) && inst.instantiateAll({.threads = 2}, &st, &error)) << error;
+    const GhostTile& tile = *l.scene.tile;
+    const DetailModel& model = (*l.scene.models)[0];
+    // The lowest point of each leaf over the slats after settling (its spheres' bottoms less the drop), in
+    // store order; a leaf over a gap may rest lower, on the slats' sides.
+    auto seatLeafBottoms = [&](const SettleInput& settle) {
+        SettledDrops drops;
+        settleAll(settle, inst.store(), 2, &drops);
+        std::vector<float> out;
+        forEachSettled(inst.store(), &drops, [&](uint64_t key, uint32_t j, float drop) {
+            const glm::vec3 o = originOf(tile, {key, j});
+            if (std::abs(o.x) > kSeatHalfX - 0.1f || o.y < kSeatYLo + 0.05f || o.y > kSeatYHi - 0.05f ||
+                o.z < kSeatTop)
+                return;
+            float bottom = std::numeric_limits<float>::infinity();
+            for (const Sphere& sp : model.spheres) {
+                const glm::vec3 c = o + tile.candidates.rotation[j] * (tile.candidates.scale[j] * sp.center);
+                bottom = std::min(bottom, c.z - tile.candidates.scale[j] * sp.radius - drop);
+            }
+            out.push_back(bottom);
+        });
+        return out;
+    };
+    SettleInput with = settleInput(l.project, l.scene.compiled.terrain, tile, *l.scene.models, l.scene.environment.get());
+    ASSERT_NE(with.support.surfaces, nullptr);
+    SettleInput terrain_only = with;
+    terrain_only.support.surfaces = nullptr;
+    const std::vector<float> rested = seatLeafBottoms(with), held = seatLeafBottoms(terrain_only);
+    ASSERT_EQ(rested.size(), held.size());
+    ASSERT_GT(rested.size(), 20u);
+    size_t came_down = 0, on_slats = 0;
+    for (size_t k = 0; k < rested.size(); ++k) {
+        // Sphere sets cover the leaf within the fit's tolerance, and the slats' height-span cells are 25 mm
+        // wide: a few mm into a slat's rounded edge at most.
+        EXPECT_GT(rested[k], kSeatTop - 0.006f) << k;
+        came_down += rested[k] < held[k] - 0.01f;
+        on_slats += rested[k] < kSeatTop + 0.004f;
+    }
+    EXPECT_GT(came_down, rested.size() / 4);  // the seat let them come down
+    EXPECT_GT(on_slats, rested.size() / 4);   // and they lie on it (the others on those)
+}
+
 TEST(EnvScatter, DenserWhereTheChannelIsLarger) {
     const float h = 0.04f, s = 0.004f, c1 = 0.5f, c2 = 1.0f;
     const glm::vec3 half(1.0f, 1.0f, 0.5f);
