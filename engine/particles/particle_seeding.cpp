@@ -105,8 +105,10 @@ uint32_t stratumAt(const Face& f, double s, double t) {
 
 }  // namespace
 
-glm::vec3 coneDirection(float cone_rad, float u, float v) {
-    const float cos_t = 1.0f - u * (1.0f - std::cos(cone_rad));
+glm::vec3 coneDirection(float cone_rad, float u, float v) { return coneDirectionCos(std::cos(cone_rad), u, v); }
+
+glm::vec3 coneDirectionCos(float cos_cone, float u, float v) {
+    const float cos_t = 1.0f - u * (1.0f - cos_cone);
     const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t));
     const float psi = 2.0f * float(kPi) * v;
     return glm::vec3(sin_t * std::cos(psi), sin_t * std::sin(psi), cos_t);

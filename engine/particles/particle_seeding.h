@@ -46,5 +46,7 @@ glm::quat turnFrameTo(const glm::quat& from, glm::vec3 d);
 // A unit direction uniformly distributed over the cap of half-angle cone_rad around +z, from two
 // uniform numbers in [0, 1).
 glm::vec3 coneDirection(float cone_rad, float u, float v);
+// The same from the cone's cosine (the walk's inner loop computes it once).
+glm::vec3 coneDirectionCos(float cos_cone, float u, float v);
 
 }  // namespace ug

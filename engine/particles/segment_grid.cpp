@@ -16,27 +16,31 @@ void SegmentGrid::rehash(size_t slots) {
     // Refiled in insertion order so every list keeps the order a table of this size from the start
     // would have (queries only ask "any?", but the order is cheap to keep fixed).
     for (uint32_t id : ids_) {
-        const uint32_t slot = hash_[id] & mask_;
-        next_[id] = heads_[slot];
+        const uint32_t slot = entries_[id].hash & mask_;
+        entries_[id].next = heads_[slot];
         heads_[slot] = id;
     }
 }
 
-void SegmentGrid::insert(uint32_t id, glm::vec3 midpoint) {
-    if (id >= next_.size()) {
-        const size_t n = std::max<size_t>(size_t(id) + 1, next_.size() * 2);
-        next_.resize(n, kNone);
-        hash_.resize(n, 0);
-    }
-    hash_[id] = cellHash(cellOf(midpoint));
+void SegmentGrid::reserve(size_t segments) {
+    if (segments > entries_.size()) entries_.resize(segments);
+    ids_.reserve(segments);
+    size_t slots = 1024;
+    while (slots < segments * 2) slots *= 2;
+    if (slots > heads_.size()) rehash(slots);
+}
+
+void SegmentGrid::insert(uint32_t id, glm::vec3 midpoint, uint32_t tag) {
+    if (id >= entries_.size()) entries_.resize(std::max<size_t>(size_t(id) + 1, entries_.size() * 2));
+    entries_[id] = Entry{midpoint, kNone, tag, cellHash(cellOf(midpoint))};
     ids_.push_back(id);
     ++count_;
     if (heads_.empty() || count_ * 2 > heads_.size()) {
         rehash(std::max<size_t>(1024, heads_.size() * 4));
         return;
     }
-    const uint32_t slot = hash_[id] & mask_;
-    next_[id] = heads_[slot];
+    const uint32_t slot = entries_[id].hash & mask_;
+    entries_[id].next = heads_[slot];
     heads_[slot] = id;
 }
 

@@ -88,12 +88,14 @@ class Growth {
 public:
     Growth(const ParticleScene& scene, const GrowOptions& options)
         : scene_(scene), walk_(scene.walk), threads_(options.threads),
-          cone_(glm::radians(walk_.cone_deg)),
+          cone_(glm::radians(walk_.cone_deg)), cos_cone_(std::cos(cone_)),
           reach2_(4.0f * walk_.strand_radius_m * walk_.strand_radius_m),
           // A segment is at most step_length long; two whose tubes touch have midpoints within
-          // step_length + 2r, so cells that wide see every candidate in the 27 around a midpoint.
-          grid_(walk_.step_length_m * 1.001f + 2.0f * walk_.strand_radius_m),
-          step_grid_(walk_.step_length_m * 1.001f + 2.0f * walk_.strand_radius_m) {}
+          // step_length + 2r (padded against rounding), so cells that wide see every candidate in the 27
+          // around a midpoint, and a midpoint farther than that is rejected unseen.
+          reach_(walk_.step_length_m * 1.001f + 2.0f * walk_.strand_radius_m * 1.001f),
+          grid_(reach_ * 1.001f),
+          step_grid_(reach_ * 1.001f) {}
 
     bool run(Strands* out, std::string* error);
 
@@ -109,7 +111,7 @@ private:
     const ParticleScene& scene_;
     const WalkSettings& walk_;
     int threads_;
-    float cone_, reach2_;
+    float cone_, cos_cone_, reach2_, reach_;
     PointStore points_;
     StrandStore strands_;
     SegmentGrid grid_;       // segments of earlier steps, by their end point's id
@@ -135,6 +137,10 @@ void Growth::seed() {
         strands_.add(uint32_t(i), seeds.frames[i], -1, 0, 0);
     }
     stats_.seeded = seeds.positions.size();
+    if (walk_.collisions) {
+        grid_.reserve(expected);
+        step_grid_.reserve(seeds.positions.size());
+    }
 }
 
 void Growth::propose(size_t k, uint32_t step) {
@@ -145,7 +151,7 @@ void Growth::propose(size_t k, uint32_t step) {
     float best_f = 0.0f;
     for (uint32_t t = 0; t < walk_.trials; ++t) {
         const uint64_t h = hashWords(walk_.seed, kTrialTag + s, step, t);
-        const glm::vec3 dir = glm::normalize(q * coneDirection(cone_, unitFloat(h), unitFloat(mix64(h))));
+        const glm::vec3 dir = glm::normalize(q * coneDirectionCos(cos_cone_, unitFloat(h), unitFloat(mix64(h))));
         const glm::vec3 p = p0 + dir * walk_.step_length_m;
         float f = 0.0f;
         for (size_t a = 0; a < scene_.attractors.size(); ++a) f += attractorTerm(scene_.attractors[a], charge_[a], p);
@@ -181,9 +187,10 @@ bool Growth::hitsEarlierSegment(size_t k) const {
     const uint32_t s = active_[k];
     const uint32_t from = strands_.last[s];
     const glm::vec3 a = points_.pos[from], b = moves_.pos[k];
-    return grid_.anyNear(0.5f * (a + b), [&](uint32_t end) {
+    return grid_.anyNear(0.5f * (a + b), reach_, [&](uint32_t end, uint32_t strand) {
+        if (strand == s || end == from) return false;
         const uint32_t start = points_.prev[end];
-        if (points_.strand[end] == s || start == from || end == from) return false;
+        if (start == from) return false;
         return segmentSegmentDistance2(a, b, points_.pos[start], points_.pos[end]) < reach2_;
     });
 }
@@ -191,7 +198,7 @@ bool Growth::hitsEarlierSegment(size_t k) const {
 bool Growth::hitsLowerMove(size_t k) const {
     const uint32_t from = strands_.last[active_[k]];
     const glm::vec3 a = points_.pos[from], b = moves_.pos[k];
-    return step_grid_.anyNear(0.5f * (a + b), [&](uint32_t j) {
+    return step_grid_.anyNear(0.5f * (a + b), reach_, [&](uint32_t j, uint32_t) {
         // Only lower ids have priority; siblings leaving their split point together share it.
         if (j >= k) return false;
         const uint32_t other = strands_.last[active_[j]];
@@ -265,7 +272,7 @@ bool Growth::run(Strands* out, std::string* error) {
             step_grid_.clear();
             for (size_t k = 0; k < active_.size(); ++k)
                 if (!moves_.blocked[k] && !moves_.still[k])
-                    step_grid_.insert(uint32_t(k), 0.5f * (points_.pos[strands_.last[active_[k]]] + moves_.pos[k]));
+                    step_grid_.insert(uint32_t(k), 0.5f * (points_.pos[strands_.last[active_[k]]] + moves_.pos[k]), active_[k]);
             parallelFor(active_.size(), threads_, chunk, [&](size_t begin, size_t end, int) {
                 for (size_t k = begin; k < end; ++k)
                     if (!moves_.blocked[k] && !moves_.still[k] && hitsLowerMove(k)) moves_.blocked[k] = 2;
@@ -286,7 +293,7 @@ bool Growth::run(Strands* out, std::string* error) {
                     points_.pos.push_back(moves_.pos[k]);
                     points_.prev.push_back(from);
                     points_.strand.push_back(s);
-                    if (walk_.collisions) grid_.insert(id, 0.5f * (points_.pos[from] + moves_.pos[k]));
+                    if (walk_.collisions) grid_.insert(id, 0.5f * (points_.pos[from] + moves_.pos[k]), s);
                     strands_.last[s] = id;
                     ++strands_.npoints[s];
                     ++stats_.moves;
