@@ -16,14 +16,17 @@ void SegmentGrid::rehash(size_t slots) {
     // Refiled in insertion order so every list keeps the order a table of this size from the start
     // would have (queries only ask "any?", but the order is cheap to keep fixed).
     for (uint32_t id : ids_) {
-        const uint32_t slot = entries_[id].hash & mask_;
+        const uint32_t slot = cellHash(cellOf(entries_[id].mid)) & mask_;
         entries_[id].next = heads_[slot];
         heads_[slot] = id;
     }
 }
 
 void SegmentGrid::reserve(size_t segments) {
-    if (segments > entries_.size()) entries_.resize(segments);
+    if (segments > entries_.size()) {
+        entries_.resize(segments);
+        tags_.resize(segments);
+    }
     ids_.reserve(segments);
     size_t slots = 1024;
     while (slots < segments * 2) slots *= 2;
@@ -31,15 +34,19 @@ void SegmentGrid::reserve(size_t segments) {
 }
 
 void SegmentGrid::insert(uint32_t id, glm::vec3 midpoint, uint32_t tag) {
-    if (id >= entries_.size()) entries_.resize(std::max<size_t>(size_t(id) + 1, entries_.size() * 2));
-    entries_[id] = Entry{midpoint, kNone, tag, cellHash(cellOf(midpoint))};
+    if (id >= entries_.size()) {
+        entries_.resize(std::max<size_t>(size_t(id) + 1, entries_.size() * 2));
+        tags_.resize(entries_.size());
+    }
+    entries_[id] = Entry{midpoint, kNone};
+    tags_[id] = tag;
     ids_.push_back(id);
     ++count_;
     if (heads_.empty() || count_ * 2 > heads_.size()) {
         rehash(std::max<size_t>(1024, heads_.size() * 4));
         return;
     }
-    const uint32_t slot = entries_[id].hash & mask_;
+    const uint32_t slot = cellHash(cellOf(midpoint)) & mask_;
     entries_[id].next = heads_[slot];
     heads_[slot] = id;
 }

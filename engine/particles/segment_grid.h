@@ -46,7 +46,7 @@ public:
                     for (uint32_t id = heads_[slot]; id != kNone;) {
                         const Entry& e = entries_[id];
                         const glm::vec3 d = e.mid - midpoint;
-                        if (glm::dot(d, d) <= reach2 && visit(id, e.tag)) return true;
+                        if (glm::dot(d, d) <= reach2 && visit(id, tags_[id])) return true;
                         id = e.next;
                     }
                 }
@@ -54,11 +54,11 @@ public:
     }
 
 private:
+    // 16 bytes, what a query reads for every segment it visits; the tag is read only for the few
+    // within reach.
     struct Entry {
         glm::vec3 mid;
         uint32_t next;
-        uint32_t tag;
-        uint32_t hash;  // its cell's hash, kept for rehashing
     };
 
     glm::ivec3 cellOf(glm::vec3 p) const {
@@ -77,6 +77,7 @@ private:
     size_t count_ = 0;
     std::vector<uint32_t> heads_;
     std::vector<Entry> entries_;  // by id
+    std::vector<uint32_t> tags_;  // by id
     std::vector<uint32_t> ids_;   // filed ids in insertion order (rehash keeps their order)
 };
 
