@@ -91,11 +91,10 @@ public:
           cone_(glm::radians(walk_.cone_deg)), cos_cone_(std::cos(cone_)),
           reach2_(4.0f * walk_.strand_radius_m * walk_.strand_radius_m),
           // A segment is at most step_length long; two whose tubes touch have midpoints within
-          // step_length + 2r (padded against rounding), so cells that wide see every candidate in the 27
-          // around a midpoint, and a midpoint farther than that is rejected unseen.
+          // step_length + 2r (padded against rounding), the reach of the grids' queries.
           reach_(walk_.step_length_m * 1.001f + 2.0f * walk_.strand_radius_m * 1.001f),
-          grid_(reach_ * 1.001f),
-          step_grid_(reach_ * 1.001f) {}
+          grid_(reach_),
+          step_grid_(reach_) {}
 
     bool run(Strands* out, std::string* error);
 
@@ -188,7 +187,7 @@ bool Growth::hitsEarlierSegment(size_t k) const {
     const uint32_t s = active_[k];
     const uint32_t from = strands_.last[s];
     const glm::vec3 a = points_.pos[from], b = moves_.pos[k];
-    return grid_.anyNear(0.5f * (a + b), reach_, [&](uint32_t end, uint32_t strand) {
+    return grid_.anyNear(0.5f * (a + b), [&](uint32_t end, uint32_t strand) {
         if (strand == s || end == from) return false;
         const uint32_t start = points_.prev[end];
         if (start == from) return false;
@@ -199,7 +198,7 @@ bool Growth::hitsEarlierSegment(size_t k) const {
 bool Growth::hitsLowerMove(size_t k) const {
     const uint32_t from = strands_.last[active_[k]];
     const glm::vec3 a = points_.pos[from], b = moves_.pos[k];
-    return step_grid_.anyNear(0.5f * (a + b), reach_, [&](uint32_t j, uint32_t) {
+    return step_grid_.anyNear(0.5f * (a + b), [&](uint32_t j, uint32_t) {
         // Only lower ids have priority; siblings leaving their split point together share it.
         if (j >= k) return false;
         const uint32_t other = strands_.last[active_[j]];
@@ -252,10 +251,11 @@ bool Growth::run(Strands* out, std::string* error) {
         for (uint32_t s = 0; s < strands_.size(); ++s)
             if (strands_.state[s] == StrandState::Active) active_.push_back(s);
         if (active_.empty()) break;
-        if (points_.pos.size() + active_.size() > walk_.max_points) {
+        // Children that never move add strands but no points: both are bounded by max_points.
+        if (points_.pos.size() + active_.size() > walk_.max_points || strands_.size() > walk_.max_points) {
             if (error)
                 *error = "walk.max_points: splits need more than " + std::to_string(walk_.max_points) +
-                         " points at step " + std::to_string(step);
+                         " points or strands at step " + std::to_string(step);
             return false;
         }
         for (size_t a = 0; a < charge_.size(); ++a) charge_[a] = chargeAt(scene_.attractors[a].charge, step);

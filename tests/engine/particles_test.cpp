@@ -6,7 +6,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <set>
 
+#include "core/hash.h"
 #include "particles/particle_seeding.h"
 #include "particles/segment_grid.h"
 #include "particles/strand_growth.h"
@@ -364,6 +366,36 @@ TEST(ParticleCollisions, WithoutCollisionsTheSameSceneOverlaps) {
                     close += segmentSegmentDistance2(point(s, a, i), point(s, a, i + 1), point(s, b, j),
                                                      point(s, b, j + 1)) < reach2;
     EXPECT_GT(close, 0u);
+}
+
+TEST(ParticleCollisions, GridVisitsExactlyTheSegmentsWithinReach) {
+    // Midpoints scattered over a few cells and across the origin (negative cells); every query must see
+    // exactly the brute-force set, including those just inside the reach at a cell's far side.
+    const float reach = 0.05f;
+    SegmentGrid grid(reach);
+    std::vector<glm::vec3> mids;
+    for (uint32_t i = 0; i < 4000; ++i) {
+        const uint64_t h = hashWords(1, i);
+        mids.push_back(glm::vec3(unitFloat(h), unitFloat(mix64(h)), unitFloat(mix64(mix64(h)))) * 0.6f - 0.3f);
+        grid.insert(i, mids.back(), i * 3);
+    }
+    size_t seen_total = 0;
+    for (uint32_t q = 0; q < 1500; ++q) {
+        const uint64_t h = hashWords(2, q);
+        const glm::vec3 m = glm::vec3(unitFloat(h), unitFloat(mix64(h)), unitFloat(mix64(mix64(h)))) * 0.7f - 0.35f;
+        std::set<uint32_t> seen, expected;
+        EXPECT_FALSE(grid.anyNear(m, [&](uint32_t id, uint32_t tag) {
+            EXPECT_EQ(tag, id * 3);
+            seen.insert(id);
+            return false;
+        }));
+        for (uint32_t i = 0; i < mids.size(); ++i)
+            if (glm::dot(mids[i] - m, mids[i] - m) <= reach * reach) expected.insert(i);
+        ASSERT_EQ(seen, expected) << "query " << q;
+        seen_total += seen.size();
+    }
+    EXPECT_GT(seen_total, 1500u * 4u);  // about 6 a query: the sets are not trivially empty
+    EXPECT_TRUE(grid.anyNear(mids[7], [&](uint32_t id, uint32_t) { return id == 7; }));
 }
 
 TEST(ParticleCollisions, SegmentDistanceMatchesBruteForce) {
