@@ -77,6 +77,7 @@ bool validateParticleScene(const ParticleScene& scene, std::string* error) {
     if (!checkAction(w.on_collision, "walk.on_collision", error) || !checkAction(w.on_age, "walk.on_age", error))
         return false;
     if (w.max_points > kMaxStrandPoints) return fail(error, "walk.max_points", "must be <= 50000000");
+    if (w.max_split_depth > 64) return fail(error, "walk.max_split_depth", "must be <= 64");
 
     uint64_t particles = 0;
     for (size_t i = 0; i < scene.generators.size(); ++i) {

@@ -103,10 +103,10 @@ struct WalkSettings {
     float step_length_m = 0.01f;     // > 0
     float strand_radius_m = 0.001f;  // tube radius r of every strand point, > 0
     bool collisions = true;          // strands keep 2r apart (the tubes never overlap)
-    StrandAction on_collision;       // Split and Countdown retry from the same point; see docs
+    StrandAction on_collision;       // the move is refused first; a countdown keeps trying from that point
     uint32_t max_age_steps = 0;      // 0 = no age limit; else a strand acts on_age after this many steps
     StrandAction on_age;
-    uint32_t max_split_depth = 4;    // a Split beyond this many generations acts as Stop
+    uint32_t max_split_depth = 4;    // a Split beyond this many generations acts as Stop; <= 64
     uint64_t max_points = 50'000'000;  // refuse (not truncate) a run that would need more, <= kMaxStrandPoints
 };
 

@@ -502,6 +502,9 @@ TEST(ParticleValidation, BadInputsAreRefusedWithTheFieldNamed) {
     s.cutters[0].normal = {0.0f, 0.0f, 2.0f};
     expectRefused(s, "cutters[0].normal");
     s = good;
+    s.walk.max_split_depth = 300;  // a generation counter that would wrap
+    expectRefused(s, "walk.max_split_depth");
+    s = good;
     s.walk.on_collision.split_count = 0;
     expectRefused(s, "walk.on_collision.split_count");
     // Sizes are refused before anything is allocated: 4 G particles, or 10 M x 100 steps of points.
