@@ -29,6 +29,8 @@ bool benchPile(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string
 bool benchEnvironment(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 // Scattered effects: leaves and grass of the autumn scenes, LOD nodes on the park, a street edit (env.*).
 bool benchScatter(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
+// Particle sculpting: a fur ball of 100k strands x 64 steps x 8 trials with collisions (particles.*).
+bool benchParticles(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 bool benchRender(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 
 }  // namespace ug::cli

@@ -36,6 +36,7 @@ int runBenchCommand(int argc, char** argv) {
                                 {"pile", benchPile},
                                 {"env", benchEnvironment},
                                 {"env_scatter", benchScatter},
+                                {"particles", benchParticles},
                                 {"render", benchRender}};
     std::vector<BenchRow> rows;
     for (const Section& s : sections) {

@@ -1,0 +1,183 @@
+#include "particles/particle_scene.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace ug {
+
+namespace {
+
+bool fail(std::string* error, const std::string& field, const char* reason) {
+    if (error) *error = field + ": " + reason;
+    return false;
+}
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// A position the spatial hash can index: finite and within kMaxParticleCoordinate_m.
+bool checkPosition(glm::vec3 p, const std::string& field, std::string* error) {
+    if (!finite(p)) return fail(error, field, "not finite");
+    for (int a = 0; a < 3; ++a)
+        if (std::abs(p[a]) > kMaxParticleCoordinate_m) return fail(error, field, "beyond 1e5 m");
+    return true;
+}
+
+bool checkLength(float v, const std::string& field, bool allow_zero, std::string* error) {
+    if (!std::isfinite(v)) return fail(error, field, "not finite");
+    if (allow_zero ? v < 0.0f : !(v > 0.0f)) return fail(error, field, allow_zero ? "must be >= 0" : "must be > 0");
+    if (v > kMaxParticleCoordinate_m) return fail(error, field, "beyond 1e5 m");
+    return true;
+}
+
+bool checkCone(float deg, const std::string& field, bool allow_zero, std::string* error) {
+    if (!std::isfinite(deg)) return fail(error, field, "not finite");
+    if (allow_zero ? deg < 0.0f : !(deg > 0.0f))
+        return fail(error, field, allow_zero ? "must be in [0, 180) degrees" : "must be in (0, 180) degrees");
+    if (deg >= 180.0f) return fail(error, field, allow_zero ? "must be in [0, 180) degrees" : "must be in (0, 180) degrees");
+    return true;
+}
+
+bool checkAction(const StrandAction& a, const std::string& field, std::string* error) {
+    if (a.kind == StrandActionKind::Split) {
+        if (a.split_count < 1 || a.split_count > 16) return fail(error, field + ".split_count", "must be in [1, 16]");
+        if (!checkCone(a.split_angle_deg, field + ".split_angle_deg", true, error)) return false;
+    }
+    if (a.kind == StrandActionKind::Countdown && a.countdown_steps < 1)
+        return fail(error, field + ".countdown_steps", "must be >= 1");
+    return true;
+}
+
+// Segment ab's closest point to p, as a distance.
+float segmentDistance(glm::vec3 a, glm::vec3 b, glm::vec3 p) {
+    const glm::vec3 ab = b - a;
+    const float len2 = glm::dot(ab, ab);
+    const float s = len2 > 0.0f ? std::clamp(glm::dot(p - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+    return glm::length(p - (a + s * ab));
+}
+
+}  // namespace
+
+const char* strandActionName(StrandActionKind kind) {
+    switch (kind) {
+        case StrandActionKind::Stop: return "stop";
+        case StrandActionKind::Kill: return "kill";
+        case StrandActionKind::Split: return "split";
+        case StrandActionKind::Countdown: return "countdown";
+    }
+    return "?";
+}
+
+bool validateParticleScene(const ParticleScene& scene, std::string* error) {
+    const WalkSettings& w = scene.walk;
+    if (w.steps > kMaxParticleSteps) return fail(error, "walk.steps", "must be <= 100000");
+    if (w.trials < 1 || w.trials > 256) return fail(error, "walk.trials", "must be in [1, 256]");
+    if (!checkCone(w.cone_deg, "walk.cone_deg", false, error)) return false;
+    if (!checkLength(w.step_length_m, "walk.step_length_m", false, error)) return false;
+    if (!checkLength(w.strand_radius_m, "walk.strand_radius_m", false, error)) return false;
+    if (!checkAction(w.on_collision, "walk.on_collision", error) || !checkAction(w.on_age, "walk.on_age", error))
+        return false;
+    if (w.max_points > kMaxStrandPoints) return fail(error, "walk.max_points", "must be <= 50000000");
+    if (w.max_split_depth > 64) return fail(error, "walk.max_split_depth", "must be <= 64");
+
+    uint64_t particles = 0;
+    for (size_t i = 0; i < scene.generators.size(); ++i) {
+        const ParticleGenerator& g = scene.generators[i];
+        const std::string f = "generators[" + std::to_string(i) + "]";
+        if (!checkPosition(g.center_m, f + ".center_m", error)) return false;
+        if (!checkCone(g.heading_cone_deg, f + ".heading_cone_deg", true, error)) return false;
+        if (g.kind == GeneratorKind::Rectangle) {
+            if (!checkPosition(g.axis_u_m, f + ".axis_u_m", error) || !checkPosition(g.axis_v_m, f + ".axis_v_m", error))
+                return false;
+            const float lu = glm::length(g.axis_u_m), lv = glm::length(g.axis_v_m);
+            if (!(lu > 0.0f) || !(lv > 0.0f)) return fail(error, f + ".axis_u_m", "the axes must not be zero");
+            if (std::abs(glm::dot(g.axis_u_m, g.axis_v_m)) > 1e-4f * lu * lv)
+                return fail(error, f + ".axis_v_m", "must be orthogonal to axis_u_m");
+        } else if (g.kind == GeneratorKind::Sphere) {
+            if (!checkLength(g.radius_m, f + ".radius_m", false, error)) return false;
+        } else {
+            for (int a = 0; a < 3; ++a)
+                if (!checkLength(g.half_extents_m[a], f + ".half_extents_m", false, error)) return false;
+        }
+        particles += g.count;
+        if (particles > kMaxParticles) return fail(error, f + ".count", "the generators seed more than 10000000 particles");
+    }
+
+    for (size_t i = 0; i < scene.attractors.size(); ++i) {
+        const Attractor& a = scene.attractors[i];
+        const std::string f = "attractors[" + std::to_string(i) + "]";
+        if (!checkPosition(a.a_m, f + ".a_m", error)) return false;
+        if (a.kind == AttractorKind::Segment && !checkPosition(a.b_m, f + ".b_m", error)) return false;
+        if (a.kind == AttractorKind::Sphere && !checkLength(a.radius_m, f + ".radius_m", false, error)) return false;
+        if (!checkLength(a.influence_m, f + ".influence_m", true, error)) return false;
+        if (a.charge.empty()) return fail(error, f + ".charge", "needs at least one key");
+        for (size_t k = 0; k < a.charge.size(); ++k) {
+            const std::string fk = f + ".charge[" + std::to_string(k) + "]";
+            if (!std::isfinite(a.charge[k].charge)) return fail(error, fk + ".charge", "not finite");
+            if (std::abs(a.charge[k].charge) > 1e6f) return fail(error, fk + ".charge", "beyond ±1e6");
+            if (k > 0 && a.charge[k].step <= a.charge[k - 1].step)
+                return fail(error, fk + ".step", "steps must increase strictly");
+        }
+    }
+
+    if (scene.cutters.size() > kMaxCutters) return fail(error, "cutters", "at most 32");
+    for (size_t i = 0; i < scene.cutters.size(); ++i) {
+        const Cutter& c = scene.cutters[i];
+        const std::string f = "cutters[" + std::to_string(i) + "]";
+        if (!checkPosition(c.center_m, f + ".center_m", error)) return false;
+        if (!std::isfinite(c.threshold_m) || std::abs(c.threshold_m) > kMaxParticleCoordinate_m)
+            return fail(error, f + ".threshold_m", "not finite or beyond 1e5 m");
+        if (c.kind == CutterKind::Plane) {
+            if (!finite(c.normal) || std::abs(glm::length(c.normal) - 1.0f) > 1e-4f)
+                return fail(error, f + ".normal", "must be a unit vector");
+        } else if (c.kind == CutterKind::Sphere) {
+            if (!checkLength(c.radius_m, f + ".radius_m", true, error)) return false;
+        } else {
+            for (int a = 0; a < 3; ++a)
+                if (!checkLength(c.half_extents_m[a], f + ".half_extents_m", true, error)) return false;
+        }
+        if (!checkAction(c.action, f + ".action", error)) return false;
+    }
+
+    // The points a run without splits needs: a bound known before anything is allocated. Splits add
+    // strands during the run; growStrands refuses those runs when they reach max_points.
+    const uint64_t points = particles * (uint64_t(w.steps) + 1);
+    if (points > w.max_points)
+        return fail(error, "walk.max_points", "the generators' particles times (steps + 1) exceed it");
+    return true;
+}
+
+float chargeAt(const std::vector<ChargeKey>& keys, uint32_t step) {
+    if (step <= keys.front().step) return keys.front().charge;
+    if (step >= keys.back().step) return keys.back().charge;
+    const auto hi = std::upper_bound(keys.begin(), keys.end(), step,
+                                     [](uint32_t s, const ChargeKey& k) { return s < k.step; });
+    const ChargeKey& b = *hi;
+    const ChargeKey& a = *(hi - 1);
+    const float s = float(step - a.step) / float(b.step - a.step);
+    return a.charge + (b.charge - a.charge) * s;
+}
+
+float attractorDistance(const Attractor& a, glm::vec3 p) {
+    switch (a.kind) {
+        case AttractorKind::Point: return glm::length(p - a.a_m);
+        case AttractorKind::Segment: return segmentDistance(a.a_m, a.b_m, p);
+        case AttractorKind::Sphere: return std::abs(glm::length(p - a.a_m) - a.radius_m);
+    }
+    return 0.0f;
+}
+
+float cutterValue(const Cutter& c, glm::vec3 p) {
+    switch (c.kind) {
+        case CutterKind::Plane: return glm::dot(p - c.center_m, c.normal);
+        case CutterKind::Sphere: return glm::length(p - c.center_m) - c.radius_m;
+        case CutterKind::Box: {
+            const glm::vec3 q = glm::abs(p - c.center_m) - c.half_extents_m;
+            const float outside = glm::length(glm::max(q, glm::vec3(0.0f)));
+            const float inside = std::min(std::max(q.x, std::max(q.y, q.z)), 0.0f);
+            return outside + inside;
+        }
+    }
+    return 0.0f;
+}
+
+}  // namespace ug

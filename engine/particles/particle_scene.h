@@ -1,0 +1,152 @@
+// The scene of particle sculpting (Beneš & Espinosa 2000; docs/particles.md): generators that seed
+// particles on a surface, attractors whose charge pulls or pushes them, cutters whose threshold triggers
+// an action, and the settings of the directed random walk. Plain values only: growStrands()
+// (strand_growth.h) turns a scene into strands, as a pure function of the scene and its seed.
+//
+// Every field is checked by validateParticleScene() before anything is allocated, so a hostile scene
+// (NaN charges, a billion particles, a zero step) is refused with the field named instead of running.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace ug {
+
+// What a strand does in a critical state (§5.2).
+enum class StrandActionKind : uint8_t {
+    Stop,       // the strand ends where it is (its points stay)
+    Kill,       // the strand is removed from the output
+    Split,      // the strand ends and split_count children continue from its last point
+    Countdown,  // the strand goes on for countdown_steps more steps, then is killed
+};
+
+struct StrandAction {
+    StrandActionKind kind = StrandActionKind::Stop;
+    uint32_t split_count = 2;        // Split: children, in [1, 16]
+    float split_angle_deg = 30.0f;   // Split: children's headings perturbed in this cone, [0, 180)
+    uint32_t countdown_steps = 4;    // Countdown: >= 1
+};
+
+// Surfaces particles are seeded on. Each has an area-preserving parameterisation, so equal strata in
+// parameter space are equal areas on the surface (§3: "equal areas ... arc length parameterisation").
+enum class GeneratorKind : uint8_t {
+    Rectangle,  // center_m + s·axis_u_m + t·axis_v_m, s, t in [-1, 1]; axes orthogonal; normal u × v
+    Sphere,     // center_m, radius_m; normal outward
+    Box,        // center_m, half_extents_m (axis-aligned, each > 0); normals outward, faces by area
+};
+
+struct ParticleGenerator {
+    GeneratorKind kind = GeneratorKind::Rectangle;
+    glm::vec3 center_m{0.0f};
+    glm::vec3 axis_u_m{1.0f, 0.0f, 0.0f};  // Rectangle: half-extent vectors
+    glm::vec3 axis_v_m{0.0f, 1.0f, 0.0f};
+    float radius_m = 1.0f;                  // Sphere
+    glm::vec3 half_extents_m{0.5f};         // Box
+    uint32_t count = 0;                     // particles, one per stratum
+    float heading_cone_deg = 0.0f;          // initial heading: the normal perturbed in this cone, [0, 180)
+};
+
+// Attractor charge keyframes: a(t) is piecewise linear in the step index t between keys (strictly
+// increasing steps), constant before the first and after the last.
+struct ChargeKey {
+    uint32_t step = 0;
+    float charge = 1.0f;  // a > 0 attracts, a < 0 repels; finite
+};
+
+enum class AttractorKind : uint8_t {
+    Point,    // a_m
+    Segment,  // a_m to b_m
+    Sphere,   // the surface of the sphere at a_m with radius_m
+};
+
+struct Attractor {
+    AttractorKind kind = AttractorKind::Point;
+    glm::vec3 a_m{0.0f};
+    glm::vec3 b_m{0.0f};
+    float radius_m = 1.0f;      // Sphere, > 0
+    float influence_m = 0.0f;   // 0 = everywhere; else the distance is clamped to it (see attractorTerm)
+    std::vector<ChargeKey> charge{ChargeKey{}};  // at least one key
+};
+
+// Cutters: a signed function g(p) and a threshold; a strand triggers the cutter when its next point
+// would enter the trigger side, and its point is then placed on the threshold instead (never beyond).
+enum class CutterKind : uint8_t {
+    Plane,   // g = dot(p - center_m, normal)
+    Sphere,  // g = |p - center_m| - radius_m
+    Box,     // g = signed distance to the axis-aligned box center_m ± half_extents_m
+};
+
+enum class CutterSide : uint8_t {
+    Above,  // triggers where g >= threshold_m (grass too far from the ground, Fig. 6, 9)
+    Below,  // triggers where g <= threshold_m (reaching a sphere from outside, Fig. 7)
+};
+
+struct Cutter {
+    CutterKind kind = CutterKind::Plane;
+    glm::vec3 center_m{0.0f};
+    glm::vec3 normal{0.0f, 0.0f, 1.0f};  // Plane: unit length
+    float radius_m = 1.0f;               // Sphere, >= 0
+    glm::vec3 half_extents_m{0.5f};      // Box, >= 0
+    float threshold_m = 0.0f;
+    CutterSide side = CutterSide::Above;
+    StrandAction action;
+};
+
+struct WalkSettings {
+    uint64_t seed = 1;
+    uint32_t steps = 32;             // synchronous steps, <= kMaxParticleSteps
+    uint32_t trials = 8;             // n trial moves per step, in [1, 256]
+    float cone_deg = 30.0f;          // φ: trials in a cone of this half-angle around the heading, (0, 180)
+    float step_length_m = 0.01f;     // > 0
+    float strand_radius_m = 0.001f;  // tube radius r of every strand point, > 0
+    bool collisions = true;          // strands keep 2r apart (the tubes never overlap)
+    StrandAction on_collision;       // the move is refused first; a countdown keeps trying from that point
+    uint32_t max_age_steps = 0;      // 0 = no age limit; else a strand acts on_age after this many steps
+    StrandAction on_age;
+    uint32_t max_split_depth = 4;    // a Split beyond this many generations acts as Stop; <= 64
+    uint64_t max_points = 50'000'000;  // refuse (not truncate) a run that would need more, <= kMaxStrandPoints
+};
+
+struct ParticleScene {
+    std::vector<ParticleGenerator> generators;
+    std::vector<Attractor> attractors;
+    std::vector<Cutter> cutters;  // at most kMaxCutters (a strand remembers which it has triggered)
+    WalkSettings walk;
+};
+
+constexpr uint64_t kMaxParticles = 10'000'000;
+constexpr uint64_t kMaxStrandPoints = 50'000'000;
+constexpr uint32_t kMaxParticleSteps = 100'000;
+constexpr size_t kMaxCutters = 32;
+// Coordinates beyond this are refused: the spatial hash's cells are indexed by 32-bit integers.
+constexpr float kMaxParticleCoordinate_m = 1.0e5f;
+
+// Checks every field; on failure *error names it, e.g. "attractors[1].charge[0].charge: not finite".
+bool validateParticleScene(const ParticleScene& scene, std::string* error);
+
+// a(t): the keys interpolated linearly in the step index.
+float chargeAt(const std::vector<ChargeKey>& keys, uint32_t step);
+
+// Distance from p to the attractor's skeleton.
+float attractorDistance(const Attractor& a, glm::vec3 p);
+
+// The attractor's term of the fitness, a·min(d, influence) (§5.1 with the radius of influence the paper
+// suggests). Clamping keeps f continuous: a term that dropped to 0 beyond the radius would make a
+// positive attractor's border a cliff that pushes particles out.
+inline float attractorTerm(const Attractor& a, float charge, glm::vec3 p) {
+    const float d = attractorDistance(a, p);
+    return charge * (a.influence_m > 0.0f && d > a.influence_m ? a.influence_m : d);
+}
+
+// g(p) of the cutter (see CutterKind).
+float cutterValue(const Cutter& c, glm::vec3 p);
+inline bool cutterTriggered(const Cutter& c, float g) {
+    return c.side == CutterSide::Above ? g >= c.threshold_m : g <= c.threshold_m;
+}
+
+const char* strandActionName(StrandActionKind kind);
+
+}  // namespace ug

@@ -1,0 +1,188 @@
+#include "particles/particle_seeding.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/hash.h"
+
+namespace ug {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr double kMargin = 1.0 / 1024.0;  // of a cell's width, see the header
+constexpr uint64_t kSeedTag = 0x5eed'9a27'1c1e'0000ull;
+
+// A rectangle of the surface in the area parameterisation: point(s, t) for s, t in [0, 1].
+struct Face {
+    glm::dvec3 origin, u, v;  // point = origin + s·u + t·v (rectangles, box faces)
+    glm::dvec3 normal;
+    uint32_t first = 0, count = 0;  // strata of this face
+    uint32_t rows = 1;
+};
+
+// floor(r · n / rows): the first cell of row r.
+uint32_t rowStart(uint32_t r, uint32_t n, uint32_t rows) { return uint32_t(uint64_t(r) * n / rows); }
+
+uint32_t rowsFor(uint32_t n, double width, double height) {
+    if (n == 0) return 1;
+    const double r = std::round(std::sqrt(double(n) * height / width));
+    return uint32_t(std::clamp(r, 1.0, double(n)));
+}
+
+// The faces of a generator: one for a rectangle and a sphere (whose (s, t) map is not planar, see
+// spherePoint), six for a box with counts in proportion to their areas.
+std::vector<Face> facesOf(const ParticleGenerator& g) {
+    std::vector<Face> faces;
+    const glm::dvec3 c(g.center_m);
+    if (g.kind == GeneratorKind::Rectangle) {
+        const glm::dvec3 u(g.axis_u_m), v(g.axis_v_m);
+        Face f{c - u - v, 2.0 * u, 2.0 * v, glm::normalize(glm::cross(u, v)), 0, g.count, 1};
+        f.rows = rowsFor(g.count, glm::length(f.u), glm::length(f.v));
+        faces.push_back(f);
+    } else if (g.kind == GeneratorKind::Sphere) {
+        Face f{c, {}, {}, {}, 0, g.count, rowsFor(g.count, 2.0 * kPi, 2.0)};
+        faces.push_back(f);
+    } else {
+        const glm::dvec3 h(g.half_extents_m);
+        double area[6], total = 0.0;
+        for (int a = 0; a < 3; ++a) {
+            const int b = (a + 1) % 3, d = (a + 2) % 3;
+            area[2 * a] = area[2 * a + 1] = 4.0 * h[b] * h[d];
+            total += 2.0 * area[2 * a];
+        }
+        double running = 0.0;
+        uint32_t first = 0;
+        for (int k = 0; k < 6; ++k) {
+            const int a = k / 2, b = (a + 1) % 3, d = (a + 2) % 3;
+            const double sign = (k % 2 == 0) ? 1.0 : -1.0;
+            running += area[k];
+            const uint32_t end = k == 5 ? g.count : uint32_t(std::floor(running / total * double(g.count)));
+            glm::dvec3 n(0.0), u(0.0), v(0.0);
+            n[a] = sign;
+            u[b] = 2.0 * h[b];
+            v[d] = 2.0 * h[d] * sign;  // keeps u × v along the outward normal
+            const glm::dvec3 origin = c + n * h[a] - 0.5 * u - 0.5 * v;
+            Face f{origin, u, v, n, first, end - first, 1};
+            f.rows = rowsFor(f.count, glm::length(u), glm::length(v));
+            faces.push_back(f);
+            first = end;
+        }
+    }
+    return faces;
+}
+
+void spherePoint(const ParticleGenerator& g, double s, double t, glm::dvec3* p, glm::dvec3* n) {
+    const double phi = 2.0 * kPi * s, z = 1.0 - 2.0 * t, rho = std::sqrt(std::max(0.0, 1.0 - z * z));
+    *n = glm::dvec3(rho * std::cos(phi), rho * std::sin(phi), z);
+    *p = glm::dvec3(g.center_m) + double(g.radius_m) * *n;
+}
+
+// The cell of stratum j (face-local) as [s0, s1] × [t0, t1].
+void cellOf(const Face& f, uint32_t j, double* s0, double* s1, double* t0, double* t1) {
+    uint32_t r = uint32_t(uint64_t(j) * f.rows / f.count);
+    while (r + 1 < f.rows && rowStart(r + 1, f.count, f.rows) <= j) ++r;
+    while (r > 0 && rowStart(r, f.count, f.rows) > j) --r;
+    const uint32_t a = rowStart(r, f.count, f.rows), b = rowStart(r + 1, f.count, f.rows);
+    const uint32_t cells = b - a, col = j - a;
+    *t0 = double(a) / f.count;
+    *t1 = double(b) / f.count;
+    *s0 = double(col) / cells;
+    *s1 = double(col + 1) / cells;
+}
+
+// Face-local stratum of parameters (s, t), the inverse of cellOf.
+uint32_t stratumAt(const Face& f, double s, double t) {
+    if (f.count == 0) return 0;
+    s = std::clamp(s, 0.0, 1.0);
+    t = std::clamp(t, 0.0, 1.0);
+    uint32_t r = std::min(f.rows - 1, uint32_t(t * f.rows));
+    while (r + 1 < f.rows && double(rowStart(r + 1, f.count, f.rows)) / f.count <= t) ++r;
+    while (r > 0 && double(rowStart(r, f.count, f.rows)) / f.count > t) --r;
+    const uint32_t a = rowStart(r, f.count, f.rows), b = rowStart(r + 1, f.count, f.rows);
+    return a + std::min(b - a - 1, uint32_t(s * double(b - a)));
+}
+
+}  // namespace
+
+glm::vec3 coneDirection(float cone_rad, float u, float v) { return coneDirectionCos(std::cos(cone_rad), u, v); }
+
+glm::vec3 coneDirectionCos(float cos_cone, float u, float v) {
+    const float cos_t = 1.0f - u * (1.0f - cos_cone);
+    const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t));
+    const float psi = 2.0f * float(kPi) * v;
+    return glm::vec3(sin_t * std::cos(psi), sin_t * std::sin(psi), cos_t);
+}
+
+glm::quat turnFrameTo(const glm::quat& from, glm::vec3 d) {
+    const glm::vec3 h = from * glm::vec3(0.0f, 0.0f, 1.0f);
+    const float c = glm::dot(h, d);
+    glm::quat turn;
+    if (c < -0.999999f) {
+        // Opposite: any half turn about an axis orthogonal to h; the frame's own x is one.
+        turn = glm::angleAxis(float(kPi), glm::normalize(from * glm::vec3(1.0f, 0.0f, 0.0f)));
+    } else {
+        // The shortest arc from h to d, (1 + c, h × d) normalised.
+        const glm::vec3 axis = glm::cross(h, d);
+        turn = glm::normalize(glm::quat(1.0f + c, axis.x, axis.y, axis.z));
+    }
+    return glm::normalize(turn * from);
+}
+
+void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint64_t seed, ParticleSeeds* out) {
+    const std::vector<Face> faces = facesOf(gen);
+    const float cone = glm::radians(gen.heading_cone_deg);
+    const glm::quat identity(1.0f, 0.0f, 0.0f, 0.0f);
+    for (const Face& f : faces)
+        for (uint32_t j = 0; j < f.count; ++j) {
+            const uint32_t stratum = f.first + j;
+            const uint64_t h = hashWords(seed, kSeedTag + generator_index, stratum);
+            double s0, s1, t0, t1;
+            cellOf(f, j, &s0, &s1, &t0, &t1);
+            const double js = kMargin + (1.0 - 2.0 * kMargin) * unitDouble(h);
+            const double jt = kMargin + (1.0 - 2.0 * kMargin) * unitDouble(mix64(h));
+            const double s = s0 + (s1 - s0) * js, t = t0 + (t1 - t0) * jt;
+            glm::dvec3 p, n;
+            if (gen.kind == GeneratorKind::Sphere) {
+                spherePoint(gen, s, t, &p, &n);
+            } else {
+                p = f.origin + s * f.u + t * f.v;
+                n = f.normal;
+            }
+            const glm::vec3 normal = glm::normalize(glm::vec3(n));
+            const glm::quat on_normal = turnFrameTo(identity, normal);
+            glm::vec3 heading = normal;
+            if (cone > 0.0f) {
+                const uint64_t hh = mix64(mix64(h));
+                heading = glm::normalize(on_normal * coneDirection(cone, unitFloat(hh), unitFloat(mix64(hh))));
+            }
+            out->positions.push_back(glm::vec3(p));
+            out->normals.push_back(normal);
+            out->frames.push_back(turnFrameTo(on_normal, heading));
+        }
+}
+
+uint32_t locateStratum(const ParticleGenerator& gen, glm::vec3 p_f) {
+    const std::vector<Face> faces = facesOf(gen);
+    const glm::dvec3 p(p_f), c(gen.center_m);
+    if (gen.kind == GeneratorKind::Sphere) {
+        const glm::dvec3 d = glm::normalize(p - c);
+        double phi = std::atan2(d.y, d.x);
+        if (phi < 0.0) phi += 2.0 * kPi;
+        return stratumAt(faces[0], phi / (2.0 * kPi), (1.0 - d.z) / 2.0);
+    }
+    size_t k = 0;
+    if (gen.kind == GeneratorKind::Box) {
+        // The face whose plane p is nearest to, relative to the box's size along it.
+        const glm::dvec3 q = (p - c) / glm::dvec3(gen.half_extents_m);
+        int a = 0;
+        for (int b = 1; b < 3; ++b)
+            if (std::abs(q[b]) > std::abs(q[a])) a = b;
+        k = size_t(2 * a + (q[a] < 0.0 ? 1 : 0));
+    }
+    const Face& f = faces[k];
+    const glm::dvec3 r = p - f.origin;
+    return f.first + stratumAt(f, glm::dot(r, f.u) / glm::dot(f.u, f.u), glm::dot(r, f.v) / glm::dot(f.v, f.v));
+}
+
+}  // namespace ug

@@ -1,0 +1,52 @@
+// Seeding particles on a generator's surface by jittering a stratified area parameterisation (Beneš &
+// Espinosa 2000 §3): the surface is cut into `count` strata of equal area, one particle per stratum at a
+// hashed place inside it, so particles cover the whole surface without clumps or a regular grid.
+//
+// Strata: the surface's area-preserving parameterisation (s, t) in [0, 1]² (the sphere's is Archimedes'
+// cylinder, z = 1 − 2t) is cut into rows; row r gets n_r cells with n_r as even as an integer split allows,
+// and its height is n_r / count, so every cell has area 1 / count of the surface. A box splits count
+// over its faces in proportion to their areas (floors of the running sum), then each face as a rectangle:
+// equal area per face, equal within 1 / count of the box's otherwise.
+//
+// The jitter keeps 1/1024 of a cell's width from its borders, so a point mapped back through the inverse
+// parameterisation in floating point always lands in its own stratum (locateStratum); the density is
+// uniform over the rest of the cell.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include "particles/particle_scene.h"
+
+namespace ug {
+
+// One particle's start: where, the surface normal there, and its frame (the heading is q · +z).
+struct ParticleSeeds {
+    std::vector<glm::vec3> positions;
+    std::vector<glm::vec3> normals;
+    std::vector<glm::quat> frames;
+};
+
+// Appends generator `generator_index`'s particles (gen.count of them, in stratum order) to *out; random
+// numbers are hashed from (seed, generator index, stratum), so a generator's seeds do not depend on the
+// others. gen must be valid (validateParticleScene).
+void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint64_t seed, ParticleSeeds* out);
+
+// The stratum (in [0, gen.count)) the surface point p lies in, found from p through the inverse
+// parameterisation alone; used by the tests to check that seeding puts one particle in each.
+uint32_t locateStratum(const ParticleGenerator& gen, glm::vec3 p);
+
+// The frame whose +z is the unit direction d with the least rotation from `from`'s +z (no twist about
+// the heading, so a strand's frame is transported along it).
+glm::quat turnFrameTo(const glm::quat& from, glm::vec3 d);
+
+// A unit direction uniformly distributed over the cap of half-angle cone_rad around +z, from two
+// uniform numbers in [0, 1).
+glm::vec3 coneDirection(float cone_rad, float u, float v);
+// The same from the cone's cosine (the walk's inner loop computes it once).
+glm::vec3 coneDirectionCos(float cos_cone, float u, float v);
+
+}  // namespace ug

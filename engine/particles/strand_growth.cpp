@@ -1,0 +1,358 @@
+#include "particles/strand_growth.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/hash.h"
+#include "core/parallel.h"
+#include "particles/particle_seeding.h"
+#include "particles/segment_grid.h"
+
+namespace ug {
+
+namespace {
+
+constexpr uint32_t kNone = 0xffffffffu;
+constexpr uint64_t kTrialTag = 0x7419'a1c0'0000'0000ull;
+constexpr uint64_t kSplitTag = 0x5b11'7c0f'0000'0000ull;
+constexpr int kCutBisections = 40;
+
+enum class StrandState : uint8_t { Active, Stopped, Killed };
+
+// Every point of every strand, in the order they were placed (steps, then strand ids). A strand is the
+// chain of prev links from its last point back to its first; a split's children start at their parent's
+// last point, which they share (that shared id is what exempts them from colliding with it).
+struct PointStore {
+    std::vector<glm::vec3> pos;
+    std::vector<uint32_t> prev;    // the previous point of the strand, kNone at a root
+    std::vector<uint32_t> strand;  // the strand that placed it
+};
+
+// Per-strand state, one array per field.
+struct StrandStore {
+    std::vector<uint32_t> first, last, npoints;
+    std::vector<glm::quat> frame;
+    std::vector<int32_t> parent;
+    std::vector<uint8_t> depth;
+    std::vector<StrandState> state;
+    std::vector<uint32_t> age;
+    std::vector<int32_t> countdown;  // -1: none running
+    std::vector<uint32_t> cut_mask;  // cutters this strand's lineage has triggered
+
+    size_t size() const { return first.size(); }
+    void add(uint32_t point, glm::quat q, int32_t parent_id, uint8_t d, uint32_t mask) {
+        first.push_back(point);
+        last.push_back(point);
+        npoints.push_back(1);
+        frame.push_back(q);
+        parent.push_back(parent_id);
+        depth.push_back(d);
+        state.push_back(StrandState::Active);
+        age.push_back(0);
+        countdown.push_back(-1);
+        cut_mask.push_back(mask);
+    }
+};
+
+// One active strand's proposal for this step.
+struct Moves {
+    std::vector<glm::vec3> pos, dir;
+    std::vector<int32_t> cutter;     // the cutter that clipped it, or -1
+    std::vector<uint8_t> blocked;    // 1: refused by an earlier segment, 2: by a move of a lower id
+    std::vector<uint8_t> still;      // the clipped move did not leave its point
+    void resize(size_t n) {
+        pos.resize(n);
+        dir.resize(n);
+        cutter.resize(n);
+        blocked.resize(n);
+        still.resize(n);
+    }
+};
+
+// Where along p0 → p1 a cutter triggers first: the last bisection point that does not trigger, so the
+// placed point never crosses the threshold. p0 does not trigger, p1 does.
+float cutParameter(const Cutter& c, glm::vec3 p0, glm::vec3 p1) {
+    float lo = 0.0f, hi = 1.0f;
+    for (int i = 0; i < kCutBisections; ++i) {
+        const float mid = 0.5f * (lo + hi);
+        if (mid <= lo || mid >= hi) break;
+        if (cutterTriggered(c, cutterValue(c, p0 + (p1 - p0) * mid)))
+            hi = mid;
+        else
+            lo = mid;
+    }
+    return lo;
+}
+
+class Growth {
+public:
+    Growth(const ParticleScene& scene, const GrowOptions& options)
+        : scene_(scene), walk_(scene.walk), threads_(options.threads),
+          cone_(glm::radians(walk_.cone_deg)), cos_cone_(std::cos(cone_)),
+          reach2_(4.0f * walk_.strand_radius_m * walk_.strand_radius_m),
+          // A segment is at most step_length long; two whose tubes touch have midpoints within
+          // step_length + 2r (padded against rounding), the reach of the grids' queries.
+          reach_(walk_.step_length_m * 1.001f + 2.0f * walk_.strand_radius_m * 1.001f),
+          grid_(reach_),
+          step_grid_(reach_) {}
+
+    bool run(Strands* out, std::string* error);
+
+private:
+    void seed();
+    void propose(size_t k, uint32_t step);
+    bool hitsEarlierSegment(size_t k) const;
+    bool hitsLowerMove(size_t k) const;
+    void apply(const StrandAction& action, uint32_t strand);
+    void split(const StrandAction& action, uint32_t strand);
+    void emit(Strands* out) const;
+
+    const ParticleScene& scene_;
+    const WalkSettings& walk_;
+    int threads_;
+    float cone_, cos_cone_, reach2_, reach_;
+    PointStore points_;
+    StrandStore strands_;
+    SegmentGrid grid_;       // segments of earlier steps, by their end point's id
+    SegmentGrid step_grid_;  // this step's moves, by their index in active_
+    std::vector<uint32_t> active_;
+    std::vector<float> charge_;  // a_i(t) of this step
+    Moves moves_;
+    StrandStats stats_;
+};
+
+void Growth::seed() {
+    ParticleSeeds seeds;
+    for (size_t g = 0; g < scene_.generators.size(); ++g)
+        seedGenerator(scene_.generators[g], uint32_t(g), walk_.seed, &seeds);
+    const size_t expected = std::min<uint64_t>(walk_.max_points, seeds.positions.size() * (uint64_t(walk_.steps) + 1));
+    points_.pos.reserve(expected);
+    points_.prev.reserve(expected);
+    points_.strand.reserve(expected);
+    for (size_t i = 0; i < seeds.positions.size(); ++i) {
+        points_.pos.push_back(seeds.positions[i]);
+        points_.prev.push_back(kNone);
+        points_.strand.push_back(uint32_t(i));
+        strands_.add(uint32_t(i), seeds.frames[i], -1, 0, 0);
+    }
+    stats_.seeded = seeds.positions.size();
+    if (walk_.collisions) {
+        grid_.reserve(expected);
+        step_grid_.reserve(seeds.positions.size());
+    }
+}
+
+void Growth::propose(size_t k, uint32_t step) {
+    const uint32_t s = active_[k];
+    const glm::vec3 p0 = points_.pos[strands_.last[s]];
+    // The frame as a matrix once per move: a trial is then 9 multiply-adds, not a quaternion product.
+    const glm::mat3 frame = glm::mat3_cast(strands_.frame[s]);
+    glm::vec3 best_pos = p0, best_dir(0.0f, 0.0f, 1.0f);
+    float best_f = 0.0f;
+    for (uint32_t t = 0; t < walk_.trials; ++t) {
+        const uint64_t h = hashWords(walk_.seed, kTrialTag + s, step, t);
+        const glm::vec3 dir = frame * coneDirectionCos(cos_cone_, unitFloat(h), unitFloat(mix64(h)));
+        const glm::vec3 p = p0 + dir * walk_.step_length_m;
+        float f = 0.0f;
+        for (size_t a = 0; a < scene_.attractors.size(); ++a) f += attractorTerm(scene_.attractors[a], charge_[a], p);
+        if (t == 0 || f < best_f) {  // ties keep the lower trial
+            best_f = f;
+            best_pos = p;
+            best_dir = dir;
+        }
+    }
+    // The first cutter along the move (lowest parameter, then lowest index) clips it.
+    int32_t cutter = -1;
+    float cut_at = 2.0f;
+    for (size_t c = 0; c < scene_.cutters.size(); ++c) {
+        const Cutter& cut = scene_.cutters[c];
+        if ((strands_.cut_mask[s] >> c) & 1u) continue;
+        if (!cutterTriggered(cut, cutterValue(cut, best_pos)) || cutterTriggered(cut, cutterValue(cut, p0))) continue;
+        const float u = cutParameter(cut, p0, best_pos);
+        if (u < cut_at) {
+            cut_at = u;
+            cutter = int32_t(c);
+        }
+    }
+    glm::vec3 pos = best_pos;
+    if (cutter >= 0) pos = p0 + (best_pos - p0) * cut_at;
+    moves_.pos[k] = pos;
+    moves_.dir[k] = best_dir;
+    moves_.cutter[k] = cutter;
+    moves_.still[k] = pos == p0;
+    moves_.blocked[k] = 0;
+}
+
+bool Growth::hitsEarlierSegment(size_t k) const {
+    const uint32_t s = active_[k];
+    const uint32_t from = strands_.last[s];
+    const glm::vec3 a = points_.pos[from], b = moves_.pos[k];
+    return grid_.anyNear(0.5f * (a + b), [&](uint32_t end, uint32_t strand) {
+        if (strand == s || end == from) return false;
+        const uint32_t start = points_.prev[end];
+        if (start == from) return false;
+        return segmentSegmentDistance2(a, b, points_.pos[start], points_.pos[end]) < reach2_;
+    });
+}
+
+bool Growth::hitsLowerMove(size_t k) const {
+    const uint32_t from = strands_.last[active_[k]];
+    const glm::vec3 a = points_.pos[from], b = moves_.pos[k];
+    return step_grid_.anyNear(0.5f * (a + b), [&](uint32_t j, uint32_t) {
+        // Only lower ids have priority; siblings leaving their split point together share it.
+        if (j >= k) return false;
+        const uint32_t other = strands_.last[active_[j]];
+        if (other == from) return false;
+        return segmentSegmentDistance2(a, b, points_.pos[other], moves_.pos[j]) < reach2_;
+    });
+}
+
+void Growth::split(const StrandAction& action, uint32_t s) {
+    strands_.state[s] = StrandState::Stopped;
+    ++stats_.splits;
+    const float cone = glm::radians(action.split_angle_deg);
+    for (uint32_t c = 0; c < action.split_count; ++c) {
+        glm::quat q = strands_.frame[s];
+        if (cone > 0.0f) {
+            const uint64_t h = hashWords(walk_.seed, kSplitTag + s, c);
+            q = turnFrameTo(q, glm::normalize(q * coneDirection(cone, unitFloat(h), unitFloat(mix64(h)))));
+        }
+        strands_.add(strands_.last[s], q, int32_t(s), uint8_t(strands_.depth[s] + 1), strands_.cut_mask[s]);
+    }
+}
+
+void Growth::apply(const StrandAction& action, uint32_t s) {
+    switch (action.kind) {
+        case StrandActionKind::Stop: strands_.state[s] = StrandState::Stopped; break;
+        case StrandActionKind::Kill:
+            strands_.state[s] = StrandState::Killed;
+            ++stats_.killed;
+            break;
+        case StrandActionKind::Split:
+            // A strand that has not moved would split into copies of its parent's split; one beyond the
+            // depth limit would split forever: both stop instead.
+            if (strands_.npoints[s] < 2 || strands_.depth[s] >= walk_.max_split_depth)
+                strands_.state[s] = StrandState::Stopped;
+            else
+                split(action, s);
+            break;
+        case StrandActionKind::Countdown:
+            if (strands_.countdown[s] < 0) strands_.countdown[s] = int32_t(action.countdown_steps);
+            break;
+    }
+}
+
+bool Growth::run(Strands* out, std::string* error) {
+    seed();
+    charge_.resize(scene_.attractors.size());
+    const size_t chunk = 512;
+    for (uint32_t step = 1; step <= walk_.steps; ++step) {
+        active_.clear();
+        for (uint32_t s = 0; s < strands_.size(); ++s)
+            if (strands_.state[s] == StrandState::Active) active_.push_back(s);
+        if (active_.empty()) break;
+        // Children that never move add strands but no points: both are bounded by max_points.
+        if (points_.pos.size() + active_.size() > walk_.max_points || strands_.size() > walk_.max_points) {
+            if (error)
+                *error = "walk.max_points: splits need more than " + std::to_string(walk_.max_points) +
+                         " points or strands at step " + std::to_string(step);
+            return false;
+        }
+        for (size_t a = 0; a < charge_.size(); ++a) charge_[a] = chargeAt(scene_.attractors[a].charge, step);
+        moves_.resize(active_.size());
+
+        // Proposals and the test against earlier steps read only the state after step - 1.
+        parallelFor(active_.size(), threads_, chunk, [&](size_t begin, size_t end, int) {
+            for (size_t k = begin; k < end; ++k) {
+                propose(k, step);
+                if (walk_.collisions && !moves_.still[k] && hitsEarlierSegment(k)) moves_.blocked[k] = 1;
+            }
+        });
+        if (walk_.collisions) {
+            // Moves of this step, filed in id order; a move refused by an earlier segment never blocks.
+            step_grid_.clear();
+            for (size_t k = 0; k < active_.size(); ++k)
+                if (!moves_.blocked[k] && !moves_.still[k])
+                    step_grid_.insert(uint32_t(k), 0.5f * (points_.pos[strands_.last[active_[k]]] + moves_.pos[k]), active_[k]);
+            parallelFor(active_.size(), threads_, chunk, [&](size_t begin, size_t end, int) {
+                for (size_t k = begin; k < end; ++k)
+                    if (!moves_.blocked[k] && !moves_.still[k] && hitsLowerMove(k)) moves_.blocked[k] = 2;
+            });
+        }
+
+        // Actions, serially in id order: children and points get their ids in that order.
+        for (size_t k = 0; k < active_.size(); ++k) {
+            const uint32_t s = active_[k];
+            const bool counting = strands_.countdown[s] >= 0;
+            if (moves_.blocked[k]) {
+                ++stats_.collisions;
+                apply(walk_.on_collision, s);
+            } else {
+                if (!moves_.still[k]) {
+                    const uint32_t id = uint32_t(points_.pos.size());
+                    const uint32_t from = strands_.last[s];
+                    points_.pos.push_back(moves_.pos[k]);
+                    points_.prev.push_back(from);
+                    points_.strand.push_back(s);
+                    if (walk_.collisions) grid_.insert(id, 0.5f * (points_.pos[from] + moves_.pos[k]), s);
+                    strands_.last[s] = id;
+                    ++strands_.npoints[s];
+                    ++stats_.moves;
+                }
+                strands_.frame[s] = turnFrameTo(strands_.frame[s], moves_.dir[k]);
+                ++strands_.age[s];
+                if (moves_.cutter[k] >= 0) {
+                    ++stats_.cutter_hits;
+                    strands_.cut_mask[s] |= 1u << moves_.cutter[k];
+                    apply(scene_.cutters[size_t(moves_.cutter[k])].action, s);
+                } else if (walk_.max_age_steps > 0 && strands_.age[s] >= walk_.max_age_steps) {
+                    apply(walk_.on_age, s);
+                }
+            }
+            // A countdown started in an earlier step runs out here, whatever happened in this one.
+            if (counting && strands_.state[s] == StrandState::Active && --strands_.countdown[s] <= 0) {
+                strands_.state[s] = StrandState::Killed;
+                ++stats_.killed;
+            }
+        }
+    }
+    emit(out);
+    return true;
+}
+
+void Growth::emit(Strands* out) const {
+    *out = Strands{};
+    out->stats = stats_;
+    out->stats.strands = strands_.size();
+    std::vector<int32_t> index(strands_.size(), -1);
+    std::vector<glm::vec3> chain;
+    for (uint32_t s = 0; s < strands_.size(); ++s) {
+        if (strands_.state[s] == StrandState::Killed) continue;
+        if (strands_.npoints[s] < 2) {
+            ++out->stats.dropped;
+            continue;
+        }
+        chain.clear();
+        for (uint32_t p = strands_.last[s];; p = points_.prev[p]) {
+            chain.push_back(points_.pos[p]);
+            if (p == strands_.first[s]) break;
+        }
+        index[s] = int32_t(out->size());
+        out->points.insert(out->points.end(), chain.rbegin(), chain.rend());
+        out->offsets.push_back(uint32_t(out->points.size()));
+        // A parent always precedes its children and, having split, has moved and was not killed.
+        out->parent.push_back(strands_.parent[s] >= 0 ? index[size_t(strands_.parent[s])] : -1);
+        out->particle.push_back(s);
+    }
+    out->radii.assign(out->points.size(), walk_.strand_radius_m);
+}
+
+}  // namespace
+
+bool growStrands(const ParticleScene& scene, const GrowOptions& options, Strands* out, std::string* error) {
+    if (!validateParticleScene(scene, error)) return false;
+    Growth growth(scene, options);
+    return growth.run(out, error);
+}
+
+}  // namespace ug
