@@ -225,18 +225,7 @@ def road_autumn():
     p = head("road_autumn", [[-35, -35, -1], [35, 35, 8]], tile=0.25, settle=False)
     p["terrain"] = W.flat_terrain(-35, -35, 70, 70, 0.5, amplitude=0.0)
     p["detail_types"] = leaf_types(150, thickness=0.1) + [grass(1800, scale=(0.3, 0.4))]
-    groups = {"tree_a": W.tree_with_pavers("tree_a", 109, 6, 0), "tree_b": W.tree_with_pavers("tree_b", 109, 6, 140)}
-    tree = [obj("road_segment", [-34 + 4 * i + 2, 0, 0]) for i in range(17)]
-    tree += [obj("fence_segment", [-34 + 2 * i + 1, 2.6 * side, 0], yaw=0 if side > 0 else 180)
-             for side in (-1, 1) for i in range(34)]
-    k = 0
-    for side in (-1, 1):
-        for i in range(12):
-            x = -30 + i * 5.4
-            tree.append({"ref": "tree_a" if (i + side) % 2 == 0 else "tree_b", "at": [r(x), 6.0 * side, 0],
-                         "yaw_deg": 30 * k})
-            k += 1
-    tracks = [field("occlusion", 0.9, segment([-35, y, 0.1], [35, y, 0.1], 0.18)) for y in (-0.9, 0.9)]
+    groups, tree, tracks = W.road_layout()
     puddles = [field("humidity", 1.5, point([x, y, 0.1], 1.1)) for x, y in ((-21, 1.4), (4, -1.6), (26, 0.4))]
     verges = [field("grass", 1.0)]
     p["environment"] = {

@@ -168,12 +168,10 @@ def tree_with_pavers(name, pavers, ring, yaw):
     return {"group": {"children": children}}
 
 
-def road_winter():
-    """70 x 70 m (Fig. 21, Table 1 "Road"): a terrain, a road, and 24 trees instanced from two groups of about
-    110 objects each."""
-    p = head("road_winter", [[-35, -35, -2], [35, 35, 8]])
-    p["terrain"] = flat_terrain(-35, -35, 70, 70, 0.5, amplitude=0.0)
-    p["detail_types"] = twigs([6.0, 6.0, 0.0], 1.5)
+def road_layout():
+    """The road's objects, shared by its winter and autumn versions: the two tree groups (a tree in a ring
+    of pavers), the road, fences along both verges, 24 trees referencing the groups, and the tyre tracks
+    (occlusion). Returns (groups, tree, tracks)."""
     groups = {"tree_a": tree_with_pavers("tree_a", 109, 6, 0), "tree_b": tree_with_pavers("tree_b", 109, 6, 140)}
     tree = [obj("road_segment", [-34 + 4 * i + 2, 0, 0]) for i in range(17)]
     # Fences along both verges (their rails and pickets grow icicles).
@@ -186,6 +184,16 @@ def road_winter():
             tree.append({"ref": "tree_a" if (i + side) % 2 == 0 else "tree_b", "at": [r(x), 6.0 * side, 0], "yaw_deg": 30 * k})
             k += 1
     tracks = [field("occlusion", 0.9, segment([-35, y, 0.1], [35, y, 0.1], 0.18)) for y in (-0.9, 0.9)]
+    return groups, tree, tracks
+
+
+def road_winter():
+    """70 x 70 m (Fig. 21, Table 1 "Road"): a terrain, a road, and 24 trees instanced from two groups of about
+    110 objects each."""
+    p = head("road_winter", [[-35, -35, -2], [35, 35, 8]])
+    p["terrain"] = flat_terrain(-35, -35, 70, 70, 0.5, amplitude=0.0)
+    p["detail_types"] = twigs([6.0, 6.0, 0.0], 1.5)
+    groups, tree, tracks = road_layout()
     p["environment"] = {
         "types": TYPES,
         "groups": groups,
