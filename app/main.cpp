@@ -35,6 +35,15 @@ void printUsage() {
         "  undergrowth environment SCENE --at x,y,z [--at x,y,z ...]\n"
         "      the environment at world points (snow, icicles, leaves, grass, trash, occlusion, humidity,\n"
         "      temperature and the shelter) as JSON\n"
+        "  undergrowth instantiate --plan DIR --task I [--threads N]\n"
+        "      one task of a plan: region I, written atomically under DIR/regions (skipped when already complete)\n"
+        "  undergrowth plan SCENE --out DIR [--memory-per-job BYTES] [--max-jobs N] [--threads-per-task N]\n"
+        "                   [--seed N] [--binary PATH]\n"
+        "      cut the world into region jobs sized by the memory budget: DIR/plan.json and the Slurm scripts\n"
+        "      (DIR/submit.sh submits the Ghost Tile step, the job array and the join)\n"
+        "  undergrowth join DIR [-o WORLD.glb] [--max-bytes BYTES]\n"
+        "      check every region of the plan is there and from the plan; DIR/manifest.json and, when it fits,\n"
+        "      the joined world\n"
         "  undergrowth build-tile SCENE [--cache DIR] [--stats FILE] [--threads N]\n"
         "      build (or load from the verified cache) the scene's Ghost Tile and print its statistics\n"
         "  undergrowth bench [--quick] [--json FILE] [--threads N] [--filter NAME]\n"
@@ -58,6 +67,8 @@ int main(int argc, char** argv) {
     if (command == "environment") return ug::cli::runEnvironmentCommand(argc, argv);
     if (command == "build-tile") return ug::cli::runBuildTileCommand(argc, argv);
     if (command == "bench") return ug::cli::runBenchCommand(argc, argv);
+    if (command == "plan") return ug::cli::runPlanCommand(argc, argv);
+    if (command == "join") return ug::cli::runJoinCommand(argc, argv);
     if (command == "make-assets") return ug::cli::runMakeAssetsCommand(argc, argv);
     if (command == "--help" || command == "-h" || command == "help") {
         printUsage();

@@ -10,6 +10,7 @@ packages=(
   libegl-dev libegl1 libegl-mesa0 libgl1-mesa-dri  # undergrowth render: EGL without a display
   libgtest-dev
   xvfb xauth xdotool
+  slurm-wlm munge  # region jobs: the single-node cluster of tests/cli/run_world_tests.sh
   nodejs npm
 )
 

@@ -31,6 +31,9 @@ bool benchEnvironment(const BenchContext& ctx, std::vector<BenchRow>* rows, std:
 bool benchScatter(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 // Particle sculpting: a fur ball of 100k strands x 64 steps x 8 trials with collisions (particles.*).
 bool benchParticles(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
+// Region jobs: the 1 km^2 world in one process and through a Slurm job array (world.*); skipped without
+// a cluster (SLURM_CONF, or root and slurm-wlm for a single-node one) and in --quick.
+bool benchWorld(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 bool benchRender(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);
 
 }  // namespace ug::cli

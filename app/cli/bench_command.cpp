@@ -37,6 +37,7 @@ int runBenchCommand(int argc, char** argv) {
                                 {"env", benchEnvironment},
                                 {"env_scatter", benchScatter},
                                 {"particles", benchParticles},
+                                {"world", benchWorld},
                                 {"render", benchRender}};
     std::vector<BenchRow> rows;
     for (const Section& s : sections) {

@@ -107,4 +107,31 @@ std::string assetsDir() {
     return std::string(UG_SOURCE_DIR) + "/assets";
 }
 
+bool parseByteSize(const std::string& option, const std::string& text, uint64_t lo, uint64_t hi, uint64_t* out,
+                   std::string* error) {
+    size_t digits = 0;
+    while (digits < text.size() && text[digits] >= '0' && text[digits] <= '9') ++digits;
+    const std::string unit = text.substr(digits);
+    int shift = -1;
+    if (unit.empty()) shift = 0;
+    else if (unit == "K" || unit == "k") shift = 10;
+    else if (unit == "M" || unit == "m") shift = 20;
+    else if (unit == "G" || unit == "g") shift = 30;
+    else if (unit == "T" || unit == "t") shift = 40;
+    uint64_t value = 0;
+    bool ok = digits > 0 && digits <= 15 && shift >= 0;
+    if (ok) {
+        value = std::stoull(text.substr(0, digits));
+        ok = value <= (UINT64_MAX >> shift);
+        value <<= shift;
+    }
+    if (!ok || value < lo || value > hi) {
+        *error = option + ": '" + text + "' is not a size from " + std::to_string(lo) + " to " + std::to_string(hi) +
+                 " bytes (a whole number, optionally with K, M, G or T)";
+        return false;
+    }
+    *out = value;
+    return true;
+}
+
 }  // namespace ug::cli

@@ -2,6 +2,8 @@
 // Unknown options are errors, so a typo never silently changes a batch job.
 #pragma once
 
+#include <cstdint>
+
 #include <map>
 #include <set>
 #include <string>
@@ -26,6 +28,10 @@ bool parseArgs(int argc, char** argv, int first, const std::set<std::string>& wi
 
 // Parses a whole integer in [lo, hi]; the error names the option.
 bool parseInt(const std::string& option, const std::string& text, long lo, long hi, long* out, std::string* error);
+
+// "4G", "512M", "64K" or a plain byte count, in [lo, hi] bytes; the error names the option.
+bool parseByteSize(const std::string& option, const std::string& text, uint64_t lo, uint64_t hi, uint64_t* out,
+                   std::string* error);
 
 // "1280x720": two whole numbers in [lo, hi]; the error names the option and the accepted range.
 bool parseSize(const std::string& option, const std::string& text, long lo, long hi, int* width, int* height,

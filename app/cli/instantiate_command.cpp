@@ -11,12 +11,15 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "cli/env_job.h"
+#include "cli/instantiation.h"
+#include "cli/region_plan.h"
 #include "cli/scene_job.h"
 #include "cli/scene_metrics.h"
 #include "core/atomic_file.h"
 #include "core/hash.h"
 #include "core/parallel.h"
 #include "io/instance_export.h"
+#include "io/instance_list_file.h"
 
 namespace ug::cli {
 
@@ -92,55 +95,21 @@ nlohmann::json instanceStatsJson(const SceneJob& job, const InstanceStats& st, u
     return j;
 }
 
-int runInstantiateCommand(int argc, char** argv) {
-    Args args;
+int runInstantiation(const InstantiateRequest& request, const char* command) {
+    auto fail = [&](const std::string& message) {
+        std::fprintf(stderr, "undergrowth %s: %s\n", command, message.c_str());
+        return 1;
+    };
     std::string error;
-    const char* usage =
-        "usage: undergrowth instantiate SCENE.json -o OUT.glb|OUT.gltf [--stats FILE] [--seed N] [--threads N]\n"
-        "       [--region xmin,ymin,zmin,xmax,ymax,zmax] [--cache DIR] [--plain-nodes] [--chunk METRES] [--measure]";
-    if (!parseArgs(argc, argv, 2, {"-o", "--out", "--stats", "--seed", "--threads", "--region", "--cache", "--chunk"},
-                   {"--plain-nodes", "--measure"}, &args, &error) ||
-        args.positional.size() != 1)
-        return fail(error.empty() ? usage : error + "\n" + usage, 2);
-    const std::string out = args.has("-o") ? args.get("-o") : args.get("--out");
-    if (out.empty()) return fail(std::string("missing -o OUT.glb\n") + usage, 2);
-    const std::string ext = fs::path(out).extension().string();
-    if (ext != ".glb" && ext != ".gltf") return fail(out + ": the output must end in .glb or .gltf", 2);
-    int threads = 0;
-    if (args.has("--threads")) {
-        long t;
-        if (!parseInt("--threads", args.get("--threads"), 0, 256, &t, &error)) return fail(error, 2);
-        threads = int(t);
-    }
-    Bounds region;
-    const bool has_region = args.has("--region");
-    if (has_region && !parseRegion(args.get("--region"), &region, &error)) return fail(error, 2);
-    float chunk = -1.0f;
-    if (args.has("--chunk")) {
-        try {
-            chunk = std::stof(args.get("--chunk"));
-        } catch (...) {
-            chunk = -1.0f;
-        }
-        if (!(chunk > 0.0f) || !std::isfinite(chunk)) return fail("--chunk: expected a length in metres > 0", 2);
-    }
-
     SceneJob job;
-    const std::string scene = args.positional[0];
-    if (!loadSceneJob(scene, args.get("--cache", (fs::path(out).parent_path() / "cache").string()), threads, false,
-                      &job, &error))
-        return fail(error);
-    uint64_t seed = job.project.instantiation_seed;
-    if (args.has("--seed")) {
-        const std::string s = args.get("--seed");
-        size_t used = 0;
-        try {
-            seed = std::stoull(s, &used);
-        } catch (...) {
-            used = 0;
-        }
-        if (used == 0 || used != s.size() || s[0] == '-') return fail("--seed: '" + s + "' is not a whole number >= 0", 2);
-    }
+    const std::string& scene = request.scene;
+    const int threads = request.threads;
+    if (!loadSceneJob(scene, request.cache_dir, threads, false, &job, &error)) return fail(error);
+    if (request.expected_tile_key != 0 && job.tile.key != request.expected_tile_key)
+        return fail(scene + ": its Ghost Tile is " + hex64(job.tile.key) + ", the plan's " +
+                    hex64(request.expected_tile_key) + " (a model or a tile setting changed since); make the plan again");
+    const uint64_t seed = request.seed.value_or(job.project.instantiation_seed);
+    const Bounds* region = request.region ? &*request.region : nullptr;
 
     const InstancerInput input = instancerInput(job, seed);
     const SettleInput settle = settleInput(job.project, job.compiled.terrain, job.tile, job.models, job.environment.get());
@@ -148,19 +117,21 @@ int runInstantiateCommand(int argc, char** argv) {
     InstanceStats st;
     InstanceStore store;
     int last = -1;
-    InstanceOptions options{.threads = threads, .progress = [&](float f) {
-                                const int p = int(f * 100.0f);
-                                if (p / 25 != last / 25) std::fprintf(stderr, "\r  instantiating: %3d%%", p);
-                                last = p;
-                            }};
+    InstanceOptions options{.threads = threads,
+                            .progress =
+                                [&](float f) {
+                                    const int p = int(f * 100.0f);
+                                    if (p / 25 != last / 25) std::fprintf(stderr, "\r  instantiating: %3d%%", p);
+                                    last = p;
+                                },
+                            .max_memory_bytes = request.max_memory_bytes};
     bool ok;
-    if (has_region) {
-        if (overlaps(region, input.extent) == false)
-            return fail(scene + ": --region does not overlap the scene extent");
+    if (region) {
+        if (overlaps(*region, input.extent) == false) return fail(scene + ": --region does not overlap the scene extent");
         // Settled drops depend on the selection a little beyond the region: instantiate that much more,
         // settle, then keep the region's own instances (settling.h, "Locality").
         const float halo = settle.settings.enabled ? settleHaloMetres(settle) : 0.0f;
-        const Bounds wide{region.lo - halo, region.hi + halo};
+        const Bounds wide{region->lo - halo, region->hi + halo};
         ok = instantiateRegion(input, wide, options, &store, &st, &error);
     } else {
         Instantiator inst;
@@ -175,10 +146,10 @@ int runInstantiateCommand(int argc, char** argv) {
     if (settle.settings.enabled) {
         const auto t0 = std::chrono::steady_clock::now();
         settleAll(settle, store, threads, &drops);
-        if (has_region) {
+        if (region) {
             InstanceStore own;
             SettledDrops own_drops;
-            cropToRegion(store, drops, job.tile, region, &own, &own_drops);
+            cropToRegion(store, drops, job.tile, *region, &own, &own_drops);
             store = std::move(own);
             drops = std::move(own_drops);
             st.instances = store.instanceCount();
@@ -187,36 +158,115 @@ int runInstantiateCommand(int argc, char** argv) {
         }
         settle_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     }
-    nlohmann::json stats = instanceStatsJson(job, st, seed, resolveThreadCount(threads), has_region ? &region : nullptr);
+    nlohmann::json stats = instanceStatsJson(job, st, seed, resolveThreadCount(threads), region);
     if (settle.settings.enabled)
         stats["settling"] = {{"passes", settle.settings.passes},
                              {"max_drop_m", settle.settings.max_drop_m},
                              {"seconds", settle_seconds},
                              {"bytes", drops.byteSize()}};
     // The rest, packing and tiling measurements cost more than the instantiation on big scenes: on request.
-    if (args.has("--measure"))
+    if (request.measure)
         stats["measurements"] =
             sceneMetricsJson(measureScene(job, store, settle.settings.enabled ? &drops : nullptr, threads));
     SceneEnvironmentOutput env;
-    if (!computeSceneEnvironment(job, threads, has_region ? &region : nullptr, false, &env, &error)) return fail(error);
+    if (!computeSceneEnvironment(job, threads, region, false, &env, &error)) return fail(error);
     if (!env.stats.is_null()) stats["environment"] = env.stats;
-    const SceneLooks looks = sceneLooks(job);
-    stats["instances_per_look"] = lookCountsJson(job, looks, store);
-    InstanceExportOptions export_options;
-    export_options.static_meshes = &env.meshes;
-    useLooks(looks, &export_options);
-    export_options.chunk_size_m = chunk > 0.0f ? chunk : job.project.chunk_size_m;
-    export_options.use_instancing_extension = !args.has("--plain-nodes");
-    if (settle.settings.enabled) export_options.drops = &drops;
-    if (!exportInstancedScene(out, job.tile, job.models, store, job.compiled.terrain.get(), job.compiled.extent,
-                              export_options, stats.dump(), &error))
+    stats.update(request.stats_extra);
+    const SettledDrops* settled = settle.settings.enabled ? &drops : nullptr;
+    // A region's file holds the terrain under the region only, so that region files side by side are the
+    // world once, not the whole terrain once per region.
+    const Bounds terrain_box = region ? intersect(*region, job.compiled.extent) : job.compiled.extent;
+    if (!exportJobInstances(job, store, settled, &env.meshes, terrain_box, request.chunk_size_m, request.plain_nodes,
+                            &stats, request.out, &error))
         return fail(error);
-    if (args.has("--stats") && !writeTextFileAtomically(args.get("--stats"), stats.dump(2) + "\n", &error))
+    if (!request.stats_path.empty() && !writeTextFileAtomically(request.stats_path, stats.dump(2) + "\n", &error))
+        return fail(error);
+    if (!request.instances_path.empty() &&
+        !writeInstanceListFile(request.instances_path, job.tile.key, request.instances_header.dump(), store, settled,
+                               &error))
         return fail(error);
     std::printf("%llu instances (%llu candidates tested, %llu rejected) in %.3f s -> %s\n",
                 static_cast<unsigned long long>(st.instances), static_cast<unsigned long long>(st.candidates_tested),
-                static_cast<unsigned long long>(st.rejected), st.seconds, out.c_str());
+                static_cast<unsigned long long>(st.rejected), st.seconds, request.out.c_str());
     return 0;
+}
+
+bool exportJobInstances(const SceneJob& job, const InstanceStore& store, const SettledDrops* drops,
+                        const std::vector<MeshInstances>* static_meshes, const Bounds& terrain_box, float chunk_size_m,
+                        bool plain_nodes, nlohmann::json* stats, const std::string& out, std::string* error) {
+    const SceneLooks looks = sceneLooks(job);
+    (*stats)["instances_per_look"] = lookCountsJson(job, looks, store);
+    InstanceExportOptions export_options;
+    export_options.static_meshes = static_meshes;
+    useLooks(looks, &export_options);
+    export_options.chunk_size_m = chunk_size_m > 0.0f ? chunk_size_m : job.project.chunk_size_m;
+    export_options.use_instancing_extension = !plain_nodes;
+    export_options.drops = drops;
+    return exportInstancedScene(out, job.tile, job.models, store, job.compiled.terrain.get(), terrain_box,
+                                export_options, stats->dump(), error);
+}
+
+int runInstantiateCommand(int argc, char** argv) {
+    Args args;
+    std::string error;
+    const char* usage =
+        "usage: undergrowth instantiate SCENE.json -o OUT.glb|OUT.gltf [--stats FILE] [--seed N] [--threads N]\n"
+        "       [--region xmin,ymin,zmin,xmax,ymax,zmax] [--cache DIR] [--plain-nodes] [--chunk METRES] [--measure]\n"
+        "   or: undergrowth instantiate --plan DIR --task I [--threads N]   (one task of `undergrowth plan`)";
+    if (!parseArgs(argc, argv, 2,
+                   {"-o", "--out", "--stats", "--seed", "--threads", "--region", "--cache", "--chunk", "--plan", "--task"},
+                   {"--plain-nodes", "--measure"}, &args, &error))
+        return fail(error + "\n" + usage, 2);
+    int threads = 0;
+    if (args.has("--threads")) {
+        long t;
+        if (!parseInt("--threads", args.get("--threads"), 0, 256, &t, &error)) return fail(error, 2);
+        threads = int(t);
+    }
+    if (args.has("--plan") || args.has("--task")) {
+        if (!args.has("--plan") || !args.has("--task") || !args.positional.empty())
+            return fail(std::string("a plan task takes --plan DIR and --task I and no scene\n") + usage, 2);
+        return runPlanTask(args.get("--plan"), args.get("--task"), threads);
+    }
+    if (args.positional.size() != 1) return fail(usage, 2);
+    InstantiateRequest request;
+    request.scene = args.positional[0];
+    request.threads = threads;
+    request.out = args.has("-o") ? args.get("-o") : args.get("--out");
+    if (request.out.empty()) return fail(std::string("missing -o OUT.glb\n") + usage, 2);
+    const std::string ext = fs::path(request.out).extension().string();
+    if (ext != ".glb" && ext != ".gltf") return fail(request.out + ": the output must end in .glb or .gltf", 2);
+    if (args.has("--region")) {
+        Bounds region;
+        if (!parseRegion(args.get("--region"), &region, &error)) return fail(error, 2);
+        request.region = region;
+    }
+    if (args.has("--chunk")) {
+        try {
+            request.chunk_size_m = std::stof(args.get("--chunk"));
+        } catch (...) {
+            request.chunk_size_m = -1.0f;
+        }
+        if (!(request.chunk_size_m > 0.0f) || !std::isfinite(request.chunk_size_m))
+            return fail("--chunk: expected a length in metres > 0", 2);
+    }
+    if (args.has("--seed")) {
+        const std::string s = args.get("--seed");
+        size_t used = 0;
+        uint64_t seed = 0;
+        try {
+            seed = std::stoull(s, &used);
+        } catch (...) {
+            used = 0;
+        }
+        if (used == 0 || used != s.size() || s[0] == '-') return fail("--seed: '" + s + "' is not a whole number >= 0", 2);
+        request.seed = seed;
+    }
+    request.cache_dir = args.get("--cache", (fs::path(request.out).parent_path() / "cache").string());
+    request.stats_path = args.get("--stats");
+    request.plain_nodes = args.has("--plain-nodes");
+    request.measure = args.has("--measure");
+    return runInstantiation(request, "instantiate");
 }
 
 }  // namespace ug::cli

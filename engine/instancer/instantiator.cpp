@@ -203,8 +203,9 @@ public:
 
     // ---- tile computation ----
     void computeTile(TileState* ts, const std::vector<const TileFieldList*>& parents, TileScratch* scratch) const;
+    // With `plan_only`: stops after planning (pass 1) and stores what the computation would hold there.
     bool enumerateAndCompute(const Bounds& box, const InstanceOptions& options, std::vector<TileState>* out,
-                             std::string* error) const;
+                             std::string* error, RegionFootprint* plan_only = nullptr) const;
     // Computes the given tiles one by one (no block pass), in parallel: dirty tiles, lazily needed tiles.
     std::vector<TileState> computeTiles(const std::vector<uint64_t>& keys, const InstanceOptions& options) const;
     void install(std::vector<TileState>&& computed, std::vector<int32_t>* installed);
@@ -484,9 +485,11 @@ void Instantiator::Engine::computeTile(TileState* ts, const std::vector<const Ti
 // Computes every tile of `box` (clipped to the extent) that may hold an alive candidate. Tiles a coarse
 // block test proves empty are not produced (in complete mode, absence means empty).
 bool Instantiator::Engine::enumerateAndCompute(const Bounds& box_in, const InstanceOptions& options,
-                                               std::vector<TileState>* out, std::string* error) const {
+                                               std::vector<TileState>* out, std::string* error,
+                                               RegionFootprint* plan_only) const {
     const Bounds box = intersect(box_in, input.extent);
     out->clear();
+    if (plan_only) *plan_only = RegionFootprint{};
     if (box.empty()) return true;
     const float s = prep.s;
     const glm::ivec3 tlo = tileOf(box.lo, s), thi = tileOf(box.hi, s);
@@ -510,6 +513,7 @@ bool Instantiator::Engine::enumerateAndCompute(const Bounds& box_in, const Insta
     const uint64_t per_tile =
         sizeof(TileState) + sizeof(glm::ivec3) + 2 * ((prep.n + 63) / 64) * 8 + uint64_t(per_variant) * 13;
     const uint64_t max_tiles = options.max_memory_bytes / per_tile;
+    if (plan_only) plan_only->bytes_per_tile = per_tile;  // also when refused: the planner reports it
 
     // The tiles of one block that may hold an alive candidate, given each type's positive bounds in the
     // block. Pass 1 counts them, pass 2 visits the same ones (same block lists, same bounds, same order).
@@ -576,6 +580,10 @@ bool Instantiator::Engine::enumerateAndCompute(const Bounds& box_in, const Insta
                      std::to_string(options.max_memory_bytes >> 20) +
                      " MiB; shrink the extent or the fields, or cut the world into --region jobs";
         return false;
+    }
+    if (plan_only) {
+        *plan_only = RegionFootprint{.tiles = tile_total, .bytes_per_tile = per_tile};
+        return true;
     }
 
     // Pass 2: compute the planned tiles, block by block (the block's lists prune the tiles' lists).
@@ -1164,6 +1172,16 @@ bool instantiateRegion(const InstancerInput& input, const Bounds& region, const 
     if (out) *out = e.store;
     if (stats) *stats = st;
     return true;
+}
+
+bool measureRegionFootprint(const InstancerInput& input, const Bounds& region, const InstanceOptions& options,
+                            RegionFootprint* out, std::string* error) {
+    Instantiator::Engine e;
+    if (!e.setInput(input, error)) return false;
+    e.complete = false;
+    e.region = region;
+    std::vector<TileState> none;
+    return e.enumerateAndCompute(region, options, &none, error, out);
 }
 
 }  // namespace ug

@@ -127,6 +127,19 @@ private:
 bool instantiateRegion(const InstancerInput& input, const Bounds& region, const InstanceOptions& options,
                        InstanceStore* out, InstanceStats* stats, std::string* error);
 
+// What instantiating a region holds at most, known before anything large is allocated: the tiles the
+// memory check of instantiateRegion plans for the region and the worst-case bytes of each. A planner of
+// region jobs sizes regions with it, so that no planned job is refused by that check.
+struct RegionFootprint {
+    uint64_t tiles = 0;
+    uint64_t bytes_per_tile = 0;
+    uint64_t bytes() const { return tiles * bytes_per_tile; }
+};
+// False (with the instancer's message) when the region alone is over options.max_memory_bytes; out still
+// holds bytes_per_tile then.
+bool measureRegionFootprint(const InstancerInput& input, const Bounds& region, const InstanceOptions& options,
+                            RegionFootprint* out, std::string* error);
+
 // The Ghost Tile variant of a world tile (docs/architecture.md "No period"): a hash of the instancing seed
 // and the packed tile, so it is a pure function like everything else here. Only that variant's candidates
 // can be alive in the tile; exporters, metrics and tests use this to know which ones a tile may hold.

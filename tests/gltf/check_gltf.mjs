@@ -4,6 +4,10 @@
 //
 //   node check_gltf.mjs FILE [--expect-instances N] [--expect-detail-instances N] [--expect-types K]
 //                            [--expect-images N] [--expect-textured-materials N] [--expect-per-mesh JSON]
+//                            [--dump-instances OUT.txt]
+//   (--dump-instances: every detail instance as a line "mesh x y z qx qy qz qw sx sy sz", its world
+//   position and its rotation and scale, sorted, so that two exports can be compared instance for instance
+//   with diff, whatever their chunking or the file they came from.)
 //   (--expect-per-mesh: {"<mesh name>": copies, ...}, e.g. the statistics' instances_per_look; a mesh the
 //    map names with 0 copies may be absent or drawn by no node)
 //   (detail instances: copies of meshes that carry collision_spheres extras, i.e. without the terrain)
@@ -29,7 +33,7 @@
 // does not know EXT_mesh_gpu_instancing: expect the infos UNSUPPORTED_EXTENSION, and UNUSED_OBJECT for
 // the instance accessors only the extension refers to.) Exit 0 when all checks pass, 1 otherwise (the
 // reasons on stderr), 2 on a bad command line.
-import { readFile } from 'node:fs/promises';
+import { readFile, writeFile } from 'node:fs/promises';
 import path from 'node:path';
 import process from 'node:process';
 
@@ -42,16 +46,20 @@ import { checkMaterials } from './check_materials.mjs';
 const kUnitTolerance = 1e-4;  // float32 quaternions normalized by a writer are within ~1e-7
 
 function usage(message) {
-    console.error(`check_gltf: ${message}\nusage: node check_gltf.mjs FILE [--expect-instances N] [--expect-detail-instances N] [--expect-types K] [--expect-images N] [--expect-textured-materials N] [--expect-per-mesh JSON]`);
+    console.error(`check_gltf: ${message}\nusage: node check_gltf.mjs FILE [--expect-instances N] [--expect-detail-instances N] [--expect-types K] [--expect-images N] [--expect-textured-materials N] [--expect-per-mesh JSON] [--dump-instances OUT.txt]`);
     process.exit(2);
 }
 
 function parseArgs(argv) {
     const args = { file: null, expectInstances: null, expectTypes: null, expectDetailInstances: null,
-                   expectImages: null, expectTexturedMaterials: null, expectPerMesh: null };
+                   expectImages: null, expectTexturedMaterials: null, expectPerMesh: null, dumpInstances: null };
     for (let i = 0; i < argv.length; ++i) {
         const a = argv[i];
-        if (a === '--expect-per-mesh') {
+        if (a === '--dump-instances') {
+            const value = argv[++i];
+            if (value === undefined) usage('--dump-instances needs a file name');
+            args.dumpInstances = value;
+        } else if (a === '--expect-per-mesh') {
             const value = argv[++i];
             let map = null;
             try {
@@ -168,6 +176,39 @@ function countInstances(document, problems) {
     return result;
 }
 
+// A detail instance as text: the world position (6 decimals) and the instance's own rotation and scale.
+function instanceLine(meshName, world, t, r, s) {
+    const p = [0, 1, 2].map((k) => world[k] * t[0] + world[4 + k] * t[1] + world[8 + k] * t[2] + world[12 + k]);
+    const f = (v) => (Math.abs(v) < 5e-7 ? 0 : v).toFixed(6);
+    return [meshName, ...p.map(f), ...r.map(f), ...s.map(f)].join(' ');
+}
+
+function dumpInstances(document) {
+    const lines = [];
+    const detailMeshes = new Set(
+        document.getRoot().listMeshes().filter((m) => Array.isArray((m.getExtras() || {}).collision_spheres)));
+    for (const node of document.getRoot().listNodes()) {
+        const mesh = node.getMesh();
+        if (!mesh || !detailMeshes.has(mesh)) continue;
+        const world = node.getWorldMatrix();
+        const instancing = node.getExtension('EXT_mesh_gpu_instancing');
+        const name = mesh.getName() || '(unnamed mesh)';
+        if (!instancing) {
+            lines.push(instanceLine(name, world, [0, 0, 0], node.getRotation(), node.getScale()));
+            continue;
+        }
+        const get = (semantic, size, fallback) => {
+            const a = instancing.getAttribute(semantic);
+            return (i) => (a ? a.getElement(i, new Array(size)) : fallback);
+        };
+        const t = get('TRANSLATION', 3, [0, 0, 0]), r = get('ROTATION', 4, [0, 0, 0, 1]), s = get('SCALE', 3, [1, 1, 1]);
+        const n = instancing.getAttribute('TRANSLATION')?.getCount() ?? 0;
+        for (let i = 0; i < n; ++i) lines.push(instanceLine(name, world, t(i), r(i), s(i)));
+    }
+    lines.sort();
+    return lines.join('\n') + (lines.length ? '\n' : '');
+}
+
 async function main() {
     const args = parseArgs(process.argv.slice(2));
     const file = args.file;
@@ -196,6 +237,7 @@ async function main() {
     try {
         const document = isGlb ? await io.readBinary(new Uint8Array(bytes)) : await io.read(file);
         counts = countInstances(document, problems);
+        if (args.dumpInstances) await writeFile(args.dumpInstances, dumpInstances(document));
         Object.assign(counts, checkMaterials(document, problems));
     } catch (e) {
         problems.push(`glTF-Transform could not read the file: ${e.message}`);
