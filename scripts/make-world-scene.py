@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Writes the sample worlds for region jobs (docs/worlds.md): rolling procedural terrain, meadow-like
 layers (grass tufts everywhere, denser in clearings; pebble trails) and rock piles.
-- assets/scenes/world_1km.json: one square kilometre, ~13 M instances; more than one process may hold
+- assets/scenes/world_1km.json: one square kilometre, 11.5 M instances; more than one process may hold
   (the instancer's 8 GiB check refuses it), run as a plan's job array.
 - assets/scenes/world_250m.json: the same recipe on 250 m x 250 m, which still fits one process: the
   bench runs it both ways to measure what the scheduler costs.

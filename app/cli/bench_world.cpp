@@ -13,11 +13,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <thread>
 
-#include <nlohmann/json.hpp>
-
 #include "cli/bench.h"
+#include "cli/cli_args.h"
 
 namespace ug::cli {
 
@@ -27,12 +27,6 @@ namespace fs = std::filesystem;
 
 double since(std::chrono::steady_clock::time_point t0) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
-std::string shellQuoted(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
 }
 
 // Runs a shell command; its standard output in *out (stderr goes to the bench's stderr). The exit code,
@@ -49,35 +43,33 @@ int shell(const std::string& command, std::string* out = nullptr) {
     return status != -1 && WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-std::string selfBinary() {
-    std::error_code ec;
-    const fs::path p = fs::read_symlink("/proc/self/exe", ec);
-    return ec ? std::string("undergrowth") : p.string();
-}
-
 // The cluster the section submits to: an existing one (SLURM_CONF) or one it starts and stops.
 class BenchCluster {
-public:
+  public:
     ~BenchCluster() {
-        if (!local_dir_.empty()) shell("bash " + shellQuoted(script_) + " stop " + shellQuoted(local_dir_) + " >/dev/null 2>&1");
+        if (!local_dir_.empty())
+            shell("bash " + shellQuote(script_) + " stop " + shellQuote(local_dir_) + " >/dev/null 2>&1");
     }
     // False with the reason when no cluster can be had (the section is skipped, not failed).
     bool open(const std::string& scratch, std::string* why) {
         if (const char* conf = std::getenv("SLURM_CONF"); conf && *conf) return true;
-        if (shell("command -v sbatch >/dev/null && command -v slurmctld >/dev/null && command -v munged >/dev/null") != 0)
-            return (*why = "no Slurm here (sbatch, slurmctld, munged: apt-get install slurm-wlm munge)", false);
-        if (geteuid() != 0) return (*why = "a single-node cluster needs root; or set SLURM_CONF to a cluster", false);
+        if (shell("command -v sbatch >/dev/null && command -v slurmctld >/dev/null && command -v munged "
+                  ">/dev/null") != 0)
+            return (*why = "no Slurm here (sbatch, slurmctld, munged: apt-get install slurm-wlm munge)",
+                    false);
+        if (geteuid() != 0)
+            return (*why = "a single-node cluster needs root; or set SLURM_CONF to a cluster", false);
         script_ = std::string(UG_SOURCE_DIR) + "/scripts/slurm-local.sh";
         const std::string dir = scratch + "/slurm";
         std::string out;
-        if (shell("bash " + shellQuoted(script_) + " start " + shellQuoted(dir) + " 2>&1", &out) != 0)
+        if (shell("bash " + shellQuote(script_) + " start " + shellQuote(dir) + " 2>&1", &out) != 0)
             return (*why = "the single-node cluster did not start: " + out, false);
         local_dir_ = dir;
         setenv("SLURM_CONF", (dir + "/slurm.conf").c_str(), 1);
         return true;
     }
 
-private:
+  private:
     std::string script_, local_dir_;
 };
 
@@ -86,7 +78,8 @@ bool waitForJobs(const std::string& ids, double limit_s) {
     const auto t0 = std::chrono::steady_clock::now();
     while (since(t0) < limit_s) {
         std::string out;
-        if (shell("squeue -h -j " + ids + " -t PD,R,CG,CF,RQ,S 2>/dev/null", &out) == 0 && out.empty()) return true;
+        if (shell("squeue -h -j " + ids + " -t PD,R,CG,CF,RQ,S 2>/dev/null", &out) == 0 && out.empty())
+            return true;
         std::this_thread::sleep_for(std::chrono::milliseconds(100));
     }
     return false;
@@ -104,13 +97,14 @@ struct SingleRun {
     uint64_t instances = 0;
 };
 
-bool runSingle(const std::string& bin, const std::string& scene, const std::string& dir, int threads, SingleRun* out,
-               std::string* error) {
+bool runSingle(const std::string& bin, const std::string& scene, const std::string& dir, int threads,
+               SingleRun* out, std::string* error) {
     const std::string stats = dir + "/single.stats.json";
     const auto t0 = std::chrono::steady_clock::now();
-    const std::string command = shellQuoted(bin) + " instantiate " + shellQuoted(scene) + " -o " + shellQuoted(dir + "/single.glb") +
-                                " --cache " + shellQuoted(dir + "/cache") + " --stats " + shellQuoted(stats) +
-                                " --threads " + std::to_string(threads) + " >/dev/null";
+    const std::string command = shellQuote(bin) + " instantiate " + shellQuote(scene) + " -o " +
+                                shellQuote(dir + "/single.glb") + " --cache " + shellQuote(dir + "/cache") +
+                                " --stats " + shellQuote(stats) + " --threads " + std::to_string(threads) +
+                                " >/dev/null";
     if (shell(command) != 0) return (*error = "single-process run failed: " + command, false);
     out->seconds = since(t0);
     nlohmann::json j;
@@ -134,7 +128,7 @@ bool runThroughSlurm(const std::string& plan, SlurmRun* out, std::string* error)
     }
     std::string ids;
     const auto t0 = std::chrono::steady_clock::now();
-    if (shell("bash " + shellQuoted(plan + "/submit.sh") + " 2>&1", &ids) != 0)
+    if (shell("bash " + shellQuote(plan + "/submit.sh") + " 2>&1", &ids) != 0)
         return (*error = "submit.sh failed: " + ids, false);
     // "cache A|- array B join C"
     char cache[32] = {}, array[32] = {}, join[32] = {};
@@ -142,8 +136,7 @@ bool runThroughSlurm(const std::string& plan, SlurmRun* out, std::string* error)
         return (*error = "submit.sh printed '" + ids + "'", false);
     const std::string jobs = std::string(cache) == "-" ? std::string(array) + "," + join
                                                        : std::string(cache) + "," + array + "," + join;
-    if (!waitForJobs(jobs, 6 * 3600.0))
-        return (*error = "the plan's jobs did not end within 6 hours", false);
+    if (!waitForJobs(jobs, 6 * 3600.0)) return (*error = "the plan's jobs did not end within 6 hours", false);
     out->seconds = since(t0);
     nlohmann::json manifest;
     if (!readJson(plan + "/manifest.json", &manifest, error))
@@ -156,7 +149,8 @@ bool runThroughSlurm(const std::string& plan, SlurmRun* out, std::string* error)
 bool makePlan(const std::string& bin, const std::string& scene, const std::string& plan, size_t* tasks,
               std::string* error) {
     std::string out;
-    const std::string command = shellQuoted(bin) + " plan " + shellQuoted(scene) + " --out " + shellQuoted(plan) + " --threads-per-task 1 2>&1";
+    const std::string command = shellQuote(bin) + " plan " + shellQuote(scene) + " --out " +
+                                shellQuote(plan) + " --threads-per-task 1 2>&1";
     if (shell(command, &out) != 0) return (*error = "plan failed: " + out, false);
     nlohmann::json j;
     if (!readJson(plan + "/plan.json", &j, error)) return false;
@@ -168,11 +162,13 @@ bool makePlan(const std::string& bin, const std::string& scene, const std::strin
 
 bool benchWorld(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error) {
     if (ctx.quick) {
-        std::fprintf(stderr, "bench: world skipped in --quick (minutes on a Slurm cluster; "
-                             "tests/cli/run_world_tests.sh checks the jobs)\n");
+        std::fprintf(stderr,
+                     "bench: world skipped in --quick (minutes on a Slurm cluster; "
+                     "tests/cli/run_world_tests.sh checks the jobs)\n");
         return true;
     }
-    const std::string scratch = (fs::temp_directory_path() / ("ug-bench-world-" + std::to_string(getpid()))).string();
+    const std::string scratch =
+        (fs::temp_directory_path() / ("ug-bench-world-" + std::to_string(getpid()))).string();
     std::error_code ec;
     fs::create_directories(scratch, ec);
     struct Cleanup {
@@ -188,7 +184,7 @@ bool benchWorld(const BenchContext& ctx, std::vector<BenchRow>* rows, std::strin
         std::fprintf(stderr, "bench: world skipped: %s\n", why.c_str());
         return true;
     }
-    const std::string bin = selfBinary();
+    const std::string bin = selfExecutablePath();
 
     // The scheduler's overhead on a world that still fits one process: one process with every thread
     // against the plan's job array (1 thread a task), alternately, on a warm cache; the plan's default
@@ -197,15 +193,16 @@ bool benchWorld(const BenchContext& ctx, std::vector<BenchRow>* rows, std::strin
     const std::string small_plan = scratch + "/plan_250m";
     size_t small_tasks = 0;
     if (!makePlan(bin, small, small_plan, &small_tasks, error)) return false;
-    if (shell(shellQuoted(bin) + " build-tile " + shellQuoted(small) + " --cache " + shellQuoted(scratch + "/cache") +
-              " >/dev/null") != 0)
+    if (shell(shellQuote(bin) + " build-tile " + shellQuote(small) + " --cache " +
+              shellQuote(scratch + "/cache") + " >/dev/null") != 0)
         return (*error = small + ": build-tile failed", false);
     const int threads = ctx.threads > 0 ? ctx.threads : int(std::thread::hardware_concurrency());
     std::vector<double> single_s, slurm_s;
     SingleRun single;
     SlurmRun slurm;
     for (int r = 0; r < 3; ++r) {
-        if (!runSingle(bin, small, scratch, threads, &single, error) || !runThroughSlurm(small_plan, &slurm, error))
+        if (!runSingle(bin, small, scratch, threads, &single, error) ||
+            !runThroughSlurm(small_plan, &slurm, error))
             return false;
         if (slurm.instances != single.instances)
             return (*error = "the joined world holds " + std::to_string(slurm.instances) +
@@ -213,8 +210,8 @@ bool benchWorld(const BenchContext& ctx, std::vector<BenchRow>* rows, std::strin
                     false);
         single_s.push_back(single.seconds);
         slurm_s.push_back(slurm.seconds);
-        std::fprintf(stderr, "bench: world_250m run %d: one process %.1f s, Slurm %.1f s\n", r + 1, single.seconds,
-                     slurm.seconds);
+        std::fprintf(stderr, "bench: world_250m run %d: one process %.1f s, Slurm %.1f s\n", r + 1,
+                     single.seconds, slurm.seconds);
     }
     const double one = median(single_s), many = median(slurm_s);
     const std::string note = "world_250m, " + std::to_string(single.instances) + " instances, median of 3";

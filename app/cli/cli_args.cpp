@@ -107,6 +107,18 @@ std::string assetsDir() {
     return std::string(UG_SOURCE_DIR) + "/assets";
 }
 
+std::string selfExecutablePath() {
+    std::error_code ec;
+    const std::filesystem::path p = std::filesystem::read_symlink("/proc/self/exe", ec);
+    return ec ? std::string("undergrowth") : p.string();
+}
+
+std::string shellQuote(const std::string& s) {
+    std::string q = "'";
+    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
+    return q + "'";
+}
+
 bool parseByteSize(const std::string& option, const std::string& text, uint64_t lo, uint64_t hi, uint64_t* out,
                    std::string* error) {
     size_t digits = 0;

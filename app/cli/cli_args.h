@@ -44,4 +44,11 @@ bool parseNumberList(const std::string& option, const std::string& text, std::ve
 // The assets folder: $UG_ASSETS, else <exe>/../assets or <exe>/../../assets, else the source tree's.
 std::string assetsDir();
 
+// This executable's absolute path (/proc/self/exe), or "undergrowth" when it cannot be read: what
+// region-job scripts and the bench run.
+std::string selfExecutablePath();
+
+// A word for the shell: single-quoted, inner quotes escaped.
+std::string shellQuote(const std::string& s);
+
 }  // namespace ug::cli

@@ -12,7 +12,6 @@
 #include "cli/commands.h"
 #include "cli/env_job.h"
 #include "cli/instantiation.h"
-#include "cli/region_plan.h"
 #include "cli/scene_job.h"
 #include "cli/scene_metrics.h"
 #include "core/atomic_file.h"

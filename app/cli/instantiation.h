@@ -4,13 +4,12 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
-#include "field/bounds.h"
 #include "cli/scene_job.h"
+#include "field/bounds.h"
 #include "instancer/instantiator.h"
 #include "instancer/settling.h"
 #include "io/mesh_instances.h"
@@ -45,8 +44,9 @@ int runInstantiation(const InstantiateRequest& request, const char* command);
 // `static_meshes` may be null; the terrain is meshed inside `terrain_box`; chunk_size_m <= 0 is the
 // project's. Adds "instances_per_look" to *stats, which goes into the file's extras.
 bool exportJobInstances(const SceneJob& job, const InstanceStore& store, const SettledDrops* drops,
-                        const std::vector<MeshInstances>* static_meshes, const Bounds& terrain_box, float chunk_size_m,
-                        bool plain_nodes, nlohmann::json* stats, const std::string& out, std::string* error);
+                        const std::vector<MeshInstances>* static_meshes, const Bounds& terrain_box,
+                        float chunk_size_m, bool plain_nodes, nlohmann::json* stats, const std::string& out,
+                        std::string* error);
 
 // `undergrowth instantiate --plan DIR --task I`: region I of the plan in DIR (region_plan.h).
 int runPlanTask(const std::string& plan_dir, const std::string& task, int threads);

@@ -51,8 +51,8 @@ bool readRegions(const RegionPlan& plan, std::vector<RegionResult>* out, std::st
     }
     if (!missing.empty()) {
         *error = std::to_string(missing.size()) + " of " + std::to_string(plan.regions.size()) +
-                 " regions are missing (tasks " + taskList(missing) + "); run them again: sbatch --array=" +
-                 taskList(missing) + " " + plan.dir + "/job.sbatch";
+                 " regions are missing (tasks " + taskList(missing) +
+                 "); run them again: sbatch --array=" + taskList(missing) + " " + plan.dir + "/job.sbatch";
         return false;
     }
     out->resize(plan.regions.size());
@@ -63,8 +63,9 @@ bool readRegions(const RegionPlan& plan, std::vector<RegionResult>* out, std::st
         const nlohmann::json header = nlohmann::json::parse(r.list.header_json, nullptr, false);
         const std::string from = header.is_object() ? header.value("plan", std::string("?")) : "?";
         if (from != hex64(plan.id) || r.list.ghost_tile_key != plan.ghost_tile_key)
-            return (*error = stem + ".ugi: region " + std::to_string(i) + " is from plan " + from + ", not from plan " +
-                             hex64(plan.id) + " (a stale output of an earlier plan?); run task " + std::to_string(i) +
+            return (*error = stem + ".ugi: region " + std::to_string(i) + " is from plan " + from +
+                             ", not from plan " + hex64(plan.id) +
+                             " (a stale output of an earlier plan?); run task " + std::to_string(i) +
                              " again",
                     false);
         if (header.value("task", int64_t(-1)) != int64_t(i))
@@ -102,10 +103,12 @@ bool mergeRegions(const std::vector<RegionResult>& regions, InstanceStore* store
             const uint64_t key = l.store.tileKey(t);
             l.store.tileIds(t, &ids);
             const std::span<const uint16_t> d = l.has_drops ? l.drops.tile(key) : std::span<const uint16_t>{};
-            for (size_t k = 0; k < ids.size(); ++k) all.push_back({key, ids[k], l.has_drops ? d[k] : uint16_t(0), ri});
+            for (size_t k = 0; k < ids.size(); ++k)
+                all.push_back({key, ids[k], l.has_drops ? d[k] : uint16_t(0), ri});
         }
     }
-    std::sort(all.begin(), all.end(), [](const Entry& a, const Entry& b) { return a.key != b.key ? a.key < b.key : a.id < b.id; });
+    std::sort(all.begin(), all.end(),
+              [](const Entry& a, const Entry& b) { return a.key != b.key ? a.key < b.key : a.id < b.id; });
     const bool has_drops = !regions.empty() && regions[0].list.has_drops;
     std::vector<uint16_t> tile_drops;
     for (size_t i = 0; i < all.size();) {
@@ -114,9 +117,9 @@ bool mergeRegions(const std::vector<RegionResult>& regions, InstanceStore* store
         tile_drops.clear();
         for (; j < all.size() && all[j].key == all[i].key; ++j) {
             if (j > i && all[j].id == all[j - 1].id) {
-                *error = "regions " + std::to_string(all[j - 1].region) + " and " + std::to_string(all[j].region) +
-                         " both hold candidate " + std::to_string(all[j].id) + " of tile " + hex64(all[j].key) +
-                         ": the regions overlap";
+                *error = "regions " + std::to_string(all[j - 1].region) + " and " +
+                         std::to_string(all[j].region) + " both hold candidate " + std::to_string(all[j].id) +
+                         " of tile " + hex64(all[j].key) + ": the regions overlap";
                 return false;
             }
             ids.push_back(all[j].id);
@@ -132,7 +135,8 @@ bool mergeRegions(const std::vector<RegionResult>& regions, InstanceStore* store
 }  // namespace
 
 int runJoinCommand(int argc, char** argv) {
-    const char* usage = "usage: undergrowth join DIR [-o WORLD.glb|WORLD.gltf] [--max-bytes BYTES] [--threads N]";
+    const char* usage =
+        "usage: undergrowth join DIR [-o WORLD.glb|WORLD.gltf] [--max-bytes BYTES] [--threads N]";
     Args args;
     std::string error;
     if (!parseArgs(argc, argv, 2, {"-o", "--out", "--max-bytes", "--threads"}, {}, &args, &error) ||
@@ -183,17 +187,23 @@ int runJoinCommand(int argc, char** argv) {
 
     const uint64_t estimate = store.instanceCount() * kJoinedBytesPerInstance;
     if (!out.empty() && estimate > max_bytes) {
-        manifest["joined_refused"] = "about " + std::to_string(estimate >> 20) + " MiB, more than --max-bytes";
-        std::printf("the world (%llu instances, about %llu MiB) is bigger than --max-bytes (%llu MiB): it stays as %zu "
-                    "region files plus the manifest\n",
-                    static_cast<unsigned long long>(store.instanceCount()), static_cast<unsigned long long>(estimate >> 20),
-                    static_cast<unsigned long long>(max_bytes >> 20), regions.size());
+        manifest["joined_refused"] =
+            "about " + std::to_string(estimate >> 20) + " MiB, more than --max-bytes";
+        std::printf(
+            "the world (%llu instances, about %llu MiB) is bigger than --max-bytes (%llu MiB): it stays as "
+            "%zu "
+            "region files plus the manifest\n",
+            static_cast<unsigned long long>(store.instanceCount()),
+            static_cast<unsigned long long>(estimate >> 20), static_cast<unsigned long long>(max_bytes >> 20),
+            regions.size());
     } else if (!out.empty()) {
         SceneJob job;
-        if (!loadSceneJob(plan.scene, (fs::path(plan.dir) / "cache").string(), int(threads), true, &job, &error))
+        if (!loadSceneJob(plan.scene, (fs::path(plan.dir) / "cache").string(), int(threads), true, &job,
+                          &error))
             return fail(error);
         if (job.tile.key != plan.ghost_tile_key)
-            return fail(plan.scene + ": its Ghost Tile changed since plan " + hex64(plan.id) + "; make the plan again");
+            return fail(plan.scene + ": its Ghost Tile changed since plan " + hex64(plan.id) +
+                        "; make the plan again");
         // The lists' checksums catch damage, not a list written by something else: every id must name a
         // candidate of this tile before the export looks it up.
         uint64_t bad_id = 0;
@@ -201,8 +211,9 @@ int runJoinCommand(int argc, char** argv) {
             if (j >= job.tile.candidates.size()) bad_id = uint64_t(j) + 1;
         });
         if (bad_id != 0)
-            return fail(plan.dir + ": a region holds candidate " + std::to_string(bad_id - 1) + ", but the Ghost Tile has " +
-                        std::to_string(job.tile.candidates.size()) + "; run the plan's tasks again");
+            return fail(plan.dir + ": a region holds candidate " + std::to_string(bad_id - 1) +
+                        ", but the Ghost Tile has " + std::to_string(job.tile.candidates.size()) +
+                        "; run the plan's tasks again");
         // The environment's effects are a function of the scene's objects alone, cheap next to the details:
         // computed once for the whole world rather than stitched from the regions' meshes.
         SceneEnvironmentOutput env;

@@ -30,12 +30,6 @@ bool hashFile(const std::string& path, uint64_t* out, std::string* error) {
     return true;
 }
 
-std::string selfPath() {
-    std::error_code ec;
-    const fs::path p = fs::read_symlink("/proc/self/exe", ec);
-    return ec ? std::string("undergrowth") : p.string();
-}
-
 // A task's outputs are complete for this plan: the instance list (written last) reads back whole and
 // names this plan and task, and the glTF and statistics beside it exist.
 bool regionDone(const RegionPlan& plan, size_t task) {
@@ -46,19 +40,22 @@ bool regionDone(const RegionPlan& plan, size_t task) {
     if (!readInstanceListFile(stem + ".ugi", &list, &error)) return false;
     const nlohmann::json header = nlohmann::json::parse(list.header_json, nullptr, false);
     return list.ghost_tile_key == plan.ghost_tile_key && header.is_object() &&
-           header.value("plan", std::string()) == hex64(plan.id) && header.value("task", int64_t(-1)) == int64_t(task);
+           header.value("plan", std::string()) == hex64(plan.id) &&
+           header.value("task", int64_t(-1)) == int64_t(task);
 }
 
 }  // namespace
 
 int runPlanCommand(int argc, char** argv) {
     const char* usage =
-        "usage: undergrowth plan SCENE.json --out DIR [--memory-per-job BYTES] [--max-jobs N] [--threads-per-task N]\n"
+        "usage: undergrowth plan SCENE.json --out DIR [--memory-per-job BYTES] [--max-jobs N] "
+        "[--threads-per-task N]\n"
         "                        [--seed N] [--binary PATH] [--threads N]";
     Args args;
     std::string error;
     if (!parseArgs(argc, argv, 2,
-                   {"--out", "-o", "--memory-per-job", "--max-jobs", "--threads-per-task", "--seed", "--binary", "--threads"},
+                   {"--out", "-o", "--memory-per-job", "--max-jobs", "--threads-per-task", "--seed",
+                    "--binary", "--threads"},
                    {}, &args, &error) ||
         args.positional.size() != 1)
         return failWith("plan", error.empty() ? usage : error + "\n" + usage, 2);
@@ -66,10 +63,11 @@ int runPlanCommand(int argc, char** argv) {
     if (dir_arg.empty()) return failWith("plan", std::string("missing --out DIR\n") + usage, 2);
     uint64_t memory = 4ull << 30;
     long max_jobs = kMaxPlanTasks, task_threads = 1, threads = 0;
-    if (args.has("--memory-per-job") &&
-        !parseByteSize("--memory-per-job", args.get("--memory-per-job"), 1ull << 20, 1ull << 44, &memory, &error))
+    if (args.has("--memory-per-job") && !parseByteSize("--memory-per-job", args.get("--memory-per-job"),
+                                                       1ull << 20, 1ull << 44, &memory, &error))
         return failWith("plan", error, 2);
-    if ((args.has("--max-jobs") && !parseInt("--max-jobs", args.get("--max-jobs"), 1, kMaxPlanTasks, &max_jobs, &error)) ||
+    if ((args.has("--max-jobs") &&
+         !parseInt("--max-jobs", args.get("--max-jobs"), 1, kMaxPlanTasks, &max_jobs, &error)) ||
         (args.has("--threads-per-task") &&
          !parseInt("--threads-per-task", args.get("--threads-per-task"), 1, 256, &task_threads, &error)) ||
         (args.has("--threads") && !parseInt("--threads", args.get("--threads"), 0, 256, &threads, &error)))
@@ -81,7 +79,7 @@ int runPlanCommand(int argc, char** argv) {
     plan.scene = fs::absolute(args.positional[0]).lexically_normal().string();
     plan.memory_per_job = memory;
     plan.threads_per_task = int(task_threads);
-    plan.binary = args.has("--binary") ? args.get("--binary") : selfPath();
+    plan.binary = args.has("--binary") ? args.get("--binary") : selfExecutablePath();
     std::error_code ec;
     for (const char* sub : {"regions", "logs", "cache"}) fs::create_directories(fs::path(plan.dir) / sub, ec);
     if (ec) return failWith("plan", plan.dir + ": cannot create the plan's folders: " + ec.message());
@@ -97,27 +95,31 @@ int runPlanCommand(int argc, char** argv) {
     plan.seed = job.project.instantiation_seed;
     if (args.has("--seed")) {
         long seed;
-        if (!parseInt("--seed", args.get("--seed"), 0, 0x7fffffffffffffffL, &seed, &error)) return failWith("plan", error, 2);
+        if (!parseInt("--seed", args.get("--seed"), 0, 0x7fffffffffffffffL, &seed, &error))
+            return failWith("plan", error, 2);
         plan.seed = uint64_t(seed);
     }
     plan.chunk_size_m = job.project.chunk_size_m;
     plan.extent = job.compiled.extent;
     const InstancerInput input = instancerInput(job, plan.seed);
-    const SettleInput settle = settleInput(job.project, job.compiled.terrain, job.tile, job.models, job.environment.get());
+    const SettleInput settle =
+        settleInput(job.project, job.compiled.terrain, job.tile, job.models, job.environment.get());
     const float halo = settle.settings.enabled ? settleHaloMetres(settle) : 0.0f;
     if (!cutIntoRegions(input, halo, int(max_jobs), int(threads), &plan, &error))
         return failWith("plan", plan.scene + ": " + error);
     plan.id = planId(plan);
-    if (!writeTextFileAtomically((fs::path(plan.dir) / "plan.json").string(), planJson(plan).dump(2) + "\n", &error) ||
+    if (!writeTextFileAtomically((fs::path(plan.dir) / "plan.json").string(), planJson(plan).dump(2) + "\n",
+                                 &error) ||
         !writeSlurmScripts(plan, &error))
         return failWith("plan", error);
     uint64_t largest = 0;
     for (const PlannedRegion& r : plan.regions) largest = std::max(largest, r.footprint_bytes);
-    std::printf("plan %s: %zu tasks of %llu MiB (largest instancer footprint %.1f MiB of %llu) -> %s/plan.json\n"
-                "submit with: %s/submit.sh [sbatch options]\n",
-                hex64(plan.id).c_str(), plan.regions.size(), static_cast<unsigned long long>(memory >> 20),
-                double(largest) / double(1 << 20), static_cast<unsigned long long>(plan.instancerBudget() >> 20),
-                plan.dir.c_str(), plan.dir.c_str());
+    std::printf(
+        "plan %s: %zu tasks of %llu MiB (largest instancer footprint %.1f MiB of %llu) -> %s/plan.json\n"
+        "submit with: %s/submit.sh [sbatch options]\n",
+        hex64(plan.id).c_str(), plan.regions.size(), static_cast<unsigned long long>(memory >> 20),
+        double(largest) / double(1 << 20), static_cast<unsigned long long>(plan.instancerBudget() >> 20),
+        plan.dir.c_str(), plan.dir.c_str());
     return 0;
 }
 
@@ -148,7 +150,8 @@ int runPlanTask(const std::string& plan_dir, const std::string& task_text, int t
     request.cache_dir = (fs::path(plan.dir) / "cache").string();
     request.instances_path = stem + ".ugi";
     request.instances_header = {{"plan", hex64(plan.id)}, {"task", task}};
-    request.stats_extra = {{"plan", {{"id", hex64(plan.id)}, {"task", task}, {"tasks", plan.regions.size()}}}};
+    request.stats_extra = {
+        {"plan", {{"id", hex64(plan.id)}, {"task", task}, {"tasks", plan.regions.size()}}}};
     request.threads = threads;
     request.seed = plan.seed;
     request.region = plan.regions[size_t(task)].box;

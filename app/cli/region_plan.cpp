@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <stdexcept>
 
+#include "cli/cli_args.h"
 #include "core/atomic_file.h"
 #include "core/hash.h"
 #include "ghosttile/ghost_tile_cache.h"
@@ -48,13 +49,6 @@ nlohmann::json decidingJson(const RegionPlan& plan) {
     return {{"scene_hash", hex64(plan.scene_hash)}, {"ghost_tile_key", hex64(plan.ghost_tile_key)},
             {"seed", plan.seed},                    {"chunk_size_m", plan.chunk_size_m},
             {"regions", regions}};
-}
-
-// A value for Slurm's #SBATCH lines and for the shell: single-quoted, quotes escaped.
-std::string shellQuote(const std::string& s) {
-    std::string q = "'";
-    for (char c : s) q += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return q + "'";
 }
 
 // Reading the plan back: a missing or mistyped key throws with its JSON Pointer.

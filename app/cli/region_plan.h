@@ -10,10 +10,9 @@
 #pragma once
 
 #include <cstdint>
+#include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "field/bounds.h"
 #include "instancer/instantiator.h"
@@ -26,9 +25,9 @@ struct PlannedRegion {
 };
 
 struct RegionPlan {
-    std::string dir;    // absolute
-    std::string scene;  // absolute
-    std::string name;   // the project's
+    std::string dir;          // absolute
+    std::string scene;        // absolute
+    std::string name;         // the project's
     uint64_t scene_hash = 0;  // hashBytes of the scene file
     uint64_t ghost_tile_key = 0;
     uint64_t seed = 0;

@@ -117,7 +117,8 @@ bool readInstanceListFile(const std::string& path, InstanceListFile* out, std::s
     if (bytes.size() < r.at + 8) return fail("truncated (no checksum)");
     uint64_t stored = 0;
     std::memcpy(&stored, bytes.data() + bytes.size() - 8, 8);
-    if (stored != hashBytes(bytes.data(), bytes.size() - 8)) return fail("checksum mismatch (corrupt or truncated)");
+    if (stored != hashBytes(bytes.data(), bytes.size() - 8))
+        return fail("checksum mismatch (corrupt or truncated)");
     r.size = bytes.size() - 8;
     uint64_t tiles = 0, instances = 0;
     uint8_t has_drops = 0;
@@ -146,7 +147,8 @@ bool readInstanceListFile(const std::string& path, InstanceListFile* out, std::s
         std::memcpy(ids.data(), bytes.data() + r.at, size_t(n) * 4);
         r.at += size_t(n) * 4;
         for (uint32_t i = 1; i < n; ++i)
-            if (ids[i] <= ids[i - 1]) return fail("candidate ids are not ascending in tile " + std::to_string(t));
+            if (ids[i] <= ids[i - 1])
+                return fail("candidate ids are not ascending in tile " + std::to_string(t));
         out->store.appendTile(key, ids);
         if (out->has_drops) {
             drops.resize(n);
@@ -156,8 +158,9 @@ bool readInstanceListFile(const std::string& path, InstanceListFile* out, std::s
         }
         seen += n;
     }
-    if (seen != instances) return fail("holds " + std::to_string(seen) + " instances, its count says " +
-                                       std::to_string(instances));
+    if (seen != instances)
+        return fail("holds " + std::to_string(seen) + " instances, its count says " +
+                    std::to_string(instances));
     if (r.at != r.size) return fail(std::to_string(r.size - r.at) + " bytes after the last tile");
     return true;
 }

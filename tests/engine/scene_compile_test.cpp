@@ -450,7 +450,7 @@ TEST(SceneCompile, EveryBundledSceneLoadsAndCompiles) {
     std::sort(seen.begin(), seen.end());
     EXPECT_EQ(seen, (std::vector<std::string>{"beaver_dam", "default", "haystack_field", "meadow", "montmartre_winter",
                                               "park_autumn", "road_autumn", "road_winter", "rock_pile", "stone_hut",
-                                              "street_autumn", "street_winter"}));
+                                              "street_autumn", "street_winter", "world_1km", "world_250m"}));
 }
 
 TEST(SceneCompile, BundledScenesHaveTheirDesignedShape) {
@@ -460,6 +460,20 @@ TEST(SceneCompile, BundledScenesHaveTheirDesignedShape) {
         ASSERT_TRUE(loadProject((dir / name).string(), p, &error)) << error;
         ASSERT_TRUE(compile(*p, s));
     };
+    for (const auto& [name, side] : {std::pair{"world_1km.json", 1000.0f}, std::pair{"world_250m.json", 250.0f}}) {
+        // The region-job worlds (docs/worlds.md): the large one at least a square kilometre, every type
+        // in it, the terrain under the whole extent.
+        Project p;
+        CompiledScene s;
+        load(name, &p, &s);
+        EXPECT_EQ(s.extent.hi.x - s.extent.lo.x, side) << name;
+        EXPECT_EQ(s.extent.hi.y - s.extent.lo.y, side) << name;
+        EXPECT_EQ(p.detail_types.size(), 3u) << name;
+        ASSERT_TRUE(s.terrain) << name;
+        EXPECT_LE(s.terrain->origin().x, s.extent.lo.x) << name;
+        EXPECT_GE(s.terrain->origin().y + s.terrain->cellSize() * float(s.terrain->height() - 1), s.extent.hi.y)
+            << name;
+    }
     {
         // The haystack field is the global-instantiation benchmark: its grass covers the whole terrain.
         Project p;
