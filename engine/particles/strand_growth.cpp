@@ -101,6 +101,7 @@ public:
 private:
     void seed();
     void propose(size_t k, uint32_t step);
+    bool isAncestor(uint32_t strand, uint32_t s) const;
     bool hitsEarlierSegment(size_t k) const;
     bool hitsLowerMove(size_t k) const;
     void apply(const StrandAction& action, uint32_t strand);
@@ -183,15 +184,27 @@ void Growth::propose(size_t k, uint32_t step) {
     moves_.blocked[k] = 0;
 }
 
+bool Growth::isAncestor(uint32_t strand, uint32_t s) const {
+    for (int32_t p = strands_.parent[s]; p >= 0; p = strands_.parent[size_t(p)])
+        if (uint32_t(p) == strand) return true;
+    return false;
+}
+
 bool Growth::hitsEarlierSegment(size_t k) const {
     const uint32_t s = active_[k];
     const uint32_t from = strands_.last[s];
     const glm::vec3 a = points_.pos[from], b = moves_.pos[k];
+    // A child's first move leaves its split point, which may lie within reach of its ancestors' last
+    // segments besides the one it ends (a cutter can clip the parent's last move to almost nothing):
+    // those touch the child where it is rooted, as the parent's own segments touch each other.
+    const bool leaving_split = strands_.parent[s] >= 0 && from == strands_.first[s];
     return grid_.anyNear(0.5f * (a + b), [&](uint32_t end, uint32_t strand) {
         if (strand == s || end == from) return false;
         const uint32_t start = points_.prev[end];
         if (start == from) return false;
-        return segmentSegmentDistance2(a, b, points_.pos[start], points_.pos[end]) < reach2_;
+        const glm::vec3 p = points_.pos[start], q = points_.pos[end];
+        if (segmentSegmentDistance2(a, b, p, q) >= reach2_) return false;
+        return !(leaving_split && segmentSegmentDistance2(a, a, p, q) < reach2_ && isAncestor(strand, s));
     });
 }
 
