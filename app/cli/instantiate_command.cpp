@@ -176,7 +176,7 @@ int runInstantiation(const InstantiateRequest& request, const char* command) {
     // world once, not the whole terrain once per region.
     const Bounds terrain_box = region ? intersect(*region, job.compiled.extent) : job.compiled.extent;
     if (!exportJobInstances(job, store, settled, &env.meshes, terrain_box, request.chunk_size_m, request.plain_nodes,
-                            &stats, request.out, &error))
+                            threads, &stats, request.out, &error))
         return fail(error);
     if (!request.stats_path.empty() && !writeTextFileAtomically(request.stats_path, stats.dump(2) + "\n", &error))
         return fail(error);
@@ -192,12 +192,13 @@ int runInstantiation(const InstantiateRequest& request, const char* command) {
 
 bool exportJobInstances(const SceneJob& job, const InstanceStore& store, const SettledDrops* drops,
                         const std::vector<MeshInstances>* static_meshes, const Bounds& terrain_box, float chunk_size_m,
-                        bool plain_nodes, nlohmann::json* stats, const std::string& out, std::string* error) {
+                        bool plain_nodes, int threads, nlohmann::json* stats, const std::string& out, std::string* error) {
     const SceneLooks looks = sceneLooks(job);
-    (*stats)["instances_per_look"] = lookCountsJson(job, looks, store);
+    const std::vector<uint32_t> instance_looks = instanceLooks(job, looks, store, threads);
+    (*stats)["instances_per_look"] = lookCountsJson(job, looks, store, instance_looks);
     InstanceExportOptions export_options;
     export_options.static_meshes = static_meshes;
-    useLooks(looks, &export_options);
+    useLooks(looks, instance_looks, &export_options);
     export_options.chunk_size_m = chunk_size_m > 0.0f ? chunk_size_m : job.project.chunk_size_m;
     export_options.use_instancing_extension = !plain_nodes;
     export_options.drops = drops;

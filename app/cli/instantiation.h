@@ -45,7 +45,7 @@ int runInstantiation(const InstantiateRequest& request, const char* command);
 // project's. Adds "instances_per_look" to *stats, which goes into the file's extras.
 bool exportJobInstances(const SceneJob& job, const InstanceStore& store, const SettledDrops* drops,
                         const std::vector<MeshInstances>* static_meshes, const Bounds& terrain_box,
-                        float chunk_size_m, bool plain_nodes, nlohmann::json* stats, const std::string& out,
+                        float chunk_size_m, bool plain_nodes, int threads, nlohmann::json* stats, const std::string& out,
                         std::string* error);
 
 // `undergrowth instantiate --plan DIR --task I`: region I of the plan in DIR (region_plan.h).

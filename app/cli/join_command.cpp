@@ -231,7 +231,7 @@ int runJoinCommand(int argc, char** argv) {
         if (!env.stats.is_null()) stats["environment"] = env.stats;
         const bool has_drops = regions[0].list.has_drops;
         if (!exportJobInstances(job, store, has_drops ? &drops : nullptr, &env.meshes, job.compiled.extent,
-                                plan.chunk_size_m, false, &stats, out, &error))
+                                plan.chunk_size_m, false, int(threads), &stats, out, &error))
             return fail(error);
         manifest["joined"] = fs::absolute(out).lexically_normal().string();
     }

@@ -1,6 +1,9 @@
 #include "cli/scene_job.h"
 
+#include <algorithm>
 #include <cstdio>
+
+#include "core/parallel.h"
 
 #include "instancer/tile_coord.h"
 #include "scene/scene_load.h"
@@ -42,24 +45,46 @@ SceneLooks sceneLooks(const SceneJob& job) {
     return out;
 }
 
-nlohmann::json lookCountsJson(const SceneJob& job, const SceneLooks& looks, const InstanceStore& store) {
-    std::vector<uint64_t> counts(looks.looks.size(), 0);
+std::vector<uint32_t> instanceLooks(const SceneJob& job, const SceneLooks& looks, const InstanceStore& store,
+                                    int threads) {
+    if (!looks.looks.hasVariants()) return {};
     const CandidateSet& c = job.tile.candidates;
-    store.forEach([&](uint64_t key, uint32_t j) {
-        const glm::vec3 origin = tileOrigin(unpackTile(key), job.tile.settings.tile_size_m) + c.position[j];
-        ++counts[looks.looks.lookOf(c.type[j], origin)];
+    const size_t tiles_per_block = 1024;
+    const size_t blocks = (store.tileCount() + tiles_per_block - 1) / tiles_per_block;
+    std::vector<std::vector<uint32_t>> per_block(blocks);
+    parallelFor(blocks, threads, 1, [&](size_t begin, size_t end, int) {
+        std::vector<uint32_t> ids;
+        for (size_t b = begin; b < end; ++b)
+            for (size_t t = b * tiles_per_block; t < std::min(store.tileCount(), (b + 1) * tiles_per_block); ++t) {
+                const uint64_t key = store.tileKey(t);
+                const glm::vec3 origin = tileOrigin(unpackTile(key), job.tile.settings.tile_size_m);
+                store.tileIds(t, &ids);
+                for (uint32_t j : ids) per_block[b].push_back(looks.looks.lookOf(c.type[j], origin + c.position[j]));
+            }
     });
+    std::vector<uint32_t> out;
+    out.reserve(store.instanceCount());
+    for (const std::vector<uint32_t>& block : per_block) out.insert(out.end(), block.begin(), block.end());
+    return out;
+}
+
+nlohmann::json lookCountsJson(const SceneJob& job, const SceneLooks& looks, const InstanceStore& store,
+                              const std::vector<uint32_t>& instance_looks) {
+    std::vector<uint64_t> counts(looks.looks.size(), 0);
+    if (instance_looks.empty())
+        store.forEach([&](uint64_t, uint32_t j) { ++counts[job.tile.candidates.type[j]]; });
+    else
+        for (uint32_t look : instance_looks) ++counts[look];
     nlohmann::json out = nlohmann::json::object();
     for (size_t l = 0; l < counts.size(); ++l) out[looks.looks.models[l]->name] = counts[l];
     return out;
 }
 
-void useLooks(const SceneLooks& looks, InstanceExportOptions* options) {
+void useLooks(const SceneLooks& looks, const std::vector<uint32_t>& instance_looks, InstanceExportOptions* options) {
     options->materials = &looks.materials;
-    if (!looks.looks.hasVariants()) return;
+    if (instance_looks.empty()) return;
     options->look_models = looks.looks.models;
-    const DetailLooks* l = &looks.looks;
-    options->look_of = [l](uint32_t type, glm::vec3 origin) { return l->lookOf(type, origin); };
+    options->instance_looks = &instance_looks;
 }
 
 InstancerInput instancerInput(const SceneJob& job, uint64_t seed) {

@@ -37,11 +37,17 @@ struct SceneLooks {
     DetailLooks looks;
 };
 SceneLooks sceneLooks(const SceneJob& job);
-// Points the export's materials and looks at `looks`, which must outlive the options.
-void useLooks(const SceneLooks& looks, InstanceExportOptions* options);
+// Each instance's look in the store's order (InstanceStore::forEach), blocks of tiles in parallel:
+// worked out once for both the statistics and the export (a variant's look asks the environment).
+// Empty when no type has variants (every instance is its type's look).
+std::vector<uint32_t> instanceLooks(const SceneJob& job, const SceneLooks& looks, const InstanceStore& store,
+                                    int threads);
+// Points the export's materials and looks at `looks` and `instance_looks`, which must outlive the options.
+void useLooks(const SceneLooks& looks, const std::vector<uint32_t>& instance_looks, InstanceExportOptions* options);
 // {"<look name>": instances, ...}: what each exported detail mesh holds (the types' counts when no type
 // has variants).
-nlohmann::json lookCountsJson(const SceneJob& job, const SceneLooks& looks, const InstanceStore& store);
+nlohmann::json lookCountsJson(const SceneJob& job, const SceneLooks& looks, const InstanceStore& store,
+                              const std::vector<uint32_t>& instance_looks);
 
 // Loads the project, fits its models, loads or builds the Ghost Tile (progress on stderr unless quiet) and
 // compiles the fields. Errors name the scene file.

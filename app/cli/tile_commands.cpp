@@ -207,9 +207,10 @@ int runHeadlessJob(const std::string& scene, const std::string& out_dir, int thr
     if (!computeSceneEnvironment(job, threads, nullptr, false, &env, &error)) return fail("run", error);
     if (!env.stats.is_null()) istats["environment"] = env.stats;
     const SceneLooks looks = sceneLooks(job);
-    istats["instances_per_look"] = lookCountsJson(job, looks, inst.store());
+    const std::vector<uint32_t> instance_looks = instanceLooks(job, looks, inst.store(), threads);
+    istats["instances_per_look"] = lookCountsJson(job, looks, inst.store(), instance_looks);
     InstanceExportOptions export_options;
-    useLooks(looks, &export_options);
+    useLooks(looks, instance_looks, &export_options);
     export_options.static_meshes = &env.meshes;
     export_options.chunk_size_m = job.project.chunk_size_m;
     // Settled like `instantiate` and the editor, so the main job's export rests where they show it.

@@ -26,7 +26,12 @@ bool exportInstancedScene(const std::string& path, const GhostTile& tile, const 
     }
     // Without looks each type is its own look.
     std::vector<const DetailModel*> looks = options.look_models;
-    if (!options.look_of) {
+    if (options.instance_looks && options.instance_looks->size() != store.instanceCount()) {
+        if (error) *error = path + ": " + std::to_string(options.instance_looks->size()) + " looks for " +
+                            std::to_string(store.instanceCount()) + " instances";
+        return false;
+    }
+    if (!options.instance_looks) {
         looks.clear();
         for (const DetailModel& m : models) looks.push_back(&m);
     }
@@ -57,18 +62,24 @@ bool exportInstancedScene(const std::string& path, const GhostTile& tile, const 
     const uint64_t total = store.instanceCount();
     uint64_t done = 0;
     bool cancelled = false;
+    uint64_t index = 0;
+    bool bad_look = false;
     forEachSettled(store, options.drops, [&](uint64_t key, uint32_t j, float drop_m) {
-        if (cancelled) return;
+        if (cancelled || bad_look) return;
         const InstanceTransform t = instanceTransform(tile, key, j, drop_m);
-        uint32_t look = c.type[j];
-        if (options.look_of) {
-            const glm::vec3 origin = tileOrigin(unpackTile(key), tile.settings.tile_size_m) + c.position[j];
-            look = options.look_of(look, origin);
+        const uint32_t look = options.instance_looks ? (*options.instance_looks)[index++] : c.type[j];
+        if (look >= scene.types.size()) {
+            bad_look = true;
+            return;
         }
         scene.types[look].instances.push_back(t);
         if (options.progress && (++done & 0x3fff) == 0)
             cancelled = !options.progress(0.8f * float(done) / float(total));
     });
+    if (bad_look) {
+        if (error) *error = path + ": an instance's look is beyond the " + std::to_string(looks.size()) + " looks";
+        return false;
+    }
     auto stopped = [&](float fraction) {
         if (cancelled || (options.progress && !options.progress(fraction))) {
             if (error) *error = path + ": cancelled";

@@ -36,11 +36,12 @@ struct InstanceExportOptions {
     // Static meshes written after the detail types and the terrain (io/mesh_instances.h: environmental
     // objects, snow, icicles), or null: none.
     const std::vector<MeshInstances>* static_meshes = nullptr;
-    // Looks (scene/detail_looks.h): when look_of is set, instances are written per look instead of per
-    // type, look l as look_models[l] with materials->types[l]; look_of(type, candidate origin) picks an
-    // instance's (a scattered type's variants: wet leaves in the puddle). Looks [0, types) are the types.
+    // Looks (scene/detail_looks.h): when instance_looks is set, instances are written per look instead
+    // of per type, look l as look_models[l] with materials->types[l]; instance_looks holds each instance's
+    // look in the store's order (InstanceStore::forEach), worked out once by the caller (a scattered
+    // type's variants: wet leaves in the puddle). Looks [0, types) are the types.
     std::vector<const DetailModel*> look_models;
-    std::function<uint32_t(uint32_t type, glm::vec3 origin)> look_of;
+    const std::vector<uint32_t>* instance_looks = nullptr;
 };
 
 // The world frame of candidate j in the tile with packed key tile_key, lowered by its settled drop.
