@@ -1,9 +1,6 @@
 #include "cli/scene_job.h"
 
-#include <algorithm>
 #include <cstdio>
-
-#include "core/parallel.h"
 
 #include "instancer/tile_coord.h"
 #include "scene/scene_load.h"
@@ -47,25 +44,7 @@ SceneLooks sceneLooks(const SceneJob& job) {
 
 std::vector<uint32_t> instanceLooks(const SceneJob& job, const SceneLooks& looks, const InstanceStore& store,
                                     int threads) {
-    if (!looks.looks.hasVariants()) return {};
-    const CandidateSet& c = job.tile.candidates;
-    const size_t tiles_per_block = 1024;
-    const size_t blocks = (store.tileCount() + tiles_per_block - 1) / tiles_per_block;
-    std::vector<std::vector<uint32_t>> per_block(blocks);
-    parallelFor(blocks, threads, 1, [&](size_t begin, size_t end, int) {
-        std::vector<uint32_t> ids;
-        for (size_t b = begin; b < end; ++b)
-            for (size_t t = b * tiles_per_block; t < std::min(store.tileCount(), (b + 1) * tiles_per_block); ++t) {
-                const uint64_t key = store.tileKey(t);
-                const glm::vec3 origin = tileOrigin(unpackTile(key), job.tile.settings.tile_size_m);
-                store.tileIds(t, &ids);
-                for (uint32_t j : ids) per_block[b].push_back(looks.looks.lookOf(c.type[j], origin + c.position[j]));
-            }
-    });
-    std::vector<uint32_t> out;
-    out.reserve(store.instanceCount());
-    for (const std::vector<uint32_t>& block : per_block) out.insert(out.end(), block.begin(), block.end());
-    return out;
+    return ug::instanceLooks(looks.looks, job.tile.candidates, job.tile.settings.tile_size_m, store, threads);
 }
 
 nlohmann::json lookCountsJson(const SceneJob& job, const SceneLooks& looks, const InstanceStore& store,

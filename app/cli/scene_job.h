@@ -37,9 +37,8 @@ struct SceneLooks {
     DetailLooks looks;
 };
 SceneLooks sceneLooks(const SceneJob& job);
-// Each instance's look in the store's order (InstanceStore::forEach), blocks of tiles in parallel:
-// worked out once for both the statistics and the export (a variant's look asks the environment).
-// Empty when no type has variants (every instance is its type's look).
+// The job's instanceLooks (scene/detail_looks.h): worked out once for both the statistics and the export
+// (a variant's look asks the environment). Empty when no type has variants.
 std::vector<uint32_t> instanceLooks(const SceneJob& job, const SceneLooks& looks, const InstanceStore& store,
                                     int threads);
 // Points the export's materials and looks at `looks` and `instance_looks`, which must outlive the options.

@@ -33,6 +33,8 @@ ExportJob::ExportJob(const Document& doc, std::shared_ptr<const InstanceStore> s
       store_(std::move(store)),
       drops_(std::move(drops)),
       materials_(doc.materials()),
+      variant_models_(doc.variantModels()),
+      looks_(detailLooks(doc.project(), models_, *variant_models_, doc.environment())),
       static_meshes_(std::move(static_meshes)) {
     tile_.settings = doc.ghostTile().settings;
     tile_.candidates = doc.ghostTile().candidates;
@@ -52,6 +54,13 @@ void ExportJob::work() {
     options.drops = drops_.get();
     options.materials = &materials_;
     options.static_meshes = &static_meshes_;
+    // Each instance's look, as `instantiate` writes it: wet leaves in the puddle are their own mesh.
+    const std::vector<uint32_t> instance_looks =
+        instanceLooks(looks_, tile_.candidates, tile_.settings.tile_size_m, *store_, 0);
+    if (!instance_looks.empty()) {
+        options.look_models = looks_.models;
+        options.instance_looks = &instance_looks;
+    }
     options.progress = [this](float fraction) {
         progress_.store(fraction, std::memory_order_relaxed);
         if (cancelRequested()) return false;

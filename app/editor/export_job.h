@@ -6,7 +6,7 @@
 //                 if (job.finished()) { job.ok() ? "wrote N instances" : messages.push_back(job.error()); }
 //
 // The job copies what it reads (the candidates, the models, the terrain's shared pointer, the extent, the
-// surfaces' materials) and holds the instance store snapshot and its settled drops (so the file holds the
+// surfaces' materials, the looks) and holds the instance store snapshot and its settled drops (so the file holds the
 // instances where the viewport shows them, resting, as `instantiate` writes them), so the document may be edited, closed or replaced while it runs.
 // Cancel works until the final write starts; the write itself is one atomic step (nothing half-written is
 // ever left at the path), and a Cancel that comes during it is too late: the file is written.
@@ -74,6 +74,10 @@ class ExportJob {
     std::shared_ptr<const InstanceStore> store_;
     std::shared_ptr<const SettledDrops> drops_;
     SceneMaterials materials_;
+    // The looks (scattered types' variants) as `instantiate` writes them: over models_ and the document's
+    // variant models, which this job keeps alive.
+    std::shared_ptr<const std::vector<std::vector<DetailModel>>> variant_models_;
+    DetailLooks looks_;
     std::vector<MeshInstances> static_meshes_;
 
     std::atomic<bool> cancel_{false};

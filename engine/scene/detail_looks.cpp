@@ -1,6 +1,10 @@
 #include "scene/detail_looks.h"
 
+#include <algorithm>
 #include <cassert>
+
+#include "core/parallel.h"
+#include "instancer/tile_coord.h"
 
 namespace ug {
 
@@ -32,6 +36,28 @@ DetailLooks detailLooks(const Project& project, const std::vector<DetailModel>& 
     }
     assert(!looks.hasVariants() || looks.environment);
     return looks;
+}
+
+std::vector<uint32_t> instanceLooks(const DetailLooks& looks, const CandidateSet& candidates, float tile_size_m,
+                                    const InstanceStore& store, int threads) {
+    if (!looks.hasVariants()) return {};
+    const size_t tiles_per_block = 1024;
+    const size_t tiles = store.tileCount();
+    std::vector<std::vector<uint32_t>> per_block((tiles + tiles_per_block - 1) / tiles_per_block);
+    parallelFor(per_block.size(), threads, 1, [&](size_t begin, size_t end, int) {
+        std::vector<uint32_t> ids;
+        for (size_t b = begin; b < end; ++b)
+            for (size_t t = b * tiles_per_block; t < std::min(tiles, (b + 1) * tiles_per_block); ++t) {
+                const glm::vec3 origin = tileOrigin(unpackTile(store.tileKey(t)), tile_size_m);
+                store.tileIds(t, &ids);
+                for (uint32_t j : ids)
+                    per_block[b].push_back(looks.lookOf(candidates.type[j], origin + candidates.position[j]));
+            }
+    });
+    std::vector<uint32_t> out;
+    out.reserve(store.instanceCount());
+    for (const std::vector<uint32_t>& block : per_block) out.insert(out.end(), block.begin(), block.end());
+    return out;
 }
 
 }  // namespace ug

@@ -11,6 +11,8 @@
 #include <vector>
 
 #include "env/env_scatter.h"
+#include "ghosttile/ghost_tile.h"
+#include "instancer/instance_store.h"
 #include "mesh/detail_model.h"
 #include "scene/project.h"
 
@@ -35,5 +37,11 @@ struct DetailLooks {
 DetailLooks detailLooks(const Project& project, const std::vector<DetailModel>& models,
                         const std::vector<std::vector<DetailModel>>& variant_models,
                         std::shared_ptr<const EnvScene> environment);
+
+// Each instance's look in the store's order (InstanceStore::forEach), blocks of tiles in parallel (the
+// result is the same for any thread count): what an export writes and its statistics count, worked out
+// once. Empty when no type has variants (every instance is its type's look).
+std::vector<uint32_t> instanceLooks(const DetailLooks& looks, const CandidateSet& candidates, float tile_size_m,
+                                    const InstanceStore& store, int threads);
 
 }  // namespace ug

@@ -117,6 +117,9 @@ public:
     SceneMaterials materials() const { return compileSceneMaterials(project_, models(), variant_models_.get()); }
     // Every look of the detail instances (scene/detail_looks.h): the types', then their scatter variants'.
     DetailLooks looks() const { return detailLooks(project_, models(), *variant_models_, environment_); }
+    // The scattered types' variant models ([type][k]), shared and never changed in place: a background
+    // job that keeps this pointer may build looks on its own copy of models().
+    const std::shared_ptr<const std::vector<std::vector<DetailModel>>>& variantModels() const { return variant_models_; }
     CacheOutcome cacheOutcome() const { return assets_.outcome; }
     // Changes whenever the Ghost Tile and models are swapped (a build applied, its undo or redo): candidate
     // frames, models and meshes derived from them must be made again.

@@ -250,6 +250,29 @@ else
   bad "edit panels: $(tail -5 "$pdir/log")"
 fi
 
+# ---- the editor's export of a scene with looks: what `instantiate` writes ----
+# The autumn street's leaves take a wet flat look in the puddle and its grass a dried one where it is warm,
+# each its own instanced mesh: the editor's File > Export must hold every look with the very count the CLI's
+# statistics give it (glTF-Transform reads it back), not the types alone.
+adir="$tmp/autumn"
+mkdir -p "$adir"
+autumn="$root/assets/scenes/street_autumn.json"
+cat >"$adir/script.json" <<EOF
+[{"frame": 1, "action": "wait_idle"},
+ {"action": "export", "path": "$adir/editor.glb"},
+ {"action": "wait_idle"}]
+EOF
+if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$autumn" --frames 3 --size 640x360 --cache "$cache" \
+     --config "$adir/config" --replay "$adir/script.json" --stats "$adir/stats.json" >"$adir/log" 2>&1 &&
+   "$bin" instantiate "$autumn" -o "$adir/cli.glb" --stats "$adir/cli.json" --cache "$cache" >/dev/null 2>&1 &&
+   looks="$(python3 -c 'import json,sys; l=json.load(open(sys.argv[1]))["instances_per_look"]; assert any(n for k, n in l.items() if k.endswith("_wet")), l; print(json.dumps(l))' "$adir/cli.json")" &&
+   bash "$root/tests/gltf/setup.sh" >"$adir/npm.txt" 2>&1 &&
+   node "$root/tests/gltf/check_gltf.mjs" "$adir/editor.glb" --expect-per-mesh "$looks" >"$adir/gltf.txt" 2>&1; then
+  ok "edit street_autumn: the editor's export holds every look as instantiate counts it ($looks)"
+else
+  bad "edit street_autumn: export looks: $(tail -5 "$adir/log" "$adir/gltf.txt" 2>/dev/null)"
+fi
+
 # An interactive session driven by real X input (xdotool): mouse tools, picking, shortcuts and the
 # unsaved-changes dialog (driven_session.sh). On a copy of the assets, since it saves the project.
 if command -v xdotool >/dev/null 2>&1; then
