@@ -30,9 +30,11 @@ int fail(const std::string& message, int code = 1) {
 constexpr uint64_t kJoinedBytesPerInstance = 48;
 
 struct RegionResult {
-    InstanceListFile list;
+    uint64_t instances = 0;
+    bool has_drops = false;
     uint64_t glb_bytes = 0;
     uint64_t glb_hash = 0;
+    InstanceListFile list;  // empty unless the world is joined
 };
 
 std::string taskList(const std::vector<size_t>& tasks) {
@@ -41,8 +43,11 @@ std::string taskList(const std::vector<size_t>& tasks) {
     return s;
 }
 
-// Every region's instance list, checked against the plan. Errors name the region's file.
-bool readRegions(const RegionPlan& plan, std::vector<RegionResult>* out, std::string* error) {
+// Every region's instance list, checked against the plan, one at a time. The lists are kept for joining
+// while the world's instances stay within `keep_instances` (0: none kept); past that every list is let
+// go, so a world too big to join never has to fit in memory. Errors name the region's file.
+bool readRegions(const RegionPlan& plan, uint64_t keep_instances, std::vector<RegionResult>* out,
+                 std::string* error) {
     std::vector<size_t> missing;
     for (size_t i = 0; i < plan.regions.size(); ++i) {
         const std::string stem = regionStem(plan, i);
@@ -56,10 +61,14 @@ bool readRegions(const RegionPlan& plan, std::vector<RegionResult>* out, std::st
         return false;
     }
     out->resize(plan.regions.size());
+    uint64_t total = 0;
     for (size_t i = 0; i < plan.regions.size(); ++i) {
         const std::string stem = regionStem(plan, i);
         RegionResult& r = (*out)[i];
         if (!readInstanceListFile(stem + ".ugi", &r.list, error)) return false;
+        r.instances = r.list.store.instanceCount();
+        r.has_drops = r.list.has_drops;
+        total += r.instances;
         const nlohmann::json header = nlohmann::json::parse(r.list.header_json, nullptr, false);
         const std::string from = header.is_object() ? header.value("plan", std::string("?")) : "?";
         if (from != hex64(plan.id) || r.list.ghost_tile_key != plan.ghost_tile_key)
@@ -72,8 +81,10 @@ bool readRegions(const RegionPlan& plan, std::vector<RegionResult>* out, std::st
             return (*error = stem + ".ugi: holds task " + std::to_string(header.value("task", int64_t(-1))) +
                              ", not task " + std::to_string(i),
                     false);
-        if (r.list.has_drops != (*out)[0].list.has_drops)
+        if (r.has_drops != (*out)[0].has_drops)
             return (*error = stem + ".ugi: settled drops in some regions and not in others", false);
+        if (total > keep_instances)
+            for (size_t k = 0; k <= i; ++k) (*out)[k].list = InstanceListFile{};
         std::vector<unsigned char> glb;
         if (!readWholeFile(stem + ".glb", &glb, error)) return false;
         r.glb_bytes = glb.size();
@@ -94,7 +105,7 @@ bool mergeRegions(const std::vector<RegionResult>& regions, InstanceStore* store
     };
     std::vector<Entry> all;
     uint64_t total = 0;
-    for (const RegionResult& r : regions) total += r.list.store.instanceCount();
+    for (const RegionResult& r : regions) total += r.instances;
     all.reserve(total);
     std::vector<uint32_t> ids;
     for (uint32_t ri = 0; ri < regions.size(); ++ri) {
@@ -109,7 +120,7 @@ bool mergeRegions(const std::vector<RegionResult>& regions, InstanceStore* store
     }
     std::sort(all.begin(), all.end(),
               [](const Entry& a, const Entry& b) { return a.key != b.key ? a.key < b.key : a.id < b.id; });
-    const bool has_drops = !regions.empty() && regions[0].list.has_drops;
+    const bool has_drops = !regions.empty() && regions[0].has_drops;
     std::vector<uint16_t> tile_drops;
     for (size_t i = 0; i < all.size();) {
         size_t j = i;
@@ -130,6 +141,73 @@ bool mergeRegions(const std::vector<RegionResult>& regions, InstanceStore* store
         i = j;
     }
     return true;
+}
+
+nlohmann::json manifestJson(const RegionPlan& plan, const std::vector<RegionResult>& regions, uint64_t total) {
+    nlohmann::json manifest_regions = nlohmann::json::array();
+    for (size_t i = 0; i < regions.size(); ++i) {
+        const std::string stem = fs::path(regionStem(plan, i)).lexically_relative(plan.dir).string();
+        const Bounds& b = plan.regions[i].box;
+        manifest_regions.push_back({{"task", i},
+                                    {"min", {b.lo.x, b.lo.y, b.lo.z}},
+                                    {"max", {b.hi.x, b.hi.y, b.hi.z}},
+                                    {"instances", regions[i].instances},
+                                    {"glb", stem + ".glb"},
+                                    {"glb_bytes", regions[i].glb_bytes},
+                                    {"glb_hash", hex64(regions[i].glb_hash)}});
+    }
+    return {{"format", "undergrowth-world-manifest"},
+            {"format_version", 1},
+            {"plan", hex64(plan.id)},
+            {"scene", plan.scene},
+            {"scene_hash", hex64(plan.scene_hash)},
+            {"instances", total},
+            {"regions", manifest_regions},
+            {"joined", nullptr}};
+}
+
+// The regions' ids merged and exported as one process exports the scene (same glTF, instance for
+// instance); the environment's effects are computed once for the whole world, not stitched together.
+bool exportJoinedWorld(const RegionPlan& plan, const std::vector<RegionResult>& regions, int threads,
+                       const std::string& out, std::string* error) {
+    InstanceStore store;
+    SettledDrops drops;
+    if (!mergeRegions(regions, &store, &drops, error)) return (*error = plan.dir + ": " + *error, false);
+    SceneJob job;
+    if (!loadSceneJob(plan.scene, (fs::path(plan.dir) / "cache").string(), threads, true, &job, error))
+        return false;
+    if (job.tile.key != plan.ghost_tile_key)
+        return (*error = plan.scene + ": its Ghost Tile changed since plan " + hex64(plan.id) +
+                         "; make the plan again",
+                false);
+    // The lists' checksums catch damage, not a list written by something else: every id must name a
+    // candidate of this tile before the export looks it up.
+    uint64_t bad_id = 0;
+    std::vector<uint64_t> per_type(job.models.size(), 0);
+    store.forEach([&](uint64_t, uint32_t j) {
+        if (j >= job.tile.candidates.size())
+            bad_id = uint64_t(j) + 1;
+        else
+            ++per_type[job.tile.candidates.type[j]];
+    });
+    if (bad_id != 0)
+        return (*error = plan.dir + ": a region holds candidate " + std::to_string(bad_id - 1) +
+                         ", but the Ghost Tile has " + std::to_string(job.tile.candidates.size()) +
+                         "; run the plan's tasks again",
+                false);
+    SceneEnvironmentOutput env;
+    if (!computeSceneEnvironment(job, threads, nullptr, true, &env, error)) return false;
+    nlohmann::json per_type_json = nlohmann::json::object();
+    for (size_t i = 0; i < job.models.size(); ++i) per_type_json[job.models[i].name] = per_type[i];
+    nlohmann::json stats = {{"scene", job.project.name},
+                            {"seed", plan.seed},
+                            {"plan", hex64(plan.id)},
+                            {"regions", regions.size()},
+                            {"instances", store.instanceCount()},
+                            {"instances_per_type", per_type_json}};
+    if (!env.stats.is_null()) stats["environment"] = env.stats;
+    return exportJobInstances(job, store, regions[0].has_drops ? &drops : nullptr, &env.meshes,
+                              job.compiled.extent, plan.chunk_size_m, false, threads, &stats, out, error);
 }
 
 }  // namespace
@@ -159,86 +237,26 @@ int runJoinCommand(int argc, char** argv) {
     RegionPlan plan;
     if (!readRegionPlan(args.positional[0], &plan, &error)) return fail(error);
     std::vector<RegionResult> regions;
-    if (!readRegions(plan, &regions, &error)) return fail(error);
-    InstanceStore store;
-    SettledDrops drops;
-    if (!mergeRegions(regions, &store, &drops, &error)) return fail(plan.dir + ": " + error);
-
-    nlohmann::json manifest_regions = nlohmann::json::array();
-    for (size_t i = 0; i < regions.size(); ++i) {
-        const std::string stem = fs::path(regionStem(plan, i)).lexically_relative(plan.dir).string();
-        const Bounds& b = plan.regions[i].box;
-        manifest_regions.push_back({{"task", i},
-                                    {"min", {b.lo.x, b.lo.y, b.lo.z}},
-                                    {"max", {b.hi.x, b.hi.y, b.hi.z}},
-                                    {"instances", regions[i].list.store.instanceCount()},
-                                    {"glb", stem + ".glb"},
-                                    {"glb_bytes", regions[i].glb_bytes},
-                                    {"glb_hash", hex64(regions[i].glb_hash)}});
-    }
-    nlohmann::json manifest = {{"format", "undergrowth-world-manifest"},
-                               {"format_version", 1},
-                               {"plan", hex64(plan.id)},
-                               {"scene", plan.scene},
-                               {"scene_hash", hex64(plan.scene_hash)},
-                               {"instances", store.instanceCount()},
-                               {"regions", manifest_regions},
-                               {"joined", nullptr}};
-
-    const uint64_t estimate = store.instanceCount() * kJoinedBytesPerInstance;
-    if (!out.empty() && estimate > max_bytes) {
-        manifest["joined_refused"] =
-            "about " + std::to_string(estimate >> 20) + " MiB, more than --max-bytes";
-        std::printf(
-            "the world (%llu instances, about %llu MiB) is bigger than --max-bytes (%llu MiB): it stays as "
-            "%zu "
-            "region files plus the manifest\n",
-            static_cast<unsigned long long>(store.instanceCount()),
-            static_cast<unsigned long long>(estimate >> 20), static_cast<unsigned long long>(max_bytes >> 20),
-            regions.size());
+    const uint64_t joinable = out.empty() ? 0 : max_bytes / kJoinedBytesPerInstance;
+    if (!readRegions(plan, joinable, &regions, &error)) return fail(error);
+    uint64_t total = 0;
+    for (const RegionResult& r : regions) total += r.instances;
+    nlohmann::json manifest = manifestJson(plan, regions, total);
+    const uint64_t estimate = total * kJoinedBytesPerInstance;
+    if (!out.empty() && total > joinable) {
+        manifest["joined_refused"] = "about " + std::to_string(estimate >> 20) + " MiB, more than --max-bytes";
+        std::printf("the world (%llu instances, about %llu MiB) is bigger than --max-bytes (%llu MiB): it stays "
+                    "as %zu region files plus the manifest\n",
+                    static_cast<unsigned long long>(total), static_cast<unsigned long long>(estimate >> 20),
+                    static_cast<unsigned long long>(max_bytes >> 20), regions.size());
     } else if (!out.empty()) {
-        SceneJob job;
-        if (!loadSceneJob(plan.scene, (fs::path(plan.dir) / "cache").string(), int(threads), true, &job,
-                          &error))
-            return fail(error);
-        if (job.tile.key != plan.ghost_tile_key)
-            return fail(plan.scene + ": its Ghost Tile changed since plan " + hex64(plan.id) +
-                        "; make the plan again");
-        // The lists' checksums catch damage, not a list written by something else: every id must name a
-        // candidate of this tile before the export looks it up.
-        uint64_t bad_id = 0;
-        store.forEach([&](uint64_t, uint32_t j) {
-            if (j >= job.tile.candidates.size()) bad_id = uint64_t(j) + 1;
-        });
-        if (bad_id != 0)
-            return fail(plan.dir + ": a region holds candidate " + std::to_string(bad_id - 1) +
-                        ", but the Ghost Tile has " + std::to_string(job.tile.candidates.size()) +
-                        "; run the plan's tasks again");
-        // The environment's effects are a function of the scene's objects alone, cheap next to the details:
-        // computed once for the whole world rather than stitched from the regions' meshes.
-        SceneEnvironmentOutput env;
-        if (!computeSceneEnvironment(job, int(threads), nullptr, true, &env, &error)) return fail(error);
-        std::vector<uint64_t> per_type(job.models.size(), 0);
-        store.forEach([&](uint64_t, uint32_t j) { ++per_type[job.tile.candidates.type[j]]; });
-        nlohmann::json per_type_json = nlohmann::json::object();
-        for (size_t i = 0; i < job.models.size(); ++i) per_type_json[job.models[i].name] = per_type[i];
-        nlohmann::json stats = {{"scene", job.project.name},
-                                {"seed", plan.seed},
-                                {"plan", hex64(plan.id)},
-                                {"regions", regions.size()},
-                                {"instances", store.instanceCount()},
-                                {"instances_per_type", per_type_json}};
-        if (!env.stats.is_null()) stats["environment"] = env.stats;
-        const bool has_drops = regions[0].list.has_drops;
-        if (!exportJobInstances(job, store, has_drops ? &drops : nullptr, &env.meshes, job.compiled.extent,
-                                plan.chunk_size_m, false, int(threads), &stats, out, &error))
-            return fail(error);
+        if (!exportJoinedWorld(plan, regions, int(threads), out, &error)) return fail(error);
         manifest["joined"] = fs::absolute(out).lexically_normal().string();
     }
     const std::string manifest_path = (fs::path(plan.dir) / "manifest.json").string();
     if (!writeTextFileAtomically(manifest_path, manifest.dump(2) + "\n", &error)) return fail(error);
     std::printf("%zu regions of plan %s, %llu instances -> %s%s%s\n", regions.size(), hex64(plan.id).c_str(),
-                static_cast<unsigned long long>(store.instanceCount()), manifest_path.c_str(),
+                static_cast<unsigned long long>(total), manifest_path.c_str(),
                 manifest["joined"].is_null() ? "" : ", ", manifest["joined"].is_null() ? "" : out.c_str());
     return 0;
 }

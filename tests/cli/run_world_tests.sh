@@ -75,6 +75,12 @@ for r in m["regions"]:
     assert all(a < b for a, b in zip(r["min"], r["max"])) and len(r["glb_hash"]) == 16 and r["glb_bytes"] > 0, r
 assert m["joined"].endswith("world.glb")
 PY
+# A world bigger than join's --max-bytes stays as region files plus the manifest (which still lists them).
+if out=$("$bin" join "$plan" -o "$tmp/too_big.glb" --max-bytes 64K 2>&1) && grep -q "stays as $tasks region files" <<<"$out" &&
+   [ ! -e "$tmp/too_big.glb" ] &&
+   python3 -c 'import json,sys; m=json.load(open(sys.argv[1])); assert m["joined"] is None and "joined_refused" in m and len(m["regions"]) == int(sys.argv[2]), m' \
+     "$plan/manifest.json" "$tasks"; then
+  ok "join: a world over --max-bytes stays as region files plus the manifest"; else bad "join --max-bytes: $out"; fi
 # A re-run of a task whose outputs are complete skips it and changes nothing.
 before=$(md5sum "$plan"/regions/region_0000.*)
 out=$("$bin" instantiate --plan "$plan" --task 0 2>&1)
