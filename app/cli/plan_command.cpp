@@ -85,8 +85,8 @@ int runPlanCommand(int argc, char** argv) {
     if (ec) return failWith("plan", plan.dir + ": cannot create the plan's folders: " + ec.message());
     if (!hashFile(plan.scene, &plan.scene_hash, &error)) return failWith("plan", error);
 
-    // The Ghost Tile goes into the plan's cache now, so that the tasks only read it (the cache step of
-    // submit.sh verifies it on the cluster's file system).
+    // The Ghost Tile goes into the plan's cache now, so that the tasks only read it (submit.sh adds a
+    // cache step that builds it only when the cache has lost it).
     SceneJob job;
     if (!loadSceneJob(plan.scene, (fs::path(plan.dir) / "cache").string(), int(threads), false, &job, &error))
         return failWith("plan", error);

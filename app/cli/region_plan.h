@@ -65,7 +65,8 @@ bool readRegionPlan(const std::string& dir, RegionPlan* plan, std::string* error
 std::string regionStem(const RegionPlan& plan, size_t task);
 
 // The Slurm scripts: cache.sbatch (the Ghost Tile, once), job.sbatch (the array), join.sbatch, and
-// submit.sh, which submits the three with dependencies (extra arguments go to every sbatch: --partition,
+// submit.sh, which submits them with dependencies (the cache step only when the plan's cache lacks the
+// tile) (extra arguments go to every sbatch: --partition,
 // --account, ...). Errors: a path Slurm's #SBATCH lines cannot hold (whitespace, '%').
 bool writeSlurmScripts(const RegionPlan& plan, std::string* error);
 
