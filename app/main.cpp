@@ -44,6 +44,8 @@ void printUsage() {
         "  undergrowth join DIR [-o WORLD.glb] [--max-bytes BYTES]\n"
         "      check every region of the plan is there and from the plan; DIR/manifest.json and, when it fits,\n"
         "      the joined world\n"
+        "  undergrowth grow PARTICLES.json -o OUT.glb [--stats FILE] [--threads N]\n"
+        "      particle sculpting: grow a particle system's strands and write them as tubes (docs/particles.md)\n"
         "  undergrowth build-tile SCENE [--cache DIR] [--stats FILE] [--threads N]\n"
         "      build (or load from the verified cache) the scene's Ghost Tile and print its statistics\n"
         "  undergrowth bench [--quick] [--json FILE] [--threads N] [--filter NAME]\n"
@@ -69,6 +71,7 @@ int main(int argc, char** argv) {
     if (command == "bench") return ug::cli::runBenchCommand(argc, argv);
     if (command == "plan") return ug::cli::runPlanCommand(argc, argv);
     if (command == "join") return ug::cli::runJoinCommand(argc, argv);
+    if (command == "grow") return ug::cli::runGrowCommand(argc, argv);
     if (command == "make-assets") return ug::cli::runMakeAssetsCommand(argc, argv);
     if (command == "--help" || command == "-h" || command == "help") {
         printUsage();

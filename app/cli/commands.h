@@ -12,6 +12,7 @@ int runMakeAssetsCommand(int argc, char** argv);  // undergrowth make-assets [--
 int runBenchCommand(int argc, char** argv);      // undergrowth bench [--quick] [--json FILE]
 int runPlanCommand(int argc, char** argv);       // undergrowth plan SCENE --out DIR [...]: region jobs (region_plan.h)
 int runJoinCommand(int argc, char** argv);       // undergrowth join DIR [-o WORLD.glb]
+int runGrowCommand(int argc, char** argv);       // undergrowth grow PARTICLES.json -o OUT.glb
 int runInstantiateCommand(int argc, char** argv);  // undergrowth instantiate SCENE -o OUT.glb [...]
 int runEditCommand(int argc, char** argv);       // undergrowth edit SCENE [--frames N] [--screenshot PNG] [...]
 int runRenderCommand(int argc, char** argv);

@@ -1,0 +1,262 @@
+#include "particles/particle_json.h"
+
+#include <cmath>
+
+#include "core/atomic_file.h"
+#include "scene/json_parse.h"
+#include "scene/json_reader.h"
+#include "scene/material_json.h"
+
+namespace ug {
+
+namespace {
+
+using nlohmann::json;
+
+constexpr double kMaxCoordinate = double(kMaxParticleCoordinate_m);
+constexpr size_t kMaxFileBytes = size_t(64) << 20;
+
+bool readVec3(JsonReader& r, const json& obj, const std::string& p, const char* key, glm::vec3* out) {
+    auto it = obj.find(key);
+    if (it == obj.end()) return true;
+    const std::string at = p + "/" + key;
+    if (!it->is_array() || it->size() != 3) return r.fail(at, "expected [x, y, z]");
+    for (size_t a = 0; a < 3; ++a) {
+        if (!(*it)[a].is_number()) return r.fail(at + "/" + std::to_string(a), "expected a number");
+        const double v = (*it)[a].get<double>();
+        if (!std::isfinite(v) || std::fabs(v) > kMaxCoordinate)
+            return r.fail(at + "/" + std::to_string(a), "not a finite number within 1e5");
+        (*out)[int(a)] = float(v);
+    }
+    return true;
+}
+
+// "kind": one of `names` (in enum order).
+template <typename E, size_t N>
+bool readKind(JsonReader& r, const json& obj, const std::string& p, const char* key, const char* const (&names)[N],
+              E* out, bool required) {
+    std::string s;
+    if (!r.string(obj, p, key, &s, required)) return false;
+    if (s.empty()) return true;
+    for (size_t i = 0; i < N; ++i)
+        if (s == names[i]) {
+            *out = E(i);
+            return true;
+        }
+    std::string all;
+    for (size_t i = 0; i < N; ++i) all += std::string(i ? ", " : "") + names[i];
+    return r.fail(p + "/" + key, "'" + s + "' is not one of " + all);
+}
+
+const char* const kActionNames[] = {"stop", "kill", "split", "countdown"};
+const char* const kGeneratorNames[] = {"rectangle", "sphere", "box"};
+const char* const kAttractorNames[] = {"point", "segment", "sphere"};
+const char* const kCutterNames[] = {"plane", "sphere", "box"};
+const char* const kSideNames[] = {"above", "below"};
+
+bool readAction(JsonReader& r, const json& obj, const std::string& p, const char* key, StrandAction* out) {
+    auto it = obj.find(key);
+    if (it == obj.end()) return true;
+    const std::string at = p + "/" + key;
+    return r.expectObject(*it, at) &&
+           r.onlyKeys(*it, at, {"kind", "split_count", "split_angle_deg", "countdown_steps"}) &&
+           readKind(r, *it, at, "kind", kActionNames, &out->kind, true) &&
+           r.integer(*it, at, "split_count", &out->split_count, 1, 16) &&
+           r.number(*it, at, "split_angle_deg", &out->split_angle_deg, 0.0, 179.9) &&
+           r.integer(*it, at, "countdown_steps", &out->countdown_steps, 1, kMaxParticleSteps);
+}
+
+bool readGenerator(JsonReader& r, const json& j, const std::string& p, ParticleGenerator* g) {
+    return r.expectObject(j, p) &&
+           r.onlyKeys(j, p, {"kind", "center_m", "axis_u_m", "axis_v_m", "radius_m", "half_extents_m", "count",
+                             "heading_cone_deg"}) &&
+           readKind(r, j, p, "kind", kGeneratorNames, &g->kind, true) && readVec3(r, j, p, "center_m", &g->center_m) &&
+           readVec3(r, j, p, "axis_u_m", &g->axis_u_m) && readVec3(r, j, p, "axis_v_m", &g->axis_v_m) &&
+           r.number(j, p, "radius_m", &g->radius_m, 0.0, kMaxCoordinate) &&
+           readVec3(r, j, p, "half_extents_m", &g->half_extents_m) && r.require(j, p, "count") &&
+           r.integer(j, p, "count", &g->count, 1, kMaxParticles) &&
+           r.number(j, p, "heading_cone_deg", &g->heading_cone_deg, 0.0, 179.9);
+}
+
+bool readCharge(JsonReader& r, const json& obj, const std::string& p, std::vector<ChargeKey>* out) {
+    auto it = obj.find("charge");
+    if (it == obj.end()) return true;
+    const std::string at = p + "/charge";
+    if (it->is_number()) {
+        const double a = it->get<double>();
+        if (!std::isfinite(a) || std::fabs(a) > 1e6) return r.fail(at, "not a finite charge within 1e6");
+        *out = {ChargeKey{0, float(a)}};
+        return true;
+    }
+    if (!it->is_array() || it->empty() || it->size() > 1024)
+        return r.fail(at, "expected a number or 1 to 1024 [step, charge] keys");
+    out->clear();
+    for (size_t k = 0; k < it->size(); ++k) {
+        const json& key = (*it)[k];
+        const std::string kp = at + "/" + std::to_string(k);
+        if (!key.is_array() || key.size() != 2 || !key[0].is_number_unsigned() || !key[1].is_number())
+            return r.fail(kp, "expected [step, charge] with a whole step >= 0");
+        const uint64_t step = key[0].get<uint64_t>();
+        const double a = key[1].get<double>();
+        if (step > kMaxParticleSteps) return r.fail(kp + "/0", "step beyond " + std::to_string(kMaxParticleSteps));
+        if (!std::isfinite(a) || std::fabs(a) > 1e6) return r.fail(kp + "/1", "not a finite charge within 1e6");
+        out->push_back(ChargeKey{uint32_t(step), float(a)});
+    }
+    return true;
+}
+
+bool readAttractor(JsonReader& r, const json& j, const std::string& p, Attractor* a) {
+    return r.expectObject(j, p) &&
+           r.onlyKeys(j, p, {"kind", "a_m", "b_m", "radius_m", "influence_m", "charge"}) &&
+           readKind(r, j, p, "kind", kAttractorNames, &a->kind, true) && readVec3(r, j, p, "a_m", &a->a_m) &&
+           readVec3(r, j, p, "b_m", &a->b_m) && r.number(j, p, "radius_m", &a->radius_m, 0.0, kMaxCoordinate) &&
+           r.number(j, p, "influence_m", &a->influence_m, 0.0, kMaxCoordinate) && readCharge(r, j, p, &a->charge);
+}
+
+bool readCutter(JsonReader& r, const json& j, const std::string& p, Cutter* c) {
+    return r.expectObject(j, p) &&
+           r.onlyKeys(j, p, {"kind", "center_m", "normal", "radius_m", "half_extents_m", "threshold_m", "side",
+                             "action"}) &&
+           readKind(r, j, p, "kind", kCutterNames, &c->kind, true) && readVec3(r, j, p, "center_m", &c->center_m) &&
+           readVec3(r, j, p, "normal", &c->normal) && r.number(j, p, "radius_m", &c->radius_m, 0.0, kMaxCoordinate) &&
+           readVec3(r, j, p, "half_extents_m", &c->half_extents_m) &&
+           r.number(j, p, "threshold_m", &c->threshold_m, -kMaxCoordinate, kMaxCoordinate) &&
+           readKind(r, j, p, "side", kSideNames, &c->side, false) && readAction(r, j, p, "action", &c->action);
+}
+
+bool readWalk(JsonReader& r, const json& obj, const std::string& pointer, WalkSettings* w) {
+    auto it = obj.find("walk");
+    if (it == obj.end()) return true;
+    const json& j = *it;
+    const std::string p = pointer + "/walk";
+    return r.expectObject(j, p) &&
+           r.onlyKeys(j, p, {"seed", "steps", "trials", "cone_deg", "step_length_m", "strand_radius_m", "collisions",
+                             "on_collision", "max_age_steps", "on_age", "max_split_depth", "max_points"}) &&
+           r.integer(j, p, "seed", &w->seed, 0, UINT64_MAX) && r.integer(j, p, "steps", &w->steps, 1, kMaxParticleSteps) &&
+           r.integer(j, p, "trials", &w->trials, 1, 256) && r.number(j, p, "cone_deg", &w->cone_deg, 0.001, 179.9) &&
+           r.number(j, p, "step_length_m", &w->step_length_m, 1e-6, 1e3) &&
+           r.number(j, p, "strand_radius_m", &w->strand_radius_m, 1e-7, 1e2) &&
+           r.boolean(j, p, "collisions", &w->collisions) && readAction(r, j, p, "on_collision", &w->on_collision) &&
+           r.integer(j, p, "max_age_steps", &w->max_age_steps, 0, kMaxParticleSteps) &&
+           readAction(r, j, p, "on_age", &w->on_age) && r.integer(j, p, "max_split_depth", &w->max_split_depth, 0, 64) &&
+           r.integer(j, p, "max_points", &w->max_points, 1, kMaxStrandPoints);
+}
+
+template <typename T, typename F>
+bool readList(JsonReader& r, const json& obj, const char* key, size_t max, std::vector<T>* out, F&& read_one) {
+    auto it = obj.find(key);
+    if (it == obj.end()) return true;
+    const std::string p = std::string("/") + key;
+    if (!r.expectArray(*it, p)) return false;
+    if (it->size() > max) return r.fail(p, std::to_string(it->size()) + " entries, at most " + std::to_string(max));
+    out->assign(it->size(), T{});
+    for (size_t i = 0; i < it->size(); ++i)
+        if (!read_one(r, (*it)[i], p + "/" + std::to_string(i), &(*out)[i])) return false;
+    return true;
+}
+
+json vec3Json(glm::vec3 v) { return {v.x, v.y, v.z}; }
+
+json actionJson(const StrandAction& a) {
+    return {{"kind", kActionNames[size_t(a.kind)]},
+            {"split_count", a.split_count},
+            {"split_angle_deg", a.split_angle_deg},
+            {"countdown_steps", a.countdown_steps}};
+}
+
+}  // namespace
+
+bool parseParticleSystem(const json& j, const std::string& source, ParticleSystemFile* out, std::string* error) {
+    JsonReader r(source, error);
+    ParticleSystemFile s;
+    std::string format;
+    uint32_t version = 0;
+    if (!r.expectObject(j, "") ||
+        !r.onlyKeys(j, "", {"format", "format_version", "name", "generators", "attractors", "cutters", "walk", "mesh",
+                            "material"}) ||
+        !r.string(j, "", "format", &format, true))
+        return false;
+    if (format != "undergrowth-particles") return r.fail("/format", "expected \"undergrowth-particles\"");
+    if (!r.require(j, "", "format_version") || !r.integer(j, "", "format_version", &version, 1, 1) ||
+        !r.string(j, "", "name", &s.name) ||
+        !readList(r, j, "generators", 64, &s.scene.generators, readGenerator) ||
+        !readList(r, j, "attractors", 1024, &s.scene.attractors, readAttractor) ||
+        !readList(r, j, "cutters", kMaxCutters, &s.scene.cutters, readCutter) || !readWalk(r, j, "", &s.scene.walk))
+        return false;
+    if (auto it = j.find("mesh"); it != j.end()) {
+        if (!r.expectObject(*it, "/mesh") || !r.onlyKeys(*it, "/mesh", {"sides", "max_triangles"}) ||
+            !r.integer(*it, "/mesh", "sides", &s.mesh.sides, 3, 32) ||
+            !r.integer(*it, "/mesh", "max_triangles", &s.mesh.max_triangles, 1, 200'000'000))
+            return false;
+    }
+    if (auto it = j.find("material"); it != j.end() && !readMaterial(r, *it, "/material", &s.material)) return false;
+    if (s.scene.generators.empty()) return r.fail("/generators", "at least one generator is needed");
+    std::string why;
+    if (!validateParticleScene(s.scene, &why)) return r.fail("", why);
+    *out = std::move(s);
+    return true;
+}
+
+bool loadParticleSystem(const std::string& path, ParticleSystemFile* out, std::string* error) {
+    std::string text;
+    if (!readTextFile(path, &text, error, kMaxFileBytes)) return false;
+    json j;
+    if (!parseJsonText(text, path, &j, error)) return false;
+    return parseParticleSystem(j, path, out, error);
+}
+
+json particleSystemToJson(const ParticleSystemFile& s) {
+    json generators = json::array(), attractors = json::array(), cutters = json::array();
+    for (const ParticleGenerator& g : s.scene.generators)
+        generators.push_back({{"kind", kGeneratorNames[size_t(g.kind)]},
+                              {"center_m", vec3Json(g.center_m)},
+                              {"axis_u_m", vec3Json(g.axis_u_m)},
+                              {"axis_v_m", vec3Json(g.axis_v_m)},
+                              {"radius_m", g.radius_m},
+                              {"half_extents_m", vec3Json(g.half_extents_m)},
+                              {"count", g.count},
+                              {"heading_cone_deg", g.heading_cone_deg}});
+    for (const Attractor& a : s.scene.attractors) {
+        json charge = json::array();
+        for (const ChargeKey& k : a.charge) charge.push_back({k.step, k.charge});
+        attractors.push_back({{"kind", kAttractorNames[size_t(a.kind)]},
+                              {"a_m", vec3Json(a.a_m)},
+                              {"b_m", vec3Json(a.b_m)},
+                              {"radius_m", a.radius_m},
+                              {"influence_m", a.influence_m},
+                              {"charge", charge}});
+    }
+    for (const Cutter& c : s.scene.cutters)
+        cutters.push_back({{"kind", kCutterNames[size_t(c.kind)]},
+                           {"center_m", vec3Json(c.center_m)},
+                           {"normal", vec3Json(c.normal)},
+                           {"radius_m", c.radius_m},
+                           {"half_extents_m", vec3Json(c.half_extents_m)},
+                           {"threshold_m", c.threshold_m},
+                           {"side", kSideNames[size_t(c.side)]},
+                           {"action", actionJson(c.action)}});
+    const WalkSettings& w = s.scene.walk;
+    return {{"format", "undergrowth-particles"},
+            {"format_version", 1u},
+            {"name", s.name},
+            {"generators", generators},
+            {"attractors", attractors},
+            {"cutters", cutters},
+            {"walk",
+             {{"seed", w.seed},
+              {"steps", w.steps},
+              {"trials", w.trials},
+              {"cone_deg", w.cone_deg},
+              {"step_length_m", w.step_length_m},
+              {"strand_radius_m", w.strand_radius_m},
+              {"collisions", w.collisions},
+              {"on_collision", actionJson(w.on_collision)},
+              {"max_age_steps", w.max_age_steps},
+              {"on_age", actionJson(w.on_age)},
+              {"max_split_depth", w.max_split_depth},
+              {"max_points", w.max_points}}},
+            {"mesh", {{"sides", s.mesh.sides}, {"max_triangles", s.mesh.max_triangles}}},
+            {"material", materialToJson(s.material)}};
+}
+
+}  // namespace ug

@@ -1,0 +1,91 @@
+#include "particles/strand_mesh.h"
+
+#include <cmath>
+
+namespace ug {
+
+namespace {
+
+// Any unit vector perpendicular to unit t.
+glm::vec3 perpendicular(glm::vec3 t) {
+    const glm::vec3 axis = std::fabs(t.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+    return glm::normalize(glm::cross(t, axis));
+}
+
+// The tangent at point i: the mean of the segments meeting there (the segment itself at the ends);
+// `previous` where the segments cancel or vanish.
+glm::vec3 tangentAt(const glm::vec3* p, size_t n, size_t i, glm::vec3 previous) {
+    const glm::vec3 d = p[std::min(i + 1, n - 1)] - p[i > 0 ? i - 1 : 0];
+    const float len = glm::length(d);
+    return len > 1e-12f ? d / len : previous;
+}
+
+}  // namespace
+
+uint64_t strandTubeTriangles(const Strands& strands, uint32_t sides) {
+    uint64_t total = 0;
+    for (size_t s = 0; s < strands.size(); ++s) {
+        const uint64_t n = strands.offsets[s + 1] - strands.offsets[s];
+        if (n >= 2) total += 2ull * sides * (n - 1) + 2ull * (sides - 2);
+    }
+    return total;
+}
+
+bool strandTubeMesh(const Strands& strands, const StrandMeshSettings& settings, TriangleMesh* out,
+                    std::string* error) {
+    const uint32_t k = settings.sides;
+    if (k < 3 || k > 32) {
+        if (error) *error = "mesh.sides: " + std::to_string(k) + " is out of range [3, 32]";
+        return false;
+    }
+    const uint64_t triangles = strandTubeTriangles(strands, k);
+    if (triangles > settings.max_triangles) {
+        if (error)
+            *error = "mesh.max_triangles: the tubes need " + std::to_string(triangles) + " triangles, more than " +
+                     std::to_string(settings.max_triangles) + "; use fewer sides, strands or steps";
+        return false;
+    }
+    *out = TriangleMesh{};
+    out->positions.reserve(size_t(strands.points.size()) * k);
+    out->normals.reserve(size_t(strands.points.size()) * k);
+    out->indices.reserve(size_t(triangles) * 3);
+    const float turn = 2.0f * float(M_PI) / float(k);
+    for (size_t s = 0; s < strands.size(); ++s) {
+        const size_t first = strands.offsets[s], n = strands.offsets[s + 1] - first;
+        if (n < 2) continue;
+        const glm::vec3* p = strands.points.data() + first;
+        const uint32_t base = uint32_t(out->positions.size());
+        glm::vec3 t = tangentAt(p, n, 0, glm::vec3(0.0f, 0.0f, 1.0f));
+        glm::vec3 normal = perpendicular(t);
+        for (size_t i = 0; i < n; ++i) {
+            const glm::vec3 next = tangentAt(p, n, i, t);
+            // Parallel transport: the normal loses its component along the new tangent.
+            glm::vec3 m = normal - glm::dot(normal, next) * next;
+            normal = glm::length(m) > 1e-6f ? glm::normalize(m) : perpendicular(next);
+            t = next;
+            const glm::vec3 binormal = glm::cross(t, normal);
+            const float r = strands.radii[first + i];
+            for (uint32_t j = 0; j < k; ++j) {
+                const glm::vec3 radial = std::cos(turn * float(j)) * normal + std::sin(turn * float(j)) * binormal;
+                out->positions.push_back(p[i] + r * radial);
+                out->normals.push_back(radial);
+            }
+        }
+        // Around: quads between rings i and i + 1, wound outward (counter-clockwise seen from outside).
+        for (uint32_t i = 0; i + 1 < uint32_t(n); ++i)
+            for (uint32_t j = 0; j < k; ++j) {
+                const uint32_t a = base + i * k + j, b = base + i * k + (j + 1) % k;
+                const uint32_t c = a + k, d = b + k;
+                out->indices.insert(out->indices.end(), {a, b, d, a, d, c});
+            }
+        // Ends: fans over the first ring (facing back) and the last (facing forward).
+        const uint32_t last = base + uint32_t(n - 1) * k;
+        for (uint32_t j = 1; j + 1 < k; ++j) {
+            out->indices.insert(out->indices.end(), {base, base + j + 1, base + j});
+            out->indices.insert(out->indices.end(), {last, last + j, last + j + 1});
+        }
+    }
+    return true;
+}
+
+}  // namespace ug

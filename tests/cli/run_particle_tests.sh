@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Particle sculpting from the command line (docs/particles.md): every bundled particle system grows and
+# exports; the file is the same bytes with 1 and 2 threads (the strands are a pure function of the file);
+# the Khronos validator finds no error and glTF-Transform reads the strand mesh back (check_gltf.mjs); the
+# polylines in its extras are the ones the statistics count; bad files fail with the file, the JSON
+# Pointer and the reason, and write nothing. UG_BIN is the binary.
+set -u
+bin="${UG_BIN:?UG_BIN must name the undergrowth binary}"
+root="$(cd "$(dirname "$0")/../.." && pwd)"
+tmp="$(mktemp -d)"
+trap 'rm -rf "$tmp"' EXIT
+passed=0
+failed=0
+ok() { passed=$((passed + 1)); echo "ok   - $1"; }
+bad() { failed=$((failed + 1)); echo "FAIL - $1"; }
+check="$root/tests/gltf/check_gltf.mjs"
+if ! bash "$root/tests/gltf/setup.sh" >"$tmp/npm.txt" 2>&1; then
+  bad "the glTF checks (tests/gltf/setup.sh): $(cat "$tmp/npm.txt")"; echo "$passed passed, $failed failed"; exit 1; fi
+
+for f in "$root"/assets/particles/*.json; do
+  name="$(basename "$f" .json)"
+  if ! "$bin" grow "$f" -o "$tmp/$name.1.glb" --threads 1 --stats "$tmp/$name.json" >"$tmp/$name.out" 2>&1 ||
+     ! "$bin" grow "$f" -o "$tmp/$name.2.glb" --threads 2 >>"$tmp/$name.out" 2>&1; then
+    bad "grow $name: $(tail -3 "$tmp/$name.out")"; continue; fi
+  if cmp -s "$tmp/$name.1.glb" "$tmp/$name.2.glb"; then ok "grow $name: the same file with 1 and 2 threads"; else
+    bad "grow $name: 1 and 2 threads differ"; fi
+  if node "$check" "$tmp/$name.1.glb" >"$tmp/$name.check" 2>&1 &&
+     python3 - "$tmp/$name.check" "$tmp/$name.json" "$tmp/$name.1.glb" <<'PY'
+import json, struct, sys
+report = json.loads(open(sys.argv[1]).read().strip().splitlines()[-1])
+stats = json.load(open(sys.argv[2]))
+assert report["errors"] == 0, report
+assert report["meshes"] == 1 and list(report["per_mesh"]) == ["strands/" + stats["name"]], report
+assert stats["strands"] > 0 and stats["triangles"] > 0, stats
+# The extras' polylines (when written) are the strands the statistics count.
+b = open(sys.argv[3], "rb").read()
+doc = json.loads(b[20:20 + struct.unpack("<I", b[12:16])[0]])
+extras = doc["meshes"][0].get("extras", {})
+if "strands" in extras:
+    s = extras["strands"]
+    assert len(s["offsets"]) == stats["strands"] + 1 and len(s["points"]) == stats["points"], (len(s["offsets"]), stats)
+    assert all(s["offsets"][i] + 2 <= s["offsets"][i + 1] for i in range(stats["strands"]))
+else:
+    assert "strands_omitted" in extras, extras
+PY
+  then ok "grow $name: valid (Khronos validator), read back by glTF-Transform, polylines as counted"; else
+    bad "grow $name: $(tail -c 800 "$tmp/$name.check")"; fi
+done
+
+# Bad files: exit 1, the file and the place named, nothing written.
+expect_refused() {  # expect_refused NAME JSON MESSAGE
+  printf '%s' "$2" >"$tmp/bad.json"
+  out=$("$bin" grow "$tmp/bad.json" -o "$tmp/bad.glb" 2>&1); rc=$?
+  if [ $rc -eq 1 ] && grep -qF -- "$3" <<<"$out" && grep -qF "bad.json" <<<"$out" && [ ! -e "$tmp/bad.glb" ]; then
+    ok "grow refuses $1: $out"; else bad "grow $1 (exit $rc): $out"; fi
+}
+head='{"format": "undergrowth-particles", "format_version": 1, "name": "x",'
+gen='"generators": [{"kind": "rectangle", "count": 10}]'
+expect_refused "zero trials" "$head $gen, \"walk\": {\"trials\": 0}}" "/walk/trials: 0 is out of range"
+expect_refused "a billion particles" "$head \"generators\": [{\"kind\": \"sphere\", \"count\": 1000000000}]}" "/generators/0/count"
+expect_refused "an out-of-range charge" "$head $gen, \"attractors\": [{\"kind\": \"point\", \"charge\": 1e400}]}" "out of range"
+expect_refused "a typo" "$head $gen, \"walk\": {\"step_lenght_m\": 0.1}}" "/walk/step_lenght_m: unknown field"
+expect_refused "truncated JSON" "$head $gen" "invalid JSON"
+expect_refused "too many triangles" "$head $gen, \"walk\": {\"steps\": 50}, \"mesh\": {\"max_triangles\": 100}}" "mesh.max_triangles"
+out=$("$bin" grow "$tmp/missing.json" -o "$tmp/m.glb" 2>&1); rc=$?
+if [ $rc -eq 1 ] && grep -q "missing.json" <<<"$out"; then ok "grow: a missing file: $out"; else bad "grow missing (exit $rc): $out"; fi
+out=$("$bin" grow "$root/assets/particles/fur_ball.json" -o "$tmp/x.obj" 2>&1); rc=$?
+if [ $rc -eq 2 ]; then ok "grow: a bad output name is a usage error"; else bad "grow -o x.obj (exit $rc): $out"; fi
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]

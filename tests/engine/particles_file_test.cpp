@@ -1,0 +1,196 @@
+// Particle system files (particles/particle_json.h) and strand tubes (particles/strand_mesh.h): a file
+// round-trips field for field, bad files are refused naming the JSON Pointer, and the tubes are closed,
+// outward, at the strands' radius, with the counted number of triangles.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+
+#include "particles/particle_json.h"
+#include "particles/strand_mesh.h"
+
+namespace ug {
+namespace {
+
+ParticleSystemFile everyKind() {
+    ParticleSystemFile s;
+    s.name = "every_kind";
+    ParticleGenerator rect;
+    rect.count = 40;
+    rect.heading_cone_deg = 12.5f;
+    ParticleGenerator ball;
+    ball.kind = GeneratorKind::Sphere;
+    ball.center_m = {1.0f, 2.0f, 3.0f};
+    ball.radius_m = 0.25f;
+    ball.count = 7;
+    ParticleGenerator box;
+    box.kind = GeneratorKind::Box;
+    box.half_extents_m = {0.1f, 0.2f, 0.3f};
+    box.count = 9;
+    s.scene.generators = {rect, ball, box};
+    Attractor seg;
+    seg.kind = AttractorKind::Segment;
+    seg.a_m = {0.0f, 0.0f, 1.0f};
+    seg.b_m = {0.5f, 0.0f, 1.0f};
+    seg.influence_m = 0.7f;
+    seg.charge = {ChargeKey{0, 1.0f}, ChargeKey{10, -0.3f}};
+    Attractor sphere;
+    sphere.kind = AttractorKind::Sphere;
+    sphere.radius_m = 0.4f;
+    s.scene.attractors = {seg, sphere};
+    Cutter plane;
+    plane.threshold_m = 0.3f;
+    plane.action.kind = StrandActionKind::Split;
+    plane.action.split_count = 3;
+    plane.action.split_angle_deg = 33.0f;
+    Cutter ball_cut;
+    ball_cut.kind = CutterKind::Sphere;
+    ball_cut.side = CutterSide::Below;
+    ball_cut.action.kind = StrandActionKind::Countdown;
+    ball_cut.action.countdown_steps = 5;
+    s.scene.cutters = {plane, ball_cut};
+    s.scene.walk.seed = 0xfeedface12345ull;
+    s.scene.walk.steps = 21;
+    s.scene.walk.step_length_m = 0.013f;
+    s.scene.walk.on_collision.kind = StrandActionKind::Kill;
+    s.scene.walk.max_age_steps = 9;
+    s.scene.walk.on_age.kind = StrandActionKind::Split;
+    s.mesh.sides = 7;
+    s.material.roughness = 0.55f;
+    return s;
+}
+
+TEST(ParticleFile, RoundTripsEveryFieldAndGrowsTheSameStrands) {
+    const ParticleSystemFile s = everyKind();
+    const nlohmann::json j = particleSystemToJson(s);
+    ParticleSystemFile back;
+    std::string error;
+    ASSERT_TRUE(parseParticleSystem(nlohmann::json::parse(j.dump()), "mem", &back, &error)) << error;
+    EXPECT_EQ(particleSystemToJson(back), j);
+    EXPECT_EQ(back.scene.walk.seed, 0xfeedface12345ull);
+    EXPECT_EQ(back.scene.cutters[1].side, CutterSide::Below);
+    EXPECT_EQ(back.scene.attractors[0].charge[1].step, 10u);
+    EXPECT_EQ(back.scene.attractors[0].charge[1].charge, -0.3f);
+    EXPECT_EQ(back.scene.walk.step_length_m, 0.013f);
+    EXPECT_EQ(back.mesh.sides, 7u);
+    // Same scene, same strands: the file holds everything that decides them.
+    Strands a, b;
+    ASSERT_TRUE(growStrands(s.scene, {.threads = 2}, &a, &error)) << error;
+    ASSERT_TRUE(growStrands(back.scene, {.threads = 1}, &b, &error)) << error;
+    EXPECT_EQ(a.points, b.points);
+    EXPECT_EQ(a.offsets, b.offsets);
+}
+
+TEST(ParticleFile, BadFilesAreRefusedNamingThePlace) {
+    const nlohmann::json good = nlohmann::json::parse(particleSystemToJson(everyKind()).dump());
+    const std::map<std::string, std::pair<std::string, std::string>> cases = {
+        // name: (JSON Patch-like edit as "pointer=value", expected message piece)
+        {"unknown key", {"/walk/tirals=8", "/walk/tirals: unknown field"}},
+        {"zero trials", {"/walk/trials=0", "/walk/trials: 0 is out of range [1, 256]"}},
+        {"a billion particles", {"/generators/0/count=1000000000", "/generators/0/count: 1e+09 is out of range"}},
+        {"a cone of 0", {"/walk/cone_deg=0", "/walk/cone_deg: 0 is out of range"}},
+        {"a charge that is text", {"/attractors/1/charge=\"strong\"", "/attractors/1/charge: expected a number"}},
+        {"an unknown kind", {"/cutters/0/kind=\"cube\"", "/cutters/0/kind: 'cube' is not one of plane, sphere, box"}},
+        {"a negative step", {"/attractors/0/charge/1/0=-3", "/attractors/0/charge/1: expected [step, charge]"}},
+        {"keys out of order", {"/attractors/0/charge/1/0=0", "attractors[0].charge"}},
+        {"a coordinate too far", {"/generators/1/center_m/2=1e9", "/generators/1/center_m/2: not a finite number"}},
+        {"no generator", {"/generators=[]", "/generators: at least one generator"}},
+        {"other format", {"/format=\"undergrowth-project\"", "/format: expected \"undergrowth-particles\""}},
+        {"too many sides", {"/mesh/sides=64", "/mesh/sides: 64 is out of range [3, 32]"}},
+    };
+    for (const auto& [name, c] : cases) {
+        SCOPED_TRACE(name);
+        nlohmann::json j = good;
+        const size_t eq = c.first.find('=');
+        j[nlohmann::json::json_pointer(c.first.substr(0, eq))] = nlohmann::json::parse(c.first.substr(eq + 1));
+        ParticleSystemFile out;
+        out.name = "untouched";
+        std::string error;
+        EXPECT_FALSE(parseParticleSystem(j, "bad.json", &out, &error));
+        EXPECT_NE(error.find("bad.json: "), std::string::npos) << error;
+        EXPECT_NE(error.find(c.second), std::string::npos) << error;
+        EXPECT_EQ(out.name, "untouched") << error;  // nothing half-read
+    }
+    ParticleSystemFile out;
+    std::string error;
+    EXPECT_FALSE(loadParticleSystem("/nonexistent/fur.json", &out, &error));
+    EXPECT_NE(error.find("/nonexistent/fur.json"), std::string::npos) << error;
+}
+
+TEST(ParticleFile, TheBundledSamplesLoad) {
+    const std::filesystem::path dir = std::filesystem::path(UG_SOURCE_DIR) / "assets" / "particles";
+    int files = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+        if (entry.path().extension() != ".json") continue;
+        SCOPED_TRACE(entry.path().string());
+        ParticleSystemFile s;
+        std::string error;
+        EXPECT_TRUE(loadParticleSystem(entry.path().string(), &s, &error)) << error;
+        EXPECT_FALSE(s.name.empty());
+        ++files;
+    }
+    EXPECT_GE(files, 4);
+}
+
+// One straight strand and one bent one, radius 0.1 and 0.05.
+Strands twoStrands() {
+    Strands s;
+    s.points = {{0, 0, 0}, {0, 0, 1}, {0, 0, 2}, {0, 0, 3}, {5, 0, 0}, {5, 0, 1}, {6, 0, 1.5f}};
+    s.radii = {0.1f, 0.1f, 0.1f, 0.1f, 0.05f, 0.05f, 0.05f};
+    s.offsets = {0, 4, 7};
+    s.parent = {-1, -1};
+    s.particle = {0, 1};
+    return s;
+}
+
+TEST(StrandTubes, AreClosedOutwardAtTheRadiusWithTheCountedTriangles) {
+    const Strands s = twoStrands();
+    const uint32_t sides = 6;
+    TriangleMesh m;
+    std::string error;
+    ASSERT_TRUE(strandTubeMesh(s, {.sides = sides}, &m, &error)) << error;
+    const uint64_t expected = 2 * sides * 3 + 2 * (sides - 2) + 2 * sides * 2 + 2 * (sides - 2);
+    EXPECT_EQ(strandTubeTriangles(s, sides), expected);
+    EXPECT_EQ(m.triangleCount(), expected);
+    ASSERT_TRUE(validateMesh(m, &error)) << error;
+    // Closed: every edge is used by exactly two triangles, once in each direction.
+    std::map<std::pair<uint32_t, uint32_t>, int> directed;
+    for (size_t t = 0; t < m.indices.size(); t += 3)
+        for (int e = 0; e < 3; ++e) ++directed[{m.indices[t + e], m.indices[t + (e + 1) % 3]}];
+    for (const auto& [edge, n] : directed) {
+        EXPECT_EQ(n, 1) << edge.first << "-" << edge.second;
+        EXPECT_EQ(directed.count({edge.second, edge.first}), 1u) << edge.first << "-" << edge.second;
+    }
+    // Every vertex of the straight tube lies at r from the axis, its normal radial and unit.
+    for (uint32_t v = 0; v < 4 * sides; ++v) {
+        const glm::vec3 p = m.positions[v];
+        EXPECT_NEAR(std::hypot(p.x, p.y), 0.1f, 1e-6f);
+        EXPECT_NEAR(glm::length(m.normals[v]), 1.0f, 1e-5f);
+        EXPECT_NEAR(glm::dot(m.normals[v], glm::vec3(p.x, p.y, 0.0f) / 0.1f), 1.0f, 1e-5f);
+    }
+    // Outward: the straight tube's signed volume is that of its hexagonal prism (positive).
+    double volume = 0.0;
+    for (size_t t = 0; t < m.indices.size(); t += 3) {
+        const glm::dvec3 a(m.positions[m.indices[t]]), b(m.positions[m.indices[t + 1]]), c(m.positions[m.indices[t + 2]]);
+        if (m.indices[t] < 4 * sides) volume += glm::dot(a, glm::cross(b, c)) / 6.0;
+    }
+    const double hexagon = 1.5 * std::sqrt(3.0) * 0.1 * 0.1;
+    EXPECT_NEAR(volume, hexagon * 3.0, 1e-5);
+}
+
+TEST(StrandTubes, TooManyTrianglesAreRefusedBeforeMeshing) {
+    const Strands s = twoStrands();
+    TriangleMesh m;
+    m.positions = {{1, 2, 3}};
+    std::string error;
+    EXPECT_FALSE(strandTubeMesh(s, {.sides = 6, .max_triangles = 40}, &m, &error));
+    EXPECT_NE(error.find("mesh.max_triangles: the tubes need 76 triangles"), std::string::npos) << error;
+    EXPECT_EQ(m.positions.size(), 1u);  // untouched
+    EXPECT_FALSE(strandTubeMesh(s, {.sides = 2}, &m, &error));
+    EXPECT_NE(error.find("mesh.sides"), std::string::npos) << error;
+}
+
+}  // namespace
+}  // namespace ug
