@@ -679,6 +679,38 @@ std::string sceneMissingModel() {
     return s;
 }
 
+// ---- particle systems ------------------------------------------------------------------------------
+
+// Few particles and steps: a mutated seed grows in milliseconds unless its counts were raised.
+std::string particlesGrass() {
+    return R"({"format": "undergrowth-particles", "format_version": 1, "name": "grass",
+ "generators": [{"kind": "rectangle", "center_m": [0, 0, 0], "axis_u_m": [0.2, 0, 0], "axis_v_m": [0, 0.2, 0],
+                 "count": 24, "heading_cone_deg": 10}],
+ "attractors": [{"kind": "point", "a_m": [0, 0, 2], "charge": 1}],
+ "cutters": [{"kind": "plane", "center_m": [0, 0, 0.05], "normal": [0, 0, 1], "threshold_m": 0, "side": "above",
+              "action": {"kind": "split", "split_count": 2, "split_angle_deg": 30}}],
+ "walk": {"seed": 3, "steps": 12, "trials": 4, "cone_deg": 20, "step_length_m": 0.01, "strand_radius_m": 0.002,
+          "collisions": true, "on_collision": {"kind": "stop"}, "max_split_depth": 1},
+ "mesh": {"sides": 4}, "material": {"base_color": [0.2, 0.4, 0.1], "roughness": 0.8}}
+)";
+}
+
+std::string particlesEveryKind() {
+    return R"({"format": "undergrowth-particles", "format_version": 1, "name": "every_kind",
+ "generators": [{"kind": "sphere", "center_m": [0, 0, 0], "radius_m": 0.05, "count": 12, "heading_cone_deg": 20},
+                {"kind": "box", "center_m": [1, 0, 0], "half_extents_m": [0.1, 0.1, 0.1], "count": 12}],
+ "attractors": [{"kind": "segment", "a_m": [0, 0, 1], "b_m": [1, 0, 1], "influence_m": 0.5,
+                 "charge": [[0, 1], [5, -0.5]]},
+                {"kind": "sphere", "a_m": [0.5, 0, 0.5], "radius_m": 0.2, "charge": -1}],
+ "cutters": [{"kind": "sphere", "center_m": [0.5, 0, 0.5], "radius_m": 0.3, "threshold_m": 0, "side": "below",
+              "action": {"kind": "countdown", "countdown_steps": 2}},
+             {"kind": "box", "center_m": [0, 0, 0], "half_extents_m": [2, 2, 2], "threshold_m": 0,
+              "action": {"kind": "kill"}}],
+ "walk": {"seed": 9, "steps": 10, "trials": 3, "cone_deg": 40, "step_length_m": 0.02, "strand_radius_m": 0.001,
+          "max_age_steps": 6, "on_age": {"kind": "split", "split_count": 2}, "max_split_depth": 2}}
+)";
+}
+
 void write(const fs::path& dir, const std::string& name, const std::string& bytes) {
     fs::create_directories(dir);
     writeFile((dir / name).string(), bytes);
@@ -773,6 +805,9 @@ int makeCorpus(const std::string& root_arg) {
     write(sc, "default_fit_derived_extent.json", sceneFit());
     write(sc, "near_unknown_key.json", sceneUnknownKey());
     write(sc, "near_missing_model.json", sceneMissingModel());
+    const fs::path pa = root / "particles";
+    write(pa, "grass_split.json", particlesGrass());
+    write(pa, "every_kind.json", particlesEveryKind());
     std::printf("corpus written under %s\n", root.string().c_str());
     return 0;
 }

@@ -13,7 +13,7 @@
 // compileScene), obj ply stl off glb gltf (loadMeshFile; the input gets the target's extension),
 // ghosttile (the cache as found on disk) and ghosttile-forged (payload mutated, then its size and checksum
 // recomputed the way a forger would, so mutations get past the checksum to the reader's own checks), png
-// (loadHeightFieldPng). The corpus folder is DIR/<target> (DIR itself when it has no such sub-folder;
+// (loadHeightFieldPng), particles (loadParticleSystem; small systems are grown and meshed too). The corpus folder is DIR/<target> (DIR itself when it has no such sub-folder;
 // default: the committed tests/fuzz/corpus). Its sub-folder data/ holds files the seeds refer to by
 // relative path; it is copied next to each input, never mutated.
 //

@@ -11,6 +11,9 @@
 #include "ghosttile/ghost_tile.h"
 #include "ghosttile/ghost_tile_cache.h"
 #include "mesh/mesh_loader.h"
+#include "particles/particle_json.h"
+#include "particles/strand_growth.h"
+#include "particles/strand_mesh.h"
 #include "scene/project.h"
 #include "scene/scene_compile.h"
 
@@ -104,6 +107,42 @@ Outcome runMesh(const std::string& path) {
     std::string why;
     if (!validateMesh(mesh, &why)) o.violation = "accepted a mesh that fails validateMesh: " + why;
     else if (mesh.normals.size() != mesh.positions.size()) o.violation = "accepted a mesh without one normal per vertex";
+    return o;
+}
+
+// ---- particle systems: undergrowth grow's path (particle_json.h, strand_growth.h, strand_mesh.h) ------
+
+// Growth is bounded by the file's own limits, which allow minutes of work: above this many particle-steps
+// a mutated count would only measure the walk's speed, so larger systems are read but not grown.
+constexpr uint64_t kMaxGrownParticleSteps = 20'000;
+
+Outcome runParticles(const std::string& path) {
+    Outcome o;
+    ParticleSystemFile system;
+    system.name = "untouched";
+    std::string error;
+    if (!loadParticleSystem(path, &system, &error)) {
+        o.message = error;
+        if (system.name != "untouched") o.violation = "loadParticleSystem failed but changed its output";
+        return o;
+    }
+    o.accepted = true;
+    // particle_json.h promises the written form reads back to the same system.
+    ParticleSystemFile again;
+    const nlohmann::json saved = nlohmann::json::parse(particleSystemToJson(system).dump());
+    if (!parseParticleSystem(saved, path, &again, &error))
+        return o.violation = "the written form of an accepted particle system does not read: " + error, o;
+    if (particleSystemToJson(again) != saved) return o.violation = "the written form does not read back the same", o;
+    uint64_t particles = 0;
+    for (const ParticleGenerator& g : system.scene.generators) particles += g.count;
+    if (particles * system.scene.walk.steps > kMaxGrownParticleSteps) return o;
+    Strands strands;
+    if (!growStrands(system.scene, {.threads = 1}, &strands, &error)) return o;  // refused at a step: fine
+    StrandMeshSettings mesh = system.mesh;
+    mesh.max_triangles = std::min<uint64_t>(mesh.max_triangles, 2'000'000);
+    TriangleMesh tubes;
+    if (strands.size() > 0 && strandTubeMesh(strands, mesh, &tubes, &error) && !validateMesh(tubes, &error))
+        o.violation = "the strands' tubes fail validateMesh: " + error;
     return o;
 }
 
@@ -537,6 +576,16 @@ bool scenePath(std::string* b, Rng& rng) {
                              "\"\"", "\"data/\""});
 }
 
+bool particleCount(std::string* b, Rng& rng) {
+    return bumpCountAfter(b, rng, {"\"count\"", "\"steps\"", "\"trials\"", "\"split_count\"", "\"sides\"",
+                                   "\"countdown_steps\"", "\"max_split_depth\"", "\"format_version\""});
+}
+bool particleWord(std::string* b, Rng& rng) {
+    return swapWord(b, rng, {"\"point\"", "\"segment\"", "\"sphere\"", "\"rectangle\"", "\"box\"", "\"plane\"",
+                             "\"above\"", "\"below\"", "\"stop\"", "\"kill\"", "\"split\"", "\"countdown\"",
+                             "true", "false", "null", "[]", "{}", "0", "-1", "1e9"});
+}
+
 const std::vector<Target> kTargets = {
     {"scene", ".json", "scene files: loadProject, models, Ghost Tile build, terrain, compileScene", runScene,
      {sceneCount, sceneWord, sceneDeep, scenePath}},
@@ -554,6 +603,8 @@ const std::vector<Target> kTargets = {
      {cacheCountForged, cacheCountForged, cacheElementForged}, kCacheHeaderBytes, forgeCacheChecksum, "ghosttile"},
     {"png", ".png", "height-field images via loadHeightFieldPng (stb_image)", runPng,
      {pngHeaderField, pngChunkLength, pngPixels, pngPixels}},
+    {"particles", ".json", "particle system files: loadParticleSystem, growStrands, strandTubeMesh", runParticles,
+     {particleCount, particleWord}},
 };
 
 }  // namespace
