@@ -16,17 +16,7 @@ namespace {
 const std::set<std::string> kShapeKinds = {"point", "segment", "disc", "box"};
 
 bool readVec3(JsonReader& r, const json& obj, const std::string& p, const char* key, glm::vec3* out) {
-    auto it = obj.find(key);
-    if (it == obj.end()) return true;
-    const std::string kp = p + "/" + key;
-    if (!it->is_array() || it->size() != 3) return r.fail(kp, "expected [x, y, z]");
-    for (int a = 0; a < 3; ++a) {
-        if (!(*it)[a].is_number()) return r.fail(kp + "/" + std::to_string(a), "expected a number");
-        const double v = (*it)[a].get<double>();
-        if (!std::isfinite(v) || std::fabs(v) > 1e7) return r.fail(kp + "/" + std::to_string(a), "not a finite coordinate");
-        (*out)[a] = float(v);
-    }
-    return true;
+    return r.vec3(obj, p, key, out, 1e7);
 }
 
 bool readField(JsonReader& r, const json& j, const std::string& p, EnvFieldDesc* out) {

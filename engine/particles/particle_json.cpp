@@ -17,18 +17,7 @@ constexpr double kMaxCoordinate = double(kMaxParticleCoordinate_m);
 constexpr size_t kMaxFileBytes = size_t(64) << 20;
 
 bool readVec3(JsonReader& r, const json& obj, const std::string& p, const char* key, glm::vec3* out) {
-    auto it = obj.find(key);
-    if (it == obj.end()) return true;
-    const std::string at = p + "/" + key;
-    if (!it->is_array() || it->size() != 3) return r.fail(at, "expected [x, y, z]");
-    for (size_t a = 0; a < 3; ++a) {
-        if (!(*it)[a].is_number()) return r.fail(at + "/" + std::to_string(a), "expected a number");
-        const double v = (*it)[a].get<double>();
-        if (!std::isfinite(v) || std::fabs(v) > kMaxCoordinate)
-            return r.fail(at + "/" + std::to_string(a), "not a finite number within 1e5");
-        (*out)[int(a)] = float(v);
-    }
-    return true;
+    return r.vec3(obj, p, key, out, kMaxCoordinate);
 }
 
 // "kind": one of `names` (in enum order).

@@ -7,6 +7,7 @@
 #include <set>
 #include <string>
 
+#include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
 namespace ug {
@@ -67,6 +68,23 @@ public:
         uint64_t v = it->get<uint64_t>();
         if (v < lo || v > hi) return fail(p, formatRange(double(v), double(lo), double(hi)));
         *out = U(v);
+        return true;
+    }
+    // [x, y, z], each finite and within ±max_abs.
+    bool vec3(const nlohmann::json& obj, const std::string& pointer, const char* key, glm::vec3* out,
+              double max_abs) {
+        auto it = obj.find(key);
+        if (it == obj.end()) return true;
+        const std::string p = pointer + "/" + key;
+        if (!it->is_array() || it->size() != 3) return fail(p, "expected [x, y, z]");
+        for (int a = 0; a < 3; ++a) {
+            const nlohmann::json& v = (*it)[size_t(a)];
+            if (!v.is_number()) return fail(p + "/" + std::to_string(a), "expected a number");
+            const double x = v.get<double>();
+            if (!std::isfinite(x) || std::fabs(x) > max_abs)
+                return fail(p + "/" + std::to_string(a), "not a finite coordinate");
+            (*out)[a] = float(x);
+        }
         return true;
     }
     bool boolean(const nlohmann::json& obj, const std::string& pointer, const char* key, bool* out) {

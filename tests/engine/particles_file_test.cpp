@@ -95,7 +95,7 @@ TEST(ParticleFile, BadFilesAreRefusedNamingThePlace) {
         {"an unknown kind", {"/cutters/0/kind=\"cube\"", "/cutters/0/kind: 'cube' is not one of plane, sphere, box"}},
         {"a negative step", {"/attractors/0/charge/1/0=-3", "/attractors/0/charge/1: expected [step, charge]"}},
         {"keys out of order", {"/attractors/0/charge/1/0=0", "attractors[0].charge"}},
-        {"a coordinate too far", {"/generators/1/center_m/2=1e9", "/generators/1/center_m/2: not a finite number"}},
+        {"a coordinate too far", {"/generators/1/center_m/2=1e9", "/generators/1/center_m/2: not a finite coordinate"}},
         {"no generator", {"/generators=[]", "/generators: at least one generator"}},
         {"other format", {"/format=\"undergrowth-project\"", "/format: expected \"undergrowth-particles\""}},
         {"too many sides", {"/mesh/sides=64", "/mesh/sides: 64 is out of range [3, 32]"}},
