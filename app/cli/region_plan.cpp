@@ -1,5 +1,6 @@
 #include "cli/region_plan.h"
 
+#include <algorithm>
 #include <cinttypes>
 #include <cmath>
 #include <cstdio>
@@ -120,8 +121,32 @@ bool cutIntoRegions(const InstancerInput& input, float halo_m, int max_jobs, int
     const int64_t chunks_x = std::max<int64_t>(1, int64_t(std::ceil(e.hi.x / c)) - cx0);
     const int64_t chunks_y = std::max<int64_t>(1, int64_t(std::ceil(e.hi.y / c)) - cy0);
     const uint64_t budget = plan->instancerBudget();
+    // The footprint of a box, counted without a limit (the instancer's check is the same count against
+    // the budget); UINT64_MAX when the instancer refuses the box for another reason (`why` says which).
+    const InstanceOptions unbounded{.threads = threads, .max_memory_bytes = UINT64_MAX};
+    auto footprint = [&](const Bounds& box, std::string* why) {
+        RegionFootprint f;
+        return measureRegionFootprint(input, box, unbounded, &f, why) ? f.bytes() : UINT64_MAX;
+    };
+    // A grid of at least k regions shaped like the extent in chunks (so regions stay about square).
+    auto gridFor = [&](double k, int* gx, int* gy) {
+        *gx = int(std::clamp<double>(std::ceil(std::sqrt(k * double(chunks_x) / double(chunks_y))), 1.0,
+                                     double(chunks_x)));
+        *gy = int(std::clamp<double>(std::ceil(k / *gx), 1.0, double(chunks_y)));
+    };
+    // Footprints shrink about in proportion to a region's area: start from the whole world's over the
+    // budget, then scale the grid by the largest region's excess until every region fits (a couple of
+    // rounds), rather than one cut at a time (quadratic in the tasks).
     int nx = 1, ny = 1;
+    std::string why;
+    const uint64_t whole = footprint({e.lo - halo_m, e.hi + halo_m}, &why);
+    if (whole != UINT64_MAX && whole > budget) gridFor(std::ceil(double(whole) / double(budget)), &nx, &ny);
     for (;;) {
+        if (int64_t(nx) * ny > max_jobs) {
+            *error = "the world needs more than --max-jobs " + std::to_string(max_jobs) + " regions of at most " +
+                     mib(budget) + " MiB of instancer state each; raise --memory-per-job or --max-jobs";
+            return false;
+        }
         plan->regions.clear();
         std::string worst_reason;
         uint64_t worst = 0;
@@ -132,39 +157,34 @@ bool cutIntoRegions(const InstancerInput& input, float halo_m, int max_jobs, int
                 regionSpan(cy0, chunks_y, ny, iy, c, e.lo.y, e.hi.y, &r.box.lo.y, &r.box.hi.y);
                 r.box.lo.z = e.lo.z - c;
                 r.box.hi.z = e.hi.z + c;
-                RegionFootprint f;
-                std::string why;
-                const InstanceOptions options{.threads = threads, .max_memory_bytes = budget};
-                const Bounds wide{r.box.lo - halo_m, r.box.hi + halo_m};
-                if (!measureRegionFootprint(input, wide, options, &f, &why)) {
-                    r.footprint_bytes = UINT64_MAX;
-                    worst_reason = why;
-                } else {
-                    r.footprint_bytes = f.bytes();
+                r.footprint_bytes = footprint({r.box.lo - halo_m, r.box.hi + halo_m}, &why);
+                if (r.footprint_bytes > worst) {
+                    worst = r.footprint_bytes;
+                    worst_reason = r.footprint_bytes == UINT64_MAX ? why : "";
                 }
-                worst = std::max(worst, r.footprint_bytes);
                 plan->regions.push_back(r);
             }
         if (worst <= budget) return true;
-        // Cut the side with more chunks per region once more.
-        const double per_x = double(chunks_x) / nx, per_y = double(chunks_y) / ny;
-        if ((per_x >= per_y && nx < chunks_x) || ny >= chunks_y) {
-            if (nx >= chunks_x) {
-                *error = "a single chunk of " + metres(c) + " m needs more than the instancer's " + mib(budget) +
-                         " MiB (half of --memory-per-job)" +
-                         (worst_reason.empty() ? "" : ": " + worst_reason) +
-                         "; raise --memory-per-job or lower instantiation.chunk_size_m";
-                return false;
-            }
-            ++nx;
-        } else {
-            ++ny;
-        }
-        if (int64_t(nx) * ny > max_jobs) {
-            *error = "the world needs more than --max-jobs " + std::to_string(max_jobs) + " regions of at most " +
-                     mib(budget) + " MiB of instancer state each; raise --memory-per-job or --max-jobs";
+        if (nx >= chunks_x && ny >= chunks_y) {
+            *error = "a single chunk of " + metres(c) + " m needs more than the instancer's " + mib(budget) +
+                     " MiB (half of --memory-per-job)" + (worst_reason.empty() ? "" : ": " + worst_reason) +
+                     "; raise --memory-per-job or lower instantiation.chunk_size_m";
             return false;
         }
+        int gx = nx, gy = ny;
+        if (worst != UINT64_MAX)
+            gridFor(std::ceil(double(nx) * double(ny) * double(worst) / double(budget)), &gx, &gy);
+        if (int64_t(gx) * gy <= int64_t(nx) * ny) {
+            // No progress from the estimate: cut the side with more chunks per region once more.
+            gx = nx;
+            gy = ny;
+            if ((double(chunks_x) / nx >= double(chunks_y) / ny && nx < chunks_x) || ny >= chunks_y)
+                ++gx;
+            else
+                ++gy;
+        }
+        nx = gx;
+        ny = gy;
     }
 }
 
