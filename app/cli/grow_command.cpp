@@ -1,8 +1,7 @@
 // `undergrowth grow PARTICLES.json -o OUT.glb`: particle sculpting (docs/particles.md) from a particle
 // system file to glTF. Grows the strands (a pure function of the file: the same bytes for any --threads),
-// meshes them as closed tubes and writes one mesh "strands/<name>" with the system's material; the
-// polylines go in the mesh's extras ({"strands": {"radius_m", "offsets", "points"}}) so a pipeline can
-// rebuild curves, while the file stays reasonable (up to kMaxExtrasPoints points).
+// meshes them as closed tubes and writes one mesh "strands/<name>" with the system's material and the
+// polylines in its extras (particles/particle_output.h).
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -15,8 +14,7 @@
 #include "core/atomic_file.h"
 #include "io/gltf_scene_export.h"
 #include "particles/particle_json.h"
-#include "particles/strand_growth.h"
-#include "particles/strand_mesh.h"
+#include "particles/particle_output.h"
 
 namespace ug::cli {
 
@@ -24,28 +22,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-constexpr size_t kMaxExtrasPoints = 200'000;  // ~6 MB of JSON text
-
 int fail(const std::string& message, int code = 1) {
     std::fprintf(stderr, "undergrowth grow: %s\n", message.c_str());
     return code;
-}
-
-// The polylines as extras, or why they are left out.
-std::string strandsExtras(const Strands& strands) {
-    nlohmann::json j;
-    if (strands.points.size() > kMaxExtrasPoints) {
-        j["strands_omitted"] = std::to_string(strands.points.size()) + " points, more than " +
-                               std::to_string(kMaxExtrasPoints) + " (the tubes are complete)";
-        return j.dump();
-    }
-    nlohmann::json points = nlohmann::json::array();
-    for (const glm::vec3& p : strands.points) points.push_back({p.x, p.y, p.z});
-    j["strands"] = {{"radius_m", strands.radii.empty() ? 0.0f : strands.radii[0]},
-                    {"offsets", strands.offsets},
-                    {"points", points},
-                    {"space", "engine: metres, Z up (the mesh's node turns it to glTF's Y up)"}};
-    return j.dump();
 }
 
 }  // namespace
@@ -68,14 +47,13 @@ int runGrowCommand(int argc, char** argv) {
     const std::string path = args.positional[0];
     ParticleSystemFile system;
     if (!loadParticleSystem(path, &system, &error)) return fail(error);
+    if (system.name.empty()) system.name = fs::path(path).stem().string();
     const auto t0 = std::chrono::steady_clock::now();
     Strands strands;
-    if (!growStrands(system.scene, {.threads = int(threads)}, &strands, &error)) return fail(path + ": " + error);
+    MeshInstances tubes;
+    if (!growParticleSystem(system, int(threads), &strands, &tubes, &error)) return fail(path + ": " + error);
     const double grow_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (strands.size() == 0) return fail(path + ": no strand grew (every particle was killed or never moved)");
-    auto mesh = std::make_shared<TriangleMesh>();
-    if (!strandTubeMesh(strands, system.mesh, mesh.get(), &error)) return fail(path + ": " + error);
-
+    const TriangleMesh& mesh = *tubes.mesh;
     const StrandStats& st = strands.stats;
     // Counts only: the file is the same bytes for any thread count (timings go to --stats).
     const nlohmann::json counts = {{"name", system.name},
@@ -88,13 +66,8 @@ int runGrowCommand(int argc, char** argv) {
                                    {"splits", st.splits},
                                    {"killed", st.killed},
                                    {"dropped", st.dropped},
-                                   {"triangles", mesh->triangleCount()}};
+                                   {"triangles", mesh.triangleCount()}};
     SceneExport scene;
-    MeshInstances tubes;
-    tubes.name = "strands/" + (system.name.empty() ? fs::path(path).stem().string() : system.name);
-    tubes.mesh = mesh;
-    tubes.material = std::make_shared<SurfaceMaterial>(resolveMaterial(system.material, glm::vec3(0.45f, 0.36f, 0.25f)));
-    tubes.extras_json = strandsExtras(strands);
     scene.meshes.push_back(std::move(tubes));
     scene.scene_extras_json = nlohmann::json{{"particles", counts}}.dump();
     if (!writeSceneGltf(out, scene, &error)) return fail(error);
@@ -104,9 +77,9 @@ int runGrowCommand(int argc, char** argv) {
         stats["threads"] = threads;
         if (!writeTextFileAtomically(args.get("--stats"), stats.dump(2) + "\n", &error)) return fail(error);
     }
-    std::printf("%zu strands (%zu points, %llu moves, %llu refused by collisions) grown in %.3f s, %zu triangles -> %s\n",
+    std::printf("%zu strands (%zu points, %llu moves, %llu refused by collisions) grown and meshed in %.3f s, %zu triangles -> %s\n",
                 strands.size(), strands.points.size(), static_cast<unsigned long long>(st.moves),
-                static_cast<unsigned long long>(st.collisions), grow_seconds, mesh->triangleCount(), out.c_str());
+                static_cast<unsigned long long>(st.collisions), grow_seconds, mesh.triangleCount(), out.c_str());
     return 0;
 }
 

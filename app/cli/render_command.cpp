@@ -16,6 +16,7 @@
 #include "cli/commands.h"
 #include "editor/offscreen_render.h"
 #include "editor/screenshot.h"
+#include "particles/particle_output.h"
 
 namespace ug::cli {
 
@@ -26,6 +27,7 @@ namespace {
 constexpr const char* kUsage =
     "usage: undergrowth render SCENE.json -o PICTURE.png [--camera tx,ty,tz,distance,yaw_deg,pitch_deg]\n"
     "       [--size WxH] [--threads N] [--cache DIR] [--no-shadows] [--no-ao] [--frames N]\n"
+    "       [--particles PARTICLES.json]   (a particle system's strands drawn into the scene)\n"
     "  --size: each side in [16, 16384], at most 67,108,864 pixels (8192 x 8192); default 1280x720\n"
     "  --camera: orbit target (metres), distance (metres, > 0), yaw (degrees; -90 looks from -Y) and\n"
     "            pitch (degrees above the horizon, in [-89, 89]); default: the editor's opening view\n"
@@ -81,7 +83,8 @@ double medianMs(std::vector<double> v) {
 int runRenderCommand(int argc, char** argv) {
     Args args;
     std::string error;
-    if (!parseArgs(argc, argv, 2, {"-o", "--out", "--camera", "--size", "--threads", "--cache", "--frames"},
+    if (!parseArgs(argc, argv, 2,
+                   {"-o", "--out", "--camera", "--size", "--threads", "--cache", "--frames", "--particles"},
                    {"--no-shadows", "--no-ao"}, &args, &error))
         return usageError(error);
     if (args.positional.size() != 1)
@@ -117,6 +120,18 @@ int runRenderCommand(int argc, char** argv) {
         editor::OrbitCamera camera;
         if (!parseCamera(args.get("--camera"), &camera, &error)) return usageError(error);
         options.camera = camera;
+    }
+
+    if (args.has("--particles")) {
+        // A particle system's strands drawn into the scene, as `grow` exports them.
+        const std::string path = args.get("--particles");
+        ParticleSystemFile system;
+        Strands strands;
+        MeshInstances tubes;
+        if (!loadParticleSystem(path, &system, &error)) return fail(error);
+        if (system.name.empty()) system.name = fs::path(path).stem().string();
+        if (!growParticleSystem(system, options.threads, &strands, &tubes, &error)) return fail(path + ": " + error);
+        options.extra_static_meshes.push_back(std::move(tubes));
     }
 
     editor::OffscreenRenderResult result;

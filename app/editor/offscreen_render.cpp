@@ -41,6 +41,8 @@ OffscreenRenderStatus renderSceneOffscreen(const OffscreenRenderOptions& options
     renderer.setLook(options.look);
     renderer.setScene(snap.extent(), snap.terrain(), &snap.scene.meshes, snap.candidates(), snap.tileSize(),
                       &snap.scene.terrain_material);
+    snap.scene.static_meshes.insert(snap.scene.static_meshes.end(), options.extra_static_meshes.begin(),
+                                    options.extra_static_meshes.end());
     renderer.setStaticMeshes(&snap.scene.static_meshes);
     renderer.uploadTiles(&snap.tiles, snap.uploads);
 

@@ -29,6 +29,8 @@ struct OffscreenRenderOptions {
     int frames = 1;  // frames rendered and timed (each ends with glFinish); the picture is the last one's
     LodSettings lod;
     ViewportLook look;
+    // Drawn with the scene's own static meshes (`render --particles`: strand tubes), names unique.
+    std::vector<MeshInstances> extra_static_meshes;
 };
 
 struct OffscreenRenderResult {

@@ -73,6 +73,31 @@ PY
 )"; then ok "render away: the pile is gone from the centre ($out)"; else bad "render away: $out"; fi
 fi
 
+# A particle system's strands drawn into a scene (--particles): the split grass of Fig. 6 at the centre
+# of the default scene, against the same view without it: greener there, and its tubes' triangles more.
+grass="$root/assets/particles/fig6_split_grass.json"
+if render_ok plain "$root/assets/scenes/default.json" -o "$tmp/plain.png" --size 320x200 --camera 0,0,0.2,1.4,-60,15 &&
+   render_ok strands "$root/assets/scenes/default.json" -o "$tmp/strands.png" --size 320x200 --camera 0,0,0.2,1.4,-60,15 \
+     --particles "$grass"; then
+  if out="$(python3 - "$tmp/plain.png" "$tmp/strands.png" "$tmp/plain.log" "$tmp/strands.log" <<PY
+import re, sys
+sys.path.insert(0, "$root/tests/gui")
+from check_screenshot import decode_png, region_mean
+(w, h, plain), (_, _, strands) = decode_png(sys.argv[1]), decode_png(sys.argv[2])
+def green(img):
+    r, g, b = region_mean(img, int(w * 0.3), int(w * 0.7), int(h * 0.3), int(h * 0.7))
+    return g - (r + b) / 2
+tri = [int(re.search(r"([0-9]+) triangles", open(f).read()).group(1)) for f in sys.argv[3:5]]
+assert green(strands) > green(plain) + 5, (green(plain), green(strands))
+assert tri[1] > tri[0] + 100000, tri
+print("centre greenness %.1f -> %.1f, triangles %d -> %d" % (green(plain), green(strands), tri[0], tri[1]))
+PY
+)"; then ok "render --particles: the strands are drawn ($out)"; else bad "render --particles: $out"; fi
+fi
+out=$(nodisplay "$bin" render "$root/assets/scenes/default.json" -o "$tmp/np.png" --particles "$tmp/missing.json" 2>&1); rc=$?
+if [ $rc -eq 1 ] && grep -q "missing.json" <<<"$out" && [ ! -e "$tmp/np.png" ]; then ok "render --particles: a missing file fails, no picture"; else
+  bad "render --particles missing (exit $rc): $out"; fi
+
 # 2. The meadow's default view (the README's picture) at 640x360: ground and grass under the sky.
 if render_ok meadow "$root/assets/scenes/meadow.json" -o "$tmp/sub/meadow.png" --size 640x360; then
   if out="$(python3 "$check" "$tmp/sub/meadow.png" 640 360 meadow 2>&1)"; then ok "render meadow: $out"

@@ -1,0 +1,48 @@
+#include "particles/particle_output.h"
+
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "particles/strand_mesh.h"
+
+namespace ug {
+
+namespace {
+
+std::string strandsExtras(const Strands& strands) {
+    nlohmann::json j;
+    if (strands.points.size() > kMaxExtrasStrandPoints) {
+        j["strands_omitted"] = std::to_string(strands.points.size()) + " points, more than " +
+                               std::to_string(kMaxExtrasStrandPoints) + " (the tubes are complete)";
+        return j.dump();
+    }
+    nlohmann::json points = nlohmann::json::array();
+    for (const glm::vec3& p : strands.points) points.push_back({p.x, p.y, p.z});
+    j["strands"] = {{"radius_m", strands.radii.empty() ? 0.0f : strands.radii[0]},
+                    {"offsets", strands.offsets},
+                    {"points", points},
+                    {"space", "engine: metres, Z up (the mesh's node turns it to glTF's Y up)"}};
+    return j.dump();
+}
+
+}  // namespace
+
+bool growParticleSystem(const ParticleSystemFile& system, int threads, Strands* strands, MeshInstances* out,
+                        std::string* error) {
+    if (!growStrands(system.scene, {.threads = threads}, strands, error)) return false;
+    if (strands->size() == 0) {
+        if (error) *error = "no strand grew (every particle was killed or never moved)";
+        return false;
+    }
+    auto mesh = std::make_shared<TriangleMesh>();
+    if (!strandTubeMesh(*strands, system.mesh, mesh.get(), error)) return false;
+    *out = MeshInstances{};
+    out->name = "strands/" + system.name;
+    out->mesh = mesh;
+    out->material = std::make_shared<SurfaceMaterial>(resolveMaterial(system.material, glm::vec3(0.45f, 0.36f, 0.25f)));
+    out->extras_json = strandsExtras(*strands);
+    return true;
+}
+
+}  // namespace ug

@@ -1,0 +1,22 @@
+// A particle system's strands as the outputs draw them (the glTF export of `undergrowth grow`, the
+// renderer of `undergrowth render --particles`): one static mesh "strands/<name>" — the closed tubes of
+// strand_mesh.h with the system's material — whose extras hold the polylines, so a pipeline can rebuild
+// curves, up to kMaxExtrasStrandPoints points (past that, "strands_omitted" says how many there were).
+#pragma once
+
+#include <string>
+
+#include "io/mesh_instances.h"
+#include "particles/particle_json.h"
+#include "particles/strand_growth.h"
+
+namespace ug {
+
+constexpr size_t kMaxExtrasStrandPoints = 200'000;  // ~6 MB of JSON text
+
+// Grows the strands (a pure function of the system: the same for any thread count) and meshes them.
+// Fails with the reason when the growth or the meshing is refused, or when no strand grew.
+bool growParticleSystem(const ParticleSystemFile& system, int threads, Strands* strands, MeshInstances* out,
+                        std::string* error);
+
+}  // namespace ug
