@@ -24,9 +24,9 @@ bool readVec3(JsonReader& r, const json& obj, const std::string& p, const char* 
 template <typename E, size_t N>
 bool readKind(JsonReader& r, const json& obj, const std::string& p, const char* key, const char* const (&names)[N],
               E* out, bool required) {
+    if (!obj.contains(key)) return !required || r.fail(p + "/" + key, "missing (required)");
     std::string s;
-    if (!r.string(obj, p, key, &s, required)) return false;
-    if (s.empty()) return true;
+    if (!r.string(obj, p, key, &s)) return false;
     for (size_t i = 0; i < N; ++i)
         if (s == names[i]) {
             *out = E(i);

@@ -99,6 +99,7 @@ TEST(ParticleFile, BadFilesAreRefusedNamingThePlace) {
         {"no generator", {"/generators=[]", "/generators: at least one generator"}},
         {"other format", {"/format=\"undergrowth-project\"", "/format: expected \"undergrowth-particles\""}},
         {"too many sides", {"/mesh/sides=64", "/mesh/sides: 64 is out of range [3, 32]"}},
+        {"an empty side", {"/cutters/1/side=\"\"", "/cutters/1/side: '' is not one of above, below"}},
     };
     for (const auto& [name, c] : cases) {
         SCOPED_TRACE(name);
