@@ -1,6 +1,7 @@
 // `undergrowth bench`: each section appends rows; the command prints the table and writes the JSON.
 #pragma once
 
+#include <chrono>
 #include <string>
 #include <vector>
 
@@ -16,6 +17,11 @@ struct BenchContext {
     std::string cache_dir = "out/cache";  // Ghost Tile cache for scene-based sections
     int repetitions() const { return quick ? 3 : 7; }
 };
+
+// Seconds of wall time since t0 (the sections' timings; medians are taken by the callers).
+inline double since(std::chrono::steady_clock::time_point t0) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
 // Returns false with an error when a section cannot run at all (e.g. a missing asset).
 bool benchGhostTile(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error);

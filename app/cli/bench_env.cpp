@@ -14,10 +14,6 @@ namespace ug::cli {
 
 namespace {
 
-double since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 struct EnvJob {
     Project project;
     std::shared_ptr<const HeightField> terrain;

@@ -11,10 +11,6 @@ namespace ug::cli {
 
 namespace {
 
-double since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // A ball of fur 10 cm across: the centre repels (the fur stands), a point below attracts weakly and
 // only within its reach (it combs the lower half down), the strands keep two radii apart.
 ParticleScene furBall(uint32_t strands, uint32_t steps) {

@@ -25,10 +25,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-double since(std::chrono::steady_clock::time_point t0) {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 // Runs a shell command; its standard output in *out (stderr goes to the bench's stderr). The exit code,
 // or -1 when it could not run or was killed.
 int shell(const std::string& command, std::string* out = nullptr) {

@@ -47,7 +47,6 @@ int runGrowCommand(int argc, char** argv) {
     const std::string path = args.positional[0];
     ParticleSystemFile system;
     if (!loadParticleSystem(path, &system, &error)) return fail(error);
-    if (system.name.empty()) system.name = fs::path(path).stem().string();
     const auto t0 = std::chrono::steady_clock::now();
     Strands strands;
     MeshInstances tubes;

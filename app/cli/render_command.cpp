@@ -129,7 +129,6 @@ int runRenderCommand(int argc, char** argv) {
         Strands strands;
         MeshInstances tubes;
         if (!loadParticleSystem(path, &system, &error)) return fail(error);
-        if (system.name.empty()) system.name = fs::path(path).stem().string();
         if (!growParticleSystem(system, options.threads, &strands, &tubes, &error)) return fail(path + ": " + error);
         options.extra_static_meshes.push_back(std::move(tubes));
     }

@@ -1,6 +1,7 @@
 #include "particles/particle_json.h"
 
 #include <cmath>
+#include <filesystem>
 
 #include "core/atomic_file.h"
 #include "scene/json_parse.h"
@@ -191,7 +192,9 @@ bool loadParticleSystem(const std::string& path, ParticleSystemFile* out, std::s
     if (!readTextFile(path, &text, error, kMaxFileBytes)) return false;
     json j;
     if (!parseJsonText(text, path, &j, error)) return false;
-    return parseParticleSystem(j, path, out, error);
+    if (!parseParticleSystem(j, path, out, error)) return false;
+    if (out->name.empty()) out->name = std::filesystem::path(path).stem().string();
+    return true;
 }
 
 json particleSystemToJson(const ParticleSystemFile& s) {

@@ -41,8 +41,8 @@ struct ParticleSystemFile {
     Material material;
 };
 
-// Reads a particle system from the file at `path` (errors name it). Sizes are refused before anything
-// is allocated for them.
+// Reads a particle system from the file at `path` (errors name it); a system without a name takes the
+// file's stem. Sizes are refused before anything is allocated for them.
 bool loadParticleSystem(const std::string& path, ParticleSystemFile* out, std::string* error);
 // Reads from parsed JSON; `source` names it in errors.
 bool parseParticleSystem(const nlohmann::json& j, const std::string& source, ParticleSystemFile* out,
