@@ -23,3 +23,14 @@ shot street_winter street_winter --camera 5,5,0.5,13,-115,32
 shot street_winter_close street_winter --camera 6.6,6.5,1,7,-110,18
 shot montmartre_winter montmartre_winter --camera 0,-20,0.2,14,-90,20
 shot road_winter road_winter --camera 0,6,1,14,-120,22
+# Particle systems (assets/particles/) grown into the default scene, after the paper's figures.
+strands() {  # sample camera
+  shot "particles_$1" default --particles "assets/particles/$1.json" --camera "$2"
+}
+strands fig1_four_attractors 0,0,0.5,3.2,-60,20
+strands fig5_exchanging_pulsars 0,0,0.45,2.6,-90,12
+strands fig6_split_grass 0,0,0.2,1.4,-60,15
+strands fig7_sphere_stop 0,0,0.5,2.2,-60,18
+strands fig8_sphere_to_sphere 0,0,0.6,2.0,-60,20
+strands fig9_grass_cutter 0,0,0.15,1.8,-60,15
+strands fig9_four_attractors_no_collision 0,0,0.5,3.2,-60,20

@@ -84,9 +84,11 @@ bool effectRow(const BenchContext& ctx, const SceneJob& job, const EffectRow& e,
                          " candidates tested"});
     rows->push_back({p + "_instances", double(t.stats.instances), "instances", e.instances_target, e.paper_instances,
                      std::to_string(t.stats.tiles_touched) + " tiles touched"});
-    std::fprintf(stderr, "  %-14s %-6s %9llu instances from %11llu candidates  %.3f s\n", e.scene, e.effect,
-                 static_cast<unsigned long long>(t.stats.instances),
-                 static_cast<unsigned long long>(t.stats.candidates_tested), t.seconds);
+    std::fprintf(stderr, "  %-14s %-6s %9llu instances from %11llu candidates (%llu alive, %llu culled)  %.3f s\n",
+                 e.scene, e.effect, static_cast<unsigned long long>(t.stats.instances),
+                 static_cast<unsigned long long>(t.stats.candidates_tested),
+                 static_cast<unsigned long long>(t.stats.alive), static_cast<unsigned long long>(t.stats.culled),
+                 t.seconds);
     return true;
 }
 

@@ -55,6 +55,20 @@ public:
         }
     }
 
+    // As forEachNeighbor, stopping at the first edge for which f returns true; returns whether it stopped.
+    // The resolver stops a row at the first selected higher-key neighbour: most rows end early.
+    template <typename F>
+    bool anyNeighbor(uint32_t i, F&& f) const {
+        const uint8_t* p = bytes_.data() + row_offsets_[i];
+        const uint8_t* end = bytes_.data() + row_offsets_[i + 1];
+        uint32_t key = 0;
+        while (p < end) {
+            key += decodeVarint(p);
+            if (f(key / kOffsetCount, key % kOffsetCount)) return true;
+        }
+        return false;
+    }
+
     uint32_t degree(uint32_t i) const;
     bool hasEdge(uint32_t i, uint32_t j, uint32_t offset_index) const;
 

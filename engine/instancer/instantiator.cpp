@@ -727,20 +727,20 @@ public:
 
     // Its status from its higher-key neighbours' statuses, all known (update()'s key-order pass).
     uint8_t decide(Ref c) {
-        uint8_t result = kSelected;
-        forHigher(c, [&](Ref r) {
-            if ((tiles_[r.tile].load(r.alive) & kStatusMask) == kSelected) result = kRejected;
+        const TileState& t = tiles_[c.tile];
+        const uint32_t j = t.alive[c.alive];
+        const uint64_t pc = t.priority[c.alive];
+        const bool selected_above = graph_.anyNeighbor(j, [&](uint32_t k, uint32_t v) {
+            const int32_t u = t.neighbour[v];
+            if (u < 0) return false;
+            const TileState& ut = tiles_[u];
+            const int64_t a = ut.find(k);
+            return a >= 0 && keyBefore(ut.priority[a], ut.key, k, pc, t.key, j) &&
+                   (ut.load(uint32_t(a)) & kStatusMask) == kSelected;
         });
-        return result;
+        return selected_above ? kRejected : kSelected;
     }
 
-    // f(Ref) for every alive neighbour of c with a smaller key. Missing tiles are skipped.
-    template <typename F>
-    void forHigher(Ref c, F&& f) {
-        forNeighbours(c, [&](Ref r, bool higher) {
-            if (higher) f(r);
-        });
-    }
     // f(Ref, higher) for every alive neighbour of c.
     template <typename F>
     void forNeighbours(Ref c, F&& f) {
@@ -776,22 +776,22 @@ private:
         const uint32_t j = t.alive[c.alive];
         const uint64_t pc = t.priority[c.alive];
         const uint32_t begin = uint32_t(arena_.size());
-        bool selected_above = false, any_missing = false;
-        graph_.forEachNeighbor(j, [&](uint32_t k, uint32_t v) {
-            if (selected_above) return;
+        bool any_missing = false;
+        const bool selected_above = graph_.anyNeighbor(j, [&](uint32_t k, uint32_t v) {
             const int32_t u = t.neighbour[v];
-            if (u == kEmptyTile) return;
+            if (u == kEmptyTile) return false;
             if (u == kUnknownTile) {
                 any_missing = true;
                 missing->push_back(t.coord + offsetVector(v));
-                return;
+                return false;
             }
             const TileState& ut = tiles_[u];
             const int64_t a = ut.find(k);
-            if (a < 0 || !keyBefore(ut.priority[a], ut.key, k, pc, t.key, j)) return;
+            if (a < 0 || !keyBefore(ut.priority[a], ut.key, k, pc, t.key, j)) return false;
             const uint8_t s = ut.load(uint32_t(a));
-            if (s == kSelected) selected_above = true;
-            else if (s == kUnknown) arena_.push_back(Ref{u, uint32_t(a)});
+            if (s == kSelected) return true;
+            if (s == kUnknown) arena_.push_back(Ref{u, uint32_t(a)});
+            return false;
         });
         if (selected_above) {
             arena_.resize(begin);

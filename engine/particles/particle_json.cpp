@@ -39,6 +39,8 @@ bool readKind(JsonReader& r, const json& obj, const std::string& p, const char* 
 }
 
 const char* const kActionNames[] = {"stop", "kill", "split", "countdown"};
+// countdown_then takes only the first two actions (StrandActionKind's Stop and Kill, in enum order).
+const char* const kCountdownEndNames[] = {"stop", "kill"};
 const char* const kGeneratorNames[] = {"rectangle", "sphere", "box"};
 const char* const kAttractorNames[] = {"point", "segment", "sphere"};
 const char* const kCutterNames[] = {"plane", "sphere", "box"};
@@ -49,11 +51,12 @@ bool readAction(JsonReader& r, const json& obj, const std::string& p, const char
     if (it == obj.end()) return true;
     const std::string at = p + "/" + key;
     return r.expectObject(*it, at) &&
-           r.onlyKeys(*it, at, {"kind", "split_count", "split_angle_deg", "countdown_steps"}) &&
+           r.onlyKeys(*it, at, {"kind", "split_count", "split_angle_deg", "countdown_steps", "countdown_then"}) &&
            readKind(r, *it, at, "kind", kActionNames, &out->kind, true) &&
            r.integer(*it, at, "split_count", &out->split_count, 1, 16) &&
            r.number(*it, at, "split_angle_deg", &out->split_angle_deg, 0.0, 179.9) &&
-           r.integer(*it, at, "countdown_steps", &out->countdown_steps, 1, kMaxParticleSteps);
+           r.integer(*it, at, "countdown_steps", &out->countdown_steps, 1, kMaxParticleSteps) &&
+           readKind(r, *it, at, "countdown_then", kCountdownEndNames, &out->countdown_then, false) ;
 }
 
 bool readGenerator(JsonReader& r, const json& j, const std::string& p, ParticleGenerator* g) {
@@ -151,7 +154,8 @@ json actionJson(const StrandAction& a) {
     return {{"kind", kActionNames[size_t(a.kind)]},
             {"split_count", a.split_count},
             {"split_angle_deg", a.split_angle_deg},
-            {"countdown_steps", a.countdown_steps}};
+            {"countdown_steps", a.countdown_steps},
+            {"countdown_then", kActionNames[size_t(a.countdown_then)]}};
 }
 
 }  // namespace

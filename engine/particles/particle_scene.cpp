@@ -44,6 +44,9 @@ bool checkAction(const StrandAction& a, const std::string& field, std::string* e
     }
     if (a.kind == StrandActionKind::Countdown && a.countdown_steps < 1)
         return fail(error, field + ".countdown_steps", "must be >= 1");
+    if (a.kind == StrandActionKind::Countdown && a.countdown_then != StrandActionKind::Kill &&
+        a.countdown_then != StrandActionKind::Stop)
+        return fail(error, field + ".countdown_then", "must be kill or stop");
     return true;
 }
 

@@ -20,7 +20,7 @@ enum class StrandActionKind : uint8_t {
     Stop,       // the strand ends where it is (its points stay)
     Kill,       // the strand is removed from the output
     Split,      // the strand ends and split_count children continue from its last point
-    Countdown,  // the strand goes on for countdown_steps more steps, then is killed
+    Countdown,  // the strand goes on for countdown_steps more steps, then countdown_then (kill or stop)
 };
 
 struct StrandAction {
@@ -28,6 +28,9 @@ struct StrandAction {
     uint32_t split_count = 2;        // Split: children, in [1, 16]
     float split_angle_deg = 30.0f;   // Split: children's headings perturbed in this cone, [0, 180)
     uint32_t countdown_steps = 4;    // Countdown: >= 1
+    // Countdown: what ends the strand when the count runs out, Kill (removed) or Stop (its points stay:
+    // the paper's "eliminated" in Fig. 8, where the strands reaching the outer sphere remain visible).
+    StrandActionKind countdown_then = StrandActionKind::Kill;
 };
 
 // Surfaces particles are seeded on. Each has an area-preserving parameterisation, so equal strata in

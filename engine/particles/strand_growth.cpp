@@ -37,6 +37,7 @@ struct StrandStore {
     std::vector<StrandState> state;
     std::vector<uint32_t> age;
     std::vector<int32_t> countdown;  // -1: none running
+    std::vector<uint8_t> countdown_stops;  // the running countdown ends in a stop (else a kill)
     std::vector<uint32_t> cut_mask;  // cutters this strand's lineage has triggered
 
     size_t size() const { return first.size(); }
@@ -50,6 +51,7 @@ struct StrandStore {
         state.push_back(StrandState::Active);
         age.push_back(0);
         countdown.push_back(-1);
+        countdown_stops.push_back(0);
         cut_mask.push_back(mask);
     }
 };
@@ -250,7 +252,10 @@ void Growth::apply(const StrandAction& action, uint32_t s) {
                 split(action, s);
             break;
         case StrandActionKind::Countdown:
-            if (strands_.countdown[s] < 0) strands_.countdown[s] = int32_t(action.countdown_steps);
+            if (strands_.countdown[s] < 0) {
+                strands_.countdown[s] = int32_t(action.countdown_steps);
+                strands_.countdown_stops[s] = action.countdown_then == StrandActionKind::Stop;
+            }
             break;
     }
 }
@@ -324,8 +329,12 @@ bool Growth::run(Strands* out, std::string* error) {
             }
             // A countdown started in an earlier step runs out here, whatever happened in this one.
             if (counting && strands_.state[s] == StrandState::Active && --strands_.countdown[s] <= 0) {
-                strands_.state[s] = StrandState::Killed;
-                ++stats_.killed;
+                if (strands_.countdown_stops[s]) {
+                    strands_.state[s] = StrandState::Stopped;
+                } else {
+                    strands_.state[s] = StrandState::Killed;
+                    ++stats_.killed;
+                }
             }
         }
     }

@@ -50,6 +50,7 @@ ParticleSystemFile everyKind() {
     ball_cut.side = CutterSide::Below;
     ball_cut.action.kind = StrandActionKind::Countdown;
     ball_cut.action.countdown_steps = 5;
+    ball_cut.action.countdown_then = StrandActionKind::Stop;
     s.scene.cutters = {plane, ball_cut};
     s.scene.walk.seed = 0xfeedface12345ull;
     s.scene.walk.steps = 21;
@@ -75,6 +76,7 @@ TEST(ParticleFile, RoundTripsEveryFieldAndGrowsTheSameStrands) {
     EXPECT_EQ(back.scene.attractors[0].charge[1].charge, -0.3f);
     EXPECT_EQ(back.scene.walk.step_length_m, 0.013f);
     EXPECT_EQ(back.mesh.sides, 7u);
+    EXPECT_EQ(back.scene.cutters[1].action.countdown_then, StrandActionKind::Stop);
     // Same scene, same strands: the file holds everything that decides them.
     Strands a, b;
     ASSERT_TRUE(growStrands(s.scene, {.threads = 2}, &a, &error)) << error;
@@ -99,6 +101,8 @@ TEST(ParticleFile, BadFilesAreRefusedNamingThePlace) {
         {"no generator", {"/generators=[]", "/generators: at least one generator"}},
         {"other format", {"/format=\"undergrowth-project\"", "/format: expected \"undergrowth-particles\""}},
         {"too many sides", {"/mesh/sides=64", "/mesh/sides: 64 is out of range [3, 32]"}},
+        {"a countdown ending in a split",
+         {"/cutters/1/action/countdown_then=\"split\"", "/cutters/1/action/countdown_then: 'split' is not one of stop, kill"}},
         {"an empty side", {"/cutters/1/side=\"\"", "/cutters/1/side: '' is not one of above, below"}},
     };
     for (const auto& [name, c] : cases) {
@@ -132,7 +136,7 @@ TEST(ParticleFile, TheBundledSamplesLoad) {
         EXPECT_FALSE(s.name.empty());
         ++files;
     }
-    EXPECT_GE(files, 4);
+    EXPECT_GE(files, 8);
 }
 
 // One straight strand and one bent one, radius 0.1 and 0.05.

@@ -260,6 +260,27 @@ TEST(ParticleCutters, KillRemovesTheStrandsThatReachIt) {
         for (size_t i = 0; i < length(s, k); ++i) EXPECT_LT(point(s, k, i).z, 0.5f);
 }
 
+TEST(ParticleCutters, CountdownGoesOnThatManyStepsThenKillsOrStops) {
+    // 100 strands reach the plane at 0.3 m well before step 20; a countdown of 3 lets each go on 3 more
+    // moves past it. Ending in a kill removes them all; ending in a stop keeps them, each with exactly 3
+    // points beyond the threshold (the crossing move itself is clipped to it).
+    ParticleScene scene = grassUnderCutter(StrandActionKind::Countdown);
+    scene.cutters[0].action.countdown_steps = 3;
+    const Strands killed = grow(scene);
+    EXPECT_EQ(killed.size(), 0u);
+    EXPECT_EQ(killed.stats.killed, 100u);
+    scene.cutters[0].action.countdown_then = StrandActionKind::Stop;
+    const Strands stopped = grow(scene);
+    ASSERT_EQ(stopped.size(), 100u);
+    EXPECT_EQ(stopped.stats.killed, 0u);
+    for (size_t k = 0; k < stopped.size(); ++k) {
+        size_t beyond = 0;
+        for (size_t i = 0; i < length(stopped, k); ++i) beyond += point(stopped, k, i).z > 0.3f + 1e-5f;
+        EXPECT_EQ(beyond, 3u) << "strand " << k;
+        EXPECT_LT(length(stopped, k), 21u);  // ended before the last step
+    }
+}
+
 TEST(ParticleCutters, SplitContinuesChildrenFromTheThreshold) {
     const Strands s = grow(grassUnderCutter(StrandActionKind::Split));
     size_t parents = 0, children = 0;
