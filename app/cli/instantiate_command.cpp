@@ -11,6 +11,7 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "cli/env_job.h"
+#include "cli/strands_job.h"
 #include "cli/instantiation.h"
 #include "cli/scene_job.h"
 #include "cli/scene_metrics.h"
@@ -170,6 +171,9 @@ int runInstantiation(const InstantiateRequest& request, const char* command) {
     SceneEnvironmentOutput env;
     if (!computeSceneEnvironment(job, threads, region, false, &env, &error)) return fail(error);
     if (!env.stats.is_null()) stats["environment"] = env.stats;
+    nlohmann::json strand_stats;
+    if (!computeSceneStrands(job, threads, region, false, &env.meshes, &strand_stats, &error)) return fail(error);
+    if (!strand_stats.is_null()) stats["particles"] = strand_stats;
     stats.update(request.stats_extra);
     const SettledDrops* settled = settle.settings.enabled ? &drops : nullptr;
     // A region's file holds the terrain under the region only, so that region files side by side are the

@@ -8,6 +8,7 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "cli/env_job.h"
+#include "cli/strands_job.h"
 #include "cli/instantiation.h"
 #include "cli/region_plan.h"
 #include "cli/scene_job.h"
@@ -197,6 +198,8 @@ bool exportJoinedWorld(const RegionPlan& plan, const std::vector<RegionResult>& 
                 false);
     SceneEnvironmentOutput env;
     if (!computeSceneEnvironment(job, threads, nullptr, true, &env, error)) return false;
+    nlohmann::json strand_stats;
+    if (!computeSceneStrands(job, threads, nullptr, true, &env.meshes, &strand_stats, error)) return false;
     nlohmann::json per_type_json = nlohmann::json::object();
     for (size_t i = 0; i < job.models.size(); ++i) per_type_json[job.models[i].name] = per_type[i];
     nlohmann::json stats = {{"scene", job.project.name},
@@ -206,6 +209,7 @@ bool exportJoinedWorld(const RegionPlan& plan, const std::vector<RegionResult>& 
                             {"instances", store.instanceCount()},
                             {"instances_per_type", per_type_json}};
     if (!env.stats.is_null()) stats["environment"] = env.stats;
+    if (!strand_stats.is_null()) stats["particles"] = strand_stats;
     return exportJobInstances(job, store, regions[0].has_drops ? &drops : nullptr, &env.meshes,
                               job.compiled.extent, plan.chunk_size_m, false, threads, &stats, out, error);
 }

@@ -32,6 +32,7 @@ bool loadSceneJob(const std::string& scene, const std::string& cache_dir, int th
     job->compiled = std::move(loaded.compiled);
     job->environment = std::move(loaded.environment);
     job->variant_models = std::move(*loaded.variant_models);
+    job->particles = std::move(loaded.particles);
     return true;
 }
 

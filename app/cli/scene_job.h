@@ -12,6 +12,7 @@
 #include "ghosttile/ghost_tile_cache.h"
 #include "instancer/instantiator.h"
 #include "io/instance_export.h"
+#include "particles/particle_json.h"
 #include "scene/detail_looks.h"
 #include "scene/project.h"
 #include "env/env_scene.h"
@@ -29,6 +30,7 @@ struct SceneJob {
     CompiledScene compiled;
     std::shared_ptr<const EnvScene> environment;  // never null after a load
     std::vector<std::vector<DetailModel>> variant_models;  // scattered types' variants, [type][k]
+    std::shared_ptr<const std::vector<ParticleSystemFile>> particles;  // the project's, read and placed
 };
 
 // What a job's exports look like: a material per look and the looks themselves (scene/detail_looks.h).

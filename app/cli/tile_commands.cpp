@@ -11,6 +11,7 @@
 #include "cli/cli_args.h"
 #include "cli/commands.h"
 #include "cli/env_job.h"
+#include "cli/strands_job.h"
 #include "cli/scene_job.h"
 #include "core/parallel.h"
 #include "editor/viewer.h"
@@ -206,6 +207,10 @@ int runHeadlessJob(const std::string& scene, const std::string& out_dir, int thr
     SceneEnvironmentOutput env;
     if (!computeSceneEnvironment(job, threads, nullptr, false, &env, &error)) return fail("run", error);
     if (!env.stats.is_null()) istats["environment"] = env.stats;
+    nlohmann::json strand_stats;
+    if (!computeSceneStrands(job, threads, nullptr, false, &env.meshes, &strand_stats, &error))
+        return fail("run", error);
+    if (!strand_stats.is_null()) istats["particles"] = strand_stats;
     const SceneLooks looks = sceneLooks(job);
     const std::vector<uint32_t> instance_looks = instanceLooks(job, looks, inst.store(), threads);
     istats["instances_per_look"] = lookCountsJson(job, looks, inst.store(), instance_looks);

@@ -4,6 +4,7 @@
 
 #include "env/env_outputs.h"
 #include "mesh/terrain_mesh.h"
+#include "scene/scene_particles.h"
 
 namespace ug::editor {
 
@@ -63,6 +64,15 @@ void DocumentLoader::work() {
             return failWith(request_.scene_path + ": " + error);
         s.static_meshes = envMeshInstances(*doc.environment(), *fx);
         s.env_effects = std::move(fx);
+    }
+    if (!doc.particles()->empty()) {
+        // The strands the CLI's exports carry (scene/scene_particles.h); the editor's export takes them
+        // from here with the environment's meshes.
+        progress_.store(0.95f);
+        SceneStrandStats strands;
+        if (!growSceneParticles(*doc.particles(), request_.scene_path, request_.options.threads, nullptr,
+                                &s.static_meshes, &strands, &error))
+            return failWith(error);
     }
     progress_.store(1.0f);
     phase_.store(LoadPhase::Ready, std::memory_order_release);

@@ -62,7 +62,8 @@ bool readAction(JsonReader& r, const json& obj, const std::string& p, const char
 bool readGenerator(JsonReader& r, const json& j, const std::string& p, ParticleGenerator* g) {
     return r.expectObject(j, p) &&
            r.onlyKeys(j, p, {"kind", "center_m", "axis_u_m", "axis_v_m", "radius_m", "half_extents_m", "count",
-                             "heading_cone_deg"}) &&
+                             "heading_cone_deg", "on_terrain"}) &&
+           r.boolean(j, p, "on_terrain", &g->on_terrain) &&
            readKind(r, j, p, "kind", kGeneratorNames, &g->kind, true) && readVec3(r, j, p, "center_m", &g->center_m) &&
            readVec3(r, j, p, "axis_u_m", &g->axis_u_m) && readVec3(r, j, p, "axis_v_m", &g->axis_v_m) &&
            r.number(j, p, "radius_m", &g->radius_m, 0.0, kMaxCoordinate) &&
@@ -211,7 +212,8 @@ json particleSystemToJson(const ParticleSystemFile& s) {
                               {"radius_m", g.radius_m},
                               {"half_extents_m", vec3Json(g.half_extents_m)},
                               {"count", g.count},
-                              {"heading_cone_deg", g.heading_cone_deg}});
+                              {"heading_cone_deg", g.heading_cone_deg},
+                              {"on_terrain", g.on_terrain}});
     for (const Attractor& a : s.scene.attractors) {
         json charge = json::array();
         for (const ChargeKey& k : a.charge) charge.push_back({k.step, k.charge});

@@ -60,6 +60,15 @@ float segmentDistance(glm::vec3 a, glm::vec3 b, glm::vec3 p) {
 
 }  // namespace
 
+void translateParticleScene(ParticleScene* scene, glm::vec3 offset) {
+    for (ParticleGenerator& g : scene->generators) g.center_m += offset;
+    for (Attractor& a : scene->attractors) {
+        a.a_m += offset;
+        a.b_m += offset;
+    }
+    for (Cutter& c : scene->cutters) c.center_m += offset;
+}
+
 const char* strandActionName(StrandActionKind kind) {
     switch (kind) {
         case StrandActionKind::Stop: return "stop";
@@ -95,6 +104,10 @@ bool validateParticleScene(const ParticleScene& scene, std::string* error) {
             if (!(lu > 0.0f) || !(lv > 0.0f)) return fail(error, f + ".axis_u_m", "the axes must not be zero");
             if (std::abs(glm::dot(g.axis_u_m, g.axis_v_m)) > 1e-4f * lu * lv)
                 return fail(error, f + ".axis_v_m", "must be orthogonal to axis_u_m");
+            if (g.on_terrain && (g.axis_u_m.z != 0.0f || g.axis_v_m.z != 0.0f))
+                return fail(error, f + ".on_terrain", "needs horizontal axes (axis_u_m and axis_v_m with z = 0)");
+        } else if (g.on_terrain) {
+            return fail(error, f + ".on_terrain", "only a rectangle can be dropped onto the terrain");
         } else if (g.kind == GeneratorKind::Sphere) {
             if (!checkLength(g.radius_m, f + ".radius_m", false, error)) return false;
         } else {

@@ -8,10 +8,13 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+
+#include "field/height_field.h"
 
 namespace ug {
 
@@ -50,6 +53,10 @@ struct ParticleGenerator {
     glm::vec3 half_extents_m{0.5f};         // Box
     uint32_t count = 0;                     // particles, one per stratum
     float heading_cone_deg = 0.0f;          // initial heading: the normal perturbed in this cone, [0, 180)
+    // Rectangle with horizontal axes only: each seed is dropped onto the scene's terrain (z = h(x, y),
+    // the normal the terrain's), so grass grows from the ground of a project. The strata stay equal in
+    // plan view, not on the slope (within 1/cos of the steepest slope of each other).
+    bool on_terrain = false;
 };
 
 // Attractor charge keyframes: a(t) is piecewise linear in the step index t between keys (strictly
@@ -115,6 +122,9 @@ struct WalkSettings {
 
 struct ParticleScene {
     std::vector<ParticleGenerator> generators;
+    // The ground on_terrain generators seed on: set by the project that places the system
+    // (scene/scene_particles.h), null for a system grown alone.
+    std::shared_ptr<const HeightField> terrain;
     std::vector<Attractor> attractors;
     std::vector<Cutter> cutters;  // at most kMaxCutters (a strand remembers which it has triggered)
     WalkSettings walk;
@@ -151,5 +161,8 @@ inline bool cutterTriggered(const Cutter& c, float g) {
 }
 
 const char* strandActionName(StrandActionKind kind);
+
+// Moves every generator, attractor and cutter by `offset` (metres): the same system placed elsewhere.
+void translateParticleScene(ParticleScene* scene, glm::vec3 offset);
 
 }  // namespace ug

@@ -129,7 +129,8 @@ glm::quat turnFrameTo(const glm::quat& from, glm::vec3 d) {
     return glm::normalize(turn * from);
 }
 
-void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint64_t seed, ParticleSeeds* out) {
+void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint64_t seed, ParticleSeeds* out,
+                   const HeightField* terrain) {
     const std::vector<Face> faces = facesOf(gen);
     const float cone = glm::radians(gen.heading_cone_deg);
     const glm::quat identity(1.0f, 0.0f, 0.0f, 0.0f);
@@ -148,6 +149,11 @@ void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint6
             } else {
                 p = f.origin + s * f.u + t * f.v;
                 n = f.normal;
+                if (gen.on_terrain) {
+                    const glm::vec3 hg = terrain->sampleWithGradient(float(p.x), float(p.y));
+                    p.z = double(hg.x);
+                    n = glm::dvec3(-hg.y, -hg.z, 1.0);
+                }
             }
             const glm::vec3 normal = glm::normalize(glm::vec3(n));
             const glm::quat on_normal = turnFrameTo(identity, normal);

@@ -32,8 +32,9 @@ struct ParticleSeeds {
 
 // Appends generator `generator_index`'s particles (gen.count of them, in stratum order) to *out; random
 // numbers are hashed from (seed, generator index, stratum), so a generator's seeds do not depend on the
-// others. gen must be valid (validateParticleScene).
-void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint64_t seed, ParticleSeeds* out);
+// others. gen must be valid (validateParticleScene); `terrain` is needed (non-null) by an on_terrain one.
+void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint64_t seed, ParticleSeeds* out,
+                   const HeightField* terrain = nullptr);
 
 // The stratum (in [0, gen.count)) the surface point p lies in, found from p through the inverse
 // parameterisation alone; used by the tests to check that seeding puts one particle in each.

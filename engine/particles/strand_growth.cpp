@@ -127,7 +127,7 @@ private:
 void Growth::seed() {
     ParticleSeeds seeds;
     for (size_t g = 0; g < scene_.generators.size(); ++g)
-        seedGenerator(scene_.generators[g], uint32_t(g), walk_.seed, &seeds);
+        seedGenerator(scene_.generators[g], uint32_t(g), walk_.seed, &seeds, scene_.terrain.get());
     const size_t expected = std::min<uint64_t>(walk_.max_points, seeds.positions.size() * (uint64_t(walk_.steps) + 1));
     points_.pos.reserve(expected);
     points_.prev.reserve(expected);
@@ -373,6 +373,14 @@ void Growth::emit(Strands* out) const {
 
 bool growStrands(const ParticleScene& scene, const GrowOptions& options, Strands* out, std::string* error) {
     if (!validateParticleScene(scene, error)) return false;
+    // Not in validateParticleScene: a file is read (and checked) before a project gives it its terrain.
+    for (size_t i = 0; i < scene.generators.size(); ++i)
+        if (scene.generators[i].on_terrain && (!scene.terrain || scene.terrain->empty())) {
+            if (error)
+                *error = "generators[" + std::to_string(i) +
+                         "].on_terrain: needs a terrain: grow the system from a project that has one (its \"particles\")";
+            return false;
+        }
     Growth growth(scene, options);
     return growth.run(out, error);
 }

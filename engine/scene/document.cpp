@@ -218,6 +218,7 @@ bool Document::load(Project project, const std::string& path, const DocumentOpti
     compiled_ = std::move(scene.compiled);
     environment_ = std::move(scene.environment);
     variant_models_ = std::move(scene.variant_models);
+    particles_ = std::move(scene.particles);
     densities_.clear();
     for (const DetailTypeDesc& t : project_.detail_types) densities_.push_back(editableDensityFor(t.density, &next_id_));
     live_ = std::make_unique<LiveInstancer>(options.threads);
@@ -441,6 +442,8 @@ bool Document::saveAs(const std::string& path, std::string* error) {
         if (saved.terrain.kind == TerrainKind::Image)
             saved.terrain.image_path =
                 rebasePath(saved.terrain.image_path, old_dir.lexically_normal(), new_dir.lexically_normal());
+        for (ParticleSystemRef& ref : saved.particles)
+            ref.file = rebasePath(ref.file, old_dir.lexically_normal(), new_dir.lexically_normal());
     }
     if (!saveProject(path, saved, error)) {
         if (error->find(path) == std::string::npos) *error = path + ": " + *error;
@@ -451,7 +454,12 @@ bool Document::saveAs(const std::string& path, std::string* error) {
     if (moved) {
         for (size_t t = 0; t < project_.detail_types.size(); ++t)
             project_.detail_types[t].model.mesh_path = saved.detail_types[t].model.mesh_path;
+        // The environment's meshes too: before, a second save after a Save As elsewhere wrote them
+        // relative to the old folder.
+        for (size_t t = 0; t < project_.environment.types.size(); ++t)
+            project_.environment.types[t].mesh_path = saved.environment.types[t].mesh_path;
         project_.terrain.image_path = saved.terrain.image_path;
+        project_.particles = saved.particles;
         project_.base_dir = fs::path(path).parent_path().string();
     }
     project_.source = path;

@@ -111,6 +111,8 @@ public:
     const CompiledScene& compiled() const { return compiled_; }
     // The environmental objects as loaded (never null; empty without any).
     const std::shared_ptr<const EnvScene>& environment() const { return environment_; }
+    // The project's particle systems as loaded (never null after a load; empty for none).
+    const std::shared_ptr<const std::vector<ParticleSystemFile>>& particles() const { return particles_; }
     // Every surface's look now (compileSceneMaterials on project() and models()): one SurfaceMaterial per
     // detail type and the terrain's, textures baked. Computed on each call (a few hundred ms for the
     // default scene's five kinds): call it when the project or tileGeneration() changes, not per frame.
@@ -218,6 +220,8 @@ private:
     std::vector<TileAssets> retired_;
     std::shared_ptr<const HeightField> terrain_;
     std::shared_ptr<const EnvScene> environment_;
+    std::shared_ptr<const std::vector<ParticleSystemFile>> particles_ =
+        std::make_shared<const std::vector<ParticleSystemFile>>();
     std::shared_ptr<const std::vector<std::vector<DetailModel>>> variant_models_ =
         std::make_shared<const std::vector<std::vector<DetailModel>>>();
     CompiledScene compiled_;

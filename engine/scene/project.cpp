@@ -64,12 +64,36 @@ bool positiveNumber(JsonReader& r, const json& obj, const std::string& p, const 
 
 // Keys of this object valid in the file's format version; a key only a newer version knows is named as
 // such, so an old file edited by hand gets told what to change rather than "unknown field".
+// "particles": [{"file": "grass.json", "name": "grass_a", "offset_m": [x, y, z]}, ...]; the files are read
+// when the scene loads (scene/scene_particles.h), so that an error there names this entry too.
+bool readParticleRefs(JsonReader& r, const json& j, const std::string& p, std::vector<ParticleSystemRef>* out) {
+    if (!r.expectArray(j, p)) return false;
+    if (j.size() > kMaxParticleSystems)
+        return r.fail(p, std::to_string(j.size()) + " particle systems; at most " + std::to_string(kMaxParticleSystems));
+    out->clear();
+    for (size_t i = 0; i < j.size(); ++i) {
+        const std::string ip = p + "/" + std::to_string(i);
+        ParticleSystemRef ref;
+        if (!r.expectObject(j[i], ip) || !r.onlyKeys(j[i], ip, {"file", "name", "offset_m"}) ||
+            !r.string(j[i], ip, "file", &ref.file, true) || !r.string(j[i], ip, "name", &ref.name) ||
+            // The particle files' own coordinate limit (particle_scene.h, kMaxParticleCoordinate_m).
+            !r.vec3(j[i], ip, "offset_m", &ref.offset_m, 1.0e5))
+            return false;
+        if (ref.file.empty()) return r.fail(ip + "/file", "expected a particle system file, got \"\"");
+        out->push_back(std::move(ref));
+    }
+    return true;
+}
+
 bool versionedKeys(JsonReader& r, const json& j, const std::string& p, int version,
                    const std::set<std::string>& v1_keys, const std::set<std::string>& v2_keys,
-                   const std::set<std::string>& v3_keys = {}) {
+                   const std::set<std::string>& v3_keys = {}, const std::set<std::string>& v4_keys = {}) {
     for (auto it = j.begin(); it != j.end(); ++it) {
         if (v1_keys.count(it.key())) continue;
-        const int needs = v2_keys.count(it.key()) ? 2 : v3_keys.count(it.key()) ? 3 : 0;
+        const int needs = v2_keys.count(it.key())   ? 2
+                          : v3_keys.count(it.key()) ? 3
+                          : v4_keys.count(it.key()) ? 4
+                                                    : 0;
         if (needs > 0) {
             if (version >= needs) continue;
             return r.fail(p + "/" + it.key(), "needs format_version " + std::to_string(needs) + " (this file says " +
@@ -399,7 +423,7 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
                                              std::to_string(kProjectFormatVersion) + "); update Undergrowth");
     if (!versionedKeys(r, doc, "", version,
                        {"format", "format_version", "name", "ghost_tile", "detail_types"},
-                       {"terrain", "extent", "instantiation", "settling"}, {"environment"}))
+                       {"terrain", "extent", "instantiation", "settling"}, {"environment"}, {"particles"}))
         return false;
     Project p;
     p.source = source_name;
@@ -517,6 +541,8 @@ bool parseProject(const std::string& text, const std::string& source_name, Proje
                                   "' is already the name of a detail type or variant");
     if (auto it = doc.find("environment");
         it != doc.end() && !readEnvironment(r, *it, "/environment", &p.environment))
+        return false;
+    if (auto it = doc.find("particles"); it != doc.end() && !readParticleRefs(r, *it, "/particles", &p.particles))
         return false;
     *out = std::move(p);
     return true;
@@ -708,7 +734,10 @@ std::string projectToJson(const Project& project) {
     // A project without environmental objects is a format 2 file, which older builds still read.
     bool scatters = false;
     for (const DetailTypeDesc& d : project.detail_types) scatters = scatters || d.scatter.enabled;
-    doc["format_version"] = project.environment.empty() && !scatters ? 2 : kProjectFormatVersion;
+    // Each format is written only when its keys are used, so older builds read what they can.
+    doc["format_version"] = !project.particles.empty()                      ? 4
+                            : project.environment.empty() && !scatters ? 2
+                                                                         : 3;
     doc["name"] = project.name;
     doc["ghost_tile"] = {{"tile_size_m", jsonFloat(project.ghost_tile.tile_size_m)},
                          {"delta_m", jsonFloat(project.ghost_tile.delta_m)},
@@ -754,6 +783,16 @@ std::string projectToJson(const Project& project) {
     }
     doc["detail_types"] = types;
     if (!project.environment.empty()) doc["environment"] = environmentToJson(project.environment);
+    if (!project.particles.empty()) {
+        json refs = json::array();
+        for (const ParticleSystemRef& ref : project.particles) {
+            json e = {{"file", ref.file}};
+            if (!ref.name.empty()) e["name"] = ref.name;
+            if (ref.offset_m != glm::vec3(0.0f)) e["offset_m"] = vec3Json(ref.offset_m);
+            refs.push_back(std::move(e));
+        }
+        doc["particles"] = refs;
+    }
     std::string text;
     writePretty(doc, 0, 0, &text);
     return text + "\n";

@@ -79,7 +79,10 @@ namespace ug {
 
 // 2: terrain, extent, instantiation, and per type density, subtract_terrain, terrain_falloff_m, instancing.
 // 3: environment (the environmental-object tree, env/env_json.h).
-constexpr int kProjectFormatVersion = 3;
+// 4: particles (particle systems grown into the scene, scene/scene_particles.h).
+constexpr int kProjectFormatVersion = 4;
+// Particle systems a project may name (each grows and meshes its own strands).
+constexpr size_t kMaxParticleSystems = 64;
 // Refused when the project is read, before any model is loaded (each type costs a model load and a fit).
 constexpr size_t kMaxDetailTypes = 1024;
 // Larger project files are refused before they are read (named in the message).
@@ -163,6 +166,16 @@ struct SettlingDesc {
     std::optional<float> ground_z;         // only without a terrain; absent: no ground plane
 };
 
+// One particle system of the project: a particle file (particles/particle_json.h), relative to the
+// project's folder, moved by offset_m; `name` (when set) replaces the file's own, so one file can be used
+// twice. The system itself is read by loadSceneParticles (scene/scene_particles.h).
+struct ParticleSystemRef {
+    std::string file;
+    std::string name;                 // "" : the file's name
+    glm::vec3 offset_m{0.0f};         // added to every generator, attractor and cutter position
+    bool operator==(const ParticleSystemRef&) const = default;
+};
+
 struct Project {
     std::string name;
     GhostTileSettings ghost_tile;
@@ -173,6 +186,7 @@ struct Project {
     float chunk_size_m = 8.0f;  // export: edge of the square XY chunks instances are grouped by, > 0
     std::vector<DetailTypeDesc> detail_types;
     EnvironmentDesc environment;  // format 3: environmental objects, fields and effects (empty: none)
+    std::vector<ParticleSystemRef> particles;  // format 4: particle systems (empty: none)
     std::string base_dir;  // folder of the file it was loaded from (not saved)
     std::string source;    // the file (or source name) it was parsed from, for messages (not saved)
 };

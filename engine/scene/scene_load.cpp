@@ -3,6 +3,8 @@
 #include <chrono>
 #include <cmath>
 
+#include "scene/scene_particles.h"
+
 namespace ug {
 
 namespace {
@@ -42,6 +44,10 @@ bool loadScene(const Project& project, const SceneLoadOptions& options, LoadedSc
         return false;
     }
     scene.models_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    // Before the Ghost Tile: a bad particle file fails at once, not after the tile's build.
+    auto particles = std::make_shared<std::vector<ParticleSystemFile>>();
+    if (!loadSceneParticles(project, scene.terrain, particles.get(), error)) return false;
+    scene.particles = std::move(particles);
     const GhostTileInput input = ghostTileInput(project, *scene.models);
     scene.tile = std::make_shared<GhostTile>();
     if (!loadOrBuildGhostTile(options.cache_dir, input,

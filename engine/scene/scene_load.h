@@ -19,6 +19,7 @@
 #include "ghosttile/ghost_tile.h"
 #include "ghosttile/ghost_tile_cache.h"
 #include "mesh/detail_model.h"
+#include "particles/particle_json.h"
 #include "scene/project.h"
 #include "scene/scene_compile.h"
 
@@ -44,6 +45,8 @@ struct LoadedScene {
     std::shared_ptr<const EnvScene> environment;  // never null: empty for a project without one
     // Scattered types' variants (loadScatterVariantModels): [type][variant], empty for other types.
     std::shared_ptr<std::vector<std::vector<DetailModel>>> variant_models;
+    // The project's particle systems, read and placed (scene/scene_particles.h); grown by the outputs.
+    std::shared_ptr<const std::vector<ParticleSystemFile>> particles;
 };
 
 bool loadScene(const Project& project, const SceneLoadOptions& options, LoadedScene* out, std::string* error);

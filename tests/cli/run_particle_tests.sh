@@ -19,6 +19,13 @@ if ! bash "$root/tests/gltf/setup.sh" >"$tmp/npm.txt" 2>&1; then
 
 for f in "$root"/assets/particles/*.json; do
   name="$(basename "$f" .json)"
+  if grep -q '"on_terrain": true' "$f"; then
+    # Seeds on a project's terrain: grown from a scene (below), refused alone.
+    out=$("$bin" grow "$f" -o "$tmp/$name.glb" 2>&1); rc=$?
+    if [ $rc -eq 1 ] && grep -qF "on_terrain: needs a terrain" <<<"$out" && [ ! -e "$tmp/$name.glb" ]; then
+      ok "grow $name alone: refused, it needs a project's terrain"; else bad "grow $name alone (exit $rc): $out"; fi
+    continue
+  fi
   if ! "$bin" grow "$f" -o "$tmp/$name.1.glb" --threads 1 --stats "$tmp/$name.json" >"$tmp/$name.out" 2>&1 ||
      ! "$bin" grow "$f" -o "$tmp/$name.2.glb" --threads 2 >>"$tmp/$name.out" 2>&1; then
     bad "grow $name: $(tail -3 "$tmp/$name.out")"; continue; fi
@@ -66,6 +73,48 @@ out=$("$bin" grow "$tmp/missing.json" -o "$tmp/m.glb" 2>&1); rc=$?
 if [ $rc -eq 1 ] && grep -q "missing.json" <<<"$out"; then ok "grow: a missing file: $out"; else bad "grow missing (exit $rc): $out"; fi
 out=$("$bin" grow "$root/assets/particles/fur_ball.json" -o "$tmp/x.obj" 2>&1); rc=$?
 if [ $rc -eq 2 ]; then ok "grow: a bad output name is a usage error"; else bad "grow -o x.obj (exit $rc): $out"; fi
+
+# A project's particle systems ("particles", format 4) are grown into its exports: the meadow with two
+# patches of grass strands on its terrain, the whole scene and two regions that split the patches.
+scene="$root/assets/scenes/meadow_strands.json"
+if "$bin" instantiate "$scene" -o "$tmp/ms.glb" --stats "$tmp/ms.json" --cache "$tmp/cache" >"$tmp/ms.out" 2>&1 &&
+   "$bin" instantiate "$scene" -o "$tmp/west.glb" --stats "$tmp/west.json" --cache "$tmp/cache" \
+     --region=-20,-20,-10,-7.1,20,10 >>"$tmp/ms.out" 2>&1 &&
+   "$bin" instantiate "$scene" -o "$tmp/east.glb" --stats "$tmp/east.json" --cache "$tmp/cache" \
+     --region=-7.1,-20,-10,20,20,10 >>"$tmp/ms.out" 2>&1 &&
+   node "$check" "$tmp/ms.glb" >"$tmp/ms.check" 2>&1 &&
+   python3 - "$tmp" <<'PY'
+import json, struct, sys
+t = sys.argv[1]
+def meshes(path):
+    b = open(path, "rb").read()
+    doc = json.loads(b[20:20 + struct.unpack("<I", b[12:16])[0]])
+    return {m["name"]: m for m in doc["meshes"]}
+report = json.loads(open(t + "/ms.check").read().strip().splitlines()[-1])
+assert report["errors"] == 0, report
+whole = meshes(t + "/ms.glb")
+names = ["strands/meadow_grass_strands", "strands/meadow_grass_strands_2"]
+assert all(n in report["per_mesh"] for n in names), report["per_mesh"]
+stats = json.load(open(t + "/ms.json"))
+assert stats["particles"]["systems"] == 2 and stats["particles"]["strands"] > 5000, stats["particles"]
+assert stats["particles"]["strands"] == sum(len(whole[n]["extras"]["strands"]["offsets"]) - 1 for n in names)
+assert stats["instances"] > 50000, stats["instances"]
+# Each region holds the one system whose strands are centred in it, the same strands as the whole run.
+west, east = meshes(t + "/west.glb"), meshes(t + "/east.glb")
+assert [n for n in west if n.startswith("strands/")] == names[:1], list(west)
+assert [n for n in east if n.startswith("strands/")] == names[1:], list(east)
+assert west[names[0]]["extras"] == whole[names[0]]["extras"] and east[names[1]]["extras"] == whole[names[1]]["extras"]
+assert json.load(open(t + "/west.json"))["particles"]["systems"] == 1
+PY
+then ok "instantiate meadow_strands: two strand meshes beside the instances, valid, read back; regions hold one each"
+else bad "instantiate meadow_strands: $(tail -5 "$tmp/ms.out") $(tail -c 600 "$tmp/ms.check" 2>/dev/null)"; fi
+# A bad entry names the scene, the entry and the particle file's own place; nothing is written.
+sed -e 's|"../particles/meadow_grass_strands.json", "name"|"nowhere.json", "name"|' \
+    -e "s|\"\\.\\./|\"$root/assets/|g" "$scene" >"$tmp/bad_strands.json"
+out=$("$bin" instantiate "$tmp/bad_strands.json" -o "$tmp/bad.glb" --cache "$tmp/cache" 2>&1); rc=$?
+if [ $rc -eq 1 ] && grep -qF "bad_strands.json: /particles/1/file: " <<<"$out" && grep -qF "nowhere.json" <<<"$out" &&
+   [ ! -e "$tmp/bad.glb" ]; then
+  ok "instantiate: a missing particle file is named with its entry: $out"; else bad "instantiate bad entry (exit $rc): $out"; fi
 
 echo "$passed passed, $failed failed"
 [ "$failed" -eq 0 ]

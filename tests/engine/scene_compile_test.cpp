@@ -446,9 +446,13 @@ TEST(SceneCompile, EveryBundledSceneLoadsAndCompiles) {
             ASSERT_TRUE(compileEnvScene(p.environment, p.base_dir, path, scene.terrain, &env, &error)) << error;
             EXPECT_GT(env.objects().size(), 10u);
         }
+        // The particle systems (format 4): saved as read, and every file is there.
+        EXPECT_EQ(back.particles, p.particles);
+        for (const ParticleSystemRef& ref : p.particles)
+            EXPECT_TRUE(std::filesystem::exists(resolveProjectPath(p, ref.file))) << ref.file;
     }
     std::sort(seen.begin(), seen.end());
-    EXPECT_EQ(seen, (std::vector<std::string>{"beaver_dam", "default", "haystack_field", "meadow", "montmartre_winter",
+    EXPECT_EQ(seen, (std::vector<std::string>{"beaver_dam", "default", "haystack_field", "meadow", "meadow_strands", "montmartre_winter",
                                               "park_autumn", "road_autumn", "road_winter", "rock_pile", "stone_hut",
                                               "street_autumn", "street_winter", "world_1km", "world_250m"}));
 }

@@ -510,6 +510,35 @@ TEST(Document, SaveAsAndReopenGiveTheSameInstancesWithPathsRebased) {
     EXPECT_TRUE(liveStore(*again) == settled(*doc));
 }
 
+TEST(Document, SaveAsElsewhereKeepsTheParticleSystemsFound) {
+    // A particle file named relative to the project; after a Save As into another folder and a plain Save
+    // there, the reopened project still finds it (and grows it on the terrain).
+    TempDir dir;
+    const fs::path a = dir.path() / "a" / "scene.json";
+    fs::create_directories(dir.path() / "particles");
+    std::ofstream(dir.path() / "particles" / "grass.json") << R"({"format": "undergrowth-particles",
+      "format_version": 1, "generators": [{"kind": "rectangle", "axis_u_m": [0.3, 0, 0], "axis_v_m": [0, 0.3, 0],
+      "count": 30, "on_terrain": true}], "walk": {"steps": 4, "step_length_m": 0.01, "strand_radius_m": 0.001}})";
+    std::string text = projectJson(modelsDir());
+    text.replace(text.find("\"format_version\": 2"), 19, "\"format_version\": 4");
+    text.insert(text.rfind('}'), R"(, "particles": [{"file": "../particles/grass.json", "offset_m": [0.5, 0, 0]}])");
+    auto doc = openDoc(writeProject(a, text), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    ASSERT_EQ(doc->particles()->size(), 1u);
+    EXPECT_EQ((*doc->particles())[0].name, "grass");
+    EXPECT_NE((*doc->particles())[0].scene.terrain, nullptr);
+    const fs::path b = dir.path() / "b" / "deeper" / "copy.json";
+    fs::create_directories(b.parent_path());
+    std::string error;
+    ASSERT_TRUE(doc->saveAs(b.string(), &error)) << error;
+    ASSERT_TRUE(doc->save(&error)) << error;
+    EXPECT_EQ(doc->project().particles[0].file, "../../particles/grass.json");
+    auto reopened = openDoc(b.string(), optionsFor(dir));
+    ASSERT_TRUE(reopened);
+    ASSERT_EQ(reopened->particles()->size(), 1u);
+    EXPECT_EQ((*reopened->particles())[0].scene.generators[0].center_m, glm::vec3(0.5f, 0.0f, 0.0f));
+}
+
 TEST(Document, AFailedSaveKeepsTheDocumentDirtyAndTheFileUntouched) {
     TempDir dir;
     const std::string path = writeProject(dir.path() / "scene.json", projectJson(modelsDir()));

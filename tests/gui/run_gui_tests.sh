@@ -273,6 +273,38 @@ else
   bad "edit street_autumn: export looks: $(tail -5 "$adir/log" "$adir/gltf.txt" 2>/dev/null)"
 fi
 
+# ---- a project's particle systems in the editor: drawn and exported as `instantiate` writes them ----
+sdir="$tmp/strands"
+mkdir -p "$sdir"
+strands_scene="$root/assets/scenes/meadow_strands.json"
+cat >"$sdir/script.json" <<EOF
+[{"frame": 1, "action": "wait_idle"},
+ {"action": "view", "target": [-7.2, 8.2, 0.3], "distance": 2.6, "yaw_deg": -100, "pitch_deg": 20},
+ {"action": "screenshot", "path": "$sdir/strands.png", "overlays": false},
+ {"action": "export", "path": "$sdir/editor.glb"},
+ {"action": "wait_idle"}]
+EOF
+if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$strands_scene" --frames 3 --size 640x360 --cache "$cache" \
+     --config "$sdir/config" --replay "$sdir/script.json" --stats "$sdir/stats.json" >"$sdir/log" 2>&1 &&
+   "$bin" instantiate "$strands_scene" -o "$sdir/cli.glb" --cache "$cache" >/dev/null 2>&1 &&
+   out="$(python3 - "$sdir" <<'PY' 2>&1
+import json, struct, sys
+d = sys.argv[1]
+def strands(path):
+    b = open(path, "rb").read()
+    doc = json.loads(b[20:20 + struct.unpack("<I", b[12:16])[0]])
+    return {m["name"]: m["extras"] for m in doc["meshes"] if m["name"].startswith("strands/")}
+editor, cli = strands(d + "/editor.glb"), strands(d + "/cli.glb")
+assert sorted(editor) == ["strands/meadow_grass_strands", "strands/meadow_grass_strands_2"], sorted(editor)
+assert editor == cli, "the editor's strands differ from instantiate's"
+print(sum(len(e["strands"]["offsets"]) - 1 for e in editor.values()), "strands")
+PY
+)" && python3 "$root/tests/gui/check_screenshot.py" "$sdir/strands.png" 640 360 meadow >/dev/null 2>&1; then
+  ok "edit meadow_strands: the editor draws and exports the project's particle systems as instantiate does ($out)"
+else
+  bad "edit meadow_strands: $out $(tail -5 "$sdir/log" 2>/dev/null)"
+fi
+
 # An interactive session driven by real X input (xdotool): mouse tools, picking, shortcuts and the
 # unsaved-changes dialog (driven_session.sh). On a copy of the assets, since it saves the project.
 if command -v xdotool >/dev/null 2>&1; then

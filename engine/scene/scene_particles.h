@@ -1,0 +1,39 @@
+// The project's particle systems (Project::particles, format 4): each entry's file read, renamed and
+// moved as the entry says, then grown and meshed as `undergrowth grow` does (particles/particle_output.h),
+// so that `instantiate`, `run`, `join`, `render` and the editor's view and export all carry the same
+// strands. Growth is a pure function of the system: the same meshes for any thread count.
+//
+// In a region job a system belongs to the one region holding the centre of its strands' bounding box
+// (half-open, like instance origins), so that region files side by side hold each system once.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "field/bounds.h"
+#include "io/mesh_instances.h"
+#include "particles/particle_json.h"
+#include "scene/project.h"
+
+namespace ug {
+
+// Reads every entry's file (relative to the project's folder). Errors name the project, the entry's JSON
+// Pointer and the particle file's own message: "park.json: /particles/1/file: grass.json: /walk/trials:
+// 0 is out of range [1, 256]". Two systems with one name are refused (their glTF meshes are named by it).
+// `terrain` (may be null) is the ground of the systems' on_terrain generators.
+bool loadSceneParticles(const Project& project, const std::shared_ptr<const HeightField>& terrain,
+                        std::vector<ParticleSystemFile>* out, std::string* error);
+
+struct SceneStrandStats {
+    size_t systems = 0;  // grown and kept (in a region: those it holds)
+    uint64_t strands = 0, points = 0, triangles = 0;
+    double seconds = 0.0;
+};
+
+// Grows and meshes every system (the region's only, when one is given), appending one mesh
+// "strands/<name>" each to *meshes. `source` names the project in errors.
+bool growSceneParticles(const std::vector<ParticleSystemFile>& systems, const std::string& source, int threads,
+                        const Bounds* region, std::vector<MeshInstances>* meshes, SceneStrandStats* stats,
+                        std::string* error);
+
+}  // namespace ug
