@@ -68,6 +68,7 @@ int runGrowCommand(int argc, char** argv) {
                                    {"triangles", mesh.triangleCount()}};
     SceneExport scene;
     scene.meshes.push_back(std::move(tubes));
+    for (MeshInstances& surface : generatorSurfaces(system)) scene.meshes.push_back(std::move(surface));
     scene.scene_extras_json = nlohmann::json{{"particles", counts}}.dump();
     if (!writeSceneGltf(out, scene, &error)) return fail(error);
     if (args.has("--stats")) {

@@ -131,6 +131,7 @@ int runRenderCommand(int argc, char** argv) {
         if (!loadParticleSystem(path, &system, &error)) return fail(error);
         if (!growParticleSystem(system, options.threads, &strands, &tubes, &error)) return fail(path + ": " + error);
         options.extra_static_meshes.push_back(std::move(tubes));
+        for (MeshInstances& surface : generatorSurfaces(system)) options.extra_static_meshes.push_back(std::move(surface));
     }
 
     editor::OffscreenRenderResult result;

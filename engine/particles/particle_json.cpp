@@ -2,8 +2,10 @@
 
 #include <cmath>
 #include <filesystem>
+#include <memory>
 
 #include "core/atomic_file.h"
+#include "mesh/mesh_loader.h"
 #include "scene/json_parse.h"
 #include "scene/json_reader.h"
 #include "scene/material_json.h"
@@ -41,7 +43,7 @@ bool readKind(JsonReader& r, const json& obj, const std::string& p, const char* 
 const char* const kActionNames[] = {"stop", "kill", "split", "countdown"};
 // countdown_then takes only the first two actions (StrandActionKind's Stop and Kill, in enum order).
 const char* const kCountdownEndNames[] = {"stop", "kill"};
-const char* const kGeneratorNames[] = {"rectangle", "sphere", "box"};
+const char* const kGeneratorNames[] = {"rectangle", "sphere", "box", "mesh"};
 const char* const kAttractorNames[] = {"point", "segment", "sphere"};
 const char* const kCutterNames[] = {"plane", "sphere", "box"};
 const char* const kSideNames[] = {"above", "below"};
@@ -62,8 +64,9 @@ bool readAction(JsonReader& r, const json& obj, const std::string& p, const char
 bool readGenerator(JsonReader& r, const json& j, const std::string& p, ParticleGenerator* g) {
     return r.expectObject(j, p) &&
            r.onlyKeys(j, p, {"kind", "center_m", "axis_u_m", "axis_v_m", "radius_m", "half_extents_m", "count",
-                             "heading_cone_deg", "on_terrain"}) &&
-           r.boolean(j, p, "on_terrain", &g->on_terrain) &&
+                             "heading_cone_deg", "on_terrain", "mesh", "scale"}) &&
+           r.boolean(j, p, "on_terrain", &g->on_terrain) && r.string(j, p, "mesh", &g->mesh_file) &&
+           r.number(j, p, "scale", &g->scale, 1e-6, 1e4) &&
            readKind(r, j, p, "kind", kGeneratorNames, &g->kind, true) && readVec3(r, j, p, "center_m", &g->center_m) &&
            readVec3(r, j, p, "axis_u_m", &g->axis_u_m) && readVec3(r, j, p, "axis_v_m", &g->axis_v_m) &&
            r.number(j, p, "radius_m", &g->radius_m, 0.0, kMaxCoordinate) &&
@@ -186,6 +189,22 @@ bool parseParticleSystem(const json& j, const std::string& source, ParticleSyste
     }
     if (auto it = j.find("material"); it != j.end() && !readMaterial(r, *it, "/material", &s.material)) return false;
     if (s.scene.generators.empty()) return r.fail("/generators", "at least one generator is needed");
+    // Mesh generators' models, relative to the particle file.
+    for (size_t i = 0; i < s.scene.generators.size(); ++i) {
+        ParticleGenerator& g = s.scene.generators[i];
+        const std::string at = "/generators/" + std::to_string(i) + "/mesh";
+        if (g.kind != GeneratorKind::Mesh) {
+            if (!g.mesh_file.empty()) return r.fail(at, "only a \"mesh\" generator takes a mesh");
+            continue;
+        }
+        if (g.mesh_file.empty()) return r.fail(at, "missing (a mesh generator needs a model file)");
+        std::filesystem::path file(g.mesh_file);
+        if (file.is_relative()) file = std::filesystem::path(source).parent_path() / file;
+        auto mesh = std::make_shared<TriangleMesh>();
+        std::string why;
+        if (!loadMeshFile(file.lexically_normal().string(), mesh.get(), &why)) return r.fail(at, why);
+        g.mesh = std::move(mesh);
+    }
     std::string why;
     if (!validateParticleScene(s.scene, &why)) return r.fail("", why);
     *out = std::move(s);
@@ -204,16 +223,22 @@ bool loadParticleSystem(const std::string& path, ParticleSystemFile* out, std::s
 
 json particleSystemToJson(const ParticleSystemFile& s) {
     json generators = json::array(), attractors = json::array(), cutters = json::array();
-    for (const ParticleGenerator& g : s.scene.generators)
-        generators.push_back({{"kind", kGeneratorNames[size_t(g.kind)]},
-                              {"center_m", vec3Json(g.center_m)},
-                              {"axis_u_m", vec3Json(g.axis_u_m)},
-                              {"axis_v_m", vec3Json(g.axis_v_m)},
-                              {"radius_m", g.radius_m},
-                              {"half_extents_m", vec3Json(g.half_extents_m)},
-                              {"count", g.count},
-                              {"heading_cone_deg", g.heading_cone_deg},
-                              {"on_terrain", g.on_terrain}});
+    for (const ParticleGenerator& g : s.scene.generators) {
+        json gj = {{"kind", kGeneratorNames[size_t(g.kind)]},
+                   {"center_m", vec3Json(g.center_m)},
+                   {"axis_u_m", vec3Json(g.axis_u_m)},
+                   {"axis_v_m", vec3Json(g.axis_v_m)},
+                   {"radius_m", g.radius_m},
+                   {"half_extents_m", vec3Json(g.half_extents_m)},
+                   {"count", g.count},
+                   {"heading_cone_deg", g.heading_cone_deg},
+                   {"on_terrain", g.on_terrain}};
+        if (g.kind == GeneratorKind::Mesh) {
+            gj["mesh"] = g.mesh_file;
+            gj["scale"] = g.scale;
+        }
+        generators.push_back(std::move(gj));
+    }
     for (const Attractor& a : s.scene.attractors) {
         json charge = json::array();
         for (const ChargeKey& k : a.charge) charge.push_back({k.step, k.charge});

@@ -45,4 +45,18 @@ bool growParticleSystem(const ParticleSystemFile& system, int threads, Strands* 
     return true;
 }
 
+std::vector<MeshInstances> generatorSurfaces(const ParticleSystemFile& system) {
+    std::vector<MeshInstances> out;
+    for (size_t i = 0; i < system.scene.generators.size(); ++i) {
+        const ParticleGenerator& g = system.scene.generators[i];
+        if (g.kind != GeneratorKind::Mesh || !g.mesh) continue;
+        MeshInstances m;
+        m.name = "strands/" + system.name + "/surface_" + std::to_string(i);
+        m.mesh = g.mesh;
+        m.instances.push_back(InstanceTransform{g.center_m, glm::quat(1.0f, 0.0f, 0.0f, 0.0f), g.scale});
+        out.push_back(std::move(m));
+    }
+    return out;
+}
+
 }  // namespace ug

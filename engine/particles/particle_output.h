@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "io/mesh_instances.h"
 #include "particles/particle_json.h"
@@ -18,5 +19,10 @@ constexpr size_t kMaxExtrasStrandPoints = 200'000;  // ~6 MB of JSON text
 // Fails with the reason when the growth or the meshing is refused, or when no strand grew.
 bool growParticleSystem(const ParticleSystemFile& system, int threads, Strands* strands, MeshInstances* out,
                         std::string* error);
+
+// The surfaces the system's mesh generators seed on, placed as they are: one static mesh
+// "strands/<name>/surface_<generator>" each (drawn with the model's own colour), so the stone or statue
+// the strands grow out of is in the picture and the export.
+std::vector<MeshInstances> generatorSurfaces(const ParticleSystemFile& system);
 
 }  // namespace ug

@@ -60,6 +60,12 @@ float segmentDistance(glm::vec3 a, glm::vec3 b, glm::vec3 p) {
 
 }  // namespace
 
+double meshTriangleArea(const TriangleMesh& mesh, size_t triangle) {
+    const glm::dvec3 a(mesh.positions[mesh.indices[3 * triangle]]), b(mesh.positions[mesh.indices[3 * triangle + 1]]),
+        c(mesh.positions[mesh.indices[3 * triangle + 2]]);
+    return 0.5 * glm::length(glm::cross(b - a, c - a));
+}
+
 void translateParticleScene(ParticleScene* scene, glm::vec3 offset) {
     for (ParticleGenerator& g : scene->generators) g.center_m += offset;
     for (Attractor& a : scene->attractors) {
@@ -108,6 +114,14 @@ bool validateParticleScene(const ParticleScene& scene, std::string* error) {
                 return fail(error, f + ".on_terrain", "needs horizontal axes (axis_u_m and axis_v_m with z = 0)");
         } else if (g.on_terrain) {
             return fail(error, f + ".on_terrain", "only a rectangle can be dropped onto the terrain");
+        } else if (g.kind == GeneratorKind::Mesh) {
+            if (!std::isfinite(g.scale) || !(g.scale > 0.0f) || g.scale > 1e4f)
+                return fail(error, f + ".scale", "must be in (0, 10000]");
+            if (!g.mesh) return fail(error, f + ".mesh", "no mesh loaded");
+            double area = 0.0;
+            for (size_t t = 0; t + 2 < g.mesh->indices.size(); t += 3)
+                area += meshTriangleArea(*g.mesh, t / 3);
+            if (!(area > 0.0)) return fail(error, f + ".mesh", "the mesh has no area to seed on");
         } else if (g.kind == GeneratorKind::Sphere) {
             if (!checkLength(g.radius_m, f + ".radius_m", false, error)) return false;
         } else {

@@ -15,6 +15,7 @@
 #include <glm/glm.hpp>
 
 #include "field/height_field.h"
+#include "mesh/triangle_mesh.h"
 
 namespace ug {
 
@@ -42,6 +43,9 @@ enum class GeneratorKind : uint8_t {
     Rectangle,  // center_m + s·axis_u_m + t·axis_v_m, s, t in [-1, 1]; axes orthogonal; normal u × v
     Sphere,     // center_m, radius_m; normal outward
     Box,        // center_m, half_extents_m (axis-aligned, each > 0); normals outward, faces by area
+    // A triangle mesh (a model file), scaled by `scale` about its origin and moved to center_m; normals by
+    // its winding. Strata are equal slices of the cumulative area over the triangles in file order.
+    Mesh,
 };
 
 struct ParticleGenerator {
@@ -57,6 +61,11 @@ struct ParticleGenerator {
     // the normal the terrain's), so grass grows from the ground of a project. The strata stay equal in
     // plan view, not on the slope (within 1/cos of the steepest slope of each other).
     bool on_terrain = false;
+    // Mesh: the model file as the particle file names it (relative to it), its triangles once loaded
+    // (particle_json.h loads them), and its scale.
+    std::string mesh_file;
+    std::shared_ptr<const TriangleMesh> mesh;
+    float scale = 1.0f;
 };
 
 // Attractor charge keyframes: a(t) is piecewise linear in the step index t between keys (strictly
@@ -161,6 +170,9 @@ inline bool cutterTriggered(const Cutter& c, float g) {
 }
 
 const char* strandActionName(StrandActionKind kind);
+
+// Area of a mesh's triangle (unscaled), in double: the mesh generator's strata are built from these.
+double meshTriangleArea(const TriangleMesh& mesh, size_t triangle);
 
 // Moves every generator, attractor and cutter by `offset` (metres): the same system placed elsewhere.
 void translateParticleScene(ParticleScene* scene, glm::vec3 offset);

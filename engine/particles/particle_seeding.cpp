@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "core/hash.h"
 
@@ -103,6 +104,44 @@ uint32_t stratumAt(const Face& f, double s, double t) {
     return a + std::min(b - a - 1, uint32_t(s * double(b - a)));
 }
 
+// A mesh generator's area parameterisation: u in [0, 1) is the fraction of the total area before the
+// point, triangles in file order; inside triangle k (corners a, b, c) a point at area fraction r of it lies
+// on the segment between a + √r·(b − a) and a + √r·(c − a) (the sub-triangle at a of that size has area
+// r · area_k), at the fraction w of that segment.
+struct MeshAreas {
+    std::vector<double> before;  // area before triangle k, scaled; before.back() = the total
+    double total = 0.0;
+};
+
+MeshAreas meshAreas(const ParticleGenerator& g) {
+    MeshAreas m;
+    const size_t n = g.mesh->indices.size() / 3;
+    m.before.resize(n + 1, 0.0);
+    const double s2 = double(g.scale) * double(g.scale);
+    for (size_t k = 0; k < n; ++k) m.before[k + 1] = m.before[k] + s2 * meshTriangleArea(*g.mesh, k);
+    m.total = m.before[n];
+    return m;
+}
+
+glm::dvec3 meshCorner(const ParticleGenerator& g, size_t k, int corner) {
+    return glm::dvec3(g.center_m) + double(g.scale) * glm::dvec3(g.mesh->positions[g.mesh->indices[3 * k + corner]]);
+}
+
+// The point at area fraction u (and w across), and its triangle's normal.
+void meshPoint(const ParticleGenerator& g, const MeshAreas& m, double u, double w, glm::dvec3* p, glm::dvec3* n) {
+    const double target = u * m.total;
+    // The triangle whose slice holds target: the last with before[k] <= target and a positive area.
+    size_t k = size_t(std::upper_bound(m.before.begin(), m.before.end() - 1, target) - m.before.begin());
+    k = k > 0 ? k - 1 : 0;
+    while (k + 1 < m.before.size() - 1 && !(m.before[k + 1] > m.before[k])) ++k;
+    const double area = m.before[k + 1] - m.before[k];
+    const double r = area > 0.0 ? std::clamp((target - m.before[k]) / area, 0.0, 1.0) : 0.0;
+    const glm::dvec3 a = meshCorner(g, k, 0), b = meshCorner(g, k, 1), c = meshCorner(g, k, 2);
+    const double s = std::sqrt(r);
+    *p = a + s * ((1.0 - w) * (b - a) + w * (c - a));
+    *n = glm::cross(b - a, c - a);
+}
+
 }  // namespace
 
 glm::vec3 coneDirection(float cone_rad, float u, float v) { return coneDirectionCos(std::cos(cone_rad), u, v); }
@@ -131,9 +170,16 @@ glm::quat turnFrameTo(const glm::quat& from, glm::vec3 d) {
 
 void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint64_t seed, ParticleSeeds* out,
                    const HeightField* terrain) {
-    const std::vector<Face> faces = facesOf(gen);
     const float cone = glm::radians(gen.heading_cone_deg);
     const glm::quat identity(1.0f, 0.0f, 0.0f, 0.0f);
+    // A mesh's strata are slices of its cumulative area: one face of `count` strata in one row, whose s
+    // is the area fraction and t the place across the slice's triangle.
+    const MeshAreas areas = gen.kind == GeneratorKind::Mesh ? meshAreas(gen) : MeshAreas{};
+    std::vector<Face> faces;
+    if (gen.kind == GeneratorKind::Mesh)
+        faces.push_back(Face{{}, {}, {}, {}, 0, gen.count, 1});
+    else
+        faces = facesOf(gen);
     for (const Face& f : faces)
         for (uint32_t j = 0; j < f.count; ++j) {
             const uint32_t stratum = f.first + j;
@@ -146,6 +192,8 @@ void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint6
             glm::dvec3 p, n;
             if (gen.kind == GeneratorKind::Sphere) {
                 spherePoint(gen, s, t, &p, &n);
+            } else if (gen.kind == GeneratorKind::Mesh) {
+                meshPoint(gen, areas, s, t, &p, &n);
             } else {
                 p = f.origin + s * f.u + t * f.v;
                 n = f.normal;
@@ -169,8 +217,31 @@ void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint6
 }
 
 uint32_t locateStratum(const ParticleGenerator& gen, glm::vec3 p_f) {
-    const std::vector<Face> faces = facesOf(gen);
     const glm::dvec3 p(p_f), c(gen.center_m);
+    if (gen.kind == GeneratorKind::Mesh) {
+        // The triangle p lies in (the nearest by its barycentric coordinates' excess), then its area fraction.
+        const MeshAreas m = meshAreas(gen);
+        size_t best = 0;
+        double best_excess = std::numeric_limits<double>::infinity(), best_s = 0.0;
+        for (size_t k = 0; k + 1 < m.before.size(); ++k) {
+            if (!(m.before[k + 1] > m.before[k])) continue;
+            const glm::dvec3 a = meshCorner(gen, k, 0), b = meshCorner(gen, k, 1), cc = meshCorner(gen, k, 2);
+            const glm::dvec3 e1 = b - a, e2 = cc - a, d = p - a, nn = glm::cross(e1, e2);
+            const double inv = 1.0 / glm::dot(nn, nn);
+            const double lb = glm::dot(glm::cross(d, e2), nn) * inv, lc = glm::dot(glm::cross(e1, d), nn) * inv;
+            const double off = std::abs(glm::dot(d, nn)) * std::sqrt(inv);  // distance to the plane
+            const double excess = off + std::max(0.0, -lb) + std::max(0.0, -lc) + std::max(0.0, lb + lc - 1.0);
+            if (excess < best_excess) {
+                best_excess = excess;
+                best = k;
+                best_s = lb + lc;
+            }
+        }
+        const double r = std::clamp(best_s * best_s, 0.0, 1.0);
+        const double u = (m.before[best] + r * (m.before[best + 1] - m.before[best])) / m.total;
+        return std::min(gen.count - 1, uint32_t(std::max(0.0, u) * double(gen.count)));
+    }
+    const std::vector<Face> faces = facesOf(gen);
     if (gen.kind == GeneratorKind::Sphere) {
         const glm::dvec3 d = glm::normalize(p - c);
         double phi = std::atan2(d.y, d.x);

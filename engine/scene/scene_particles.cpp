@@ -70,6 +70,7 @@ bool growSceneParticles(const std::vector<ParticleSystemFile>& systems, const st
         stats->points += strands.points.size();
         stats->triangles += tubes.mesh->indices.size() / 3;
         meshes->push_back(std::move(tubes));
+        for (MeshInstances& surface : generatorSurfaces(system)) meshes->push_back(std::move(surface));
     }
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return true;

@@ -32,12 +32,15 @@ for f in "$root"/assets/particles/*.json; do
   if cmp -s "$tmp/$name.1.glb" "$tmp/$name.2.glb"; then ok "grow $name: the same file with 1 and 2 threads"; else
     bad "grow $name: 1 and 2 threads differ"; fi
   if node "$check" "$tmp/$name.1.glb" >"$tmp/$name.check" 2>&1 &&
-     python3 - "$tmp/$name.check" "$tmp/$name.json" "$tmp/$name.1.glb" <<'PY'
+     python3 - "$tmp/$name.check" "$tmp/$name.json" "$tmp/$name.1.glb" "$f" <<'PY'
 import json, struct, sys
 report = json.loads(open(sys.argv[1]).read().strip().splitlines()[-1])
 stats = json.load(open(sys.argv[2]))
 assert report["errors"] == 0, report
-assert report["meshes"] == 1 and list(report["per_mesh"]) == ["strands/" + stats["name"]], report
+# The strands, then the surface of each mesh generator (what they grow out of).
+surfaces = ["strands/%s/surface_%d" % (stats["name"], i)
+            for i, g in enumerate(json.load(open(sys.argv[4]))["generators"]) if g["kind"] == "mesh"]
+assert list(report["per_mesh"]) == ["strands/" + stats["name"]] + surfaces, report
 assert stats["strands"] > 0 and stats["triangles"] > 0, stats
 # The extras' polylines (when written) are the strands the statistics count.
 b = open(sys.argv[3], "rb").read()

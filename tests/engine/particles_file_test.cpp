@@ -8,7 +8,10 @@
 #include <fstream>
 #include <map>
 
+#include <unistd.h>
+
 #include "particles/particle_json.h"
+#include "particles/particle_output.h"
 #include "particles/strand_mesh.h"
 
 namespace ug {
@@ -122,6 +125,55 @@ TEST(ParticleFile, BadFilesAreRefusedNamingThePlace) {
     std::string error;
     EXPECT_FALSE(loadParticleSystem("/nonexistent/fur.json", &out, &error));
     EXPECT_NE(error.find("/nonexistent/fur.json"), std::string::npos) << error;
+}
+
+TEST(ParticleFile, MeshGeneratorsLoadTheirModelRelativeToTheFile) {
+    // A particle file in p/ naming ../models/pebble.glb: found beside it, wherever the process runs.
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("ug_mesh_gen_" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir / "p");
+    std::filesystem::create_directories(dir / "models");
+    std::filesystem::copy_file(std::filesystem::path(UG_SOURCE_DIR) / "assets" / "models" / "pebble.glb",
+                               dir / "models" / "pebble.glb", std::filesystem::copy_options::overwrite_existing);
+    const std::string head = R"({"format": "undergrowth-particles", "format_version": 1, "name": "moss",
+      "walk": {"steps": 3, "step_length_m": 0.002, "strand_radius_m": 0.0002}, "generators": [)";
+    auto write = [&](const std::string& generator) {
+        std::ofstream(dir / "p" / "sys.json") << head << generator << "]}";
+        return (dir / "p" / "sys.json").string();
+    };
+    ParticleSystemFile s;
+    std::string error;
+    ASSERT_TRUE(loadParticleSystem(
+        write(R"({"kind": "mesh", "mesh": "../models/pebble.glb", "scale": 3, "center_m": [0, 0, 1], "count": 50})"), &s,
+        &error))
+        << error;
+    ASSERT_TRUE(s.scene.generators[0].mesh);
+    EXPECT_GT(s.scene.generators[0].mesh->triangleCount(), 10u);
+    const nlohmann::json j = particleSystemToJson(s);
+    EXPECT_EQ(j["generators"][0]["mesh"], "../models/pebble.glb");
+    EXPECT_EQ(j["generators"][0]["scale"], 3.0f);
+    Strands strands;
+    MeshInstances tubes;
+    ASSERT_TRUE(growParticleSystem(s, 1, &strands, &tubes, &error)) << error;
+    EXPECT_GT(strands.size(), 40u);
+    const std::vector<MeshInstances> surfaces = generatorSurfaces(s);
+    ASSERT_EQ(surfaces.size(), 1u);
+    EXPECT_EQ(surfaces[0].name, "strands/moss/surface_0");
+    EXPECT_EQ(surfaces[0].instances[0].scale, 3.0f);
+    EXPECT_EQ(surfaces[0].instances[0].position, glm::vec3(0.0f, 0.0f, 1.0f));
+
+    const std::map<std::string, std::string> refused = {
+        {R"({"kind": "mesh", "mesh": "../models/none.glb", "count": 5})", "sys.json: /generators/0/mesh: "},
+        {R"({"kind": "mesh", "count": 5})", "/generators/0/mesh: missing"},
+        {R"({"kind": "sphere", "mesh": "../models/pebble.glb", "count": 5})", "/generators/0/mesh: only a \"mesh\" generator"},
+        {R"({"kind": "mesh", "mesh": "../models/pebble.glb", "scale": 0, "count": 5})", "/generators/0/scale"},
+    };
+    for (const auto& [generator, piece] : refused) {
+        SCOPED_TRACE(generator);
+        ParticleSystemFile out;
+        EXPECT_FALSE(loadParticleSystem(write(generator), &out, &error));
+        EXPECT_NE(error.find(piece), std::string::npos) << error;
+    }
+    std::filesystem::remove_all(dir);
 }
 
 TEST(ParticleFile, TheBundledSamplesLoad) {

@@ -111,6 +111,49 @@ TEST(ParticleSeeding, StratifiedJitterPutsExactlyOneParticlePerStratum) {
     }
 }
 
+// Two triangles of areas 0.5 (z = 0) and 1.5 (z = 1, facing down), scaled by 2 and moved.
+ParticleGenerator twoTriangleMesh(uint32_t count) {
+    auto mesh = std::make_shared<TriangleMesh>();
+    mesh->positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}, {3, 0, 1}, {0, 1, 1}};
+    mesh->indices = {0, 1, 2, 3, 5, 4};
+    ParticleGenerator g;
+    g.kind = GeneratorKind::Mesh;
+    g.mesh = mesh;
+    g.scale = 2.0f;
+    g.center_m = {1.0f, -1.0f, 0.5f};
+    g.count = count;
+    return g;
+}
+
+TEST(ParticleSeeding, MeshStrataAreEqualSlicesOfItsArea) {
+    for (uint32_t count : {1u, 4u, 400u, 997u}) {
+        const ParticleGenerator g = twoTriangleMesh(count);
+        ParticleSeeds seeds;
+        seedGenerator(g, 0, 13, &seeds);
+        ASSERT_EQ(seeds.positions.size(), count);
+        std::vector<int> hits(count, 0);
+        size_t low = 0;
+        for (size_t i = 0; i < seeds.positions.size(); ++i) {
+            const glm::vec3 p = seeds.positions[i];
+            ++hits[locateStratum(g, p)];
+            // On one of the two placed triangles, with its normal (the second is wound to face down).
+            const bool first = std::abs(p.z - 0.5f) < 1e-5f;
+            low += first;
+            EXPECT_TRUE(first || std::abs(p.z - 2.5f) < 1e-5f) << p.z;
+            const glm::vec3 q = (p - g.center_m) / 2.0f;  // back in the model's space
+            EXPECT_GE(q.x, -1e-5f);
+            EXPECT_GE(q.y, -1e-5f);
+            EXPECT_LE(first ? q.x + q.y : q.x / 3.0f + q.y, 1.0f + 1e-5f);
+            EXPECT_NEAR(seeds.normals[i].z, first ? 1.0f : -1.0f, 1e-6f);
+        }
+        for (uint32_t s = 0; s < count; ++s) EXPECT_EQ(hits[s], 1) << "count " << count << " stratum " << s;
+        // The first triangle holds a quarter of the area: the strata of the first quarter (the one
+        // straddling the quarter, when count is not a multiple of 4, either way).
+        EXPECT_GE(low, size_t(count / 4)) << count;
+        EXPECT_LE(low, size_t((count + 3) / 4)) << count;
+    }
+}
+
 TEST(ParticleSeeding, SeedsLieOnTheSurfaceAndHeadingsInTheCone) {
     ParticleGenerator g;
     g.kind = GeneratorKind::Sphere;
