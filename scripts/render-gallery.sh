@@ -29,6 +29,7 @@ strands() {  # sample camera
   shot "particles_$1" default --particles "assets/particles/$1.json" --camera "$2"
 }
 strands fig1_four_attractors 0,0,0.5,3.2,-60,20
+strands fig5_pulsar 0,0,0.4,2.0,-90,8
 strands fig5_exchanging_pulsars 0,0,0.45,2.6,-90,12
 strands fig6_split_grass 0,0,0.2,1.4,-60,15
 strands fig7_sphere_stop 0,0,0.5,2.2,-60,18
