@@ -65,6 +65,7 @@ int runGrowCommand(int argc, char** argv) {
                                    {"splits", st.splits},
                                    {"killed", st.killed},
                                    {"dropped", st.dropped},
+                                   {"solid_hits", st.solid_hits},
                                    {"triangles", mesh.triangleCount()}};
     SceneExport scene;
     scene.meshes.push_back(std::move(tubes));

@@ -11,7 +11,8 @@
 //                 "side": "above", "action": {"kind": "split", "split_count": 3, "split_angle_deg": 40}}],
 //    "walk": {"seed": 1, "steps": 32, "trials": 8, "cone_deg": 30, "step_length_m": 0.01,
 //             "strand_radius_m": 0.001, "collisions": true, "on_collision": {"kind": "stop"},
-//             "max_age_steps": 0, "on_age": {"kind": "stop"}, "max_split_depth": 4, "max_points": 50000000},
+//             "max_age_steps": 0, "on_age": {"kind": "stop"}, "max_split_depth": 4, "max_points": 50000000,
+//             "solids": true},
 //    "mesh": {"sides": 6, "max_triangles": 20000000},
 //    "material": MATERIAL}                                 scene/material_json.h
 //

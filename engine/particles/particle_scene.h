@@ -127,6 +127,10 @@ struct WalkSettings {
     StrandAction on_age;
     uint32_t max_split_depth = 4;    // a Split beyond this many generations acts as Stop; <= 64
     uint64_t max_points = 50'000'000;  // refuse (not truncate) a run that would need more, <= kMaxStrandPoints
+    // Solids (§5.2's collision with an object): a move that would end under the scene's terrain (a system
+    // grown in a project with one) or cross a mesh generator's surface is refused like a collision
+    // (on_collision), counted apart (StrandStats::solid_hits).
+    bool solids = true;
 };
 
 struct ParticleScene {

@@ -6,6 +6,7 @@
 #include "core/hash.h"
 #include "core/parallel.h"
 #include "particles/particle_seeding.h"
+#include "mesh/triangle_bvh.h"
 #include "particles/segment_grid.h"
 
 namespace ug {
@@ -39,6 +40,9 @@ struct StrandStore {
     std::vector<int32_t> countdown;  // -1: none running
     std::vector<uint8_t> countdown_stops;  // the running countdown ends in a stop (else a kill)
     std::vector<uint32_t> cut_mask;  // cutters this strand's lineage has triggered
+    // A strand seeded on a solid mesh: the surface's outward normal there (its first move must not go
+    // in); zero for the others.
+    std::vector<glm::vec3> solid_normal;
 
     size_t size() const { return first.size(); }
     void add(uint32_t point, glm::quat q, int32_t parent_id, uint8_t d, uint32_t mask) {
@@ -53,6 +57,7 @@ struct StrandStore {
         countdown.push_back(-1);
         countdown_stops.push_back(0);
         cut_mask.push_back(mask);
+        solid_normal.push_back(glm::vec3(0.0f));
     }
 };
 
@@ -60,7 +65,7 @@ struct StrandStore {
 struct Moves {
     std::vector<glm::vec3> pos, dir;
     std::vector<int32_t> cutter;     // the cutter that clipped it, or -1
-    std::vector<uint8_t> blocked;    // 1: refused by an earlier segment, 2: by a move of a lower id
+    std::vector<uint8_t> blocked;    // 1: refused by an earlier segment, 2: by a move of a lower id, 3: a solid
     std::vector<uint8_t> still;      // the clipped move did not leave its point
     void resize(size_t n) {
         pos.resize(n);
@@ -96,7 +101,11 @@ public:
           // step_length + 2r (padded against rounding), the reach of the grids' queries.
           reach_(walk_.step_length_m * 1.001f + 2.0f * walk_.strand_radius_m * 1.001f),
           grid_(reach_),
-          step_grid_(reach_) {}
+          step_grid_(reach_) {
+        if (walk_.solids)
+            for (const ParticleGenerator& g : scene_.generators)
+                if (g.kind == GeneratorKind::Mesh && g.mesh) solid_meshes_.push_back({&g, TriangleBvh(*g.mesh, threads_)});
+    }
 
     bool run(Strands* out, std::string* error);
 
@@ -106,6 +115,7 @@ private:
     bool isAncestor(uint32_t strand, uint32_t s) const;
     bool hitsEarlierSegment(size_t k) const;
     bool hitsLowerMove(size_t k) const;
+    bool entersSolid(size_t k) const;
     void apply(const StrandAction& action, uint32_t strand);
     void split(const StrandAction& action, uint32_t strand);
     void emit(Strands* out) const;
@@ -122,12 +132,21 @@ private:
     std::vector<float> charge_;  // a_i(t) of this step
     Moves moves_;
     StrandStats stats_;
+    struct SolidMesh {
+        const ParticleGenerator* generator;  // placed at its center_m, scaled by its scale
+        TriangleBvh bvh;                     // in the model's own space
+    };
+    std::vector<SolidMesh> solid_meshes_;
 };
 
 void Growth::seed() {
     ParticleSeeds seeds;
-    for (size_t g = 0; g < scene_.generators.size(); ++g)
+    std::vector<uint8_t> on_solid;  // per seed: it lies on a solid mesh
+    for (size_t g = 0; g < scene_.generators.size(); ++g) {
         seedGenerator(scene_.generators[g], uint32_t(g), walk_.seed, &seeds, scene_.terrain.get());
+        on_solid.resize(seeds.positions.size(),
+                        walk_.solids && scene_.generators[g].kind == GeneratorKind::Mesh ? 1 : 0);
+    }
     const size_t expected = std::min<uint64_t>(walk_.max_points, seeds.positions.size() * (uint64_t(walk_.steps) + 1));
     points_.pos.reserve(expected);
     points_.prev.reserve(expected);
@@ -137,6 +156,7 @@ void Growth::seed() {
         points_.prev.push_back(kNone);
         points_.strand.push_back(uint32_t(i));
         strands_.add(uint32_t(i), seeds.frames[i], -1, 0, 0);
+        if (on_solid[i]) strands_.solid_normal.back() = seeds.normals[i];
     }
     stats_.seeded = seeds.positions.size();
     if (walk_.collisions) {
@@ -189,6 +209,27 @@ void Growth::propose(size_t k, uint32_t step) {
 bool Growth::isAncestor(uint32_t strand, uint32_t s) const {
     for (int32_t p = strands_.parent[s]; p >= 0; p = strands_.parent[size_t(p)])
         if (uint32_t(p) == strand) return true;
+    return false;
+}
+
+bool Growth::entersSolid(size_t k) const {
+    const uint32_t s = active_[k];
+    const glm::vec3 a = points_.pos[strands_.last[s]], b = moves_.pos[k];
+    // Seeds lie on the terrain and on the meshes: a move that starts on a surface and leaves it must not
+    // hit it at its start, so the test begins a hair along the move (a thousandth of a step).
+    if (scene_.terrain && b.z < scene_.terrain->sample(b.x, b.y) - 1e-3f * walk_.step_length_m) return true;
+    const float length = glm::length(b - a);
+    if (!(length > 0.0f)) return false;
+    const glm::vec3 d = (b - a) / length;
+    // A first move from a seed on a mesh starts on its surface, where the ray below cannot tell in from
+    // out: the surface's normal does.
+    if (strands_.npoints[s] == 1 && glm::dot(strands_.solid_normal[s], d) < 0.0f) return true;
+    const float skip = 1e-3f * walk_.step_length_m;
+    for (const SolidMesh& m : solid_meshes_) {
+        const float inv = 1.0f / m.generator->scale;
+        const glm::vec3 o = (a + d * skip - m.generator->center_m) * inv;
+        if (m.bvh.rayHit(o, d) < (length - skip) * inv) return true;
+    }
     return false;
 }
 
@@ -283,7 +324,8 @@ bool Growth::run(Strands* out, std::string* error) {
         parallelFor(active_.size(), threads_, chunk, [&](size_t begin, size_t end, int) {
             for (size_t k = begin; k < end; ++k) {
                 propose(k, step);
-                if (walk_.collisions && !moves_.still[k] && hitsEarlierSegment(k)) moves_.blocked[k] = 1;
+                if (walk_.solids && !moves_.still[k] && entersSolid(k)) moves_.blocked[k] = 3;
+                else if (walk_.collisions && !moves_.still[k] && hitsEarlierSegment(k)) moves_.blocked[k] = 1;
             }
         });
         if (walk_.collisions) {
@@ -303,7 +345,7 @@ bool Growth::run(Strands* out, std::string* error) {
             const uint32_t s = active_[k];
             const bool counting = strands_.countdown[s] >= 0;
             if (moves_.blocked[k]) {
-                ++stats_.collisions;
+                ++(moves_.blocked[k] == 3 ? stats_.solid_hits : stats_.collisions);
                 apply(walk_.on_collision, s);
             } else {
                 if (!moves_.still[k]) {

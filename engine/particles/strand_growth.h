@@ -34,6 +34,7 @@ struct StrandStats {
     uint64_t splits = 0;        // strands that split
     uint64_t killed = 0;        // strands removed (kill, countdown)
     uint64_t dropped = 0;       // strands that never moved (no segment), left out of the output
+    uint64_t solid_hits = 0;    // moves refused because they would enter a solid (walk.solids)
 };
 
 // The output: polylines of at least one segment, in strand id order.

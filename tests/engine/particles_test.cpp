@@ -457,6 +457,77 @@ TEST(ParticleCollisions, WithoutCollisionsTheSameSceneOverlaps) {
     EXPECT_GT(close, 0u);
 }
 
+// A closed cube of side 2 centred at the origin, wound outward.
+std::shared_ptr<TriangleMesh> cubeMesh() {
+    auto m = std::make_shared<TriangleMesh>();
+    for (int i = 0; i < 8; ++i) m->positions.push_back(glm::vec3(i & 1 ? 1 : -1, i & 2 ? 1 : -1, i & 4 ? 1 : -1));
+    m->indices = {0, 2, 1, 1, 2, 3, 4, 5, 6, 5, 7, 6, 0, 1, 4, 1, 5, 4,
+                  2, 6, 3, 3, 6, 7, 0, 4, 2, 2, 4, 6, 1, 3, 5, 3, 7, 5};
+    return m;
+}
+
+TEST(ParticleSolids, StrandsPulledIntoAMeshStopAtItsSurface) {
+    // Strands seeded on a cube (scaled to side 0.5) and pulled to its centre: with solids on, no point
+    // ever lies inside; with them off, the same scene goes in.
+    ParticleScene scene;
+    ParticleGenerator g;
+    g.kind = GeneratorKind::Mesh;
+    g.mesh = cubeMesh();
+    g.scale = 0.25f;
+    g.center_m = {0.3f, -0.2f, 1.0f};
+    g.count = 300;
+    g.heading_cone_deg = 80.0f;
+    scene.generators.push_back(g);
+    scene.attractors.push_back(pointAttractor(g.center_m, 1.0f));
+    scene.walk.steps = 12;
+    scene.walk.cone_deg = 60.0f;
+    scene.walk.step_length_m = 0.02f;
+    scene.walk.strand_radius_m = 0.001f;
+    scene.walk.collisions = false;
+    auto inside = [&](const Strands& s) {
+        size_t n = 0;
+        for (const glm::vec3& p : s.points) {
+            const glm::vec3 q = glm::abs(p - g.center_m);
+            n += std::max(q.x, std::max(q.y, q.z)) < 0.25f - 1e-4f;
+        }
+        return n;
+    };
+    const Strands solid = grow(scene);
+    EXPECT_GT(solid.stats.solid_hits, 100u);
+    EXPECT_EQ(inside(solid), 0u);
+    scene.walk.solids = false;
+    const Strands open = grow(scene);
+    EXPECT_EQ(open.stats.solid_hits, 0u);
+    EXPECT_GT(inside(open), 100u);
+}
+
+TEST(ParticleSolids, StrandsPulledIntoTheTerrainStopAtTheGround) {
+    std::vector<float> heights;
+    for (int j = 0; j < 9; ++j)
+        for (int i = 0; i < 9; ++i) heights.push_back(0.3f * (-2.0f + 0.5f * i) + 0.1f * (-2.0f + 0.5f * j));
+    ParticleScene scene = grassPatch(200, 15);
+    scene.terrain = std::make_shared<const HeightField>(glm::vec2(-2.0f), 0.5f, 9, 9, heights);
+    scene.generators[0].on_terrain = true;
+    scene.walk.collisions = false;
+    scene.walk.step_length_m = 0.03f;
+    // Up for five steps, then pulled down hard.
+    Attractor down = pointAttractor({0.0f, 0.0f, -5.0f}, 0.0f);
+    down.charge = {ChargeKey{0, 0.0f}, ChargeKey{5, 0.0f}, ChargeKey{6, 3.0f}};
+    scene.attractors.push_back(pointAttractor({0.0f, 0.0f, 5.0f}, 1.0f));
+    scene.attractors.push_back(down);
+    auto below = [&](const Strands& s) {
+        size_t n = 0;
+        for (const glm::vec3& p : s.points) n += p.z < scene.terrain->sample(p.x, p.y) - 1e-4f;
+        return n;
+    };
+    const Strands solid = grow(scene);
+    EXPECT_GT(solid.stats.solid_hits, 20u);
+    EXPECT_EQ(below(solid), 0u);
+    scene.walk.solids = false;
+    const Strands open = grow(scene);
+    EXPECT_GT(below(open), 50u);
+}
+
 TEST(ParticleCollisions, GridVisitsExactlyTheSegmentsWithinReach) {
     // Midpoints scattered over a few cells and across the origin (negative cells); every query must see
     // exactly the brute-force set, including those just inside the reach at a cell's far side.
