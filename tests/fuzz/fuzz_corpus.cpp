@@ -711,6 +711,38 @@ std::string particlesEveryKind() {
 )";
 }
 
+// A mesh generator on the corpus's cube (data/cube.obj, beside the input), solids on, a countdown that
+// ends in a stop.
+std::string particlesMesh() {
+    return R"({"format": "undergrowth-particles", "format_version": 1, "name": "moss",
+ "generators": [{"kind": "mesh", "mesh": "data/cube.obj", "scale": 2, "center_m": [0, 0, 0.1], "count": 20,
+                 "heading_cone_deg": 30}],
+ "attractors": [{"kind": "point", "a_m": [0, 0, 0.1], "charge": [[0, -1], [4, 1]]}],
+ "cutters": [{"kind": "sphere", "center_m": [0, 0, 0.1], "radius_m": 0.2, "threshold_m": 0, "side": "above",
+              "action": {"kind": "countdown", "countdown_steps": 2, "countdown_then": "stop"}}],
+ "walk": {"seed": 4, "steps": 8, "trials": 4, "cone_deg": 40, "step_length_m": 0.01, "strand_radius_m": 0.001,
+          "solids": true}}
+)";
+}
+
+// The procedural scene with two particle systems (format 4): one on its terrain, one moved and renamed.
+std::string sceneParticles() {
+    std::string s = sceneProcedural();
+    s.replace(s.find("\"format_version\": 2"), 19, "\"format_version\": 4");
+    s.insert(s.rfind('}'), R"(,
+ "particles": [{"file": "data/strands.json"},
+               {"file": "data/strands.json", "name": "strands_2", "offset_m": [0.5, 0.5, 0]}])");
+    return s;
+}
+
+std::string particlesOnTerrain() {
+    return R"({"format": "undergrowth-particles", "format_version": 1, "name": "strands",
+ "generators": [{"kind": "rectangle", "axis_u_m": [0.2, 0, 0], "axis_v_m": [0, 0.2, 0], "count": 16,
+                 "on_terrain": true}],
+ "walk": {"seed": 2, "steps": 6, "trials": 4, "cone_deg": 20, "step_length_m": 0.01, "strand_radius_m": 0.001}}
+)";
+}
+
 void write(const fs::path& dir, const std::string& name, const std::string& bytes) {
     fs::create_directories(dir);
     writeFile((dir / name).string(), bytes);
@@ -805,9 +837,13 @@ int makeCorpus(const std::string& root_arg) {
     write(sc, "default_fit_derived_extent.json", sceneFit());
     write(sc, "near_unknown_key.json", sceneUnknownKey());
     write(sc, "near_missing_model.json", sceneMissingModel());
+    write(data, "strands.json", particlesOnTerrain());
+    write(sc, "particle_systems.json", sceneParticles());
     const fs::path pa = root / "particles";
     write(pa, "grass_split.json", particlesGrass());
     write(pa, "every_kind.json", particlesEveryKind());
+    write(pa / "data", "cube.obj", obj(cu, 0));
+    write(pa, "mesh_generator.json", particlesMesh());
     std::printf("corpus written under %s\n", root.string().c_str());
     return 0;
 }

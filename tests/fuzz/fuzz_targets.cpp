@@ -16,6 +16,7 @@
 #include "particles/strand_mesh.h"
 #include "scene/project.h"
 #include "scene/scene_compile.h"
+#include "scene/scene_particles.h"
 
 // stb's zlib codec (the library is linked anyway): the PNG mutation that rewrites pixel data behind a
 // valid zlib stream inflates and deflates with it.
@@ -72,6 +73,8 @@ Outcome runScene(const std::string& path) {
     }
     std::shared_ptr<const HeightField> terrain;
     if (!loadTerrain(project, &terrain, &error)) return rejected(error);
+    std::vector<ParticleSystemFile> particles;
+    if (!loadSceneParticles(project, terrain, &particles, &error)) return rejected(error);
     CompiledScene compiled;
     if (!compileScene(project, terrain, &compiled, &error)) return rejected(error);
     o.accepted = true;
@@ -573,6 +576,7 @@ bool scenePath(std::string* b, Rng& rng) {
     return swapWord(b, rng, {"\"data/cube.obj\"", "\"data/tetra.ply\"", "\"data/wedge.stl\"", "\"data/cube.off\"",
                              "\"data/pebble.glb\"", "\"data/leaf.gltf\"", "\"data/terrain.png\"",
                              "\"data/terrain16.png\"", "\"data\"", "\"data/missing.obj\"", "\"data/cube.OBJ\"",
+                             "\"data/strands.json\"",
                              "\"\"", "\"data/\""});
 }
 
@@ -583,6 +587,7 @@ bool particleCount(std::string* b, Rng& rng) {
 bool particleWord(std::string* b, Rng& rng) {
     return swapWord(b, rng, {"\"point\"", "\"segment\"", "\"sphere\"", "\"rectangle\"", "\"box\"", "\"plane\"",
                              "\"above\"", "\"below\"", "\"stop\"", "\"kill\"", "\"split\"", "\"countdown\"",
+                             "\"mesh\"", "\"data/cube.obj\"", "\"data\"", "\"\"",
                              "true", "false", "null", "[]", "{}", "0", "-1", "1e9"});
 }
 
