@@ -9,6 +9,8 @@
 // (viewer.cpp); target: docs/architecture.md "brush stamp -> frame showing it, llvmpipe"; this row: <= 50 ms.
 // editor.stamp_upload_tiles_p50: tiles whose resident slots a live result of that stroke re-uploaded.
 // Both need the editor's window: without a display they are left out (and the section says so).
+// render.fur.frame_ms: the fur_ball particle sample (6,000 strands of 32 steps as 3-sided tubes) grown
+// into the default scene, 15 cm above the ground, filling a third of a 1280 x 720 view; offscreen.
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -17,6 +19,7 @@
 #include "cli/bench.h"
 #include "editor/offscreen_render.h"
 #include "editor/viewer.h"
+#include "particles/particle_output.h"
 
 namespace ug::cli {
 
@@ -76,6 +79,38 @@ Measured measureOffscreen(const BenchContext& ctx, const std::string& scene, Vie
     return Measured::Ok;
 }
 
+Measured measureFur(const BenchContext& ctx, ViewMeasure* m, std::string* error) {
+    ParticleSystemFile fur;
+    if (!loadParticleSystem(ctx.assets_dir + "/particles/fur_ball.json", &fur, error)) return Measured::Failed;
+    translateParticleScene(&fur.scene, glm::vec3(0.0f, 0.0f, 0.15f));
+    Strands strands;
+    MeshInstances tubes;
+    if (!growParticleSystem(fur, ctx.threads, &strands, &tubes, error)) return Measured::Failed;
+    editor::OffscreenRenderOptions options;
+    options.scene_path = ctx.assets_dir + "/scenes/default.json";
+    options.cache_dir = ctx.cache_dir;
+    options.threads = ctx.threads;
+    options.width = kWidth;
+    options.height = kHeight;
+    options.frames = ctx.quick ? 10 : 30;
+    editor::OrbitCamera camera;
+    camera.target = glm::vec3(0.0f, 0.0f, 0.15f);
+    camera.distance_m = 0.45f;
+    camera.yaw_rad = glm::radians(-60.0f);
+    camera.pitch_rad = glm::radians(20.0f);
+    options.camera = camera;
+    options.extra_static_meshes.push_back(std::move(tubes));
+    editor::OffscreenRenderResult r;
+    switch (editor::renderSceneOffscreen(options, &r, error)) {
+        case editor::OffscreenRenderStatus::Ok: break;
+        case editor::OffscreenRenderStatus::NoContext: return Measured::Unavailable;
+        case editor::OffscreenRenderStatus::Failed: return Measured::Failed;
+    }
+    *m = ViewMeasure{editor::percentile(r.frame_ms, 0.5), int(r.frame_ms.size()), strands.size(), r.triangles,
+                     r.draw_calls, r.lod_instances, r.renderer, "offscreen " + r.platform + ", render + glFinish"};
+    return Measured::Ok;
+}
+
 std::string lodText(const ViewMeasure& m) {
     return std::to_string(m.lod_instances[0]) + "/" + std::to_string(m.lod_instances[1]) + "/" +
            std::to_string(m.lod_instances[2]) + "/" + std::to_string(m.lod_instances[3]);
@@ -121,6 +156,19 @@ bool benchRender(const BenchContext& ctx, std::vector<BenchRow>* rows, std::stri
             return true;
         }
         addViewRows(s.name, m, s.triangle_bar, rows);
+    }
+    {
+        ViewMeasure m;
+        const Measured got = measureFur(ctx, &m, error);
+        if (got == Measured::Failed) return false;
+        if (got == Measured::Ok) {
+            rows->push_back({"render.fur.frame_ms", m.frame_ms, "ms", "<= 40", std::nullopt,
+                             "median of " + std::to_string(m.frames) + " frames; fur_ball.json, " +
+                                 std::to_string(m.instances) + " strands as tubes; " + m.renderer + "; " + m.path});
+            rows->push_back({"render.fur.triangles", double(m.triangles), "triangles", "", std::nullopt,
+                             "per frame, the whole view"});
+        }
+        error->clear();
     }
     if (!windowed) {
         std::fprintf(stderr, "bench: render: editor.stamp_* skipped: they time the editor's window (run under xvfb-run)\n");
