@@ -5,8 +5,8 @@
 
 #include "core/hash.h"
 #include "core/parallel.h"
-#include "particles/particle_seeding.h"
 #include "mesh/triangle_bvh.h"
+#include "particles/particle_seeding.h"
 #include "particles/segment_grid.h"
 
 namespace ug {
