@@ -60,14 +60,18 @@ Measured measureInWindow(const BenchContext& ctx, const std::string& scene, View
     return Measured::Ok;
 }
 
-Measured measureOffscreen(const BenchContext& ctx, const std::string& scene, ViewMeasure* m, std::string* error) {
+editor::OffscreenRenderOptions offscreenOptions(const BenchContext& ctx, const std::string& scene, int frames) {
     editor::OffscreenRenderOptions options;
     options.scene_path = scene;
     options.cache_dir = ctx.cache_dir;
     options.threads = ctx.threads;
     options.width = kWidth;
     options.height = kHeight;
-    options.frames = ctx.quick ? 20 : 60;
+    options.frames = frames;
+    return options;
+}
+
+Measured renderOffscreen(const editor::OffscreenRenderOptions& options, ViewMeasure* m, std::string* error) {
     editor::OffscreenRenderResult r;
     switch (editor::renderSceneOffscreen(options, &r, error)) {
         case editor::OffscreenRenderStatus::Ok: break;
@@ -79,6 +83,11 @@ Measured measureOffscreen(const BenchContext& ctx, const std::string& scene, Vie
     return Measured::Ok;
 }
 
+Measured measureOffscreen(const BenchContext& ctx, const std::string& scene, ViewMeasure* m, std::string* error) {
+    return renderOffscreen(offscreenOptions(ctx, scene, ctx.quick ? 20 : 60), m, error);
+}
+
+// The fur ball's view; m->instances is its strand count.
 Measured measureFur(const BenchContext& ctx, ViewMeasure* m, std::string* error) {
     ParticleSystemFile fur;
     if (!loadParticleSystem(ctx.assets_dir + "/particles/fur_ball.json", &fur, error)) return Measured::Failed;
@@ -86,13 +95,8 @@ Measured measureFur(const BenchContext& ctx, ViewMeasure* m, std::string* error)
     Strands strands;
     MeshInstances tubes;
     if (!growParticleSystem(fur, ctx.threads, &strands, &tubes, error)) return Measured::Failed;
-    editor::OffscreenRenderOptions options;
-    options.scene_path = ctx.assets_dir + "/scenes/default.json";
-    options.cache_dir = ctx.cache_dir;
-    options.threads = ctx.threads;
-    options.width = kWidth;
-    options.height = kHeight;
-    options.frames = ctx.quick ? 10 : 30;
+    editor::OffscreenRenderOptions options =
+        offscreenOptions(ctx, ctx.assets_dir + "/scenes/default.json", ctx.quick ? 10 : 30);
     editor::OrbitCamera camera;
     camera.target = glm::vec3(0.0f, 0.0f, 0.15f);
     camera.distance_m = 0.45f;
@@ -100,15 +104,9 @@ Measured measureFur(const BenchContext& ctx, ViewMeasure* m, std::string* error)
     camera.pitch_rad = glm::radians(20.0f);
     options.camera = camera;
     options.extra_static_meshes.push_back(std::move(tubes));
-    editor::OffscreenRenderResult r;
-    switch (editor::renderSceneOffscreen(options, &r, error)) {
-        case editor::OffscreenRenderStatus::Ok: break;
-        case editor::OffscreenRenderStatus::NoContext: return Measured::Unavailable;
-        case editor::OffscreenRenderStatus::Failed: return Measured::Failed;
-    }
-    *m = ViewMeasure{editor::percentile(r.frame_ms, 0.5), int(r.frame_ms.size()), strands.size(), r.triangles,
-                     r.draw_calls, r.lod_instances, r.renderer, "offscreen " + r.platform + ", render + glFinish"};
-    return Measured::Ok;
+    const Measured got = renderOffscreen(options, m, error);
+    m->instances = strands.size();
+    return got;
 }
 
 std::string lodText(const ViewMeasure& m) {

@@ -46,13 +46,10 @@ public:
     // Calls f(j, offset_index) for every edge of row i, in ascending key order. No allocation.
     template <typename F>
     void forEachNeighbor(uint32_t i, F&& f) const {
-        const uint8_t* p = bytes_.data() + row_offsets_[i];
-        const uint8_t* end = bytes_.data() + row_offsets_[i + 1];
-        uint32_t key = 0;
-        while (p < end) {
-            key += decodeVarint(p);
-            f(key / kOffsetCount, key % kOffsetCount);
-        }
+        anyNeighbor(i, [&](uint32_t j, uint32_t offset) {
+            f(j, offset);
+            return false;
+        });
     }
 
     // As forEachNeighbor, stopping at the first edge for which f returns true; returns whether it stopped.
