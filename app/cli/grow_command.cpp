@@ -49,10 +49,11 @@ int runGrowCommand(int argc, char** argv) {
     if (!loadParticleSystem(path, &system, &error)) return fail(error);
     const auto t0 = std::chrono::steady_clock::now();
     Strands strands;
-    MeshInstances tubes;
-    if (!growParticleSystem(system, int(threads), &strands, &tubes, &error)) return fail(path + ": " + error);
+    SceneExport scene;
+    if (!appendParticleSystemMeshes(system, int(threads), &strands, &scene.meshes, &error))
+        return fail(path + ": " + error);
     const double grow_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    const TriangleMesh& mesh = *tubes.mesh;
+    const TriangleMesh& mesh = *scene.meshes.front().mesh;  // the tubes
     const StrandStats& st = strands.stats;
     // Counts only: the file is the same bytes for any thread count (timings go to --stats).
     const nlohmann::json counts = {{"name", system.name},
@@ -67,9 +68,6 @@ int runGrowCommand(int argc, char** argv) {
                                    {"dropped", st.dropped},
                                    {"solid_hits", st.solid_hits},
                                    {"triangles", mesh.triangleCount()}};
-    SceneExport scene;
-    scene.meshes.push_back(std::move(tubes));
-    for (MeshInstances& surface : generatorSurfaces(system)) scene.meshes.push_back(std::move(surface));
     scene.scene_extras_json = nlohmann::json{{"particles", counts}}.dump();
     if (!writeSceneGltf(out, scene, &error)) return fail(error);
     if (args.has("--stats")) {

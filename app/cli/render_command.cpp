@@ -127,11 +127,9 @@ int runRenderCommand(int argc, char** argv) {
         const std::string path = args.get("--particles");
         ParticleSystemFile system;
         Strands strands;
-        MeshInstances tubes;
         if (!loadParticleSystem(path, &system, &error)) return fail(error);
-        if (!growParticleSystem(system, options.threads, &strands, &tubes, &error)) return fail(path + ": " + error);
-        options.extra_static_meshes.push_back(std::move(tubes));
-        for (MeshInstances& surface : generatorSurfaces(system)) options.extra_static_meshes.push_back(std::move(surface));
+        if (!appendParticleSystemMeshes(system, options.threads, &strands, &options.extra_static_meshes, &error))
+            return fail(path + ": " + error);
     }
 
     editor::OffscreenRenderResult result;

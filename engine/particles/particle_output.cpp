@@ -45,6 +45,15 @@ bool growParticleSystem(const ParticleSystemFile& system, int threads, Strands* 
     return true;
 }
 
+bool appendParticleSystemMeshes(const ParticleSystemFile& system, int threads, Strands* strands,
+                                std::vector<MeshInstances>* out, std::string* error) {
+    MeshInstances tubes;
+    if (!growParticleSystem(system, threads, strands, &tubes, error)) return false;
+    out->push_back(std::move(tubes));
+    for (MeshInstances& surface : generatorSurfaces(system)) out->push_back(std::move(surface));
+    return true;
+}
+
 std::vector<MeshInstances> generatorSurfaces(const ParticleSystemFile& system) {
     std::vector<MeshInstances> out;
     for (size_t i = 0; i < system.scene.generators.size(); ++i) {

@@ -25,4 +25,9 @@ bool growParticleSystem(const ParticleSystemFile& system, int threads, Strands* 
 // the strands grow out of is in the picture and the export.
 std::vector<MeshInstances> generatorSurfaces(const ParticleSystemFile& system);
 
+// What every output draws and exports of a system (grow, render --particles, a project's systems):
+// growParticleSystem's tubes, then generatorSurfaces, appended to *out.
+bool appendParticleSystemMeshes(const ParticleSystemFile& system, int threads, Strands* strands,
+                                std::vector<MeshInstances>* out, std::string* error);
+
 }  // namespace ug

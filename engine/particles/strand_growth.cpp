@@ -216,19 +216,19 @@ bool Growth::entersSolid(size_t k) const {
     const uint32_t s = active_[k];
     const glm::vec3 a = points_.pos[strands_.last[s]], b = moves_.pos[k];
     // Seeds lie on the terrain and on the meshes: a move that starts on a surface and leaves it must not
-    // hit it at its start, so the test begins a hair along the move (a thousandth of a step).
-    if (scene_.terrain && b.z < scene_.terrain->sample(b.x, b.y) - 1e-3f * walk_.step_length_m) return true;
+    // hit it at its start, so the tests allow a hair (a thousandth of a step).
+    const float hair = 1e-3f * walk_.step_length_m;
+    if (scene_.terrain && b.z < scene_.terrain->sample(b.x, b.y) - hair) return true;
     const float length = glm::length(b - a);
     if (!(length > 0.0f)) return false;
     const glm::vec3 d = (b - a) / length;
     // A first move from a seed on a mesh starts on its surface, where the ray below cannot tell in from
     // out: the surface's normal does.
     if (strands_.npoints[s] == 1 && glm::dot(strands_.solid_normal[s], d) < 0.0f) return true;
-    const float skip = 1e-3f * walk_.step_length_m;
     for (const SolidMesh& m : solid_meshes_) {
         const float inv = 1.0f / m.generator->scale;
-        const glm::vec3 o = (a + d * skip - m.generator->center_m) * inv;
-        if (m.bvh.rayHit(o, d) < (length - skip) * inv) return true;
+        const glm::vec3 o = (a + d * hair - m.generator->center_m) * inv;
+        if (m.bvh.rayHit(o, d) < (length - hair) * inv) return true;
     }
     return false;
 }

@@ -59,18 +59,18 @@ bool growSceneParticles(const std::vector<ParticleSystemFile>& systems, const st
     *stats = SceneStrandStats{};
     for (const ParticleSystemFile& system : systems) {
         Strands strands;
-        MeshInstances tubes;
-        if (!growParticleSystem(system, threads, &strands, &tubes, error)) {
+        std::vector<MeshInstances> own;  // the tubes, then the mesh generators' surfaces
+        if (!appendParticleSystemMeshes(system, threads, &strands, &own, error)) {
             *error = source + ": particle system '" + system.name + "': " + *error;
             return false;
         }
+        // Grown before the test: where a system lies is known from its strands only.
         if (region && !centreInside(*region, strands.points)) continue;
         ++stats->systems;
         stats->strands += strands.size();
         stats->points += strands.points.size();
-        stats->triangles += tubes.mesh->indices.size() / 3;
-        meshes->push_back(std::move(tubes));
-        for (MeshInstances& surface : generatorSurfaces(system)) meshes->push_back(std::move(surface));
+        stats->triangles += own.front().mesh->triangleCount();
+        for (MeshInstances& m : own) meshes->push_back(std::move(m));
     }
     stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return true;

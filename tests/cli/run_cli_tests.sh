@@ -1,16 +1,7 @@
 #!/usr/bin/env bash
 # End-to-end checks of the undergrowth binary: the main job's outputs, read back by independent tools
 # (python3's json module), exit codes, and error messages for bad input. UG_BIN is the binary.
-set -u
-bin="${UG_BIN:?UG_BIN must name the undergrowth binary}"
-root="$(cd "$(dirname "$0")/../.." && pwd)"
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
-
-ok() { passed=$((passed + 1)); echo "ok   - $1"; }
-bad() { failed=$((failed + 1)); echo "FAIL - $1"; }
+source "$(dirname "$0")/../lib/harness.sh"
 
 # expect_fail NAME EXIT_CODE PATTERN -- command...: the command must exit EXIT_CODE and print PATTERN.
 expect_fail() {

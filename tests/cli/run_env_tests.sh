@@ -4,15 +4,7 @@
 # by the Khronos validator and an independent glTF reader (check_gltf.mjs, per mesh for the autumn looks),
 # the union of regions equal to the whole, and bad trees refused with the file, the JSON Pointer and the
 # reason. UG_BIN is the binary.
-set -u
-bin="${UG_BIN:?UG_BIN must name the undergrowth binary}"
-root="$(cd "$(dirname "$0")/../.." && pwd)"
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
-ok() { passed=$((passed + 1)); echo "ok   - $1"; }
-bad() { failed=$((failed + 1)); echo "FAIL - $1"; }
+source "$(dirname "$0")/../lib/harness.sh"
 expect_fail() {
   local name="$1" code="$2" pattern="$3"
   shift 4

@@ -4,15 +4,7 @@
 # the Khronos validator finds no error and glTF-Transform reads the strand mesh back (check_gltf.mjs); the
 # polylines in its extras are the ones the statistics count; bad files fail with the file, the JSON
 # Pointer and the reason, and write nothing. UG_BIN is the binary.
-set -u
-bin="${UG_BIN:?UG_BIN must name the undergrowth binary}"
-root="$(cd "$(dirname "$0")/../.." && pwd)"
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
-ok() { passed=$((passed + 1)); echo "ok   - $1"; }
-bad() { failed=$((failed + 1)); echo "FAIL - $1"; }
+source "$(dirname "$0")/../lib/harness.sh"
 check="$root/tests/gltf/check_gltf.mjs"
 if ! bash "$root/tests/gltf/setup.sh" >"$tmp/npm.txt" 2>&1; then
   bad "the glTF checks (tests/gltf/setup.sh): $(cat "$tmp/npm.txt")"; echo "$passed passed, $failed failed"; exit 1; fi

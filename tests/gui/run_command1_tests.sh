@@ -5,15 +5,7 @@
 # with --headless, without DISPLAY, or with a DISPLAY no server answers, it runs the headless job. The
 # offscreen render of a scene is the editor's viewport at the same size, pixel for pixel (within one level).
 # Fails, never skips, when xvfb-run is missing. UG_BIN is the binary.
-set -u
-bin="${UG_BIN:?UG_BIN must name the undergrowth binary}"
-root="$(cd "$(dirname "$0")/../.." && pwd)"
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
-ok() { passed=$((passed + 1)); echo "ok   - $1"; }
-bad() { failed=$((failed + 1)); echo "FAIL - $1"; }
+source "$(dirname "$0")/../lib/harness.sh"
 
 if ! command -v xvfb-run >/dev/null 2>&1; then
   echo "FAIL - xvfb-run is not installed: the GUI tests need it (apt-get install xvfb xauth; scripts/install-deps.sh)"

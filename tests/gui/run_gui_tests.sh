@@ -3,15 +3,7 @@
 # on the meadow and the rock pile; the screenshots are decoded and checked (check_screenshot.py) and the
 # instance counts compared with the headless `instantiate` on the same scene. Fails, never skips, when
 # xvfb-run is missing (CI installs xvfb). UG_BIN is the binary; UG_GUI_KEEP=DIR keeps the outputs.
-set -u
-bin="${UG_BIN:?UG_BIN must name the undergrowth binary}"
-root="$(cd "$(dirname "$0")/../.." && pwd)"
-tmp="$(mktemp -d)"
-trap 'rm -rf "$tmp"' EXIT
-passed=0
-failed=0
-ok() { passed=$((passed + 1)); echo "ok   - $1"; }
-bad() { failed=$((failed + 1)); echo "FAIL - $1"; }
+source "$(dirname "$0")/../lib/harness.sh"
 
 if ! command -v xvfb-run >/dev/null 2>&1; then
   echo "FAIL - xvfb-run is not installed: the GUI tests need it (apt-get install xvfb xauth; scripts/install-deps.sh)"
