@@ -35,6 +35,8 @@ struct StrandAction {
     // Countdown: what ends the strand when the count runs out, Kill (removed) or Stop (its points stay:
     // the paper's "eliminated" in Fig. 8, where the strands reaching the outer sphere remain visible).
     StrandActionKind countdown_then = StrandActionKind::Kill;
+
+    bool operator==(const StrandAction&) const = default;
 };
 
 // Surfaces particles are seeded on. Each has an area-preserving parameterisation, so equal strata in
@@ -66,6 +68,8 @@ struct ParticleGenerator {
     std::string mesh_file;
     std::shared_ptr<const TriangleMesh> mesh;
     float scale = 1.0f;
+
+    bool operator==(const ParticleGenerator&) const = default;
 };
 
 // Attractor charge keyframes: a(t) is piecewise linear in the step index t between keys (strictly
@@ -73,6 +77,8 @@ struct ParticleGenerator {
 struct ChargeKey {
     uint32_t step = 0;
     float charge = 1.0f;  // a > 0 attracts, a < 0 repels; finite
+
+    bool operator==(const ChargeKey&) const = default;
 };
 
 enum class AttractorKind : uint8_t {
@@ -88,6 +94,8 @@ struct Attractor {
     float radius_m = 1.0f;      // Sphere, > 0
     float influence_m = 0.0f;   // 0 = everywhere; else the distance is clamped to it (see attractorTerm)
     std::vector<ChargeKey> charge{ChargeKey{}};  // at least one key
+
+    bool operator==(const Attractor&) const = default;
 };
 
 // Cutters: a signed function g(p) and a threshold; a strand triggers the cutter when its next point
@@ -112,6 +120,8 @@ struct Cutter {
     float threshold_m = 0.0f;
     CutterSide side = CutterSide::Above;
     StrandAction action;
+
+    bool operator==(const Cutter&) const = default;
 };
 
 struct WalkSettings {
@@ -131,6 +141,8 @@ struct WalkSettings {
     // grown in a project with one) or cross a mesh generator's surface is refused like a collision
     // (on_collision), counted apart (StrandStats::solid_hits).
     bool solids = true;
+
+    bool operator==(const WalkSettings&) const = default;
 };
 
 struct ParticleScene {

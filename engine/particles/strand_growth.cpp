@@ -1,11 +1,14 @@
 #include "particles/strand_growth.h"
 
 #include <algorithm>
+#include <cassert>
 #include <cmath>
+#include <optional>
 
 #include "core/hash.h"
 #include "core/parallel.h"
 #include "mesh/triangle_bvh.h"
+#include "particles/growth_record.h"
 #include "particles/particle_seeding.h"
 #include "particles/segment_grid.h"
 
@@ -16,6 +19,7 @@ namespace {
 constexpr uint32_t kNone = 0xffffffffu;
 constexpr uint64_t kTrialTag = 0x7419'a1c0'0000'0000ull;
 constexpr uint64_t kSplitTag = 0x5b11'7c0f'0000'0000ull;
+constexpr uint64_t kChildTag = 0x3c41'd0e9'0000'0000ull;
 constexpr int kCutBisections = 40;
 
 enum class StrandState : uint8_t { Active, Stopped, Killed };
@@ -31,6 +35,14 @@ struct PointStore {
 
 // Per-strand state, one array per field.
 struct StrandStore {
+    // The strand's key to its random numbers: a root's id, a child's hash of its parent's key and its
+    // rank. Ids shift when an edit changes where earlier strands split; keys do not, so a strand that an
+    // edit does not reach draws the same numbers after it (incremental re-growth).
+    std::vector<uint64_t> key;
+    std::vector<uint32_t> first_child;  // the first of its split's children, kNone if it did not split
+    // Re-growing from a record: the strand of the record this one has been identical to so far, kNone
+    // once they differ (or for a strand the record does not have).
+    std::vector<uint32_t> recorded;
     std::vector<uint32_t> first, last, npoints;
     std::vector<glm::quat> frame;
     std::vector<int32_t> parent;
@@ -45,7 +57,10 @@ struct StrandStore {
     std::vector<glm::vec3> solid_normal;
 
     size_t size() const { return first.size(); }
-    void add(uint32_t point, glm::quat q, int32_t parent_id, uint8_t d, uint32_t mask) {
+    void add(uint64_t k, uint32_t point, glm::quat q, int32_t parent_id, uint8_t d, uint32_t mask, uint32_t rec) {
+        key.push_back(k);
+        first_child.push_back(kNone);
+        recorded.push_back(rec);
         first.push_back(point);
         last.push_back(point);
         npoints.push_back(1);
@@ -91,6 +106,30 @@ float cutParameter(const Cutter& c, glm::vec3 p0, glm::vec3 p1) {
     return lo;
 }
 
+// Re-growing from a record (StrandRegrower): which strands may reuse their recorded move at this step,
+// and the changed geometry that makes a recorded move stale. A strand reuses its recorded proposal when
+// it is identical to its recorded strand so far and no changed attractor reaches its trials; it reuses its
+// recorded collision verdicts when no changed segment (earlier steps) or changed move (this step) lies
+// within the grids' reach of its move. "Changed" is every segment and move of a strand that differs
+// from its record, in the new growth and in the record alike, from the step they part on.
+struct Replay {
+    const GrowthRecord& record;
+    AttractorEdit edit;
+    std::vector<uint8_t> parted;    // per recorded strand: the new growth no longer has an identical one
+    SegmentGrid changed_segments;   // changed segments of earlier steps, new and recorded
+    SegmentGrid changed_moves;      // changed moves of this step, new and recorded
+    uint32_t changed_ids = 0;       // ids for the changed grids (only their presence is asked)
+    std::vector<uint32_t> entry;    // per active strand: its recorded move at this step, or kNone
+    std::vector<uint8_t> same;      // per active strand: its proposal and first verdict equal the record's
+    std::vector<uint8_t> proposed;  // per active strand: its proposal was computed again
+    std::vector<uint8_t> entry_same;  // per recorded move of this step: its strand's `same`
+    uint64_t reused = 0, recomputed = 0;
+
+    Replay(const GrowthRecord& r, const ParticleScene& before, const ParticleScene& after, float reach)
+        : record(r), edit(before.attractors, after.attractors, after.walk.step_length_m),
+          parted(r.strand_parent.size(), 0), changed_segments(reach), changed_moves(reach) {}
+};
+
 class Growth {
 public:
     Growth(const ParticleScene& scene, const GrowOptions& options)
@@ -107,11 +146,27 @@ public:
                 if (g.kind == GeneratorKind::Mesh && g.mesh) solid_meshes_.push_back({&g, TriangleBvh(*g.mesh, threads_)});
     }
 
+    // Grow again from `record`, a growth of `before` (regrowable(before, scene_)).
+    void replayFrom(const GrowthRecord& record, const ParticleScene& before) {
+        replay_.emplace(record, before, scene_, reach_);
+    }
+    // Keep what a later replayFrom needs in *record (moved out when run returns).
+    void recordInto(GrowthRecord* record) { record_ = record; }
+    RegrowReport report() const {
+        return {replay_.has_value(), replay_ ? replay_->recomputed : proposals_, replay_ ? replay_->reused : 0};
+    }
+
     bool run(Strands* out, std::string* error);
 
 private:
     void seed();
     void propose(size_t k, uint32_t step);
+    void proposeAndTest(size_t k, uint32_t step);
+    void replayMove(size_t k, uint32_t step, bool everywhere);
+    void matchRecordedMoves(uint32_t step);
+    void testLowerMoves(uint32_t step);
+    bool hitsChangedMove(size_t k) const;
+    void partFromRecord(uint32_t step);
     bool isAncestor(uint32_t strand, uint32_t s) const;
     bool hitsEarlierSegment(size_t k) const;
     bool hitsLowerMove(size_t k) const;
@@ -119,6 +174,9 @@ private:
     void apply(const StrandAction& action, uint32_t strand);
     void split(const StrandAction& action, uint32_t strand);
     void emit(Strands* out) const;
+    void keepRecord();
+    glm::vec3 moveMidpoint(size_t k) const { return 0.5f * (points_.pos[strands_.last[active_[k]]] + moves_.pos[k]); }
+    bool filed(size_t k) const { return !moves_.still[k] && (moves_.blocked[k] == 0 || moves_.blocked[k] == 2); }
 
     const ParticleScene& scene_;
     const WalkSettings& walk_;
@@ -137,6 +195,9 @@ private:
         TriangleBvh bvh;                     // in the model's own space
     };
     std::vector<SolidMesh> solid_meshes_;
+    std::optional<Replay> replay_;
+    GrowthRecord* record_ = nullptr;
+    uint64_t proposals_ = 0;  // moves proposed, over all steps
 };
 
 void Growth::seed() {
@@ -155,7 +216,8 @@ void Growth::seed() {
         points_.pos.push_back(seeds.positions[i]);
         points_.prev.push_back(kNone);
         points_.strand.push_back(uint32_t(i));
-        strands_.add(uint32_t(i), seeds.frames[i], -1, 0, 0);
+        // The generators are the record's, so are the seeds: every root starts identical to its record.
+        strands_.add(i, uint32_t(i), seeds.frames[i], -1, 0, 0, replay_ ? uint32_t(i) : kNone);
         if (on_solid[i]) strands_.solid_normal.back() = seeds.normals[i];
     }
     stats_.seeded = seeds.positions.size();
@@ -173,7 +235,7 @@ void Growth::propose(size_t k, uint32_t step) {
     glm::vec3 best_pos = p0, best_dir(0.0f, 0.0f, 1.0f);
     float best_f = 0.0f;
     for (uint32_t t = 0; t < walk_.trials; ++t) {
-        const uint64_t h = hashWords(walk_.seed, kTrialTag + s, step, t);
+        const uint64_t h = hashWords(walk_.seed, kTrialTag + strands_.key[s], step, t);
         const glm::vec3 dir = frame * coneDirectionCos(cos_cone_, unitFloat(h), unitFloat(mix64(h)));
         const glm::vec3 p = p0 + dir * walk_.step_length_m;
         float f = 0.0f;
@@ -266,14 +328,19 @@ bool Growth::hitsLowerMove(size_t k) const {
 void Growth::split(const StrandAction& action, uint32_t s) {
     strands_.state[s] = StrandState::Stopped;
     ++stats_.splits;
+    strands_.first_child[s] = uint32_t(strands_.size());
+    // Children of a strand still identical to its record are identical to the record's children.
+    const uint32_t recorded = strands_.recorded[s];
+    const uint32_t recorded_child = recorded == kNone ? kNone : replay_->record.strand_first_child[recorded];
     const float cone = glm::radians(action.split_angle_deg);
     for (uint32_t c = 0; c < action.split_count; ++c) {
         glm::quat q = strands_.frame[s];
         if (cone > 0.0f) {
-            const uint64_t h = hashWords(walk_.seed, kSplitTag + s, c);
+            const uint64_t h = hashWords(walk_.seed, kSplitTag + strands_.key[s], c);
             q = turnFrameTo(q, glm::normalize(q * coneDirection(cone, unitFloat(h), unitFloat(mix64(h)))));
         }
-        strands_.add(strands_.last[s], q, int32_t(s), uint8_t(strands_.depth[s] + 1), strands_.cut_mask[s]);
+        strands_.add(hashWords(kChildTag, strands_.key[s], c), strands_.last[s], q, int32_t(s),
+                     uint8_t(strands_.depth[s] + 1), strands_.cut_mask[s], recorded_child == kNone ? kNone : recorded_child + c);
     }
 }
 
@@ -301,10 +368,124 @@ void Growth::apply(const StrandAction& action, uint32_t s) {
     }
 }
 
+void Growth::proposeAndTest(size_t k, uint32_t step) {
+    propose(k, step);
+    if (walk_.solids && !moves_.still[k] && entersSolid(k)) moves_.blocked[k] = 3;
+    else if (walk_.collisions && !moves_.still[k] && hitsEarlierSegment(k)) moves_.blocked[k] = 1;
+}
+
+// The first verdict (before the test against this step's lower moves) of recorded move j.
+static uint8_t firstVerdict(const GrowthRecord& r, uint32_t j) {
+    return r.move_blocked[j] == 2 ? 0 : r.move_blocked[j];
+}
+
+void Growth::replayMove(size_t k, uint32_t step, bool everywhere) {
+    Replay& rp = *replay_;
+    const GrowthRecord& r = rp.record;
+    const uint32_t j = rp.entry[k];
+    const glm::vec3 p0 = points_.pos[strands_.last[active_[k]]];
+    rp.proposed[k] = j == kNone || everywhere || rp.edit.reaches(p0);
+    if (rp.proposed[k]) {
+        proposeAndTest(k, step);
+        rp.same[k] = j != kNone && moves_.pos[k] == r.move_pos[j] && moves_.dir[k] == r.move_dir[j] &&
+                     moves_.cutter[k] == r.move_cutter[j] && moves_.still[k] == r.move_still[j] &&
+                     moves_.blocked[k] == firstVerdict(r, j);
+        return;
+    }
+    // The proposal is the record's, bit for bit, and so is the solid test (solids do not change).
+    moves_.pos[k] = r.move_pos[j];
+    moves_.dir[k] = r.move_dir[j];
+    moves_.cutter[k] = r.move_cutter[j];
+    moves_.still[k] = r.move_still[j];
+    uint8_t blocked = firstVerdict(r, j);
+    if (blocked != 3 && walk_.collisions && !moves_.still[k] &&
+        rp.changed_segments.anyNear(moveMidpoint(k), [](uint32_t, uint32_t) { return true; }))
+        blocked = hitsEarlierSegment(k) ? 1 : 0;
+    moves_.blocked[k] = blocked;
+    rp.same[k] = blocked == firstVerdict(r, j);
+}
+
+// Finds each active strand's recorded move of this step. Strands identical to their record keep the
+// record's relative order (ids follow birth step, then the parent's order, then the rank among siblings),
+// so one merge pass finds them; one that is not found (it cannot happen) parts from its record instead.
+void Growth::matchRecordedMoves(uint32_t step) {
+    Replay& rp = *replay_;
+    const GrowthRecord& r = rp.record;
+    const uint32_t begin = r.stepBegin(r.step_moves, step), end = r.stepEnd(r.step_moves, step);
+    rp.entry.assign(active_.size(), kNone);
+    uint32_t j = begin;
+    for (size_t k = 0; k < active_.size(); ++k) {
+        const uint32_t s = active_[k], o = strands_.recorded[s];
+        if (o == kNone) continue;
+        uint32_t i = j;
+        while (i < end && r.move_strand[i] != o) ++i;
+        if (i == end) {
+            assert(false && "a strand identical to its record is active in it");
+            rp.parted[o] = 1;
+            strands_.recorded[s] = kNone;
+            continue;
+        }
+        rp.entry[k] = i;
+        j = i + 1;
+    }
+    rp.same.assign(active_.size(), 0);
+    rp.proposed.assign(active_.size(), 0);
+}
+
+bool Growth::hitsChangedMove(size_t k) const {
+    return replay_->changed_moves.anyNear(moveMidpoint(k), [](uint32_t, uint32_t) { return true; });
+}
+
+// This step's moves against lower ids' moves. Re-growing, a move whose proposal and first verdict are
+// the record's takes the record's verdict unless a changed move of this step lies within reach.
+void Growth::testLowerMoves(uint32_t step) {
+    if (replay_) {
+        Replay& rp = *replay_;
+        const GrowthRecord& r = rp.record;
+        const uint32_t begin = r.stepBegin(r.step_moves, step), end = r.stepEnd(r.step_moves, step);
+        rp.entry_same.assign(end - begin, 0);
+        for (size_t k = 0; k < active_.size(); ++k)
+            if (rp.entry[k] != kNone) rp.entry_same[rp.entry[k] - begin] = rp.same[k];
+        rp.changed_moves.clear();
+        for (size_t k = 0; k < active_.size(); ++k)
+            if (!rp.same[k] && filed(k)) rp.changed_moves.insert(rp.changed_ids++, moveMidpoint(k), 0);
+        for (uint32_t j = begin; j < end; ++j)
+            if (!rp.entry_same[j - begin] && !r.move_still[j] && (r.move_blocked[j] == 0 || r.move_blocked[j] == 2))
+                rp.changed_moves.insert(rp.changed_ids++, 0.5f * (r.point_pos[r.move_from[j]] + r.move_pos[j]), 0);
+    }
+    parallelFor(active_.size(), threads_, 512, [&](size_t begin, size_t end, int) {
+        for (size_t k = begin; k < end; ++k) {
+            if (moves_.blocked[k] || moves_.still[k]) continue;
+            if (replay_ && replay_->same[k] && !hitsChangedMove(k))
+                moves_.blocked[k] = replay_->record.move_blocked[replay_->entry[k]];
+            else if (hitsLowerMove(k))
+                moves_.blocked[k] = 2;
+        }
+    });
+}
+
+// After the actions of `step`: the recorded strands that parted from the new growth (and the children
+// they had) now differ, so their recorded segments of this step are changed geometry from the next step on.
+void Growth::partFromRecord(uint32_t step) {
+    Replay& rp = *replay_;
+    const GrowthRecord& r = rp.record;
+    for (uint32_t o = r.stepBegin(r.step_strands, step); o < r.stepEnd(r.step_strands, step); ++o)
+        if (r.strand_parent[o] >= 0 && rp.parted[size_t(r.strand_parent[o])]) rp.parted[o] = 1;
+    if (!walk_.collisions) return;
+    for (uint32_t p = r.stepBegin(r.step_points, step); p < r.stepEnd(r.step_points, step); ++p)
+        if (rp.parted[r.point_strand[p]])
+            rp.changed_segments.insert(rp.changed_ids++, 0.5f * (r.point_pos[r.point_prev[p]] + r.point_pos[p]), 0);
+}
+
 bool Growth::run(Strands* out, std::string* error) {
     seed();
+    if (record_) {
+        record_->clear();
+        record_->step_points = {0};
+        record_->step_strands = {0};
+        record_->step_moves = {0};
+    }
     charge_.resize(scene_.attractors.size());
-    const size_t chunk = 512;
     for (uint32_t step = 1; step <= walk_.steps; ++step) {
         active_.clear();
         for (uint32_t s = 0; s < strands_.size(); ++s)
@@ -319,30 +500,57 @@ bool Growth::run(Strands* out, std::string* error) {
         }
         for (size_t a = 0; a < charge_.size(); ++a) charge_[a] = chargeAt(scene_.attractors[a].charge, step);
         moves_.resize(active_.size());
+        proposals_ += active_.size();
 
         // Proposals and the test against earlier steps read only the state after step - 1.
-        parallelFor(active_.size(), threads_, chunk, [&](size_t begin, size_t end, int) {
-            for (size_t k = begin; k < end; ++k) {
-                propose(k, step);
-                if (walk_.solids && !moves_.still[k] && entersSolid(k)) moves_.blocked[k] = 3;
-                else if (walk_.collisions && !moves_.still[k] && hitsEarlierSegment(k)) moves_.blocked[k] = 1;
-            }
-        });
+        if (replay_) {
+            matchRecordedMoves(step);
+            const bool everywhere = replay_->edit.everywhereAt(step);
+            parallelFor(active_.size(), threads_, 512, [&](size_t begin, size_t end, int) {
+                for (size_t k = begin; k < end; ++k) replayMove(k, step, everywhere);
+            });
+        } else {
+            parallelFor(active_.size(), threads_, 512, [&](size_t begin, size_t end, int) {
+                for (size_t k = begin; k < end; ++k) proposeAndTest(k, step);
+            });
+        }
         if (walk_.collisions) {
             // Moves of this step, filed in id order; a move refused by an earlier segment never blocks.
             step_grid_.clear();
             for (size_t k = 0; k < active_.size(); ++k)
-                if (!moves_.blocked[k] && !moves_.still[k])
-                    step_grid_.insert(uint32_t(k), 0.5f * (points_.pos[strands_.last[active_[k]]] + moves_.pos[k]), active_[k]);
-            parallelFor(active_.size(), threads_, chunk, [&](size_t begin, size_t end, int) {
-                for (size_t k = begin; k < end; ++k)
-                    if (!moves_.blocked[k] && !moves_.still[k] && hitsLowerMove(k)) moves_.blocked[k] = 2;
-            });
+                if (filed(k)) step_grid_.insert(uint32_t(k), moveMidpoint(k), active_[k]);
+            testLowerMoves(step);
+        }
+        if (record_) {
+            GrowthRecord& r = *record_;
+            r.step_moves.push_back(uint32_t(r.move_strand.size()));
+            r.step_points.push_back(uint32_t(points_.pos.size()));
+            r.step_strands.push_back(uint32_t(strands_.size()));
+            for (size_t k = 0; k < active_.size(); ++k) {
+                r.move_strand.push_back(active_[k]);
+                r.move_from.push_back(strands_.last[active_[k]]);
+            }
+            r.move_pos.insert(r.move_pos.end(), moves_.pos.begin(), moves_.pos.end());
+            r.move_dir.insert(r.move_dir.end(), moves_.dir.begin(), moves_.dir.end());
+            r.move_cutter.insert(r.move_cutter.end(), moves_.cutter.begin(), moves_.cutter.end());
+            r.move_blocked.insert(r.move_blocked.end(), moves_.blocked.begin(), moves_.blocked.end());
+            r.move_still.insert(r.move_still.end(), moves_.still.begin(), moves_.still.end());
         }
 
         // Actions, serially in id order: children and points get their ids in that order.
         for (size_t k = 0; k < active_.size(); ++k) {
             const uint32_t s = active_[k];
+            if (replay_) {
+                const uint32_t j = replay_->entry[k];
+                replay_->reused += !replay_->proposed[k];
+                replay_->recomputed += replay_->proposed[k];
+                // A strand whose move or verdict differs from its record's parts from it for good.
+                if (strands_.recorded[s] != kNone &&
+                    !(replay_->same[k] && moves_.blocked[k] == replay_->record.move_blocked[j])) {
+                    replay_->parted[strands_.recorded[s]] = 1;
+                    strands_.recorded[s] = kNone;
+                }
+            }
             const bool counting = strands_.countdown[s] >= 0;
             if (moves_.blocked[k]) {
                 ++(moves_.blocked[k] == 3 ? stats_.solid_hits : stats_.collisions);
@@ -351,10 +559,15 @@ bool Growth::run(Strands* out, std::string* error) {
                 if (!moves_.still[k]) {
                     const uint32_t id = uint32_t(points_.pos.size());
                     const uint32_t from = strands_.last[s];
+                    const glm::vec3 mid = 0.5f * (points_.pos[from] + moves_.pos[k]);
                     points_.pos.push_back(moves_.pos[k]);
                     points_.prev.push_back(from);
                     points_.strand.push_back(s);
-                    if (walk_.collisions) grid_.insert(id, 0.5f * (points_.pos[from] + moves_.pos[k]), s);
+                    if (walk_.collisions) {
+                        grid_.insert(id, mid, s);
+                        if (replay_ && strands_.recorded[s] == kNone)
+                            replay_->changed_segments.insert(replay_->changed_ids++, mid, 0);
+                    }
                     strands_.last[s] = id;
                     ++strands_.npoints[s];
                     ++stats_.moves;
@@ -379,9 +592,24 @@ bool Growth::run(Strands* out, std::string* error) {
                 }
             }
         }
+        if (replay_) partFromRecord(step);
     }
     emit(out);
+    if (record_) keepRecord();
     return true;
+}
+
+// Moves the growth's points and strands into the record (after emit, the last reader).
+void Growth::keepRecord() {
+    GrowthRecord& r = *record_;
+    r.step_moves.push_back(uint32_t(r.move_strand.size()));
+    r.step_points.push_back(uint32_t(points_.pos.size()));
+    r.step_strands.push_back(uint32_t(strands_.size()));
+    r.point_pos = std::move(points_.pos);
+    r.point_prev = std::move(points_.prev);
+    r.point_strand = std::move(points_.strand);
+    r.strand_parent = std::move(strands_.parent);
+    r.strand_first_child = std::move(strands_.first_child);
 }
 
 void Growth::emit(Strands* out) const {
@@ -413,9 +641,11 @@ void Growth::emit(Strands* out) const {
 
 }  // namespace
 
-bool growStrands(const ParticleScene& scene, const GrowOptions& options, Strands* out, std::string* error) {
-    if (!validateParticleScene(scene, error)) return false;
-    // Not in validateParticleScene: a file is read (and checked) before a project gives it its terrain.
+namespace {
+
+// Checks what validateParticleScene cannot: a file is read (and checked) before a project gives it its
+// terrain.
+bool hasItsTerrain(const ParticleScene& scene, std::string* error) {
     for (size_t i = 0; i < scene.generators.size(); ++i)
         if (scene.generators[i].on_terrain && (!scene.terrain || scene.terrain->empty())) {
             if (error)
@@ -423,8 +653,43 @@ bool growStrands(const ParticleScene& scene, const GrowOptions& options, Strands
                          "].on_terrain: needs a terrain: grow the system from a project that has one (its \"particles\")";
             return false;
         }
+    return true;
+}
+
+}  // namespace
+
+bool growStrands(const ParticleScene& scene, const GrowOptions& options, Strands* out, std::string* error) {
+    if (!validateParticleScene(scene, error) || !hasItsTerrain(scene, error)) return false;
     Growth growth(scene, options);
     return growth.run(out, error);
+}
+
+StrandRegrower::StrandRegrower() = default;
+StrandRegrower::~StrandRegrower() = default;
+
+void StrandRegrower::reset() {
+    record_.reset();
+    report_ = {};
+}
+
+bool StrandRegrower::grow(const ParticleScene& scene, const GrowOptions& options, Strands* out, std::string* error) {
+    if (!validateParticleScene(scene, error) || !hasItsTerrain(scene, error)) {
+        reset();
+        return false;
+    }
+    if (!next_) next_ = std::make_unique<GrowthRecord>();
+    Growth growth(scene, options);
+    if (record_ && regrowable(scene_, scene)) growth.replayFrom(*record_, scene_);
+    growth.recordInto(next_.get());
+    if (!growth.run(out, error)) {
+        reset();
+        return false;
+    }
+    report_ = growth.report();
+    // The new record replaces the old, whose memory the next growth reuses.
+    std::swap(record_, next_);
+    scene_ = scene;
+    return true;
 }
 
 }  // namespace ug

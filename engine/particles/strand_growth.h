@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -43,7 +44,7 @@ struct Strands {
     std::vector<float> radii;             // per point (the tube radius r)
     std::vector<uint32_t> offsets{0};     // strand s is points[offsets[s], offsets[s + 1])
     std::vector<int32_t> parent;          // per strand: the strand it split from, or -1
-    std::vector<uint32_t> particle;       // per strand: its id in the simulation (hash key)
+    std::vector<uint32_t> particle;       // per strand: its id in the simulation
     StrandStats stats;
 
     size_t size() const { return parent.size(); }
@@ -56,5 +57,39 @@ struct GrowOptions {
 // Validates the scene (validateParticleScene) and grows its strands. Returns false with *error when the
 // scene is invalid or when splits would need more than walk.max_points points (refused, not truncated).
 bool growStrands(const ParticleScene& scene, const GrowOptions& options, Strands* out, std::string* error);
+
+struct GrowthRecord;  // growth_record.h
+
+// What the last StrandRegrower::grow did.
+struct RegrowReport {
+    bool incremental = false;  // it re-grew from the record of the growth before
+    uint64_t recomputed = 0;   // moves proposed again (every move, for a full growth)
+    uint64_t reused = 0;       // moves taken from the record
+};
+
+// Grows a scene again as it is edited (the editor's live strands, a sculpting session): each grow()
+// keeps a record of its growth, and the next one, when the edit touched only the attractors (their place,
+// shape and charges, at the same radius of influence), re-grows from it only the strands the edit
+// reaches, directly or through strands it reached (docs/particles.md "Incremental re-growth"). The result
+// is the full growth's, bit for bit; any other edit grows in full. Holds the record (about 40 bytes a
+// move) between calls.
+class StrandRegrower {
+public:
+    StrandRegrower();
+    ~StrandRegrower();
+    StrandRegrower(const StrandRegrower&) = delete;
+    StrandRegrower& operator=(const StrandRegrower&) = delete;
+
+    // As growStrands; on failure the record is dropped and the next grow is a full one.
+    bool grow(const ParticleScene& scene, const GrowOptions& options, Strands* out, std::string* error);
+    const RegrowReport& lastReport() const { return report_; }
+    // Forget the record: the next grow is a full one.
+    void reset();
+
+private:
+    ParticleScene scene_;
+    std::unique_ptr<GrowthRecord> record_, next_;
+    RegrowReport report_;
+};
 
 }  // namespace ug

@@ -1,0 +1,81 @@
+// What incremental re-growth (StrandRegrower, strand_growth.h) keeps of a growth to grow the edited scene
+// again: every point with the step that placed it, every strand with its parent and children, and every
+// step's moves (the proposal and whether it was refused) in the order of that step's active strands.
+// Points, strands born and moves are appended in step order, so a step's share of each is a range.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "particles/particle_scene.h"
+
+namespace ug {
+
+struct GrowthRecord {
+    // Points, as the growth placed them: a strand is the chain of prev links (kNoPoint at a root).
+    std::vector<glm::vec3> point_pos;
+    std::vector<uint32_t> point_prev, point_strand;
+    std::vector<uint32_t> step_points;  // [t]: the first point placed at step t (t = 0: the seeds); one past the last step ends it
+    // Strands: the parent (-1 for a root) and the first of a split's children (kNoPoint if none; they
+    // have consecutive ids).
+    std::vector<int32_t> strand_parent;
+    std::vector<uint32_t> strand_first_child;
+    std::vector<uint32_t> step_strands;  // [t]: the first strand born at step t (t = 0: the roots)
+    // Moves of step t: entries [step_moves[t], step_moves[t + 1]), one per strand active at t, by id.
+    std::vector<uint32_t> step_moves;
+    std::vector<uint32_t> move_strand;
+    std::vector<uint32_t> move_from;  // the point the move leaves
+    std::vector<glm::vec3> move_pos, move_dir;
+    std::vector<int32_t> move_cutter;
+    std::vector<uint8_t> move_blocked, move_still;
+
+    static constexpr uint32_t kNoPoint = 0xffffffffu;
+
+    // Empties every array, keeping its memory for the next growth.
+    void clear() {
+        for (auto* v : {&point_prev, &point_strand, &step_points, &strand_first_child, &step_strands, &step_moves,
+                        &move_strand, &move_from})
+            v->clear();
+        for (auto* v : {&point_pos, &move_pos, &move_dir}) v->clear();
+        for (auto* v : {&move_blocked, &move_still}) v->clear();
+        strand_parent.clear();
+        move_cutter.clear();
+    }
+
+    // Range helpers that read past the recorded steps as empty (the growth ended early: no active strand).
+    uint32_t stepBegin(const std::vector<uint32_t>& starts, uint32_t step) const {
+        return step < starts.size() ? starts[step] : starts.back();
+    }
+    uint32_t stepEnd(const std::vector<uint32_t>& starts, uint32_t step) const { return stepBegin(starts, step + 1); }
+};
+
+// How the attractors of an edited scene differ from the recorded one's, step by step. A trial's fitness
+// can change only through an attractor that changed: wherever such an attractor's distance is beyond its
+// radius of influence, old and new alike, its term is charge·radius, the same bits, so a strand whose
+// trials all lie out there moves as before. A charge that changes at a step, or a radius of influence that
+// changes or is 0 (everywhere), changes every trial's sum at that step: every strand is proposed again.
+class AttractorEdit {
+public:
+    AttractorEdit(const std::vector<Attractor>& before, const std::vector<Attractor>& after, float step_length_m);
+
+    // Whether every strand must be proposed again at `step`.
+    bool everywhereAt(uint32_t step) const;
+    // Whether a move from p0 (any trial within one step length of it) can see a changed term at `step`;
+    // call only when !everywhereAt(step).
+    bool reaches(glm::vec3 p0) const;
+
+private:
+    const std::vector<Attractor>& before_;
+    const std::vector<Attractor>& after_;
+    std::vector<uint32_t> moved_;   // changed attractors whose term changes only within their radius
+    std::vector<uint32_t> global_;  // changed attractors whose term changes everywhere
+    float margin_m_;                // a step length and then some, against rounding
+};
+
+// Whether a growth of `after` can start from a record of `before`: everything but the attractors' places,
+// shapes and charges is the same (generators, terrain, cutters, the walk, the number of attractors).
+bool regrowable(const ParticleScene& before, const ParticleScene& after);
+
+}  // namespace ug
