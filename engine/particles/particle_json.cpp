@@ -47,6 +47,7 @@ const char* const kGeneratorNames[] = {"rectangle", "sphere", "box", "mesh"};
 const char* const kAttractorNames[] = {"point", "segment", "sphere"};
 const char* const kCutterNames[] = {"plane", "sphere", "box"};
 const char* const kSideNames[] = {"above", "below"};
+const char* const kShapeNames[] = {"tube", "blade"};
 
 bool readAction(JsonReader& r, const json& obj, const std::string& p, const char* key, StrandAction* out) {
     auto it = obj.find(key);
@@ -182,7 +183,11 @@ bool parseParticleSystem(const json& j, const std::string& source, ParticleSyste
         !readList(r, j, "cutters", kMaxCutters, &s.scene.cutters, readCutter) || !readWalk(r, j, "", &s.scene.walk))
         return false;
     if (auto it = j.find("mesh"); it != j.end()) {
-        if (!r.expectObject(*it, "/mesh") || !r.onlyKeys(*it, "/mesh", {"sides", "max_triangles"}) ||
+        if (!r.expectObject(*it, "/mesh") ||
+            !r.onlyKeys(*it, "/mesh", {"shape", "sides", "max_triangles", "blade_width_m", "blade_tip"}) ||
+            !readKind(r, *it, "/mesh", "shape", kShapeNames, &s.mesh.shape, false) ||
+            !r.number(*it, "/mesh", "blade_width_m", &s.mesh.blade_width_m, 0.0, 10.0) ||
+            !r.number(*it, "/mesh", "blade_tip", &s.mesh.blade_tip, 0.0, 1.0) ||
             !r.integer(*it, "/mesh", "sides", &s.mesh.sides, 3, 32) ||
             !r.integer(*it, "/mesh", "max_triangles", &s.mesh.max_triangles, 1, 200'000'000))
             return false;
@@ -279,7 +284,11 @@ json particleSystemToJson(const ParticleSystemFile& s) {
               {"max_split_depth", w.max_split_depth},
               {"max_points", w.max_points},
               {"solids", w.solids}}},
-            {"mesh", {{"sides", s.mesh.sides}, {"max_triangles", s.mesh.max_triangles}}},
+            {"mesh", {{"shape", kShapeNames[size_t(s.mesh.shape)]},
+                      {"sides", s.mesh.sides},
+                      {"max_triangles", s.mesh.max_triangles},
+                      {"blade_width_m", s.mesh.blade_width_m},
+                      {"blade_tip", s.mesh.blade_tip}}},
             {"material", materialToJson(s.material)}};
 }
 

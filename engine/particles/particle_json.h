@@ -13,7 +13,8 @@
 //             "strand_radius_m": 0.001, "collisions": true, "on_collision": {"kind": "stop"},
 //             "max_age_steps": 0, "on_age": {"kind": "stop"}, "max_split_depth": 4, "max_points": 50000000,
 //             "solids": true},
-//    "mesh": {"sides": 6, "max_triangles": 20000000},
+//    "mesh": {"shape": "tube", "sides": 6, "max_triangles": 20000000},
+//                                                          blade: "blade_width_m": 0.004, "blade_tip": 0.2
 //    "material": MATERIAL}                                 scene/material_json.h
 //
 // Strict like the project file: unknown keys, wrong types, NaN and values out of range are errors naming
@@ -30,8 +31,17 @@
 
 namespace ug {
 
+// How strands are meshed (strand_mesh.h).
+enum class StrandShape : uint8_t {
+    Tube,   // a closed tube at the strand's radius: fur, roots, vines
+    Blade,  // a flat ribbon seen from both sides, tapering to its tip: grass, leaves of moss
+};
+
 struct StrandMeshSettings {
+    StrandShape shape = StrandShape::Tube;
     uint32_t sides = 6;                   // a tube's cross-section, in [3, 32]
+    float blade_width_m = 0.0f;           // a blade's width at its root; 0: four strand radii
+    float blade_tip = 0.2f;               // a blade's width at its tip, as a share of the root's, in [0, 1]
     uint64_t max_triangles = 20'000'000;  // refuse (before meshing) strands that would need more
 };
 

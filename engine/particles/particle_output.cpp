@@ -36,7 +36,7 @@ bool growParticleSystem(const ParticleSystemFile& system, int threads, Strands* 
         return false;
     }
     auto mesh = std::make_shared<TriangleMesh>();
-    if (!strandTubeMesh(*strands, system.mesh, mesh.get(), error)) return false;
+    if (!strandMesh(*strands, system.mesh, mesh.get(), error)) return false;
     *out = MeshInstances{};
     out->name = "strands/" + system.name;
     out->mesh = mesh;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 
+#include "core/hash.h"
+
 namespace ug {
 
 namespace {
@@ -86,6 +88,91 @@ bool strandTubeMesh(const Strands& strands, const StrandMeshSettings& settings, 
         }
     }
     return true;
+}
+
+}  // namespace ug
+
+namespace ug {
+
+namespace {
+
+constexpr uint64_t kBladeTurnTag = 0xb1ade'0000'0000ull;
+
+// The first segment's unit direction, or up for a strand whose first segment vanishes.
+glm::vec3 firstTangent(const glm::vec3* p, size_t n) { return tangentAt(p, n, 0, glm::vec3(0.0f, 0.0f, 1.0f)); }
+
+bool refuseTriangles(uint64_t triangles, const StrandMeshSettings& settings, const char* what, std::string* error) {
+    if (triangles <= settings.max_triangles) return true;
+    if (error)
+        *error = std::string("mesh.max_triangles: the ") + what + " need " + std::to_string(triangles) +
+                 " triangles, more than " + std::to_string(settings.max_triangles) + "; use fewer strands or steps";
+    return false;
+}
+
+}  // namespace
+
+uint64_t strandBladeTriangles(const Strands& strands) {
+    uint64_t total = 0;
+    for (size_t s = 0; s < strands.size(); ++s) {
+        const uint64_t n = strands.offsets[s + 1] - strands.offsets[s];
+        if (n >= 2) total += 4ull * (n - 1);
+    }
+    return total;
+}
+
+bool strandBladeMesh(const Strands& strands, const StrandMeshSettings& settings, TriangleMesh* out,
+                     std::string* error) {
+    if (!(settings.blade_width_m >= 0.0f) || !(settings.blade_tip >= 0.0f && settings.blade_tip <= 1.0f)) {
+        if (error) *error = "mesh.blade_width_m / mesh.blade_tip: out of range";
+        return false;
+    }
+    const uint64_t triangles = strandBladeTriangles(strands);
+    if (!refuseTriangles(triangles, settings, "blades", error)) return false;
+    *out = TriangleMesh{};
+    out->positions.reserve(size_t(strands.points.size()) * 4);
+    out->normals.reserve(size_t(strands.points.size()) * 4);
+    out->indices.reserve(size_t(triangles) * 3);
+    for (size_t s = 0; s < strands.size(); ++s) {
+        const size_t first = strands.offsets[s], n = strands.offsets[s + 1] - first;
+        if (n < 2) continue;
+        const glm::vec3* p = strands.points.data() + first;
+        glm::vec3 t = firstTangent(p, n);
+        // The across-direction: any perpendicular turned about the strand by a hashed angle.
+        const glm::vec3 u = perpendicular(t), v = glm::cross(t, u);
+        const uint64_t id = s < strands.particle.size() ? strands.particle[s] : s;
+        const float angle = 2.0f * float(M_PI) * unitFloat(hashWords(kBladeTurnTag, id));
+        glm::vec3 across = std::cos(angle) * u + std::sin(angle) * v;
+        const uint32_t base = uint32_t(out->positions.size());
+        for (size_t i = 0; i < n; ++i) {
+            const glm::vec3 next = tangentAt(p, n, i, t);
+            const glm::vec3 m = across - glm::dot(across, next) * next;
+            across = glm::length(m) > 1e-6f ? glm::normalize(m) : perpendicular(next);
+            t = next;
+            const float root = settings.blade_width_m > 0.0f ? settings.blade_width_m : 4.0f * strands.radii[first + i];
+            const float share = 1.0f + (settings.blade_tip - 1.0f) * float(i) / float(n - 1);
+            const glm::vec3 half = 0.5f * root * share * across;
+            // cross(across, t) is the face that (left, right, next right) winds counter-clockwise around.
+            const glm::vec3 face = glm::normalize(glm::cross(across, t));
+            for (const glm::vec3& normal : {face, -face}) {
+                out->positions.push_back(p[i] - half);
+                out->positions.push_back(p[i] + half);
+                out->normals.push_back(normal);
+                out->normals.push_back(normal);
+            }
+        }
+        // Vertices per point: front left, front right, back left, back right.
+        for (uint32_t i = 0; i + 1 < uint32_t(n); ++i) {
+            const uint32_t a = base + 4 * i, c = a + 4;
+            out->indices.insert(out->indices.end(), {a, a + 1, c + 1, a, c + 1, c});
+            out->indices.insert(out->indices.end(), {a + 2, c + 3, a + 3, a + 2, c + 2, c + 3});
+        }
+    }
+    return true;
+}
+
+bool strandMesh(const Strands& strands, const StrandMeshSettings& settings, TriangleMesh* out, std::string* error) {
+    return settings.shape == StrandShape::Blade ? strandBladeMesh(strands, settings, out, error)
+                                                : strandTubeMesh(strands, settings, out, error);
 }
 
 }  // namespace ug

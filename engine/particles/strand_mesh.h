@@ -1,7 +1,12 @@
-// Strands (strand_growth.h) as a closed triangle mesh for the exports: a tube of `sides` vertices around
-// every point at its radius, turned along the strand by rotation-minimising frames (a normal carried by
-// parallel transport, so tubes do not twist), and closed by a flat fan at both ends. glTF has no curves:
-// the tubes are what a renderer draws, and the polylines go beside them in the mesh's extras.
+// Strands (strand_growth.h) as triangle meshes for the viewport and the exports (glTF has no curves: the
+// meshes are what a renderer draws, and the polylines go beside them in the mesh's extras):
+// - tubes: `sides` vertices around every point at its radius, turned along the strand by
+//   rotation-minimising frames (a normal carried by parallel transport, so tubes do not twist), closed by
+//   a flat fan at both ends;
+// - blades: a flat ribbon across every point, its width tapering linearly from the root to the tip, its
+//   across-direction carried by parallel transport from a hashed turn about the first segment (blades of
+//   a patch face every way), with a front and a back face (each with its own normal, so no renderer needs
+//   double-sided materials): 4 triangles a segment where a 3-sided tube takes 6.
 #pragma once
 
 #include <cstdint>
@@ -20,5 +25,13 @@ uint64_t strandTubeTriangles(const Strands& strands, uint32_t sides);
 // False (and nothing allocated) when the tubes would need more than settings.max_triangles triangles.
 bool strandTubeMesh(const Strands& strands, const StrandMeshSettings& settings, TriangleMesh* out,
                     std::string* error);
+
+// Triangles the blades need: 4·(n − 1) per strand of n points.
+uint64_t strandBladeTriangles(const Strands& strands);
+bool strandBladeMesh(const Strands& strands, const StrandMeshSettings& settings, TriangleMesh* out,
+                     std::string* error);
+
+// The settings' shape: strandTubeMesh or strandBladeMesh.
+bool strandMesh(const Strands& strands, const StrandMeshSettings& settings, TriangleMesh* out, std::string* error);
 
 }  // namespace ug

@@ -62,6 +62,9 @@ ParticleSystemFile everyKind() {
     s.scene.walk.max_age_steps = 9;
     s.scene.walk.on_age.kind = StrandActionKind::Split;
     s.mesh.sides = 7;
+    s.mesh.shape = StrandShape::Blade;
+    s.mesh.blade_width_m = 0.006f;
+    s.mesh.blade_tip = 0.35f;
     s.material.roughness = 0.55f;
     return s;
 }
@@ -79,6 +82,9 @@ TEST(ParticleFile, RoundTripsEveryFieldAndGrowsTheSameStrands) {
     EXPECT_EQ(back.scene.attractors[0].charge[1].charge, -0.3f);
     EXPECT_EQ(back.scene.walk.step_length_m, 0.013f);
     EXPECT_EQ(back.mesh.sides, 7u);
+    EXPECT_EQ(back.mesh.shape, StrandShape::Blade);
+    EXPECT_EQ(back.mesh.blade_width_m, 0.006f);
+    EXPECT_EQ(back.mesh.blade_tip, 0.35f);
     EXPECT_EQ(back.scene.cutters[1].action.countdown_then, StrandActionKind::Stop);
     // Same scene, same strands: the file holds everything that decides them.
     Strands a, b;
@@ -104,6 +110,8 @@ TEST(ParticleFile, BadFilesAreRefusedNamingThePlace) {
         {"no generator", {"/generators=[]", "/generators: at least one generator"}},
         {"other format", {"/format=\"undergrowth-project\"", "/format: expected \"undergrowth-particles\""}},
         {"too many sides", {"/mesh/sides=64", "/mesh/sides: 64 is out of range [3, 32]"}},
+        {"an unknown shape", {"/mesh/shape=\"card\"", "/mesh/shape: 'card' is not one of tube, blade"}},
+        {"a tip wider than the root", {"/mesh/blade_tip=1.5", "/mesh/blade_tip"}},
         {"a countdown ending in a split",
          {"/cutters/1/action/countdown_then=\"split\"", "/cutters/1/action/countdown_then: 'split' is not one of stop, kill"}},
         {"an empty side", {"/cutters/1/side=\"\"", "/cutters/1/side: '' is not one of above, below"}},
@@ -247,6 +255,50 @@ TEST(StrandTubes, TooManyTrianglesAreRefusedBeforeMeshing) {
     EXPECT_EQ(m.positions.size(), 1u);  // untouched
     EXPECT_FALSE(strandTubeMesh(s, {.sides = 2}, &m, &error));
     EXPECT_NE(error.find("mesh.sides"), std::string::npos) << error;
+}
+
+TEST(StrandBlades, AreTwoFacedRibbonsTaperingAcrossTheStrandWithTheCountedTriangles) {
+    const Strands s = twoStrands();
+    const StrandMeshSettings settings{.shape = StrandShape::Blade, .blade_width_m = 0.04f, .blade_tip = 0.25f};
+    TriangleMesh m;
+    std::string error;
+    ASSERT_TRUE(strandMesh(s, settings, &m, &error)) << error;
+    EXPECT_EQ(strandBladeTriangles(s), 4u * 3u + 4u * 2u);
+    EXPECT_EQ(m.triangleCount(), strandBladeTriangles(s));
+    ASSERT_TRUE(validateMesh(m, &error)) << error;
+    // The straight strand (points 0..3 on the z axis): vertices come in (left, right) pairs per face, the
+    // pair's midpoint on the strand, its width tapering linearly from 4 cm to a quarter of that.
+    for (uint32_t i = 0; i < 4; ++i)
+        for (uint32_t face = 0; face < 2; ++face) {
+            const glm::vec3 l = m.positions[4 * i + 2 * face], r = m.positions[4 * i + 2 * face + 1];
+            const glm::vec3 mid = 0.5f * (l + r);
+            EXPECT_NEAR(glm::length(mid - s.points[i]), 0.0f, 1e-6f);
+            EXPECT_NEAR(glm::length(r - l), 0.04f * (1.0f - 0.75f * float(i) / 3.0f), 1e-6f);
+            EXPECT_NEAR((r - l).z, 0.0f, 1e-6f);  // across the strand
+        }
+    // Every triangle winds counter-clockwise around its vertices' normal: front faces one way, back faces
+    // the other, each normal unit and perpendicular to the strand.
+    size_t front = 0, back = 0;
+    for (size_t t = 0; t < m.indices.size(); t += 3) {
+        const glm::vec3 a = m.positions[m.indices[t]], b = m.positions[m.indices[t + 1]], c = m.positions[m.indices[t + 2]];
+        const glm::vec3 n = m.normals[m.indices[t]];
+        EXPECT_NEAR(glm::length(n), 1.0f, 1e-5f);
+        EXPECT_GT(glm::dot(glm::cross(b - a, c - a), n), 0.0f) << "triangle " << t / 3;
+        (m.indices[t] % 4 < 2 ? front : back) += 1;
+    }
+    EXPECT_EQ(front, back);
+    // The bent strand's blade is across it at every point.
+    for (uint32_t i = 0; i < 3; ++i) {
+        const glm::vec3 l = m.positions[16 + 4 * i], r = m.positions[16 + 4 * i + 1];
+        const glm::vec3 tangent = glm::normalize(s.points[4 + std::min(i + 1, 2u)] - s.points[4 + (i > 0 ? i - 1 : 0)]);
+        EXPECT_NEAR(glm::dot(glm::normalize(r - l), tangent), 0.0f, 1e-4f) << "point " << i;
+    }
+    // Refused by count before anything is made.
+    TriangleMesh untouched;
+    untouched.positions = {{1, 2, 3}};
+    EXPECT_FALSE(strandMesh(s, {.shape = StrandShape::Blade, .max_triangles = 19}, &untouched, &error));
+    EXPECT_NE(error.find("the blades need 20 triangles"), std::string::npos) << error;
+    EXPECT_EQ(untouched.positions.size(), 1u);
 }
 
 }  // namespace

@@ -144,7 +144,7 @@ Outcome runParticles(const std::string& path) {
     StrandMeshSettings mesh = system.mesh;
     mesh.max_triangles = std::min<uint64_t>(mesh.max_triangles, 2'000'000);
     TriangleMesh tubes;
-    if (strands.size() > 0 && strandTubeMesh(strands, mesh, &tubes, &error) && !validateMesh(tubes, &error))
+    if (strands.size() > 0 && strandMesh(strands, mesh, &tubes, &error) && !validateMesh(tubes, &error))
         o.violation = "the strands' tubes fail validateMesh: " + error;
     return o;
 }
