@@ -223,6 +223,7 @@ bool loadParticleSystem(const std::string& path, ParticleSystemFile* out, std::s
     if (!parseJsonText(text, path, &j, error)) return false;
     if (!parseParticleSystem(j, path, out, error)) return false;
     if (out->name.empty()) out->name = std::filesystem::path(path).stem().string();
+    out->file_name = out->name;
     return true;
 }
 

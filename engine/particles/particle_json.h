@@ -47,6 +47,9 @@ struct StrandMeshSettings {
 
 struct ParticleSystemFile {
     std::string name;
+    // The name the file itself gives (its stem when it gives none): a project's entry may rename the
+    // system (scene/scene_particles.h), and the editor writes the file back under its own name.
+    std::string file_name;
     ParticleScene scene;
     StrandMeshSettings mesh;
     Material material;

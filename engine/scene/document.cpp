@@ -219,6 +219,7 @@ bool Document::load(Project project, const std::string& path, const DocumentOpti
     environment_ = std::move(scene.environment);
     variant_models_ = std::move(scene.variant_models);
     particles_ = std::move(scene.particles);
+    saved_particles_ = particles_;
     densities_.clear();
     for (const DetailTypeDesc& t : project_.detail_types) densities_.push_back(editableDensityFor(t.density, &next_id_));
     live_ = std::make_unique<LiveInstancer>(options.threads);
@@ -279,6 +280,7 @@ bool Document::commit(const EditEffect& effect, std::string* error) {
         live_assets_ = assets_;
         ++tile_generation_;
     }
+    if (effect.particles) ++particles_generation_;
     if (effect.full || extent_changed) {
         const uint64_t generation = live_->reset(instancerInput(), settleInputOf());
         if (effect.tile) tile_live_generation_ = generation;
@@ -338,6 +340,22 @@ bool Document::setInstancing(size_t type, const InstancingDesc& desc, std::strin
 
 bool Document::setSeed(uint64_t seed, std::string* error) {
     return execute(std::make_unique<SetSeedCommand>(seed), error);
+}
+
+bool Document::setParticleSystem(size_t index, const ParticleSystemFile& system, std::string* error) {
+    if (index >= particles_->size() || index >= project_.particles.size()) {
+        *error = "no particle system " + std::to_string(index) + " (the project has " +
+                 std::to_string(particles_->size()) + ")";
+        return false;
+    }
+    std::string why;
+    if (!validateParticleScene(system.scene, &why)) {
+        *error = "particles[" + std::to_string(index) + "] (" + (*particles_)[index].name + "): " + why;
+        return false;
+    }
+    auto after = std::make_shared<const std::vector<ParticleSystemFile>>(
+        withParticleSystem(project_, *particles_, index, system));
+    return execute(std::make_unique<SetParticleSystemsCommand>(std::move(after)), error);
 }
 
 std::unique_ptr<GhostTileJob> Document::startGhostTileJob(GhostTileSpec spec, std::string* error) const {
@@ -445,6 +463,14 @@ bool Document::saveAs(const std::string& path, std::string* error) {
         for (ParticleSystemRef& ref : saved.particles)
             ref.file = rebasePath(ref.file, old_dir.lexically_normal(), new_dir.lexically_normal());
     }
+    // The edited particle files first: each write is atomic, and a project saved after them never names
+    // a file that holds an older system than the one shown.
+    for (const ParticleFileWrite& file : particleFilesToWrite(project_, *particles_, *saved_particles_))
+        if (!writeTextFileAtomically(file.path, file.text, error)) {
+            if (error->find(file.path) == std::string::npos) *error = file.path + ": " + *error;
+            return false;
+        }
+    saved_particles_ = particles_;
     if (!saveProject(path, saved, error)) {
         if (error->find(path) == std::string::npos) *error = path + ": " + *error;
         return false;  // nothing in memory changed

@@ -46,6 +46,7 @@
 #include "scene/ghost_tile_command.h"
 #include "scene/ghost_tile_job.h"
 #include "scene/live_instancer.h"
+#include "scene/particle_commands.h"
 #include "scene/project.h"
 #include "scene/scene_compile.h"
 #include "scene/scene_load.h"
@@ -111,8 +112,10 @@ public:
     const CompiledScene& compiled() const { return compiled_; }
     // The environmental objects as loaded (never null; empty without any).
     const std::shared_ptr<const EnvScene>& environment() const { return environment_; }
-    // The project's particle systems as loaded (never null after a load; empty for none).
+    // The project's particle systems, placed (never null after a load; empty for none).
     const std::shared_ptr<const std::vector<ParticleSystemFile>>& particles() const { return particles_; }
+    // Changes whenever the particle systems do (an edit, its undo or redo): their strands grow again.
+    uint64_t particlesGeneration() const { return particles_generation_; }
     // Every surface's look now (compileSceneMaterials on project() and models()): one SurfaceMaterial per
     // detail type and the terrain's, textures baked. Computed on each call (a few hundred ms for the
     // default scene's five kinds): call it when the project or tileGeneration() changes, not per frame.
@@ -149,6 +152,10 @@ public:
     uint64_t duplicatePrimitive(uint64_t id, glm::vec3 offset_m, std::string* error);
     bool setInstancing(size_t type, const InstancingDesc& desc, std::string* error);
     bool setSeed(uint64_t seed, std::string* error);
+    // Entry `index`'s particle system becomes `system` (placed, as particles() holds it); entries naming
+    // the same file take it too (particle_commands.h). Refused with the entry and field named when the
+    // system is invalid (validateParticleScene). Saving writes the changed particle files.
+    bool setParticleSystem(size_t index, const ParticleSystemFile& system, std::string* error);
     // ---- Ghost Tile (ghost_tile_job.h) ----
     // Checks `spec` (validateGhostTileSpec) and starts building it in the background, reusing the models
     // whose source is unchanged; null with *error when refused. The document is not touched by the job.
@@ -196,7 +203,7 @@ public:
 private:
     Document() = default;
     bool load(Project project, const std::string& path, const DocumentOptions& options, std::string* error);
-    EditTarget target() { return EditTarget{&project_, &densities_, &assets_}; }
+    EditTarget target() { return EditTarget{&project_, &densities_, &assets_, &particles_}; }
     // Recompiles what `effect` touched and feeds the live instancer; false (nothing changed) when the new
     // settings do not compile.
     bool commit(const EditEffect& effect, std::string* error);
@@ -222,6 +229,9 @@ private:
     std::shared_ptr<const EnvScene> environment_;
     std::shared_ptr<const std::vector<ParticleSystemFile>> particles_ =
         std::make_shared<const std::vector<ParticleSystemFile>>();
+    // The systems as their files hold them now (loaded or last saved): save writes those that differ.
+    std::shared_ptr<const std::vector<ParticleSystemFile>> saved_particles_ = particles_;
+    uint64_t particles_generation_ = 1;
     std::shared_ptr<const std::vector<std::vector<DetailModel>>> variant_models_ =
         std::make_shared<const std::vector<std::vector<DetailModel>>>();
     CompiledScene compiled_;

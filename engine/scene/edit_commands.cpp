@@ -172,6 +172,7 @@ void EditEffect::merge(const EditEffect& other) {
     dirty.insert(dirty.end(), other.dirty.begin(), other.dirty.end());
     full = full || other.full;
     tile = tile || other.tile;
+    particles = particles || other.particles;
 }
 
 // ---- commands -------------------------------------------------------------------------------------------

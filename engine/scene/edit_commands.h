@@ -79,10 +79,14 @@ Bounds editBounds(const Primitive& prim);
 
 struct TileAssets;  // ghost_tile_command.h
 
+struct ParticleSystemFile;  // particles/particle_json.h
+using ParticleSystems = std::shared_ptr<const std::vector<ParticleSystemFile>>;
+
 struct EditTarget {
     Project* project = nullptr;
     std::vector<EditableDensity>* densities = nullptr;  // one per detail type
     TileAssets* assets = nullptr;                       // the Ghost Tile and models (ghost_tile_command.h)
+    ParticleSystems* particles = nullptr;               // the project's systems, placed (particle_commands.h)
 };
 
 struct EditEffect {
@@ -90,6 +94,7 @@ struct EditEffect {
     std::vector<Bounds> dirty;  // where their fields changed
     bool full = false;          // instantiate everything again (strategy, constraints, seed)
     bool tile = false;          // the Ghost Tile and models were swapped (implies full)
+    bool particles = false;     // the particle systems changed (their strands grow again)
 
     void addType(size_t type);
     void merge(const EditEffect& other);

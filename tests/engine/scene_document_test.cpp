@@ -18,6 +18,7 @@
 
 #include "core/atomic_file.h"
 #include "instancer/instantiator.h"
+#include "particles/particle_json.h"
 #include "scene/document.h"
 #include "scene/edit_commands.h"
 #include "scene/live_instancer.h"
@@ -537,6 +538,64 @@ TEST(Document, SaveAsElsewhereKeepsTheParticleSystemsFound) {
     ASSERT_TRUE(reopened);
     ASSERT_EQ(reopened->particles()->size(), 1u);
     EXPECT_EQ((*reopened->particles())[0].scene.generators[0].center_m, glm::vec3(0.5f, 0.0f, 0.0f));
+}
+
+TEST(Document, ParticleEditsAreUndoableSharedByTheFileAndSavedToIt) {
+    // One particle file placed twice (the second 1 m along x, renamed): moving an attractor of the first
+    // moves the second's by the same amount at its own offset; undo and redo give each state back; Save
+    // writes the file under its own name and offsets, and a reopened project reads the edit back.
+    TempDir dir;
+    const fs::path a = dir.path() / "scene.json";
+    const fs::path grass = dir.path() / "grass.json";
+    std::ofstream(grass) << R"({"format": "undergrowth-particles", "format_version": 1, "name": "grass",
+      "generators": [{"kind": "rectangle", "axis_u_m": [0.3, 0, 0], "axis_v_m": [0, 0.3, 0], "count": 30}],
+      "attractors": [{"kind": "point", "a_m": [0, 0, 1], "influence_m": 0.5, "charge": 1}],
+      "walk": {"steps": 4, "step_length_m": 0.01, "strand_radius_m": 0.001}})";
+    std::string text = projectJson(modelsDir());
+    text.replace(text.find("\"format_version\": 2"), 19, "\"format_version\": 4");
+    text.insert(text.rfind('}'), R"(, "particles": [{"file": "grass.json"},
+        {"file": "grass.json", "name": "grass_east", "offset_m": [1, 0, 0]}])");
+    auto doc = openDoc(writeProject(a, text), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    ASSERT_EQ(doc->particles()->size(), 2u);
+    const uint64_t generation = doc->particlesGeneration();
+    std::string error;
+    ParticleSystemFile edited = (*doc->particles())[0];
+    edited.scene.attractors[0].a_m = {0.25f, 0.0f, 0.75f};
+    ASSERT_TRUE(doc->setParticleSystem(0, edited, &error)) << error;
+    EXPECT_NE(doc->particlesGeneration(), generation);
+    EXPECT_TRUE(doc->isDirty());
+    EXPECT_EQ(doc->undoName(), "Edit particles");
+    EXPECT_EQ((*doc->particles())[0].scene.attractors[0].a_m, glm::vec3(0.25f, 0.0f, 0.75f));
+    EXPECT_EQ((*doc->particles())[1].scene.attractors[0].a_m, glm::vec3(1.25f, 0.0f, 0.75f));
+    EXPECT_EQ((*doc->particles())[1].name, "grass_east");
+    ASSERT_TRUE(doc->undo());
+    EXPECT_EQ((*doc->particles())[0].scene.attractors[0].a_m, glm::vec3(0.0f, 0.0f, 1.0f));
+    EXPECT_EQ((*doc->particles())[1].scene.attractors[0].a_m, glm::vec3(1.0f, 0.0f, 1.0f));
+    EXPECT_FALSE(doc->isDirty());
+    ASSERT_TRUE(doc->redo());
+    // Bad input is refused naming the entry and the field, and changes nothing.
+    ParticleSystemFile bad = edited;
+    bad.scene.attractors[0].charge[0].charge = std::nanf("");
+    EXPECT_FALSE(doc->setParticleSystem(1, bad, &error));
+    EXPECT_NE(error.find("particles[1] (grass_east): attractors[0].charge[0].charge"), std::string::npos) << error;
+    EXPECT_FALSE(doc->setParticleSystem(2, edited, &error));
+    EXPECT_EQ((*doc->particles())[0].scene.attractors[0].a_m, glm::vec3(0.25f, 0.0f, 0.75f));
+    ASSERT_TRUE(doc->save(&error)) << error;
+    EXPECT_FALSE(doc->isDirty());
+    ParticleSystemFile on_disk;
+    ASSERT_TRUE(loadParticleSystem(grass.string(), &on_disk, &error)) << error;
+    EXPECT_EQ(on_disk.name, "grass");
+    EXPECT_EQ(on_disk.scene.attractors[0].a_m, glm::vec3(0.25f, 0.0f, 0.75f));
+    EXPECT_EQ(on_disk.scene.generators[0].center_m, glm::vec3(0.0f));
+    auto reopened = openDoc(a.string(), optionsFor(dir));
+    ASSERT_TRUE(reopened);
+    EXPECT_EQ((*reopened->particles())[1].scene.attractors[0].a_m, glm::vec3(1.25f, 0.0f, 0.75f));
+    // A save with no particle edit leaves the file alone.
+    ASSERT_TRUE(doc->addPrimitive(0, makePoint({-1, 1, 0}, 0.5f), &error)) << error;
+    fs::remove(grass);
+    ASSERT_TRUE(doc->save(&error)) << error;
+    EXPECT_FALSE(fs::exists(grass));
 }
 
 TEST(Document, AFailedSaveKeepsTheDocumentDirtyAndTheFileUntouched) {

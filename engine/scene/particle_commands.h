@@ -1,0 +1,46 @@
+// Editing the project's particle systems (the editor's Particles panel). A system is replaced as a whole,
+// one undo step (or one stamp of a stroke: a drag). The document holds the systems placed (each entry's
+// offset applied, scene/scene_particles.h); entries that name the same file are the same system placed
+// twice, so an edit of one is an edit of the file and every entry naming it takes it, at its own offset
+// and under its own name. The files are written back when the project is saved.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "particles/particle_json.h"
+#include "scene/edit_commands.h"
+#include "scene/project.h"
+
+namespace ug {
+
+// The systems once entry `index` is `system` (placed): every entry naming the same file takes it too,
+// moved by the difference of the offsets, under its own name.
+std::vector<ParticleSystemFile> withParticleSystem(const Project& project, const std::vector<ParticleSystemFile>& systems,
+                                                   size_t index, const ParticleSystemFile& system);
+
+class SetParticleSystemsCommand : public Command {
+public:
+    explicit SetParticleSystemsCommand(ParticleSystems after) : after_(std::move(after)) {}
+    std::string name() const override { return "Edit particles"; }
+    bool apply(EditTarget target, EditEffect* effect, std::string* error) override;
+    void revert(EditTarget target, EditEffect* effect) override;
+
+private:
+    ParticleSystems after_, before_;
+};
+
+// A particle file to write when the project is saved.
+struct ParticleFileWrite {
+    std::string path;  // as the project resolves it
+    std::string text;  // the file's JSON (particleSystemToJson)
+};
+
+// The files whose systems differ from `saved` (the systems as last loaded or saved), each once, as the file
+// holds them: moved back by their entry's offset, under the file's own name. Positions moved back by an
+// offset other than 0 may differ from the file's in the last bit.
+std::vector<ParticleFileWrite> particleFilesToWrite(const Project& project, const std::vector<ParticleSystemFile>& systems,
+                                                    const std::vector<ParticleSystemFile>& saved);
+
+}  // namespace ug
