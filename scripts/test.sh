@@ -46,7 +46,7 @@ asan() {
 # halt_on_error: the first data race fails its test (TSan's default only sets the exit code at the end).
 tsan() {
   cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DUG_TSAN=ON -DUG_BUILD_APP=OFF >/dev/null &&
-    cmake --build build-tsan -j"$jobs" --target engine_tests &&
+    cmake --build build-tsan -j"$jobs" --target engine_tests editor_tests &&
     TSAN_OPTIONS=halt_on_error=1:second_deadlock_stack=1 \
       ctest --test-dir build-tsan --output-on-failure -j"$jobs" -L '^tsan$'
 }

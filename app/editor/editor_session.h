@@ -8,6 +8,7 @@
 //   session_input.cpp     the UI frame: navigation (zoom to the cursor, the eye above the ground), the
 //                         keyboard given back to the viewport, panels, the mouse tools and brush ring
 //   session_replay.cpp    replay scripts (replay.h): actions started, advanced and recorded
+//   session_strands.cpp   the particle systems' strands re-grown after their edits (live_strands.h)
 //   session_render.cpp    the frame's render, overlays and screenshots; the after-frame bookkeeping
 //   session_stats.h, background_jobs.h   free helpers: action statistics, finished jobs' outcomes
 // Internal to app/editor: nothing outside viewer.cpp constructs one.
@@ -28,6 +29,7 @@
 #include "editor/export_job.h"
 #include "editor/gl/renderer.h"
 #include "editor/gl/window.h"
+#include "editor/live_strands.h"
 #include "editor/markers.h"
 #include "editor/orbit_camera.h"
 #include "editor/panels.h"
@@ -113,6 +115,13 @@ private:
     void syncTile();
     // Takes a finished live result, if any, and re-packs it for the GPU (viewer.cpp's header).
     bool takeLiveResult();
+    // ---- session_strands.cpp ----
+    // The document's particle systems submitted after an edit; finished strands swapped into the static
+    // meshes (at the frame boundary).
+    void startStrands();
+    void syncStrands();
+    bool strandsSettled() const;  // the strands on screen are the document's systems'
+    json strandsJson() const;     // the last growth, for the replay's record
     // ---- session_input.cpp ----
     void drawUi();                   // navigation, panels
     void mouseTools();
@@ -173,6 +182,12 @@ private:
     Prompt prompt = Prompt::None;
     std::string prompt_open_path;
     bool quitting = false;
+    // ---- particle systems: strands re-grown off the UI thread ----
+    std::unique_ptr<LiveStrands> live_strands;  // null: the document has no particle system
+    uint64_t strands_submitted = 0;             // the particlesGeneration() last submitted
+    uint64_t strands_shown = 0;                 // and the one on screen
+    LiveStrandsResult last_strands;             // its statistics (meshes moved out)
+    ParticlesPanelState particles_panel;
     // ---- outliner, instantiation and export panels, New / Open ----
     std::vector<uint8_t> type_visible;  // view state, not a document edit: never undone, never saved
     InstantiationView inst_view;

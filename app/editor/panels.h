@@ -91,6 +91,7 @@ struct WindowToggles {
     bool outliner = true;
     bool instantiation = true;
     bool export_panel = false;  // opened by File > Export glTF...
+    bool particles = false;     // opened by Window > Particles
 };
 
 // The Render panel's settings: LOD switch distances and what is drawn over the scene.
@@ -183,6 +184,22 @@ struct GhostTilePanelState {
 // Revert; statistics of the document's tile; the selected type's collision spheres in three orthographic
 // views (ImGui draw list).
 void drawGhostTilePanel(const Document* doc, GhostTilePanelState* state, bool* open);
+
+// ---- particles panel (particles_panel.cpp) ----
+struct ParticlesPanelState {
+    size_t selected = 0;     // the system shown
+    bool growing = false;    // its strands are growing in the background
+    std::string status;      // the last growth: strands, time, share re-grown
+    std::string last_error;  // the last refused edit
+    // The copy the widgets edit: taken from the document whenever no widget is active, so a field being
+    // typed keeps its text and a drag its value between frames.
+    ParticleSystemFile editing;
+    const Document* editing_doc = nullptr;
+    size_t editing_index = SIZE_MAX;
+};
+// The project's particle systems: generators, attractors (with a(t)), cutters and the walk of the selected
+// one, edited through Document::setParticleSystem (a drag is one undo step); refusals go to *message.
+void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* message, bool* open);
 
 // LOD thresholds (pixels), overlay toggles and the renderer's numbers (from the Statistics view).
 void drawRenderPanel(const StatisticsView& stats, RenderSettings* settings, bool* open);

@@ -50,6 +50,8 @@ const char* replayKindName(ReplayKind kind) {
             return "new";
         case ReplayKind::SetVisible:
             return "set_visible";
+        case ReplayKind::SetAttractor:
+            return "set_attractor";
     }
     return "?";
 }
@@ -129,6 +131,16 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
                 }
             }
             if (r.kind == ReplayKind::SetSeed) r.seed = a.at("seed").get<uint64_t>();
+            if (r.kind == ReplayKind::SetAttractor) {
+                r.system = a.value("system", size_t(0));
+                r.attractor = a.value("attractor", size_t(0));
+                if (a.contains("a_m")) {
+                    r.has_a = true;
+                    r.a_m = glm::vec3(a["a_m"].at(0).get<float>(), a["a_m"].at(1).get<float>(), a["a_m"].at(2).get<float>());
+                }
+                r.influence_m = a.value("influence", NAN);
+                r.charge = a.value("charge", NAN);
+            }
             if (r.kind == ReplayKind::SetVisible) {
                 r.type = a.at("type").get<std::string>();
                 r.visible = a.at("visible").get<bool>();

@@ -30,6 +30,11 @@
 //    {"action": "open", "path": "other.json"},    waits for the load; a failed one keeps the document
 //    {"action": "new"},                           an untitled document from assets/scenes/default.json
 //    {"action": "set_visible", "type": "rock", "visible": false},   the outliner's eye (view state only)
+//    {"action": "set_attractor", "system": 0, "attractor": 1, "a_m": [x, y, z], "influence": 0.3,
+//     "charge": 1.5},   the Particles window's edit of one attractor (keys but the indices optional; a
+//     charge replaces the keys by one), one undo step; ends when the strands re-grown for it are on
+//     screen; its statistics add "particles": {"ok", "error"?, "strands", "incremental", "recomputed",
+//     "reused", "grow_seconds"}
 //    {"action": "wait_idle"}]
 //
 // "frame" (optional) is the earliest frame, counted from the first frame that shows the document's
@@ -71,9 +76,10 @@ enum class ReplayKind {
     Export,
     Open,
     New,
-    SetVisible
+    SetVisible,
+    SetAttractor
 };
-constexpr int kReplayKindCount = int(ReplayKind::SetVisible) + 1;
+constexpr int kReplayKindCount = int(ReplayKind::SetAttractor) + 1;
 const char* replayKindName(ReplayKind kind);  // the "action" string
 
 struct ReplayAction {
@@ -110,6 +116,11 @@ struct ReplayAction {
     std::string instancing_json;  // set_instancing: the action's object (applyInstancingChanges reads it)
     bool plain_nodes = false;     // export
     float chunk_m = -1.0f;        // export: <= 0 keeps the project's chunk size
+    // set_attractor
+    size_t system = 0, attractor = 0;
+    bool has_a = false;
+    glm::vec3 a_m{0.0f};
+    float influence_m = NAN, charge = NAN;  // NaN: keep
 };
 
 // set_instancing: applies the keys the action gives ("strategy", "layer", "orientation", "size") to *desc;

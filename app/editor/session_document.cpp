@@ -80,12 +80,13 @@ bool EditorSession::applyFinishedWork() {
     ghost_panel.running = ghost_job != nullptr;
     ghost_panel.progress = ghost_job ? ghost_job->progress() : 0.0f;
     if (!takeLiveResult()) return false;
+    syncStrands();
     if (export_job && export_job->finished()) {
         export_record = finishExportJob(*export_job, &export_result, &view.last_message, &messages);
         export_job.reset();
     }
     settled = scene && have_result && !scene->doc->live().pending() &&
-                         shown_generation == scene->doc->live().generation();
+              shown_generation == scene->doc->live().generation() && strandsSettled();
     return true;
 }
 
@@ -109,7 +110,8 @@ void EditorSession::adoptLoadedDocument() {
     Document& d = *scene->doc;
     renderer->setScene(d.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr, &scene->meshes,
                        d.ghostTile().candidates, d.ghostTile().settings.tile_size_m, &scene->terrain_material);
-    renderer->setStaticMeshes(&scene->static_meshes);  // environmental objects, snow, icicles
+    renderer->setStaticMeshes(&scene->static_meshes);  // environmental objects, snow, icicles, strands
+    startStrands();
     // Every document opens framed, as on startup (a camera left where the last scene was would show
     // nothing of this one); the first result frames it again by the cells that fill.
     camera_moved = false;

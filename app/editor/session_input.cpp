@@ -72,6 +72,11 @@ void EditorSession::drawUi() {
     drawInspector(doc, view.type_names, &tools, &requests, &inspector_message, &windows.inspector);
     if (!inspector_message.empty()) messages.push_back(inspector_message);
     drawGhostTilePanel(doc, &ghost_panel, &windows.ghost_tile);
+    {
+        std::string particles_message;
+        drawParticlesPanel(doc, &particles_panel, &particles_message, &windows.particles);
+        if (!particles_message.empty()) messages.push_back(particles_message);
+    }
     if (doc && ghost_panel.build && !ghost_job) {
         std::string job_error;
         ghost_job = doc->startGhostTileJob(ghost_panel.pending, &job_error);

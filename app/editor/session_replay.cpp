@@ -232,6 +232,23 @@ bool EditorSession::runReplayAction(const ReplayAction& a) {
             }
             break;
         }
+        case ReplayKind::SetAttractor: {
+            windows.particles = true;  // the edit shows there, as for the menu
+            const auto& systems = *doc->particles();
+            if (a.system >= systems.size() || a.attractor >= systems[a.system].scene.attractors.size()) {
+                *error = "set_attractor: no attractor " + std::to_string(a.attractor) + " in particle system " +
+                         std::to_string(a.system) + " (the document has " + std::to_string(systems.size()) + ")";
+                return false;
+            }
+            ParticleSystemFile system = systems[a.system];
+            Attractor& at = system.scene.attractors[a.attractor];
+            if (a.has_a) at.a_m = a.a_m;
+            if (!std::isnan(a.influence_m)) at.influence_m = a.influence_m;
+            if (!std::isnan(a.charge)) at.charge = {ChargeKey{0, a.charge}};
+            replay.record["ok"] = doc->setParticleSystem(a.system, system, &op_error);
+            if (!op_error.empty()) replay.record["error"] = op_error;
+            break;
+        }
         case ReplayKind::SetSeed:
             replay.record["seed"] = a.seed;
             replay.record["ok"] = doc->setSeed(a.seed, &op_error);
@@ -306,6 +323,7 @@ void EditorSession::finishReplayAction() {
     const ReplayKind kind = options.replay[replay.index].kind;
     if (kind == ReplayKind::Export) r.update(export_record);
     if (kind == ReplayKind::SetVisible) r["drawn_instances_after"] = renderer->stats().instances_drawn;
+    if (kind == ReplayKind::SetAttractor) r["particles"] = strandsJson();
     if (kind == ReplayKind::View) {
         r["eye"] = vec3Json(camera.eye());
         r["target"] = vec3Json(camera.target);

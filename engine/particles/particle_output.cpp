@@ -30,18 +30,23 @@ std::string strandsExtras(const Strands& strands) {
 
 bool growParticleSystem(const ParticleSystemFile& system, int threads, Strands* strands, MeshInstances* out,
                         std::string* error) {
-    if (!growStrands(system.scene, {.threads = threads}, strands, error)) return false;
-    if (strands->size() == 0) {
+    return growStrands(system.scene, {.threads = threads}, strands, error) &&
+           meshParticleStrands(system, *strands, out, error);
+}
+
+bool meshParticleStrands(const ParticleSystemFile& system, const Strands& strands, MeshInstances* out,
+                         std::string* error) {
+    if (strands.size() == 0) {
         if (error) *error = "no strand grew (every particle was killed or never moved)";
         return false;
     }
     auto mesh = std::make_shared<TriangleMesh>();
-    if (!strandMesh(*strands, system.mesh, mesh.get(), error)) return false;
+    if (!strandMesh(strands, system.mesh, mesh.get(), error)) return false;
     *out = MeshInstances{};
     out->name = "strands/" + system.name;
     out->mesh = mesh;
     out->material = std::make_shared<SurfaceMaterial>(resolveMaterial(system.material, glm::vec3(0.45f, 0.36f, 0.25f)));
-    out->extras_json = strandsExtras(*strands);
+    out->extras_json = strandsExtras(strands);
     return true;
 }
 

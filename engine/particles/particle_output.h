@@ -1,6 +1,6 @@
 // A particle system's strands as the outputs draw them (the glTF export of `undergrowth grow`, the
-// renderer of `undergrowth render --particles`): one static mesh "strands/<name>" — the closed tubes of
-// strand_mesh.h with the system's material — whose extras hold the polylines, so a pipeline can rebuild
+// renderer of `undergrowth render --particles`, the editor): one static mesh "strands/<name>" — the tubes or
+// blades of strand_mesh.h with the system's material — whose extras hold the polylines, so a pipeline can rebuild
 // curves, up to kMaxExtrasStrandPoints points (past that, "strands_omitted" says how many there were).
 #pragma once
 
@@ -19,6 +19,9 @@ constexpr size_t kMaxExtrasStrandPoints = 200'000;  // ~6 MB of JSON text
 // Fails with the reason when the growth or the meshing is refused, or when no strand grew.
 bool growParticleSystem(const ParticleSystemFile& system, int threads, Strands* strands, MeshInstances* out,
                         std::string* error);
+// The meshing half of growParticleSystem, for strands grown otherwise (the editor's StrandRegrower).
+bool meshParticleStrands(const ParticleSystemFile& system, const Strands& strands, MeshInstances* out,
+                         std::string* error);
 
 // The surfaces the system's mesh generators seed on, placed as they are: one static mesh
 // "strands/<name>/surface_<generator>" each (drawn with the model's own colour), so the stone or statue

@@ -1,0 +1,65 @@
+// The project's particle systems grown again as the Particles panel edits them (issue 14), off the UI
+// thread and GL-free. The session submits the document's systems after every edit, undo and redo; the
+// worker grows the newest submission (those that came while it grew are coalesced into it) with one
+// StrandRegrower per system, so moving an attractor re-grows only the strands it reaches, and meshes
+// them as every output does (particles/particle_output.h). poll(), at a frame boundary, hands over the
+// newest finished meshes: the session swaps them into the scene's static meshes.
+#pragma once
+
+#include <condition_variable>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "io/mesh_instances.h"
+#include "particles/strand_growth.h"
+#include "scene/edit_commands.h"
+
+namespace ug::editor {
+
+struct LiveStrandsResult {
+    uint64_t generation = 0;            // the document's particlesGeneration() it was grown for
+    std::vector<MeshInstances> meshes;  // every system's "strands/<name>", then its generator surfaces
+    std::string error;                  // a system that did not grow (its name and why); the others are there
+    double seconds = 0.0;
+    uint64_t strands = 0;
+    RegrowReport report;                // summed over the systems
+};
+
+class LiveStrands {
+public:
+    explicit LiveStrands(int threads);
+    ~LiveStrands();  // waits for a growth in progress
+    LiveStrands(const LiveStrands&) = delete;
+    LiveStrands& operator=(const LiveStrands&) = delete;
+
+    // Grow `systems` (the document's, never changed in place) next; replaces a submission not yet started.
+    void submit(ParticleSystems systems, uint64_t generation);
+    // The newest finished result not handed over yet.
+    bool poll(LiveStrandsResult* out);
+    // Whether a submission is waiting or growing.
+    bool busy() const;
+    // Blocks until nothing is waiting or growing (tests, scripted runs).
+    void waitIdle();
+
+private:
+    void work();
+    LiveStrandsResult grow(const std::vector<ParticleSystemFile>& systems, uint64_t generation);
+
+    const int threads_;
+    std::vector<std::unique_ptr<StrandRegrower>> regrowers_;  // worker only: one per system index
+    mutable std::mutex mutex_;
+    std::condition_variable wake_, idle_;
+    ParticleSystems pending_;
+    uint64_t pending_generation_ = 0;
+    bool growing_ = false;
+    bool stop_ = false;
+    std::optional<LiveStrandsResult> done_;
+    std::thread thread_;  // last: started once the rest is ready
+};
+
+}  // namespace ug::editor
