@@ -116,6 +116,12 @@ std::string recoveryMetaPath(const std::string& config_dir, const std::string& p
     return (fs::path(config_dir) / "recovery" / (recoveryKey(project_path) + ".meta.json")).string();
 }
 
+// The particle systems edited since the last save live in their own files until then, not in the
+// project: the autosave keeps them beside the project's recovery file.
+std::string recoveryParticlesPath(const std::string& config_dir, const std::string& project_path) {
+    return (fs::path(config_dir) / "recovery" / (recoveryKey(project_path) + ".particles.json")).string();
+}
+
 }  // namespace
 
 std::string recoveryPath(const std::string& config_dir, const std::string& project_path) {
@@ -155,6 +161,7 @@ void discardRecovery(const std::string& config_dir, const std::string& project_p
     // The meta goes first: without it the data file is never offered.
     fs::remove(recoveryMetaPath(config_dir, project_path), ec);
     fs::remove(recoveryPath(config_dir, project_path), ec);
+    fs::remove(recoveryParticlesPath(config_dir, project_path), ec);
 }
 
 // ---- Document: loading -------------------------------------------------------------------------------------
@@ -188,7 +195,40 @@ std::unique_ptr<Document> Document::recover(const std::string& path, const Docum
     std::unique_ptr<Document> doc(new Document());
     if (!doc->load(std::move(project), path, options, error)) return nullptr;
     doc->saved_state_ = ~uint64_t(0);  // unsaved until the user saves it
+    if (!doc->recoverParticles(recoveryParticlesPath(options.config_dir, path), error)) return nullptr;
     return doc;
+}
+
+bool Document::recoverParticles(const std::string& file, std::string* error) {
+    if (!fs::exists(file)) return true;
+    std::string text;
+    if (!readTextFile(file, &text, error)) return false;
+    const json j = json::parse(text, nullptr, false);
+    const auto fail = [&](const std::string& why) {
+        *error = file + ": " + why;
+        return false;
+    };
+    if (!j.is_object() || j.value("format", "") != "undergrowth-recovery-particles" || !j.contains("systems") ||
+        !j["systems"].is_array())
+        return fail("not an autosave of particle systems");
+    if (j["systems"].size() != particles_->size())
+        return fail("holds " + std::to_string(j["systems"].size()) + " particle systems, the project " +
+                    std::to_string(particles_->size()));
+    std::vector<ParticleSystemFile> systems;
+    for (size_t i = 0; i < particles_->size(); ++i) {
+        ParticleSystemFile s;
+        // Read as if from the particle file itself: a mesh generator's model is named relative to it.
+        const std::string source = resolveProjectPath(project_, project_.particles[i].file);
+        std::string why;
+        if (!parseParticleSystem(j["systems"][i], source, &s, &why))
+            return fail("/systems/" + std::to_string(i) + ": " + why);
+        s.file_name = (*particles_)[i].file_name;
+        s.scene.terrain = terrain_;
+        systems.push_back(std::move(s));
+    }
+    particles_ = std::make_shared<const std::vector<ParticleSystemFile>>(std::move(systems));
+    ++particles_generation_;
+    return true;
 }
 
 std::unique_ptr<Document> Document::create(Project project, const std::string& path, const DocumentOptions& options,
@@ -519,6 +559,16 @@ bool Document::autosave(std::string* error) {
     const json meta = {{"format", "undergrowth-recovery"},
                        {"path", path_.empty() ? std::string() : absolutePath(path_)},
                        {"saved_unix_s", unixNow()}};
+    // The edited particle systems (none: no file, so an older one is not recovered later).
+    const std::string particles = recoveryParticlesPath(options_.config_dir, path_);
+    if (particleFilesToWrite(project_, *particles_, *saved_particles_).empty()) {
+        fs::remove(particles, ec);
+    } else {
+        json systems = json::array();
+        for (const ParticleSystemFile& s : *particles_) systems.push_back(particleSystemToJson(s));
+        const json j = {{"format", "undergrowth-recovery-particles"}, {"systems", std::move(systems)}};
+        if (!writeTextFileAtomically(particles, j.dump() + "\n", error)) return false;
+    }
     if (!writeTextFileAtomically(data, projectToJson(project_), error) ||
         !writeTextFileAtomically(recoveryMetaPath(options_.config_dir, path_), meta.dump(2) + "\n", error))
         return false;

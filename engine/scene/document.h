@@ -203,6 +203,9 @@ public:
 private:
     Document() = default;
     bool load(Project project, const std::string& path, const DocumentOptions& options, std::string* error);
+    // The autosave's particle systems (`file`: recovery/<key>.particles.json; none there: nothing to do)
+    // replace the ones read from their files, which stay what Save compares with (so Save writes them).
+    bool recoverParticles(const std::string& file, std::string* error);
     EditTarget target() { return EditTarget{&project_, &densities_, &assets_, &particles_}; }
     // Recompiles what `effect` touched and feeds the live instancer; false (nothing changed) when the new
     // settings do not compile.

@@ -581,6 +581,18 @@ TEST(Document, ParticleEditsAreUndoableSharedByTheFileAndSavedToIt) {
     EXPECT_NE(error.find("particles[1] (grass_east): attractors[0].charge[0].charge"), std::string::npos) << error;
     EXPECT_FALSE(doc->setParticleSystem(2, edited, &error));
     EXPECT_EQ((*doc->particles())[0].scene.attractors[0].a_m, glm::vec3(0.25f, 0.0f, 0.75f));
+    // Nothing lost in a crash: the autosave keeps the edited systems, and a recovery shows them (dirty).
+    ASSERT_TRUE(doc->autosave(&error)) << error;
+    {
+        auto recovered = Document::recover(a.string(), optionsFor(dir), &error);
+        ASSERT_TRUE(recovered) << error;
+        EXPECT_TRUE(recovered->isDirty());
+        ASSERT_EQ(recovered->particles()->size(), 2u);
+        EXPECT_EQ((*recovered->particles())[0].scene.attractors[0].a_m, glm::vec3(0.25f, 0.0f, 0.75f));
+        EXPECT_EQ((*recovered->particles())[1].scene.attractors[0].a_m, glm::vec3(1.25f, 0.0f, 0.75f));
+        EXPECT_EQ((*recovered->particles())[1].name, "grass_east");
+        EXPECT_NE((*recovered->particles())[1].scene.terrain, nullptr);
+    }
     ASSERT_TRUE(doc->save(&error)) << error;
     EXPECT_FALSE(doc->isDirty());
     ParticleSystemFile on_disk;
