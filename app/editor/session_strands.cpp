@@ -50,7 +50,7 @@ void EditorSession::syncStrands() {
         if (!r.error.empty()) messages.push_back(r.error);
         char status[160];
         const uint64_t moves = r.report.recomputed + r.report.reused;
-        std::snprintf(status, sizeof status, "%llu strands, grown in %.2f s (%.0f %% of the moves proposed again)",
+        std::snprintf(status, sizeof status, "%llu strands in %.2f s, %.0f %% of the moves re-grown",
                       (unsigned long long)r.strands, r.seconds,
                       moves ? 100.0 * double(r.report.recomputed) / double(moves) : 100.0);
         particles_panel.status = status;
