@@ -184,6 +184,94 @@ void addPrimitiveMarkers(const Document& doc, const std::vector<DetailLodMesh>& 
     });
 }
 
+namespace {
+
+void addGreatCircles(glm::vec3 c, float r, glm::vec3 color, MarkerGeometry* out) {
+    for (const glm::vec3 n : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)}) addCircle(c, n, r, color, out);
+}
+
+void addLine(glm::vec3 a, glm::vec3 b, glm::vec3 color, MarkerGeometry* out) {
+    out->lines.push_back({a, color});
+    out->lines.push_back({b, color});
+}
+
+}  // namespace
+
+void addParticleMarkers(const ParticleSystemFile& system, MarkerGeometry* out) {
+    const ParticleScene& scene = system.scene;
+    for (const Attractor& a : scene.attractors) {
+        const glm::vec3 color = chargeAt(a.charge, 0) < 0.0f ? kRepelColor : kAttractColor;
+        out->points.push_back({a.a_m, color});
+        if (a.kind == AttractorKind::Segment) {
+            addLine(a.a_m, a.b_m, color, out);
+            out->points.push_back({a.b_m, color});
+        }
+        if (a.kind == AttractorKind::Sphere) addGreatCircles(a.a_m, a.radius_m, color, out);
+        if (a.influence_m > 0.0f) addGreatCircles(a.a_m, a.influence_m, color * 0.7f, out);
+    }
+    for (const ParticleGenerator& g : scene.generators) {
+        switch (g.kind) {
+            case GeneratorKind::Rectangle: {
+                const glm::vec3 c = g.center_m, u = g.axis_u_m, v = g.axis_v_m;
+                const glm::vec3 corners[4] = {c - u - v, c + u - v, c + u + v, c - u + v};
+                // Seeds on the terrain: the outline follows the ground they grow from.
+                const HeightField* ground = g.on_terrain ? scene.terrain.get() : nullptr;
+                const int pieces = ground ? 16 : 1;
+                for (int k = 0; k < 4; ++k)
+                    for (int i = 0; i < pieces; ++i) {
+                        glm::vec3 p = glm::mix(corners[k], corners[(k + 1) % 4], float(i) / float(pieces));
+                        glm::vec3 q = glm::mix(corners[k], corners[(k + 1) % 4], float(i + 1) / float(pieces));
+                        if (ground) {
+                            p.z = ground->sample(p.x, p.y) + 0.01f;
+                            q.z = ground->sample(q.x, q.y) + 0.01f;
+                        }
+                        addLine(p, q, kGeneratorColor, out);
+                    }
+                break;
+            }
+            case GeneratorKind::Sphere: addGreatCircles(g.center_m, g.radius_m, kGeneratorColor, out); break;
+            case GeneratorKind::Box:
+                addBoxEdges(g.center_m - g.half_extents_m, g.center_m + g.half_extents_m, kGeneratorColor, out);
+                break;
+            case GeneratorKind::Mesh:
+                if (g.mesh && !g.mesh->positions.empty()) {
+                    glm::vec3 lo = g.mesh->positions[0], hi = lo;
+                    for (const glm::vec3& p : g.mesh->positions) {
+                        lo = glm::min(lo, p);
+                        hi = glm::max(hi, p);
+                    }
+                    addBoxEdges(g.center_m + lo * g.scale, g.center_m + hi * g.scale, kGeneratorColor, out);
+                }
+                break;
+        }
+        glm::vec3 centre = g.center_m;
+        if (g.on_terrain && scene.terrain) centre.z = scene.terrain->sample(centre.x, centre.y) + 0.01f;
+        out->points.push_back({centre, kGeneratorColor});
+    }
+    for (const Cutter& c : scene.cutters) {
+        switch (c.kind) {
+            case CutterKind::Plane: {
+                glm::vec3 a, b;
+                planeBasis(c.normal, &a, &b);
+                const glm::vec3 o = c.center_m + c.normal * c.threshold_m;  // where it triggers
+                const glm::vec3 corners[4] = {o - 0.5f * a - 0.5f * b, o + 0.5f * a - 0.5f * b, o + 0.5f * a + 0.5f * b,
+                                              o - 0.5f * a + 0.5f * b};
+                for (int k = 0; k < 4; ++k) addLine(corners[k], corners[(k + 1) % 4], kCutterColor, out);
+                addLine(o, o + 0.1f * c.normal, kCutterColor, out);
+                break;
+            }
+            case CutterKind::Sphere:
+                addGreatCircles(c.center_m, std::max(c.radius_m + c.threshold_m, 0.001f), kCutterColor, out);
+                break;
+            case CutterKind::Box: {
+                const glm::vec3 h = glm::max(c.half_extents_m + glm::vec3(c.threshold_m), glm::vec3(0.001f));
+                addBoxEdges(c.center_m - h, c.center_m + h, kCutterColor, out);
+                break;
+            }
+        }
+    }
+}
+
 void addPrimitiveHulls(const Document& doc, const std::vector<DetailLodMesh>& meshes, uint64_t selected,
                        MarkerGeometry* out) {
     forEachUserPrimitive(doc, meshes, selected, [&](const Primitive& p, glm::vec3 color) {
