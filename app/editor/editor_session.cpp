@@ -174,6 +174,20 @@ void EditorSession::fillDocumentResult() {
         result->user_primitives += d.primitiveIds(t).size();
     result->type_names.clear();
     for (const DetailLodMesh& m : scene->meshes) result->type_names.push_back(m.name);
+    if (!d.particles()->empty()) {
+        json systems = json::array();
+        for (const ParticleSystemFile& s : *d.particles()) {
+            json attractors = json::array();
+            for (const Attractor& a : s.scene.attractors) attractors.push_back({a.a_m.x, a.a_m.y, a.a_m.z});
+            systems.push_back({{"name", s.name}, {"attractors", std::move(attractors)}});
+        }
+        result->particles = {{"systems", std::move(systems)},
+                             {"selected_attractor", particles_panel.selected_attractor == kNoAttractor
+                                                        ? json(nullptr)
+                                                        : json(particles_panel.selected_attractor)},
+                             {"strands_settled", strandsSettled()},
+                             {"last", strandsJson()}};
+    }
     if (store) {
         result->instances = store->instanceCount();
         result->instances_per_type = perTypeCounts(*store, d.ghostTile().candidates);

@@ -33,6 +33,7 @@
 #include "editor/markers.h"
 #include "editor/orbit_camera.h"
 #include "editor/panels.h"
+#include "editor/particle_tools.h"
 #include "editor/render_data.h"
 #include "editor/tools.h"
 #include "editor/viewer.h"
@@ -187,6 +188,7 @@ private:
     uint64_t strands_submitted = 0;             // the particlesGeneration() last submitted
     uint64_t strands_shown = 0;                 // and the one on screen
     LiveStrandsResult last_strands;             // its statistics (meshes moved out)
+    AttractorDrag attractor_drag;               // the Select tool on an attractor (the Particles window open)
     ParticlesPanelState particles_panel;
     // ---- outliner, instantiation and export panels, New / Open ----
     std::vector<uint8_t> type_visible;  // view state, not a document edit: never undone, never saved

@@ -197,10 +197,13 @@ void addLine(glm::vec3 a, glm::vec3 b, glm::vec3 color, MarkerGeometry* out) {
 
 }  // namespace
 
-void addParticleMarkers(const ParticleSystemFile& system, MarkerGeometry* out) {
+void addParticleMarkers(const ParticleSystemFile& system, size_t selected_attractor, MarkerGeometry* out) {
     const ParticleScene& scene = system.scene;
-    for (const Attractor& a : scene.attractors) {
-        const glm::vec3 color = chargeAt(a.charge, 0) < 0.0f ? kRepelColor : kAttractColor;
+    for (size_t i = 0; i < scene.attractors.size(); ++i) {
+        const Attractor& a = scene.attractors[i];
+        const glm::vec3 color = i == selected_attractor          ? kSelectedColor
+                                : chargeAt(a.charge, 0) < 0.0f ? kRepelColor
+                                                               : kAttractColor;
         out->points.push_back({a.a_m, color});
         if (a.kind == AttractorKind::Segment) {
             addLine(a.a_m, a.b_m, color, out);

@@ -66,7 +66,7 @@ constexpr glm::vec3 kAttractColor{0.35f, 0.9f, 0.35f};
 constexpr glm::vec3 kRepelColor{0.95f, 0.35f, 0.3f};
 constexpr glm::vec3 kGeneratorColor{0.4f, 0.65f, 1.0f};
 constexpr glm::vec3 kCutterColor{1.0f, 0.6f, 0.2f};
-void addParticleMarkers(const ParticleSystemFile& system, MarkerGeometry* out);
+void addParticleMarkers(const ParticleSystemFile& system, size_t selected_attractor, MarkerGeometry* out);
 
 // Overlay caps: beyond them the tiles nearest the target win.
 constexpr size_t kOverlayTileCap = 400;         // tile outlines (12 edges each)

@@ -188,6 +188,7 @@ void drawGhostTilePanel(const Document* doc, GhostTilePanelState* state, bool* o
 // ---- particles panel (particles_panel.cpp) ----
 struct ParticlesPanelState {
     size_t selected = 0;     // the system shown
+    size_t selected_attractor = SIZE_MAX;  // picked in the viewport (SIZE_MAX: none)
     bool growing = false;    // its strands are growing in the background
     std::string status;      // the last growth: strands, time, share re-grown
     std::string last_error;  // the last refused edit

@@ -143,7 +143,10 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
     state->selected = std::min(state->selected, systems.size() - 1);
     if (ImGui::BeginCombo("system", systems[state->selected].name.c_str())) {
         for (size_t i = 0; i < systems.size(); ++i)
-            if (ImGui::Selectable(systems[i].name.c_str(), i == state->selected)) state->selected = i;
+            if (ImGui::Selectable(systems[i].name.c_str(), i == state->selected)) {
+                state->selected = i;
+                state->selected_attractor = SIZE_MAX;
+            }
         ImGui::EndCombo();
     }
     if (state->growing) ImGui::TextDisabled("growing...");
@@ -171,7 +174,9 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
             ImGui::PushID(int(100 + i));
             char label[48];
             std::snprintf(label, sizeof label, "attractor %zu (%s)", i, kAttractorKinds[size_t(scene.attractors[i].kind)]);
-            const bool open_node = ImGui::TreeNodeEx(label, ImGuiTreeNodeFlags_DefaultOpen);
+            ImGuiTreeNodeFlags flags = ImGuiTreeNodeFlags_DefaultOpen;
+            if (i == state->selected_attractor) flags |= ImGuiTreeNodeFlags_Selected;  // picked in the view
+            const bool open_node = ImGui::TreeNodeEx(label, flags);
             ImGui::SameLine();
             const bool remove = ImGui::SmallButton("remove");
             if (open_node) {

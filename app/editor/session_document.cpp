@@ -94,6 +94,7 @@ void EditorSession::adoptLoadedDocument() {
     // Only now does the previous document go (startLoad kept it open while this one loaded).
     stroke.end();
     move_drag.end();
+    attractor_drag.end();
     renderer->clearScene();
     if (scene) scene->doc->close();
     store.reset();
@@ -137,6 +138,7 @@ void EditorSession::handleEditRequests() {
         if (requests.undo || requests.redo) {
             stroke.end();
             move_drag.end();
+            attractor_drag.end();
         }
         if (requests.undo) doc->undo();
         if (requests.redo) doc->redo();
@@ -209,6 +211,7 @@ void EditorSession::handleFileRequests() {
         } else {
             stroke.end();
             move_drag.end();
+            attractor_drag.end();
             requestOpen(requests.open_path, RecoverChoice::Ask);
         }
     }
@@ -256,6 +259,7 @@ void EditorSession::handleDialogs() {
             if (proceed) {
                 stroke.end();
                 move_drag.end();
+                attractor_drag.end();
                 if (prompt == Prompt::Quit) {
                     if (doc) doc->close();  // removes the autosave: the user chose
                     quitting = true;

@@ -127,10 +127,24 @@ void EditorSession::mouseTools() {
         const Ray ray = rayThroughPixel(view_proj, float(fb_w), float(fb_h), cursor);
         const bool mouse_free = !io.WantCaptureMouse && !io.KeyAlt;
         if (tools.tool == ToolKind::Select) {
-            // Click picks; dragging the picked primitive moves it (Shift: up and down).
+            // Click picks; dragging the picked primitive moves it (Shift: up and down). With the Particles
+            // window open, its system's attractors are picked first.
             if (mouse_free && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
-                tools.selected = pickPrimitive(*doc, view_proj, float(fb_w), float(fb_h), cursor, 20.0f);
-                if (tools.selected != 0) move_drag.begin(doc, tools.selected, ray);
+                const size_t attractor =
+                    windows.particles ? pickAttractor(*doc, particles_panel.selected, view_proj, float(fb_w),
+                                                      float(fb_h), cursor, 20.0f)
+                                      : kNoAttractor;
+                particles_panel.selected_attractor = attractor;
+                if (attractor != kNoAttractor) {
+                    tools.selected = 0;
+                    attractor_drag.begin(doc, particles_panel.selected, attractor, ray);
+                } else {
+                    tools.selected = pickPrimitive(*doc, view_proj, float(fb_w), float(fb_h), cursor, 20.0f);
+                    if (tools.selected != 0) move_drag.begin(doc, tools.selected, ray);
+                }
+            } else if (attractor_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+                std::string move_error;
+                if (!attractor_drag.drag(ray, io.KeyShift, &move_error)) messages.push_back(move_error);
             } else if (move_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
                 const uint64_t generation = doc->live().generation();
                 std::string move_error;
@@ -170,6 +184,7 @@ void EditorSession::mouseTools() {
             stroke.end();
         }
         if (move_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) move_drag.end();
+        if (attractor_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) attractor_drag.end();
     }
 
 }

@@ -58,7 +58,8 @@ bool EditorSession::renderFrame() {
         }
         // The Particles window's system, while the window is open.
         if (windows.particles && particles_panel.selected < doc->particles()->size())
-            addParticleMarkers((*doc->particles())[particles_panel.selected], &markers);
+            addParticleMarkers((*doc->particles())[particles_panel.selected], particles_panel.selected_attractor,
+                               &markers);
         const float r = render_settings.overlay_radius_m;
         const CandidateSet& c = doc->ghostTile().candidates;
         if (render_settings.tile_grid) addTileOverlay(instances, camera.target, r, &markers);

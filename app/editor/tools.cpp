@@ -274,33 +274,39 @@ bool MoveDrag::begin(Document* doc, uint64_t id, const Ray& ray) {
     if (!doc->findPrimitive(id, nullptr, &prim) || prim.kind == PrimitiveKind::TerrainLayer ||
         prim.kind == PrimitiveKind::TerrainSolid)
         return false;
-    glm::vec3 grab;
-    if (!rayPlane(ray, prim.center_m, glm::vec3(0.0f, 0.0f, 1.0f), &grab)) grab = prim.center_m;
     doc_ = doc;
     id_ = id;
     start_ = prim;
-    grab_m_ = grab;
+    grab_m_ = dragGrab(ray, prim.center_m);
     applied_offset_m_ = glm::vec3(0.0f);
     moves_ = 0;
     doc_->beginStroke("Move");
     return true;
 }
 
-bool MoveDrag::drag(const Ray& ray, bool vertical, std::string* error) {
-    if (!active()) return true;
+bool dragOffset(const Ray& ray, glm::vec3 grab, glm::vec3 applied, bool vertical, glm::vec3* offset) {
     glm::vec3 hit;
-    glm::vec3 offset;
     if (vertical) {
         // The upright plane through the grab point that faces the ray; only the height changes.
         const glm::vec3 n(ray.direction.x, ray.direction.y, 0.0f);
-        if (glm::length(n) < 1e-4f || !rayPlane(ray, grab_m_, glm::normalize(n), &hit)) return true;
-        offset = glm::vec3(applied_offset_m_.x, applied_offset_m_.y, hit.z - grab_m_.z);
-    } else {
-        if (!rayPlane(ray, grab_m_ + glm::vec3(0.0f, 0.0f, applied_offset_m_.z), glm::vec3(0.0f, 0.0f, 1.0f),
-                      &hit))
-            return true;
-        offset = glm::vec3(hit.x - grab_m_.x, hit.y - grab_m_.y, applied_offset_m_.z);
+        if (glm::length(n) < 1e-4f || !rayPlane(ray, grab, glm::normalize(n), &hit)) return false;
+        *offset = glm::vec3(applied.x, applied.y, hit.z - grab.z);
+        return true;
     }
+    if (!rayPlane(ray, grab + glm::vec3(0.0f, 0.0f, applied.z), glm::vec3(0.0f, 0.0f, 1.0f), &hit)) return false;
+    *offset = glm::vec3(hit.x - grab.x, hit.y - grab.y, applied.z);
+    return true;
+}
+
+glm::vec3 dragGrab(const Ray& ray, glm::vec3 centre) {
+    glm::vec3 grab;
+    return rayPlane(ray, centre, glm::vec3(0.0f, 0.0f, 1.0f), &grab) ? grab : centre;
+}
+
+bool MoveDrag::drag(const Ray& ray, bool vertical, std::string* error) {
+    if (!active()) return true;
+    glm::vec3 offset;
+    if (!dragOffset(ray, grab_m_, applied_offset_m_, vertical, &offset)) return true;
     // A millimetre of motion is below anything a density change shows; skipping it keeps a still mouse
     // from flooding the live instancer.
     if (glm::length(offset - applied_offset_m_) < 1e-3f) return true;

@@ -171,6 +171,13 @@ class MoveDrag {
     int moves_ = 0;
 };
 
+// The drags' shared motion: where the ray grabs a thing centred at `centre` (on the horizontal plane
+// through it, else the centre itself), and the offset from `grab` the ray has reached: on the horizontal
+// plane at the grab's height plus the height applied so far, or (vertical) only the height, on the upright
+// plane through the grab point that faces the ray. False when the ray misses the plane (keep the offset).
+glm::vec3 dragGrab(const Ray& ray, glm::vec3 centre);
+bool dragOffset(const Ray& ray, glm::vec3 grab, glm::vec3 applied, bool vertical, glm::vec3* offset);
+
 // Select: the user primitive whose centre is nearest the cursor on screen, within max_px; 0 for none.
 // view_proj maps world to clip space of a width x height viewport (pixels, y down from the top).
 uint64_t pickPrimitive(const Document& doc, const glm::mat4& view_proj, float width_px, float height_px,

@@ -118,6 +118,7 @@ json viewerStatsJson(const ViewerResult& r, const LodSettings& lod) {
         {"sculpt_strokes", r.sculpt_strokes},
         {"messages", r.messages},
         {"viewport", r.viewport},
+        {"particles", r.particles},
         {"window_title", r.window_title}};
 }
 

@@ -92,6 +92,9 @@ struct ViewerResult {
     // panel's document name, whether ImGui has the keyboard. Interactive runs with --stats rewrite the
     // statistics on F12 too, so a driven session can read it after each step.
     nlohmann::json viewport = nlohmann::json::object();
+    // The particle systems as the document holds them ({"systems": [{"name", "attractors": [[x, y, z]]}],
+    // "selected_attractor", "strands_settled", "last": the last growth's statistics}); {} without any.
+    nlohmann::json particles = nlohmann::json::object();
     std::string window_title;
 };
 

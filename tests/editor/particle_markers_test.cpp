@@ -23,7 +23,7 @@ TEST(ParticleMarkers, AttractorsGeneratorsAndCuttersAreDrawnWhereTheyAct) {
     cut.threshold_m = 0.2f;
     system.scene.cutters.push_back(cut);
     MarkerGeometry m;
-    addParticleMarkers(system, &m);
+    addParticleMarkers(system, SIZE_MAX, &m);
 
     // The attractor: a dot at its place, red (repelling at step 0), and its reach as three circles.
     ASSERT_FALSE(m.points.empty());

@@ -345,6 +345,35 @@ else
   bad "edit meadow_strands: particle edit: $out $(tail -5 "$pdir/log" 2>/dev/null)"
 fi
 
+# The particle tool by real X input: an attractor dragged in the view with the mouse, then Ctrl+Z.
+if command -v xdotool >/dev/null 2>&1; then
+  xwork="$tmp/driven-particles"
+  mkdir -p "$xwork"
+  cp -r "$root/assets" "$xwork/assets"
+  if out="$(xvfb-run -a -s "-screen 0 1600x900x24" bash "$root/tests/gui/driven_particles.sh" "$bin" \
+              "$xwork/assets/scenes/meadow_strands.json" "$xwork" "$cache" 2>&1)" &&
+     out="$(python3 - "$xwork" <<'PY' 2>&1
+import json, sys
+d = sys.argv[1]
+start, dragged, undone = (json.load(open("%s/%s.json" % (d, n)))["particles"] for n in ("start.stats", "dragged", "undone"))
+a0, a1, a2 = (p["systems"][0]["attractors"][1] for p in (start, dragged, undone))
+assert dragged["selected_attractor"] == 1, dragged
+assert a1[0] - a0[0] > 0.15 and abs(a1[1] - a0[1]) < 0.05 and a1[2] == a0[2], (a0, a1)
+last = dragged["last"]
+assert last["ok"] and last["incremental"] and last["reused"] > last["recomputed"], last
+assert a2 == a0, ("Ctrl+Z did not put the attractor back", a0, a2)
+assert dragged["systems"][1]["attractors"][1][0] - start["systems"][1]["attractors"][1][0] > 0.15, "the shared file's other entry did not follow"
+print("moved %.2f m by the mouse, %d %% re-grown" % (a1[0] - a0[0], 100 * last["recomputed"] // (last["recomputed"] + last["reused"])))
+PY
+)"; then
+    ok "edit meadow_strands: an attractor dragged by real X input re-grows its strands and undoes ($out)"
+  else
+    bad "edit meadow_strands: attractor drag by X input: $out $(tail -3 "$xwork/session.log" 2>/dev/null)"
+  fi
+else
+  bad "xdotool is not installed: the particle tool's driven test needs it (scripts/install-deps.sh)"
+fi
+
 # An interactive session driven by real X input (xdotool): mouse tools, picking, shortcuts and the
 # unsaved-changes dialog (driven_session.sh). On a copy of the assets, since it saves the project.
 if command -v xdotool >/dev/null 2>&1; then
