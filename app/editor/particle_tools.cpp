@@ -5,20 +5,9 @@ namespace ug::editor {
 size_t pickAttractor(const Document& doc, size_t system, const glm::mat4& view_proj, float width, float height,
                      glm::vec2 cursor, float max_px) {
     if (system >= doc.particles()->size()) return kNoAttractor;
-    const std::vector<Attractor>& attractors = (*doc.particles())[system].scene.attractors;
-    size_t best = kNoAttractor;
-    float best_d = max_px;
-    for (size_t i = 0; i < attractors.size(); ++i) {
-        const glm::vec4 c = view_proj * glm::vec4(attractors[i].a_m, 1.0f);
-        if (c.w <= 0.0f) continue;  // behind the eye
-        const glm::vec2 px((c.x / c.w * 0.5f + 0.5f) * width, (0.5f - c.y / c.w * 0.5f) * height);
-        const float d = glm::length(px - cursor);
-        if (d <= best_d) {
-            best_d = d;
-            best = i;
-        }
-    }
-    return best;
+    std::vector<glm::vec3> centres;
+    for (const Attractor& a : (*doc.particles())[system].scene.attractors) centres.push_back(a.a_m);
+    return nearestOnScreen(centres, view_proj, width, height, cursor, max_px);
 }
 
 bool AttractorDrag::begin(Document* doc, size_t system, size_t attractor, const Ray& ray) {

@@ -333,26 +333,38 @@ Ray rayThroughPixel(const glm::mat4& view_proj, float width, float height, glm::
     return Ray{glm::vec3(a), glm::normalize(glm::vec3(b - a))};
 }
 
+size_t nearestOnScreen(const std::vector<glm::vec3>& points, const glm::mat4& view_proj, float width, float height,
+                       glm::vec2 cursor, float max_px) {
+    size_t best = SIZE_MAX;
+    float best_d = max_px;
+    for (size_t i = 0; i < points.size(); ++i) {
+        const glm::vec4 c = view_proj * glm::vec4(points[i], 1.0f);
+        if (c.w <= 0.0f) continue;  // behind the eye
+        const glm::vec2 px((c.x / c.w * 0.5f + 0.5f) * width, (0.5f - c.y / c.w * 0.5f) * height);
+        const float d = glm::length(px - cursor);
+        if (d <= best_d) {
+            best_d = d;
+            best = i;
+        }
+    }
+    return best;
+}
+
 uint64_t pickPrimitive(const Document& doc, const glm::mat4& view_proj, float width, float height,
                        glm::vec2 cursor, float max_px) {
-    uint64_t best = 0;
-    float best_d = max_px;
+    std::vector<glm::vec3> centres;
+    std::vector<uint64_t> ids;
     for (size_t type = 0; type < doc.project().detail_types.size(); ++type)
         for (uint64_t id : doc.primitiveIds(type)) {
             Primitive prim;
             if (!doc.findPrimitive(id, nullptr, &prim)) continue;
             if (prim.kind == PrimitiveKind::TerrainLayer || prim.kind == PrimitiveKind::TerrainSolid)
                 continue;
-            const glm::vec4 c = view_proj * glm::vec4(prim.center_m, 1.0f);
-            if (c.w <= 0.0f) continue;  // behind the eye
-            const glm::vec2 px((c.x / c.w * 0.5f + 0.5f) * width, (0.5f - c.y / c.w * 0.5f) * height);
-            const float d = glm::length(px - cursor);
-            if (d <= best_d) {
-                best_d = d;
-                best = id;
-            }
+            centres.push_back(prim.center_m);
+            ids.push_back(id);
         }
-    return best;
+    const size_t best = nearestOnScreen(centres, view_proj, width, height, cursor, max_px);
+    return best == SIZE_MAX ? 0 : ids[best];
 }
 
 }  // namespace ug::editor

@@ -178,6 +178,12 @@ class MoveDrag {
 glm::vec3 dragGrab(const Ray& ray, glm::vec3 centre);
 bool dragOffset(const Ray& ray, glm::vec3 grab, glm::vec3 applied, bool vertical, glm::vec3* offset);
 
+// The index of the point nearest the cursor on screen, within max_px (points behind the eye skipped; ties:
+// the later); SIZE_MAX for none. view_proj maps world to clip space of a width x height viewport (pixels,
+// y down from the top).
+size_t nearestOnScreen(const std::vector<glm::vec3>& points, const glm::mat4& view_proj, float width_px,
+                       float height_px, glm::vec2 cursor_px, float max_px);
+
 // Select: the user primitive whose centre is nearest the cursor on screen, within max_px; 0 for none.
 // view_proj maps world to clip space of a width x height viewport (pixels, y down from the top).
 uint64_t pickPrimitive(const Document& doc, const glm::mat4& view_proj, float width_px, float height_px,
