@@ -18,7 +18,7 @@ JSON
 "$bin" edit "$project" --size 1600x900 --config "$work/config" --cache "$cache" --replay start.json \
   --stats stats.json --autosave-interval 600 >session.log 2>&1 &
 editor=$!
-for _ in $(seq 1 240); do [ -s stats.json ] && break; sleep 0.25; done
+for _ in $(seq 1 480); do [ -s stats.json ] && break; sleep 0.25; done
 [ -s stats.json ] || { echo "the editor never finished its start script"; kill "$editor"; exit 1; }
 mv stats.json start.stats.json
 hold=0.3
