@@ -10,6 +10,7 @@
 
 #include "core/atomic_file.h"
 #include "core/hash.h"
+#include "env/env_effects.h"
 
 namespace ug {
 
@@ -309,24 +310,53 @@ bool Document::commit(const EditEffect& effect, std::string* error) {
     next.terrain = compiled_.terrain;
     next.environment = compiled_.environment;
     next.types = compiled_.types;
-    for (size_t t : effect.types)
+    EditEffect all = effect;
+    std::shared_ptr<const EnvScene> env = environment_;
+    if (effect.environment && !compileEditedEnvironment(&env, &all, error)) return false;
+    next.environment = env;
+    for (size_t t : all.types)
         if (!compileDetailType(project_, t, terrain_, &next.types[t], error, next.environment)) return false;
     if (!documentExtent(project_, next, path_.empty() ? project_.name : path_, &next.extent, error)) return false;
     const bool extent_changed = !sameBounds(next.extent, compiled_.extent);
     compiled_ = std::move(next);
-    if (!live_->pending()) retired_.clear();
+    if (!live_->pending()) {
+        retired_.clear();
+        retired_environments_.clear();
+    }
     if (effect.tile) {
         retired_.push_back(live_assets_);
         live_assets_ = assets_;
         ++tile_generation_;
     }
     if (effect.particles) ++particles_generation_;
-    if (effect.full || extent_changed) {
+    if (effect.environment) {
+        // The live worker may still settle on the old objects (SettleInput points at them).
+        retired_environments_.push_back(environment_);
+        environment_ = env;
+        ++environment_generation_;
+    }
+    if (all.full || extent_changed) {
         const uint64_t generation = live_->reset(instancerInput(), settleInputOf());
         if (effect.tile) tile_live_generation_ = generation;
+    } else if (effect.environment) {
+        live_->submit(compiled_.types, all.dirty, settleInputOf());
+    } else if (!all.types.empty()) {
+        live_->submit(compiled_.types, all.dirty);
     }
-    else if (!effect.types.empty())
-        live_->submit(compiled_.types, effect.dirty);
+    return true;
+}
+
+bool Document::compileEditedEnvironment(std::shared_ptr<const EnvScene>* env, EditEffect* effect, std::string* error) {
+    auto edited = std::make_shared<EnvScene>();
+    if (!compileEnvScene(project_.environment, project_.base_dir, path_.empty() ? project_.name : path_, terrain_,
+                         edited.get(), error, environment_.get()))
+        return false;
+    // The scattered types read their density from the environment: where it changed, so did they.
+    const std::vector<Bounds> dirty = envDirtyRegion(*environment_, *edited);
+    for (size_t t = 0; t < project_.detail_types.size(); ++t)
+        if (project_.detail_types[t].scatter.enabled) effect->addType(t);
+    effect->dirty.insert(effect->dirty.end(), dirty.begin(), dirty.end());
+    *env = std::move(edited);
     return true;
 }
 
@@ -380,6 +410,11 @@ bool Document::setInstancing(size_t type, const InstancingDesc& desc, std::strin
 
 bool Document::setSeed(uint64_t seed, std::string* error) {
     return execute(std::make_unique<SetSeedCommand>(seed), error);
+}
+
+bool Document::setEnvironment(const EnvironmentDesc& environment, const std::string& name, std::string* error) {
+    if (!validateEnvironmentEdit(environment, path_.empty() ? project_.name : path_, error)) return false;
+    return execute(std::make_unique<SetEnvironmentCommand>(environment, name), error);
 }
 
 bool Document::setParticleSystem(size_t index, const ParticleSystemFile& system, std::string* error) {

@@ -43,6 +43,7 @@
 #include "mesh/detail_model.h"
 #include "scene/detail_looks.h"
 #include "scene/edit_commands.h"
+#include "scene/env_commands.h"
 #include "scene/ghost_tile_command.h"
 #include "scene/ghost_tile_job.h"
 #include "scene/live_instancer.h"
@@ -110,8 +111,10 @@ public:
     const TileAssets& tileAssets() const { return assets_; }
     const std::shared_ptr<const HeightField>& terrain() const { return terrain_; }
     const CompiledScene& compiled() const { return compiled_; }
-    // The environmental objects as loaded (never null; empty without any).
+    // The environmental objects compiled from project().environment (never null; empty without any).
     const std::shared_ptr<const EnvScene>& environment() const { return environment_; }
+    // Changes whenever the environment does (an edit, its undo or redo): its effects follow.
+    uint64_t environmentGeneration() const { return environment_generation_; }
     // The project's particle systems, placed (never null after a load; empty for none).
     const std::shared_ptr<const std::vector<ParticleSystemFile>>& particles() const { return particles_; }
     // Changes whenever the particle systems do (an edit, its undo or redo): their strands grow again.
@@ -156,6 +159,10 @@ public:
     // the same file take it too (particle_commands.h). Refused with the entry and field named when the
     // system is invalid (validateParticleScene). Saving writes the changed particle files.
     bool setParticleSystem(size_t index, const ParticleSystemFile& system, std::string* error);
+    // The environmental objects' tree and fields become `environment`'s (its type library must be the
+    // project's: types are not edited here), one undo step named `name` ("Move object", "Footprints").
+    // Compiled at once (errors name the node or field); the scattered types and the settling follow.
+    bool setEnvironment(const EnvironmentDesc& environment, const std::string& name, std::string* error);
     // ---- Ghost Tile (ghost_tile_job.h) ----
     // Checks `spec` (validateGhostTileSpec) and starts building it in the background, reusing the models
     // whose source is unchanged; null with *error when refused. The document is not touched by the job.
@@ -210,6 +217,9 @@ private:
     // Recompiles what `effect` touched and feeds the live instancer; false (nothing changed) when the new
     // settings do not compile.
     bool commit(const EditEffect& effect, std::string* error);
+    // project().environment compiled (reusing environment()'s meshes) into *env; the scattered types and
+    // the region the objects and fields changed in join *effect.
+    bool compileEditedEnvironment(std::shared_ptr<const EnvScene>* env, EditEffect* effect, std::string* error);
     uint64_t currentState() const { return undo_.empty() ? 0 : undo_.back().state; }
 
     struct Step {
@@ -230,6 +240,8 @@ private:
     std::vector<TileAssets> retired_;
     std::shared_ptr<const HeightField> terrain_;
     std::shared_ptr<const EnvScene> environment_;
+    uint64_t environment_generation_ = 1;
+    std::vector<std::shared_ptr<const EnvScene>> retired_environments_;  // freed once the live worker is idle
     std::shared_ptr<const std::vector<ParticleSystemFile>> particles_ =
         std::make_shared<const std::vector<ParticleSystemFile>>();
     // The systems as their files hold them now (loaded or last saved): save writes those that differ.

@@ -173,6 +173,7 @@ void EditEffect::merge(const EditEffect& other) {
     full = full || other.full;
     tile = tile || other.tile;
     particles = particles || other.particles;
+    environment = environment || other.environment;
 }
 
 // ---- commands -------------------------------------------------------------------------------------------

@@ -95,6 +95,7 @@ struct EditEffect {
     bool full = false;          // instantiate everything again (strategy, constraints, seed)
     bool tile = false;          // the Ghost Tile and models were swapped (implies full)
     bool particles = false;     // the particle systems changed (their strands grow again)
+    bool environment = false;   // the environmental objects changed (compiled again, effects follow)
 
     void addType(size_t type);
     void merge(const EditEffect& other);

@@ -55,7 +55,8 @@ uint64_t LiveInstancer::reset(InstancerInput input, SettleInput settle) {
     return generation;
 }
 
-uint64_t LiveInstancer::submit(std::vector<InstanceTypeSettings> types, std::vector<Bounds> dirty) {
+uint64_t LiveInstancer::submit(std::vector<InstanceTypeSettings> types, std::vector<Bounds> dirty,
+                              std::optional<SettleInput> support) {
     uint64_t generation = 0;
     {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -63,7 +64,9 @@ uint64_t LiveInstancer::submit(std::vector<InstanceTypeSettings> types, std::vec
         generation = ++generation_;
         if (pending_.valid && pending_.full) {
             pending_.input.types = std::move(types);  // the full run will cover this edit
+            if (support) pending_.settle = std::move(*support);
         } else {
+            if (support) pending_.support = std::move(support);  // the newest support wins
             pending_.valid = true;
             pending_.types = std::move(types);
             // Merged regions: the worker's state differs from the newest settings only inside the union
@@ -165,6 +168,8 @@ bool LiveInstancer::runJob(Job& job, InstanceStats* stats, std::vector<uint64_t>
     } else {
         base_.types = job.types;
     }
+    const bool support_moved = !job.full && job.support;
+    if (support_moved) settle_ = std::move(*job.support);
     const InstanceOptions options{.threads = threads_, .cancel = &cancel_};
     if (!job.full && instantiated_) {
         if (!instantiator_.update(std::move(job.types), job.dirty, options, stats, changed, error)) {
@@ -172,7 +177,13 @@ bool LiveInstancer::runJob(Job& job, InstanceStats* stats, std::vector<uint64_t>
             return false;
         }
         last_store_ = std::make_shared<const InstanceStore>(instantiator_.store());
-        settle(false, changed);
+        if (support_moved) {
+            // The support moved: any drop may change, so every tile is settled again and re-uploaded.
+            *changed = sortedUnion(*changed, tileKeys(last_store_.get()));
+            settle(true, changed);
+        } else {
+            settle(false, changed);
+        }
         return true;
     }
     // Full: a reset, or an edit after a failed run. Every tile of the old and new result changed.

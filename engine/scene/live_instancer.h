@@ -28,6 +28,7 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -72,7 +73,10 @@ public:
     uint64_t reset(InstancerInput input, SettleInput settle = {});
     // An edit: `types` replaces the settings; their fields changed only inside `dirty`. Requires a
     // previous reset(). Returns the generation.
-    uint64_t submit(std::vector<InstanceTypeSettings> types, std::vector<Bounds> dirty);
+    // `support` (optional; what the instances rest on changed: an environmental object moved): the new
+    // settling input, and every result is settled again with it (its tile and models as for reset()).
+    uint64_t submit(std::vector<InstanceTypeSettings> types, std::vector<Bounds> dirty,
+                    std::optional<SettleInput> support = std::nullopt);
 
     // Non-blocking: true and *out filled when a result newer than the previous poll is ready.
     bool poll(LiveResult* out);
@@ -96,6 +100,7 @@ private:
         SettleInput settle;    // full
         std::vector<InstanceTypeSettings> types;
         std::vector<Bounds> dirty;
+        std::optional<SettleInput> support;  // update: settle everything again with this
         uint64_t generation = 0;
     };
     void run();

@@ -1,0 +1,250 @@
+// Editing the environmental objects through the document (issue 13): a moved bench, a changed global field
+// and a footprint trail are undo steps that give back the exact environment, effects and instances; the
+// scattered leaves and the settling follow each edit, live, equal to a fresh full run; the edits are saved
+// and recovered after a crash; a bad edit is refused and changes nothing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "core/hash.h"
+#include "env/env_effects.h"
+#include "env/env_json.h"
+#include "env/env_outputs.h"
+#include "instancer/instantiator.h"
+#include "instancer/settling.h"
+#include "scene/document.h"
+#include "scene/env_commands.h"
+#include "scene_test_util.h"
+
+namespace ug {
+namespace {
+
+namespace fs = std::filesystem;
+
+class TempDir : public test::TempDir {
+public:
+    TempDir() : test::TempDir("ug_document_env_test_") {}
+};
+
+// A 4 m square: oak leaves scattered by the environment, settling on, a bench (it takes leaves) and a bus
+// shelter (it keeps snow and leaves off what is under it), global snow, leaves and cold.
+std::string projectJson() {
+    const std::string assets = (fs::path(UG_SOURCE_DIR) / "assets").string();
+    return R"({"format": "undergrowth-project", "format_version": 3, "name": "env_doc_test",
+ "ghost_tile": {"tile_size_m": 0.5, "delta_m": -0.002, "seed": 5},
+ "extent": {"min": [0, 0, -0.5], "max": [4, 4, 3]},
+ "instantiation": {"seed": 1, "chunk_size_m": 8},
+ "settling": {"enabled": true, "passes": 8, "max_drop_m": 0.1},
+ "terrain": {"procedural": {"origin": [0, 0], "cell_size_m": 0.25, "width": 17, "height": 17, "seed": 3,
+                            "octaves": 1, "amplitude_m": 0.0, "feature_size_m": 30}},
+ "detail_types": [
+  {"name": "leaf", "model": {"mesh": ")" + assets + R"(/models/leaf_oak_dry.glb", "anchors": {"mode": "center"}},
+   "candidates": {"count": 200, "scale": [0.8, 1.25]},
+   "scatter": {"channel": "leaves", "thickness_m": 0.05}}],
+ "environment": {
+  "types": [
+   {"name": "bench", "mesh": ")" + assets + R"(/env_models/bench.glb", "receives": ["leaves"],
+    "snow": {"target_edge_m": 0.04}, "icicles": {"spacing_m": 0.08}},
+   {"name": "bus_shelter", "mesh": ")" + assets + R"(/env_models/bus_shelter.glb", "snow": {"target_edge_m": 0.08}}],
+  "tree": [{"object": "bench", "at": [1.0, 1.0, 0]}, {"object": "bus_shelter", "at": [2.6, 2.6, 0]}],
+  "global_fields": [{"channel": "snow", "value": 0.1}, {"channel": "leaves", "value": 1.0},
+                    {"channel": "icicles", "value": 1.0}, {"channel": "temperature", "value": -3.0}],
+  "terrain": {"snow": true, "snow_cell_m": 0.1, "receives": ["leaves"]}}})";
+}
+
+std::unique_ptr<Document> openProject(const TempDir& dir, DocumentOptions* options) {
+    const fs::path path = dir.path() / "street.json";
+    std::ofstream(path) << projectJson();
+    *options = DocumentOptions{.cache_dir = (dir.path() / "cache").string(),
+                               .config_dir = (dir.path() / "config").string(),
+                               .threads = 2,
+                               .autosave_interval_s = 10.0};
+    std::string error;
+    std::unique_ptr<Document> doc = Document::open(path.string(), *options, &error);
+    EXPECT_TRUE(doc) << error;
+    return doc;
+}
+
+void mixBytes(uint64_t* h, const void* data, size_t bytes) {
+    const unsigned char* p = static_cast<const unsigned char*>(data);
+    for (size_t i = 0; i < bytes; i += 8) {
+        uint64_t word = 0;
+        std::memcpy(&word, p + i, std::min<size_t>(8, bytes - i));
+        *h = hashWords(*h, word);
+    }
+}
+
+// The environment's geometry as the outputs take it (every mesh, vertex and placement, bit for bit),
+// computed afresh from the document's compiled environment.
+uint64_t effectsDigest(const Document& doc) {
+    EnvEffects fx;
+    std::string error;
+    EXPECT_TRUE(computeEnvEffects(*doc.environment(), {.threads = 2}, &fx, &error)) << error;
+    uint64_t h = 1;
+    for (const MeshInstances& m : envMeshInstances(*doc.environment(), fx)) {
+        mixBytes(&h, m.name.data(), m.name.size());
+        mixBytes(&h, m.mesh->positions.data(), m.mesh->positions.size() * sizeof(glm::vec3));
+        mixBytes(&h, m.mesh->indices.data(), m.mesh->indices.size() * sizeof(uint32_t));
+        for (const InstanceTransform& t : m.instances) mixBytes(&h, &t, sizeof t);
+    }
+    return h;
+}
+
+std::string environmentText(const Document& doc) { return environmentToJson(doc.project().environment).dump(); }
+
+struct Settled {
+    InstanceStore store;
+    SettledDrops drops;
+};
+
+// The live result after the edits, checked against an independent full instantiation and settling of
+// what the document holds now.
+Settled settledLive(Document& doc) {
+    const LiveResult r = doc.waitForResult();
+    EXPECT_TRUE(r.ok) << r.error;
+    Instantiator inst;
+    std::string error;
+    EXPECT_TRUE(inst.setInput(doc.instancerInput(), &error)) << error;
+    EXPECT_TRUE(inst.instantiateAll({.threads = 2}, nullptr, &error)) << error;
+    EXPECT_TRUE(*r.store == inst.store()) << "the live instances differ from a full run";
+    SettledDrops full_drops;
+    settleAll(doc.settleInputOf(), inst.store(), 2, &full_drops);
+    EXPECT_TRUE(r.drops && *r.drops == full_drops) << "the live settling differs from settling everything";
+    return Settled{*r.store, r.drops ? *r.drops : SettledDrops()};
+}
+
+TEST(DocumentEnvironment, EditsFollowLiveAndUndoGivesBackTheExactEffectsAndInstances) {
+    TempDir dir;
+    DocumentOptions options;
+    auto doc = openProject(dir, &options);
+    ASSERT_TRUE(doc);
+    std::string error;
+    std::vector<std::string> texts{environmentText(*doc)};
+    std::vector<uint64_t> effects{effectsDigest(*doc)};
+    std::vector<Settled> states{settledLive(*doc)};
+    ASSERT_GT(states[0].store.instanceCount(), 20u) << "the leaves scatter";
+
+    // 1. Move the bench 0.8 m along x (a drag: three stamps, one step).
+    const uint64_t generation = doc->environmentGeneration();
+    doc->beginStroke("Move object");
+    for (int k = 1; k <= 3; ++k) {
+        EnvironmentDesc env = doc->project().environment;
+        envNodeAt(&env, {0})->transform.translation.x = 1.0f + 0.8f * float(k) / 3.0f;
+        ASSERT_TRUE(doc->setEnvironment(env, "Move object", &error)) << error;
+    }
+    doc->endStroke();
+    EXPECT_GT(doc->environmentGeneration(), generation);
+    texts.push_back(environmentText(*doc));
+    effects.push_back(effectsDigest(*doc));
+    states.push_back(settledLive(*doc));
+
+    // 2. Warmer and wetter everywhere: the icicles go.
+    EnvironmentDesc warm = doc->project().environment;
+    warm.global_fields[3].value = 4.0f;
+    ASSERT_TRUE(doc->setEnvironment(warm, "Temperature", &error)) << error;
+    texts.push_back(environmentText(*doc));
+    effects.push_back(effectsDigest(*doc));
+    states.push_back(settledLive(*doc));
+
+    // 3. A footprint trail across the open snow and the leaves.
+    doc->beginStroke("Footprints");
+    for (int k = 0; k < 5; ++k) {
+        EnvironmentDesc env = doc->project().environment;
+        env.global_fields.push_back(footprintField({0.4f + 0.35f * float(k), 3.2f, 0.0f}));
+        ASSERT_TRUE(doc->setEnvironment(env, "Footprints", &error)) << error;
+    }
+    doc->endStroke();
+    texts.push_back(environmentText(*doc));
+    effects.push_back(effectsDigest(*doc));
+    states.push_back(settledLive(*doc));
+
+    for (size_t k = 1; k < states.size(); ++k)
+        EXPECT_NE(effects[k], effects[k - 1]) << "edit " << k << " left the effects as they were";
+    // The leaves follow the bench (they rest on its seat) and the footprints (occlusion); not the warmth.
+    for (size_t k : {1, 3})
+        EXPECT_FALSE(states[k].store == states[k - 1].store && states[k].drops == states[k - 1].drops)
+            << "edit " << k << " left the leaves as they were";
+    EXPECT_EQ(doc->undoName(), "Footprints");
+    for (size_t k = states.size() - 1; k-- > 0;) {
+        ASSERT_TRUE(doc->undo());
+        EXPECT_EQ(environmentText(*doc), texts[k]) << "undo to state " << k;
+        EXPECT_EQ(effectsDigest(*doc), effects[k]) << "undo to state " << k;
+        const Settled s = settledLive(*doc);
+        EXPECT_TRUE(s.store == states[k].store && s.drops == states[k].drops) << "undo to state " << k;
+    }
+    EXPECT_FALSE(doc->isDirty());
+    for (size_t k = 1; k < states.size(); ++k) {
+        ASSERT_TRUE(doc->redo());
+        EXPECT_EQ(effectsDigest(*doc), effects[k]) << "redo to state " << k;
+    }
+    EXPECT_TRUE(settledLive(*doc).store == states.back().store);
+}
+
+TEST(DocumentEnvironment, ABadEditIsRefusedWithItsPlaceAndChangesNothing) {
+    TempDir dir;
+    DocumentOptions options;
+    auto doc = openProject(dir, &options);
+    ASSERT_TRUE(doc);
+    const std::string before = environmentText(*doc);
+    const uint64_t generation = doc->environmentGeneration();
+    std::string error;
+    EnvironmentDesc bad = doc->project().environment;
+    bad.roots[1].transform.scale = -1.0f;
+    EXPECT_FALSE(doc->setEnvironment(bad, "Scale", &error));
+    EXPECT_NE(error.find("scale"), std::string::npos) << error;
+    bad = doc->project().environment;
+    bad.roots[0].type = 7;  // no such type
+    EXPECT_FALSE(doc->setEnvironment(bad, "Type", &error));
+    EXPECT_NE(error.find("/environment/tree/0"), std::string::npos) << error;
+    bad = doc->project().environment;
+    bad.global_fields[0].value = std::nanf("");
+    EXPECT_FALSE(doc->setEnvironment(bad, "NaN", &error));
+    EXPECT_NE(error.find("/environment/global_fields/0"), std::string::npos) << error;
+    bad = doc->project().environment;
+    bad.types.pop_back();  // the library is not edited here
+    EXPECT_FALSE(doc->setEnvironment(bad, "Types", &error));
+    EXPECT_EQ(environmentText(*doc), before);
+    EXPECT_EQ(doc->environmentGeneration(), generation);
+    EXPECT_FALSE(doc->canUndo());
+    EXPECT_FALSE(doc->isDirty());
+}
+
+TEST(DocumentEnvironment, EditsAreSavedAndRecoveredAfterACrash) {
+    TempDir dir;
+    DocumentOptions options;
+    std::string error, moved;
+    uint64_t moved_effects = 0;
+    {
+        auto doc = openProject(dir, &options);
+        ASSERT_TRUE(doc);
+        EnvironmentDesc env = doc->project().environment;
+        env.roots[1].transform.yaw_deg = 35.0f;
+        env.global_fields.push_back(footprintField({0.5f, 3.0f, 0.0f}));
+        ASSERT_TRUE(doc->setEnvironment(env, "Rotate object", &error)) << error;
+        moved = environmentText(*doc);
+        moved_effects = effectsDigest(*doc);
+        ASSERT_TRUE(doc->autosave(&error)) << error;
+        doc->waitForResult();
+        // The crash: no save, no close.
+    }
+    const std::string path = (dir.path() / "street.json").string();
+    std::unique_ptr<Document> doc = Document::recover(path, options, &error);
+    ASSERT_TRUE(doc) << error;
+    EXPECT_EQ(environmentText(*doc), moved);
+    EXPECT_EQ(effectsDigest(*doc), moved_effects);
+    ASSERT_TRUE(doc->save(&error)) << error;
+    doc->close();
+    doc.reset();
+    auto reopened = Document::open(path, options, &error);
+    ASSERT_TRUE(reopened) << error;
+    EXPECT_EQ(environmentText(*reopened), moved);
+    EXPECT_EQ(effectsDigest(*reopened), moved_effects);
+}
+
+}  // namespace
+}  // namespace ug
