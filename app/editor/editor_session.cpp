@@ -188,6 +188,7 @@ void EditorSession::fillDocumentResult() {
                              {"strands_settled", strandsSettled()},
                              {"last", strandsJson()}};
     }
+    if (live_environment) result->environment = environmentJson();
     if (store) {
         result->instances = store->instanceCount();
         result->instances_per_type = perTypeCounts(*store, d.ghostTile().candidates);

@@ -9,6 +9,7 @@
 //                         keyboard given back to the viewport, panels, the mouse tools and brush ring
 //   session_replay.cpp    replay scripts (replay.h): actions started, advanced and recorded
 //   session_strands.cpp   the particle systems' strands re-grown after their edits (live_strands.h)
+//   session_environment.cpp  the environmental effects computed again after their edits (live_environment.h)
 //   session_render.cpp    the frame's render, overlays and screenshots; the after-frame bookkeeping
 //   session_stats.h, background_jobs.h   free helpers: action statistics, finished jobs' outcomes
 // Internal to app/editor: nothing outside viewer.cpp constructs one.
@@ -29,6 +30,8 @@
 #include "editor/export_job.h"
 #include "editor/gl/renderer.h"
 #include "editor/gl/window.h"
+#include "editor/env_tools.h"
+#include "editor/live_environment.h"
 #include "editor/live_strands.h"
 #include "editor/markers.h"
 #include "editor/orbit_camera.h"
@@ -123,6 +126,22 @@ private:
     void syncStrands();
     bool strandsSettled() const;  // the strands on screen are the document's systems'
     json strandsJson() const;     // the last growth, for the replay's record
+    // ---- session_environment.cpp ----
+    // The same for the environment: the compiled scene submitted after an edit, the finished snow and
+    // icicles swapped into the static meshes.
+    void startEnvironment();
+    void syncEnvironment();
+    bool environmentSettled() const;  // the effects on screen are the document's environment's
+    json environmentJson() const;     // the tree, fields and last computation, for the statistics
+    // The strands and the effects are the document's (part of "settled").
+    bool sideJobsSettled() const { return strandsSettled() && environmentSettled(); }
+    // Ends every drag in the view (the document is about to change under it: undo, open, delete).
+    void endViewDrags() {
+        move_drag.end();
+        attractor_drag.end();
+        env_drag.end();
+        footprint_drag.end();
+    }
     // ---- session_input.cpp ----
     void drawUi();                   // navigation, panels
     void mouseTools();
@@ -139,6 +158,9 @@ private:
     size_t replayType(const std::string& name);
     Ray strokeRay(const ReplayAction& action, glm::vec2 xy) const;
     void finishReplayAction();       // the action's record, once its result is settled and on screen
+    // ---- session_env_replay.cpp ----
+    bool startEnvReplayAction(const ReplayAction& action);  // env_add, env_move, env_remove, env_global, footprints
+    void stepEnvReplay();            // the next frame of an env_move drag or a footprints walk
     // ---- session_render.cpp ----
     bool renderFrame();              // false: a scripted screenshot failed, or a live result
     bool afterFrame();               // false: the run is over
@@ -190,6 +212,14 @@ private:
     LiveStrandsResult last_strands;             // its statistics (meshes moved out)
     AttractorDrag attractor_drag;               // the Select tool on an attractor (the Particles window open)
     ParticlesPanelState particles_panel;
+    // ---- environmental objects: effects computed again off the UI thread ----
+    std::unique_ptr<LiveEnvironment> live_environment;  // null: the project has no environmental-object types
+    uint64_t environment_submitted = 0;                 // the environmentGeneration() last submitted
+    uint64_t environment_shown = 0;                     // and the one on screen
+    LiveEnvironmentResult last_environment;             // its statistics (meshes moved out)
+    EnvObjectDrag env_drag;                             // the Select tool on an object (the window open)
+    FootprintDrag footprint_drag;                       // the footprint brush
+    EnvironmentPanelState environment_panel;
     // ---- outliner, instantiation and export panels, New / Open ----
     std::vector<uint8_t> type_visible;  // view state, not a document edit: never undone, never saved
     InstantiationView inst_view;

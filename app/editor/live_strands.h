@@ -6,15 +6,12 @@
 // newest finished meshes: the session swaps them into the scene's static meshes.
 #pragma once
 
-#include <condition_variable>
 #include <cstdint>
 #include <memory>
-#include <mutex>
-#include <optional>
 #include <string>
-#include <thread>
 #include <vector>
 
+#include "editor/latest_worker.h"
 #include "io/mesh_instances.h"
 #include "particles/strand_growth.h"
 #include "scene/edit_commands.h"
@@ -33,33 +30,29 @@ struct LiveStrandsResult {
 class LiveStrands {
 public:
     explicit LiveStrands(int threads);
-    ~LiveStrands();  // waits for a growth in progress
+    ~LiveStrands() = default;  // waits for a growth in progress
     LiveStrands(const LiveStrands&) = delete;
     LiveStrands& operator=(const LiveStrands&) = delete;
 
     // Grow `systems` (the document's, never changed in place) next; replaces a submission not yet started.
-    void submit(ParticleSystems systems, uint64_t generation);
+    void submit(ParticleSystems systems, uint64_t generation) { worker_.submit({std::move(systems), generation}); }
     // The newest finished result not handed over yet.
-    bool poll(LiveStrandsResult* out);
+    bool poll(LiveStrandsResult* out) { return worker_.poll(out); }
     // Whether a submission is waiting or growing.
-    bool busy() const;
+    bool busy() const { return worker_.busy(); }
     // Blocks until nothing is waiting or growing (tests, scripted runs).
-    void waitIdle();
+    void waitIdle() { worker_.waitIdle(); }
 
 private:
-    void work();
+    struct Submission {
+        ParticleSystems systems;
+        uint64_t generation = 0;
+    };
     LiveStrandsResult grow(const std::vector<ParticleSystemFile>& systems, uint64_t generation);
 
     const int threads_;
     std::vector<std::unique_ptr<StrandRegrower>> regrowers_;  // worker only: one per system index
-    mutable std::mutex mutex_;
-    std::condition_variable wake_, idle_;
-    ParticleSystems pending_;
-    uint64_t pending_generation_ = 0;
-    bool growing_ = false;
-    bool stop_ = false;
-    std::optional<LiveStrandsResult> done_;
-    std::thread thread_;  // last: started once the rest is ready
+    LatestWorker<Submission, LiveStrandsResult> worker_;       // last: started once the rest is ready
 };
 
 }  // namespace ug::editor

@@ -67,6 +67,7 @@ void drawMainMenu(const MenuView& view, UiRequests* requests, ToolState* tools, 
         ImGui::MenuItem("Inspector", nullptr, &windows->inspector);
         ImGui::MenuItem("Ghost Tile", nullptr, &windows->ghost_tile);
         ImGui::MenuItem("Particles", nullptr, &windows->particles);
+        ImGui::MenuItem("Environment", nullptr, &windows->environment);
         ImGui::MenuItem("Render", nullptr, &windows->render);
         ImGui::MenuItem("Outliner", nullptr, &windows->outliner);
         ImGui::MenuItem("Instantiation", nullptr, &windows->instantiation);

@@ -92,6 +92,7 @@ struct WindowToggles {
     bool instantiation = true;
     bool export_panel = false;  // opened by File > Export glTF...
     bool particles = false;     // opened by Window > Particles
+    bool environment = false;   // opened by Window > Environment
 };
 
 // The Render panel's settings: LOD switch distances and what is drawn over the scene.
@@ -201,6 +202,24 @@ struct ParticlesPanelState {
 // The project's particle systems: generators, attractors (with a(t)), cutters and the walk of the selected
 // one, edited through Document::setParticleSystem (a drag is one undo step); refusals go to *message.
 void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* message, bool* open);
+
+// ---- environment panel (environment_panel.cpp) ----
+struct EnvironmentPanelState {
+    size_t selected = SIZE_MAX;  // a top-level node of the tree (SIZE_MAX: none)
+    bool footprints = false;     // the footprint brush: a left drag on the ground walks footprints
+    bool computing = false;      // the effects are being computed in the background
+    std::string status;          // the last computation: snow, icicles, time
+    std::string last_error;      // the last refused edit
+    int add_type = 0;            // the palette's choice
+    glm::vec3 place_at{0.0f};    // where Add places an object: the ground under the view's centre
+    // The copy the widgets edit (as for the Particles window).
+    EnvironmentDesc editing;
+    const Document* editing_doc = nullptr;
+};
+// The environmental objects: the global fields (snow depth, temperature, humidity, ...) live, the tree's
+// top level with the selected node's transform, add from the type palette, duplicate, delete, and the
+// footprint brush's switch; every edit through Document::setEnvironment (a drag is one undo step).
+void drawEnvironmentPanel(Document* doc, EnvironmentPanelState* state, std::string* message, bool* open);
 
 // LOD thresholds (pixels), overlay toggles and the renderer's numbers (from the Statistics view).
 void drawRenderPanel(const StatisticsView& stats, RenderSettings* settings, bool* open);

@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "editor/panel_edit.h"
 #include "editor/panels.h"
 
 namespace ug::editor {
@@ -22,23 +23,6 @@ const char* const kAttractorKinds[] = {"point", "segment", "sphere"};
 const char* const kGeneratorKinds[] = {"rectangle", "sphere", "box", "mesh"};
 const char* const kCutterKinds[] = {"plane", "sphere", "box"};
 const char* const kActionKinds[] = {"stop", "kill", "split", "countdown"};
-
-// What the widgets of one frame did to the edited copy.
-struct PanelEdit {
-    bool changed = false;      // the copy differs: apply it
-    bool drag_started = false; // a drag began this frame: open a stroke before applying
-    bool drag_ended = false;   // a drag ended: close the stroke after
-};
-
-// A drag widget: live, inside a stroke.
-void dragged(bool changed, PanelEdit* e) {
-    e->changed |= changed;
-    e->drag_started |= ImGui::IsItemActivated();
-    e->drag_ended |= ImGui::IsItemDeactivated();
-}
-
-// A typed field or a button: applied once, when finished.
-void finished(PanelEdit* e) { e->changed |= ImGui::IsItemDeactivatedAfterEdit(); }
 
 void editGenerator(ParticleGenerator* g, PanelEdit* e) {
     ImGui::Text("%s", kGeneratorKinds[size_t(g->kind)]);

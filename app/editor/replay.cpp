@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "env/env_desc.h"
 #include "scene/project.h"
 
 namespace ug::editor {
@@ -52,6 +53,16 @@ const char* replayKindName(ReplayKind kind) {
             return "set_visible";
         case ReplayKind::SetAttractor:
             return "set_attractor";
+        case ReplayKind::EnvAdd:
+            return "env_add";
+        case ReplayKind::EnvMove:
+            return "env_move";
+        case ReplayKind::EnvRemove:
+            return "env_remove";
+        case ReplayKind::EnvGlobal:
+            return "env_global";
+        case ReplayKind::Footprints:
+            return "footprints";
     }
     return "?";
 }
@@ -141,6 +152,16 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
                 r.influence_m = a.value("influence", NAN);
                 r.charge = a.value("charge", NAN);
             }
+            if (r.kind == ReplayKind::EnvAdd || r.kind == ReplayKind::EnvMove) {
+                const json& at = a.at(r.kind == ReplayKind::EnvAdd ? "at" : "to");
+                r.at_xy = glm::vec2(at.at(0).get<float>(), at.at(1).get<float>());
+            }
+            if (r.kind == ReplayKind::EnvAdd) r.type = a.at("type").get<std::string>();
+            if (r.kind == ReplayKind::EnvMove || r.kind == ReplayKind::EnvRemove) r.node = a.at("node").get<size_t>();
+            if (r.kind == ReplayKind::EnvGlobal) {
+                r.channel = a.at("channel").get<std::string>();
+                r.value = a.at("value").get<float>();
+            }
             if (r.kind == ReplayKind::SetVisible) {
                 r.type = a.at("type").get<std::string>();
                 r.visible = a.at("visible").get<bool>();
@@ -165,6 +186,13 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
                 return fail("radius, strength and falloff must be > 0");
             if (r.steps < 1 || r.steps > 100000) return fail("steps must be in [1, 100000]");
         }
+        if (r.kind == ReplayKind::Footprints && r.points.empty()) return fail("footprints need \"points\" [[x, y], ...]");
+        if (r.kind == ReplayKind::EnvGlobal) {
+            EnvChannel c;
+            if (!envChannelFromName(r.channel, &c)) return fail("unknown channel '" + r.channel + "'");
+        }
+        if (r.kind == ReplayKind::EnvMove && (r.steps < 1 || r.steps > 100000))
+            return fail("steps must be in [1, 100000]");
         if (r.kind == ReplayKind::Move) {
             if (r.points.size() != 2) return fail("a move needs \"from\" [x, y] and \"to\" [x, y]");
             if (r.steps < 1 || r.steps > 100000) return fail("steps must be in [1, 100000]");

@@ -35,6 +35,17 @@
 //     charge replaces the keys by one), one undo step; ends when the strands re-grown for it are on
 //     screen; its statistics add "particles": {"ok", "error"?, "strands", "incremental", "recomputed",
 //     "reused", "grow_seconds"}
+//    {"action": "env_add", "type": "bench", "at": [x, y], "yaw_deg": 90},   the Environment window's Add:
+//     the type on the ground at (x, y), one undo step
+//    {"action": "env_move", "node": 3, "to": [x, y], "steps": 10},   Select-drag the top-level node over the
+//     ground (its height above the ground kept), one step a frame, one undo step
+//    {"action": "env_remove", "node": 3},                         Delete, one undo step
+//    {"action": "env_global", "channel": "snow", "value": 0.2},   a global field's value (added when the
+//     channel has none), one undo step
+//    {"action": "footprints", "points": [[x, y], ...]},           the footprint brush walked along the
+//     polyline, one footprint step a frame, one undo step
+//     The env_ actions and footprints end when the effects computed for them are on screen; their
+//     statistics add "environment" (the tree, the fields, the last computation's time and region).
 //    {"action": "wait_idle"}]
 //
 // "frame" (optional) is the earliest frame, counted from the first frame that shows the document's
@@ -77,9 +88,14 @@ enum class ReplayKind {
     Open,
     New,
     SetVisible,
-    SetAttractor
+    SetAttractor,
+    EnvAdd,
+    EnvMove,
+    EnvRemove,
+    EnvGlobal,
+    Footprints
 };
-constexpr int kReplayKindCount = int(ReplayKind::SetAttractor) + 1;
+constexpr int kReplayKindCount = int(ReplayKind::Footprints) + 1;
 const char* replayKindName(ReplayKind kind);  // the "action" string
 
 struct ReplayAction {
@@ -121,6 +137,11 @@ struct ReplayAction {
     bool has_a = false;
     glm::vec3 a_m{0.0f};
     float influence_m = NAN, charge = NAN;  // NaN: keep
+    // env_add (type: `type`, turn: yaw_deg), env_move, env_remove, env_global
+    size_t node = 0;
+    glm::vec2 at_xy{0.0f};  // env_add: "at"; env_move: "to"
+    std::string channel;    // env_global
+    float value = 0.0f;
 };
 
 // set_instancing: applies the keys the action gives ("strategy", "layer", "orientation", "size") to *desc;

@@ -81,20 +81,20 @@ bool EditorSession::applyFinishedWork() {
     ghost_panel.progress = ghost_job ? ghost_job->progress() : 0.0f;
     if (!takeLiveResult()) return false;
     syncStrands();
+    syncEnvironment();
     if (export_job && export_job->finished()) {
         export_record = finishExportJob(*export_job, &export_result, &view.last_message, &messages);
         export_job.reset();
     }
     settled = scene && have_result && !scene->doc->live().pending() &&
-              shown_generation == scene->doc->live().generation() && strandsSettled();
+              shown_generation == scene->doc->live().generation() && sideJobsSettled();
     return true;
 }
 
 void EditorSession::adoptLoadedDocument() {
     // Only now does the previous document go (startLoad kept it open while this one loaded).
     stroke.end();
-    move_drag.end();
-    attractor_drag.end();
+    endViewDrags();
     renderer->clearScene();
     if (scene) scene->doc->close();
     store.reset();
@@ -113,6 +113,7 @@ void EditorSession::adoptLoadedDocument() {
                        d.ghostTile().candidates, d.ghostTile().settings.tile_size_m, &scene->terrain_material);
     renderer->setStaticMeshes(&scene->static_meshes);  // environmental objects, snow, icicles, strands
     startStrands();
+    startEnvironment();
     // Every document opens framed, as on startup (a camera left where the last scene was would show
     // nothing of this one); the first result frames it again by the cells that fill.
     camera_moved = false;
@@ -137,8 +138,7 @@ void EditorSession::handleEditRequests() {
         std::string op_error;
         if (requests.undo || requests.redo) {
             stroke.end();
-            move_drag.end();
-            attractor_drag.end();
+            endViewDrags();
         }
         if (requests.undo) doc->undo();
         if (requests.redo) doc->redo();
@@ -210,8 +210,7 @@ void EditorSession::handleFileRequests() {
             startNew();
         } else {
             stroke.end();
-            move_drag.end();
-            attractor_drag.end();
+            endViewDrags();
             requestOpen(requests.open_path, RecoverChoice::Ask);
         }
     }
@@ -258,8 +257,7 @@ void EditorSession::handleDialogs() {
         if (a != DialogAnswer::Pending) {
             if (proceed) {
                 stroke.end();
-                move_drag.end();
-                attractor_drag.end();
+                endViewDrags();
                 if (prompt == Prompt::Quit) {
                     if (doc) doc->close();  // removes the autosave: the user chose
                     quitting = true;

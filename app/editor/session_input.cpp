@@ -76,6 +76,10 @@ void EditorSession::drawUi() {
         std::string particles_message;
         drawParticlesPanel(doc, &particles_panel, &particles_message, &windows.particles);
         if (!particles_message.empty()) messages.push_back(particles_message);
+        environment_panel.place_at = glm::vec3(glm::vec2(camera.target), groundZ(glm::vec2(camera.target)));
+        std::string environment_message;
+        drawEnvironmentPanel(doc, &environment_panel, &environment_message, &windows.environment);
+        if (!environment_message.empty()) messages.push_back(environment_message);
     }
     if (doc && ghost_panel.build && !ghost_job) {
         std::string job_error;
@@ -126,18 +130,37 @@ void EditorSession::mouseTools() {
                                io.MousePos.y * io.DisplayFramebufferScale.y);
         const Ray ray = rayThroughPixel(view_proj, float(fb_w), float(fb_h), cursor);
         const bool mouse_free = !io.WantCaptureMouse && !io.KeyAlt;
-        if (tools.tool == ToolKind::Select) {
+        if (windows.environment && environment_panel.footprints) {
+            // The footprint brush takes the left button from the tool while it is on.
+            const SurfaceHit ground = pickGround(*doc, ray);
+            std::string walk_error;
+            bool ok = true;
+            if (ground.hit && mouse_free && ImGui::IsMouseClicked(ImGuiMouseButton_Left))
+                ok = footprint_drag.begin(doc, ground.point_m, &walk_error);
+            else if (ground.hit && footprint_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left))
+                ok = footprint_drag.drag(ground.point_m, &walk_error);
+            if (!ok) messages.push_back(walk_error);
+        } else if (tools.tool == ToolKind::Select) {
             // Click picks; dragging the picked primitive moves it (Shift: up and down). With the Particles
-            // window open, its system's attractors are picked first.
+            // window open, its system's attractors are picked first; with the Environment window open, its
+            // objects next.
             if (mouse_free && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
                 const size_t attractor =
                     windows.particles ? pickAttractor(*doc, particles_panel.selected, view_proj, float(fb_w),
                                                       float(fb_h), cursor, 20.0f)
                                       : kNoAttractor;
+                const size_t env_node =
+                    attractor == kNoAttractor && windows.environment
+                        ? pickEnvNode(*doc, view_proj, float(fb_w), float(fb_h), cursor, 25.0f)
+                        : kNoEnvNode;
                 particles_panel.selected_attractor = attractor;
+                if (env_node != kNoEnvNode) environment_panel.selected = env_node;
                 if (attractor != kNoAttractor) {
                     tools.selected = 0;
                     attractor_drag.begin(doc, particles_panel.selected, attractor, ray);
+                } else if (env_node != kNoEnvNode) {
+                    tools.selected = 0;
+                    env_drag.begin(doc, env_node, ray);
                 } else {
                     tools.selected = pickPrimitive(*doc, view_proj, float(fb_w), float(fb_h), cursor, 20.0f);
                     if (tools.selected != 0) move_drag.begin(doc, tools.selected, ray);
@@ -145,6 +168,9 @@ void EditorSession::mouseTools() {
             } else if (attractor_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
                 std::string move_error;
                 if (!attractor_drag.drag(ray, io.KeyShift, &move_error)) messages.push_back(move_error);
+            } else if (env_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+                std::string move_error;
+                if (!env_drag.drag(ray, &move_error)) messages.push_back(move_error);
             } else if (move_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
                 const uint64_t generation = doc->live().generation();
                 std::string move_error;
@@ -185,6 +211,8 @@ void EditorSession::mouseTools() {
         }
         if (move_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) move_drag.end();
         if (attractor_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) attractor_drag.end();
+        if (env_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) env_drag.end();
+        if (footprint_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) footprint_drag.end();
     }
 
 }

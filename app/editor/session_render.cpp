@@ -140,7 +140,7 @@ bool EditorSession::afterFrame() {
         }
     }
     const bool settled_now = scene && have_result && !scene->doc->live().pending() &&
-                             shown_generation == scene->doc->live().generation() && strandsSettled();
+                             shown_generation == scene->doc->live().generation() && sideJobsSettled();
     // An open, a new document or an export finishes when its background work did (and, for a document
     // that loaded, once its first result is on screen).
     const bool export_waiting = replay.finishing && replay.index < options.replay.size() &&

@@ -58,6 +58,8 @@ bool EditorSession::stepReplay() {
                 move_drag.end();
                 replay.finishing = true;
             }
+        } else if (replay.started && (env_drag.active() || footprint_drag.active())) {
+            stepEnvReplay();
         } else if (replay.started && a.kind == ReplayKind::GhostTile) {
             replay.finishing = !ghost_job;  // the job was applied or reported at this frame's start
         } else if (replay.started && stroke.active()) {
@@ -303,6 +305,12 @@ bool EditorSession::runReplayAction(const ReplayAction& a) {
             if (!std::isnan(a.pitch_deg)) camera.pitch_rad = glm::radians(a.pitch_deg);
             camera_moved = true;
             break;
+        case ReplayKind::EnvAdd:
+        case ReplayKind::EnvMove:
+        case ReplayKind::EnvRemove:
+        case ReplayKind::EnvGlobal:
+        case ReplayKind::Footprints:
+            return startEnvReplayAction(a);  // finishing set there (a drag or a walk runs over frames)
         default:
             break;
     }
@@ -324,6 +332,9 @@ void EditorSession::finishReplayAction() {
     if (kind == ReplayKind::Export) r.update(export_record);
     if (kind == ReplayKind::SetVisible) r["drawn_instances_after"] = renderer->stats().instances_drawn;
     if (kind == ReplayKind::SetAttractor) r["particles"] = strandsJson();
+    if (live_environment && (kind == ReplayKind::EnvAdd || kind == ReplayKind::EnvMove || kind == ReplayKind::EnvRemove ||
+                             kind == ReplayKind::EnvGlobal || kind == ReplayKind::Footprints))
+        r["environment"] = environmentJson();
     if (kind == ReplayKind::View) {
         r["eye"] = vec3Json(camera.eye());
         r["target"] = vec3Json(camera.target);

@@ -119,6 +119,7 @@ json viewerStatsJson(const ViewerResult& r, const LodSettings& lod) {
         {"messages", r.messages},
         {"viewport", r.viewport},
         {"particles", r.particles},
+        {"environment", r.environment},
         {"window_title", r.window_title}};
 }
 

@@ -95,6 +95,7 @@ struct ViewerResult {
     // The particle systems as the document holds them ({"systems": [{"name", "attractors": [[x, y, z]]}],
     // "selected_attractor", "strands_settled", "last": the last growth's statistics}); {} without any.
     nlohmann::json particles = nlohmann::json::object();
+    nlohmann::json environment = nlohmann::json::object();  // the environmental objects (none: empty)
     std::string window_title;
 };
 

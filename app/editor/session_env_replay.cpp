@@ -1,0 +1,133 @@
+// Replay actions on the environmental objects (replay.h: env_add, env_move, env_remove, env_global,
+// footprints), through the same code as the Environment window and the view's tools: the drag and the
+// footprint brush on rays straight down, one position a frame, one undo step each.
+#include <cmath>
+
+#include "editor/editor_session.h"
+
+namespace ug::editor {
+
+namespace {
+
+// Points along a polyline every `spacing` metres (and its last point).
+std::vector<glm::vec2> alongPolyline(const std::vector<glm::vec2>& points, float spacing) {
+    std::vector<glm::vec2> out{points.front()};
+    for (size_t i = 1; i < points.size(); ++i) {
+        const glm::vec2 a = points[i - 1], b = points[i];
+        const int n = std::max(1, int(std::ceil(glm::length(b - a) / spacing)));
+        for (int k = 1; k <= n; ++k) out.push_back(a + (b - a) * (float(k) / float(n)));
+    }
+    return out;
+}
+
+}  // namespace
+
+bool EditorSession::startEnvReplayAction(const ReplayAction& a) {
+    windows.environment = true;  // the edits show there, as for the menu
+    if (!live_environment) {
+        *error = std::string(replayKindName(a.kind)) + ": the document has no environmental-object types";
+        return false;
+    }
+    std::string op_error;
+    const EnvironmentDesc& env = doc->project().environment;
+    const bool needs_node = a.kind == ReplayKind::EnvMove || a.kind == ReplayKind::EnvRemove;
+    if (needs_node && a.node >= env.roots.size()) {
+        *error = std::string(replayKindName(a.kind)) + ": no node " + std::to_string(a.node) + " (the tree has " +
+                 std::to_string(env.roots.size()) + " at its top)";
+        return false;
+    }
+    replay.finishing = true;
+    switch (a.kind) {
+        case ReplayKind::EnvAdd: {
+            EnvironmentDesc edited = env;
+            EnvNode node;
+            node.type = uint32_t(std::find_if(env.types.begin(), env.types.end(),
+                                              [&](const EnvTypeDesc& t) { return t.name == a.type; }) -
+                                 env.types.begin());
+            if (node.type >= env.types.size()) {
+                *error = "env_add: no environmental-object type '" + a.type + "'";
+                return false;
+            }
+            node.transform.translation = glm::vec3(a.at_xy, groundZ(a.at_xy));
+            if (!std::isnan(a.yaw_deg)) node.transform.yaw_deg = a.yaw_deg;
+            edited.roots.push_back(std::move(node));
+            replay.record["node"] = edited.roots.size() - 1;
+            replay.record["ok"] = doc->setEnvironment(edited, "Add object", &op_error);
+            environment_panel.selected = edited.roots.size() - 1;
+            break;
+        }
+        case ReplayKind::EnvRemove: {
+            EnvironmentDesc edited = env;
+            edited.roots.erase(edited.roots.begin() + std::ptrdiff_t(a.node));
+            replay.record["ok"] = doc->setEnvironment(edited, "Delete object", &op_error);
+            environment_panel.selected = SIZE_MAX;
+            break;
+        }
+        case ReplayKind::EnvGlobal: {
+            EnvironmentDesc edited = env;
+            EnvChannel channel = EnvChannel::Snow;
+            envChannelFromName(a.channel, &channel);  // checked when the script was read
+            auto it = std::find_if(edited.global_fields.begin(), edited.global_fields.end(),
+                                   [&](const EnvFieldDesc& f) { return f.everywhere && f.channel == channel; });
+            if (it == edited.global_fields.end()) {
+                EnvFieldDesc f;
+                f.channel = channel;
+                f.everywhere = true;
+                it = edited.global_fields.insert(edited.global_fields.end(), f);
+            }
+            it->value = a.value;
+            replay.record["ok"] = doc->setEnvironment(edited, "Global field", &op_error);
+            break;
+        }
+        case ReplayKind::EnvMove: {
+            const glm::vec3 from = env.roots[a.node].transform.translation;
+            environment_panel.selected = a.node;
+            replay.record["from"] = {from.x, from.y, from.z};
+            replay.path.clear();
+            for (int k = 1; k <= a.steps; ++k)
+                replay.path.push_back(glm::mix(glm::vec2(from), a.at_xy, float(k) / float(a.steps)));
+            replay.step = 0;
+            env_drag.begin(doc, a.node, rayDownOnto(*doc, glm::vec2(from)));
+            replay.finishing = false;
+            break;
+        }
+        case ReplayKind::Footprints: {
+            const glm::vec2 start = a.points.front();
+            replay.path = alongPolyline(a.points, 0.5f * kFootprintStrideM);
+            replay.step = 1;
+            replay.finishing = false;
+            if (!footprint_drag.begin(doc, glm::vec3(start, groundZ(start)), &op_error)) replay.finishing = true;
+            break;
+        }
+        default:
+            break;
+    }
+    if (!op_error.empty()) {
+        replay.record["error"] = op_error;
+        messages.push_back(op_error);
+    }
+    return true;
+}
+
+void EditorSession::stepEnvReplay() {
+    std::string op_error;
+    if (replay.step < replay.path.size()) {
+        const glm::vec2 xy = replay.path[replay.step];
+        const bool ok = env_drag.active() ? env_drag.drag(rayDownOnto(*doc, xy), &op_error)
+                                          : footprint_drag.drag(glm::vec3(xy, groundZ(xy)), &op_error);
+        if (!ok) messages.push_back(op_error);
+    }
+    if (++replay.step < replay.path.size()) return;
+    if (env_drag.active()) {
+        const glm::vec3 to = doc->project().environment.roots[env_drag.root()].transform.translation;
+        replay.record["moves"] = env_drag.moves();
+        replay.record["to"] = {to.x, to.y, to.z};
+        env_drag.end();
+    } else {
+        replay.record["footprints"] = footprint_drag.footprints();
+        footprint_drag.end();
+    }
+    replay.finishing = true;
+}
+
+}  // namespace ug::editor

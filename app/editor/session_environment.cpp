@@ -1,0 +1,106 @@
+// The environmental objects in the editor (issue 13): every edit, undo and redo of the environment moves
+// Document::environmentGeneration(); the compiled environment then goes to the LiveEnvironment worker,
+// which updates the snow and icicles only where the edit reached. The newest finished meshes replace the
+// scene's "env/", "snow/" and "icicles/" static meshes at the frame boundary, so the view, the export
+// and the replay's settled state see the same effects. The detail instances (scattered leaves, what
+// rests on a bench) follow through the live instancer (Document::setEnvironment).
+#include <cstdio>
+
+#include "editor/editor_session.h"
+#include "env/env_json.h"
+
+namespace ug::editor {
+
+namespace {
+
+bool isEnvironmentMesh(const MeshInstances& m) {
+    return m.name.rfind("env/", 0) == 0 || m.name.rfind("snow/", 0) == 0 || m.name.rfind("icicles/", 0) == 0;
+}
+
+size_t countObjects(const std::vector<EnvNode>& nodes) {
+    size_t n = 0;
+    for (const EnvNode& node : nodes) n += (node.kind == EnvNodeKind::Object ? 1 : 0) + countObjects(node.children);
+    return n;
+}
+
+}  // namespace
+
+void EditorSession::startEnvironment() {
+    live_environment.reset();
+    last_environment = LiveEnvironmentResult{};
+    environment_panel = EnvironmentPanelState{};
+    footprint_drag = FootprintDrag{};
+    const Document& d = *scene->doc;
+    environment_submitted = environment_shown = d.environmentGeneration();
+    if (d.project().environment.types.empty()) return;  // nothing can be placed
+    live_environment = std::make_unique<LiveEnvironment>(doc_options.threads, d.environment(), scene->env_effects);
+}
+
+void EditorSession::syncEnvironment() {
+    if (!scene || !live_environment) {
+        environment_panel.computing = false;
+        return;
+    }
+    Document& d = *scene->doc;
+    if (d.environmentGeneration() != environment_submitted) {
+        environment_submitted = d.environmentGeneration();
+        live_environment->submit(d.environment(), environment_submitted);
+        // Instances packed from now on pick their look (wet, dry) in the edited environment.
+        scene->looks.environment = d.environment();
+    }
+    LiveEnvironmentResult r;
+    if (!live_environment->poll(&r)) {
+        environment_panel.computing = live_environment->busy();
+        return;
+    }
+    if (r.effects) {
+        std::vector<MeshInstances>& statics = scene->static_meshes;
+        std::erase_if(statics, isEnvironmentMesh);
+        statics.insert(statics.begin(), std::make_move_iterator(r.meshes.begin()), std::make_move_iterator(r.meshes.end()));
+        renderer->setStaticMeshes(&statics);
+        scene->env_effects = r.effects;
+        environment_shown = r.generation;
+    }
+    if (!r.error.empty()) messages.push_back(r.error);
+    char status[160];
+    const EnvEffectsStats& s = r.effects ? r.effects->stats : EnvEffectsStats{};
+    std::snprintf(status, sizeof status, "%llu snow triangles, %llu icicles, in %.0f ms (%s)",
+                  (unsigned long long)s.snow_triangles, (unsigned long long)s.icicles, 1000.0 * r.seconds,
+                  r.dirty_boxes ? "updated where the edit reached" : "nothing changed");
+    environment_panel.status = status;
+    r.meshes.clear();
+    last_environment = std::move(r);
+    environment_panel.computing = live_environment->busy();
+}
+
+bool EditorSession::environmentSettled() const {
+    return !live_environment ||
+           (environment_shown == scene->doc->environmentGeneration() && !live_environment->busy());
+}
+
+nlohmann::json EditorSession::environmentJson() const {
+    const Document& d = *scene->doc;
+    const EnvironmentDesc& env = d.project().environment;
+    size_t local_fields = 0;
+    for (const EnvFieldDesc& f : env.global_fields) local_fields += f.everywhere ? 0 : 1;
+    json j = {{"objects", countObjects(env.roots)},
+              {"roots", env.roots.size()},
+              {"global_fields", env.global_fields.size() - local_fields},
+              {"local_fields", local_fields},
+              {"generation", d.environmentGeneration()},
+              {"settled", environmentSettled()},
+              {"tree", environmentToJson(env)["tree"]}};
+    if (scene->env_effects) {
+        const EnvEffectsStats& s = scene->env_effects->stats;
+        j["snow_triangles"] = s.snow_triangles;
+        j["icicles"] = s.icicles;
+        j["classes_reused"] = s.classes_reused;
+    }
+    j["last"] = {{"ok", last_environment.error.empty()},
+                 {"seconds", last_environment.seconds},
+                 {"dirty_boxes", last_environment.dirty_boxes}};
+    if (!last_environment.error.empty()) j["last"]["error"] = last_environment.error;
+    return j;
+}
+
+}  // namespace ug::editor

@@ -1,0 +1,153 @@
+// The editor's environment tools and live effects (app/editor/env_tools.h, live_environment.h) on a real
+// document: a drag of an object over the ground is one undo step that keeps its height above the ground;
+// the footprint brush leaves one footprint a stride, left and right of the walked line, as one step; the
+// worker's meshes after a burst of coalesced edits are those a full computation makes of the document's
+// environment, bit for bit, and an undo gives back the first ones.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <random>
+
+#include "../engine/env_edit_scene.h"
+#include "editor/env_tools.h"
+#include "editor/live_environment.h"
+#include "env/env_outputs.h"
+#include "scene/document.h"
+
+namespace ug::editor {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct OpenDocument {
+    fs::path dir;
+    std::unique_ptr<Document> doc;
+    OpenDocument() {
+        std::random_device rd;
+        dir = fs::temp_directory_path() / ("ug_live_env_test_" + std::to_string(rd()) + std::to_string(rd()));
+        fs::create_directories(dir);
+        std::ofstream(dir / "street.json") << test::envEditProjectJson();
+        std::string error;
+        doc = Document::open((dir / "street.json").string(),
+                             DocumentOptions{.cache_dir = (dir / "cache").string(), .threads = 2}, &error);
+        EXPECT_TRUE(doc) << error;
+    }
+    ~OpenDocument() {
+        doc.reset();
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+    }
+};
+
+std::vector<MeshInstances> fullMeshes(const Document& doc) {
+    EnvEffects fx;
+    std::string error;
+    EXPECT_TRUE(computeEnvEffects(*doc.environment(), {.threads = 1}, &fx, &error)) << error;
+    return envMeshInstances(*doc.environment(), fx);
+}
+
+void expectSameMeshes(const std::vector<MeshInstances>& a, const std::vector<MeshInstances>& b) {
+    ASSERT_EQ(a.size(), b.size());
+    for (size_t i = 0; i < a.size(); ++i) {
+        EXPECT_EQ(a[i].name, b[i].name);
+        EXPECT_EQ(a[i].mesh->positions, b[i].mesh->positions) << a[i].name;
+        EXPECT_EQ(a[i].mesh->indices, b[i].mesh->indices) << a[i].name;
+        ASSERT_EQ(a[i].instances.size(), b[i].instances.size()) << a[i].name;
+        for (size_t k = 0; k < a[i].instances.size(); ++k) {
+            EXPECT_EQ(a[i].instances[k].position, b[i].instances[k].position) << a[i].name;
+            EXPECT_EQ(a[i].instances[k].rotation, b[i].instances[k].rotation) << a[i].name;
+        }
+    }
+}
+
+TEST(EnvTools, DraggingAnObjectKeepsItsHeightAboveTheGroundAndIsOneUndoStep) {
+    OpenDocument o;
+    ASSERT_TRUE(o.doc);
+    Document& doc = *o.doc;
+    const glm::vec3 start = doc.project().environment.roots[0].transform.translation;
+    EnvObjectDrag drag;
+    ASSERT_TRUE(drag.begin(&doc, 0, rayDownOnto(doc, glm::vec2(start))));
+    std::string error;
+    for (int k = 1; k <= 5; ++k)
+        ASSERT_TRUE(drag.drag(rayDownOnto(doc, glm::vec2(start) + glm::vec2(0.2f * float(k), 0.1f * float(k))), &error))
+            << error;
+    drag.end();
+    EXPECT_EQ(drag.moves(), 5);
+    const glm::vec3 moved = doc.project().environment.roots[0].transform.translation;
+    EXPECT_NEAR(moved.x, start.x + 1.0f, 1e-4f);
+    EXPECT_NEAR(moved.y, start.y + 0.5f, 1e-4f);
+    EXPECT_NEAR(moved.z - groundHeightAt(doc, glm::vec2(moved)), start.z - groundHeightAt(doc, glm::vec2(start)), 1e-5f);
+    EXPECT_EQ(doc.undoName(), "Move object");
+    ASSERT_TRUE(doc.undo());
+    EXPECT_EQ(doc.project().environment.roots[0].transform.translation, start);
+    EXPECT_FALSE(doc.canUndo()) << "the whole drag was one step";
+}
+
+TEST(EnvTools, TheFootprintBrushLeavesOneFootprintAStrideLeftAndRight) {
+    OpenDocument o;
+    ASSERT_TRUE(o.doc);
+    Document& doc = *o.doc;
+    const size_t fields = doc.project().environment.global_fields.size();
+    FootprintDrag walk;
+    std::string error;
+    ASSERT_TRUE(walk.begin(&doc, {0.5f, 3.2f, 0.0f}, &error)) << error;
+    // One big jump of the mouse: every footprint in between is left.
+    ASSERT_TRUE(walk.drag({0.5f + 6.5f * kFootprintStrideM, 3.2f, 0.0f}, &error)) << error;
+    walk.end();
+    EXPECT_EQ(walk.footprints(), 7);
+    const std::vector<EnvFieldDesc>& f = doc.project().environment.global_fields;
+    ASSERT_EQ(f.size(), fields + 7);
+    for (size_t k = 0; k < 7; ++k) {
+        const EnvFieldDesc& print = f[fields + k];
+        EXPECT_EQ(print.channel, EnvChannel::Occlusion);
+        EXPECT_FALSE(print.everywhere);
+        EXPECT_NEAR(print.shape.center_m.x, 0.5f + float(k) * kFootprintStrideM, 1e-4f);
+        EXPECT_NEAR(print.shape.center_m.y, 3.2f + (k % 2 == 0 ? kFootprintHalfGaitM : -kFootprintHalfGaitM), 1e-5f);
+    }
+    ASSERT_TRUE(doc.undo());
+    EXPECT_EQ(doc.project().environment.global_fields.size(), fields) << "the walk was one step";
+}
+
+TEST(LiveEnvironment, CoalescedEditsEndEqualToAFullComputationAndUndoGivesBackTheFirst) {
+    OpenDocument o;
+    ASSERT_TRUE(o.doc);
+    Document& doc = *o.doc;
+    const std::vector<MeshInstances> first = fullMeshes(doc);
+    EnvEffects loaded;
+    std::string error;
+    ASSERT_TRUE(computeEnvEffects(*doc.environment(), {.threads = 2}, &loaded, &error)) << error;
+    LiveEnvironment live(2, doc.environment(), std::make_shared<const EnvEffects>(std::move(loaded)));
+    // A drag of the shelter and a walk, submitted as fast as the UI would, without waiting.
+    EnvObjectDrag drag;
+    const glm::vec3 start = doc.project().environment.roots[1].transform.translation;
+    ASSERT_TRUE(drag.begin(&doc, 1, rayDownOnto(doc, glm::vec2(start))));
+    for (int k = 1; k <= 6; ++k) {
+        ASSERT_TRUE(drag.drag(rayDownOnto(doc, glm::vec2(start) - glm::vec2(0.15f * float(k), 0.0f)), &error)) << error;
+        live.submit(doc.environment(), doc.environmentGeneration());
+    }
+    drag.end();
+    FootprintDrag walk;
+    ASSERT_TRUE(walk.begin(&doc, {0.4f, 0.6f, 0.0f}, &error)) << error;
+    ASSERT_TRUE(walk.drag({2.4f, 1.2f, 0.0f}, &error)) << error;
+    walk.end();
+    live.submit(doc.environment(), doc.environmentGeneration());
+    live.waitIdle();
+    LiveEnvironmentResult r;
+    ASSERT_TRUE(live.poll(&r));
+    EXPECT_TRUE(r.error.empty()) << r.error;
+    EXPECT_EQ(r.generation, doc.environmentGeneration()) << "the newest submission is the one shown";
+    EXPECT_GT(r.dirty_boxes, 0u);
+    expectSameMeshes(r.meshes, fullMeshes(doc));
+
+    ASSERT_TRUE(doc.undo());
+    ASSERT_TRUE(doc.undo());
+    live.submit(doc.environment(), doc.environmentGeneration());
+    live.waitIdle();
+    ASSERT_TRUE(live.poll(&r));
+    expectSameMeshes(r.meshes, first);
+}
+
+}  // namespace
+}  // namespace ug::editor
