@@ -99,8 +99,9 @@ void palette(EnvironmentDesc* env, EnvironmentPanelState* state, PanelEdit* e) {
 void drawEnvironmentPanel(Document* doc, EnvironmentPanelState* state, std::string* message, bool* open) {
     if (!*open) return;
     const ImGuiViewport* vp = ImGui::GetMainViewport();
+    // Beside the Statistics window, short enough to leave the view below it.
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + 350, vp->Pos.y + 30), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize(ImVec2(380, std::min(640.0f, vp->Size.y - 60.0f)), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize(ImVec2(360, std::min(470.0f, vp->Size.y - 60.0f)), ImGuiCond_FirstUseEver);
     if (!beginDocumentPanel("Environment", open, doc != nullptr)) return;
     if (doc->project().environment.types.empty()) {
         ImGui::TextWrapped("The project has no environmental-object types. Add a library to its \"environment\" "
@@ -123,7 +124,7 @@ void drawEnvironmentPanel(Document* doc, EnvironmentPanelState* state, std::stri
     if (ImGui::CollapsingHeader("Global fields", ImGuiTreeNodeFlags_DefaultOpen)) editGlobalFields(&env, &e);
     if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) {
         palette(&env, state, &e);
-        ImGui::BeginChild("tree", ImVec2(0, 160), true);
+        ImGui::BeginChild("tree", ImVec2(0, 110), true);
         for (size_t i = 0; i < env.roots.size(); ++i) {
             ImGui::PushID(int(i));
             if (ImGui::Selectable(nodeLabel(env, env.roots[i], i).c_str(), i == state->selected)) state->selected = i;
