@@ -134,17 +134,10 @@ void drawEnvironmentPanel(Document* doc, EnvironmentPanelState* state, std::stri
         if (state->selected != SIZE_MAX) editSelected(&env, &state->selected, &e);
     }
 
-    if (e.drag_started && !doc->inStroke()) doc->beginStroke("Edit environment");
-    if (e.changed) {
-        std::string error;
-        if (doc->setEnvironment(env, "Edit environment", &error)) {
-            state->last_error.clear();
-        } else {
-            state->last_error = error;
-            *message = error;
-        }
-    }
-    if (e.drag_ended && doc->inStroke()) doc->endStroke();
+    commitPanelEdit(
+        doc, e, "Edit environment",
+        [&](std::string* error) { return doc->setEnvironment(env, "Edit environment", error); },
+        &state->last_error, message);
     ImGui::End();
 }
 

@@ -5,6 +5,10 @@
 
 #include <imgui.h>
 
+#include <string>
+
+#include "scene/document.h"
+
 namespace ug::editor {
 
 struct PanelEdit {
@@ -22,5 +26,24 @@ inline void dragged(bool changed, PanelEdit* e) {
 
 // A typed field or a button: applied once, when finished.
 inline void finished(PanelEdit* e) { e->changed |= ImGui::IsItemDeactivatedAfterEdit(); }
+
+// The frame's edit applied to the document: a stroke opened when a drag starts, `apply(&error)` (the
+// document's edit, false when it refuses) when the copy changed, the stroke closed when the drag ends. A
+// refusal is kept in *last_error (the window shows it) and reported in *message.
+template <class Apply>
+void commitPanelEdit(Document* doc, const PanelEdit& e, const char* stroke_name, Apply apply, std::string* last_error,
+                     std::string* message) {
+    if (e.drag_started && !doc->inStroke()) doc->beginStroke(stroke_name);
+    if (e.changed) {
+        std::string error;
+        if (apply(&error)) {
+            last_error->clear();
+        } else {
+            *last_error = error;
+            *message = error;
+        }
+    }
+    if (e.drag_ended && doc->inStroke()) doc->endStroke();
+}
 
 }  // namespace ug::editor

@@ -194,17 +194,10 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
     }
     if (ImGui::CollapsingHeader("Walk")) editWalk(&scene.walk, &e);
 
-    if (e.drag_started && !doc->inStroke()) doc->beginStroke("Edit particles");
-    if (e.changed) {
-        std::string error;
-        if (doc->setParticleSystem(state->selected, system, &error)) {
-            state->last_error.clear();
-        } else {
-            state->last_error = error;
-            *message = error;
-        }
-    }
-    if (e.drag_ended && doc->inStroke()) doc->endStroke();
+    commitPanelEdit(
+        doc, e, "Edit particles",
+        [&](std::string* error) { return doc->setParticleSystem(state->selected, system, error); },
+        &state->last_error, message);
     ImGui::End();
 }
 
