@@ -140,7 +140,7 @@ private:
         move_drag.end();
         attractor_drag.end();
         env_drag.end();
-        footprint_drag.end();
+        weather_stroke.end();
     }
     // ---- session_input.cpp ----
     void drawUi();                   // navigation, panels
@@ -159,8 +159,8 @@ private:
     Ray strokeRay(const ReplayAction& action, glm::vec2 xy) const;
     void finishReplayAction();       // the action's record, once its result is settled and on screen
     // ---- session_env_replay.cpp ----
-    bool startEnvReplayAction(const ReplayAction& action);  // env_add, env_move, env_remove, env_global, footprints
-    void stepEnvReplay();            // the next frame of an env_move drag or a footprints walk
+    bool startEnvReplayAction(const ReplayAction& action);  // env_add, env_move, env_remove, env_global, footprints, weather_stroke
+    void stepEnvReplay();            // the next frame of an env_move drag or a weather stroke
     // ---- session_render.cpp ----
     bool renderFrame();              // false: a scripted screenshot failed, or a live result
     bool afterFrame();               // false: the run is over
@@ -218,7 +218,7 @@ private:
     uint64_t environment_shown = 0;                     // and the one on screen
     LiveEnvironmentResult last_environment;             // its statistics (meshes moved out)
     EnvObjectDrag env_drag;                             // the Select tool on an object (the window open)
-    FootprintDrag footprint_drag;                       // the footprint brush
+    WeatherStroke weather_stroke;                       // a weather brush's stroke (footprints, warm, ...)
     EnvironmentPanelState environment_panel;
     // ---- outliner, instantiation and export panels, New / Open ----
     std::vector<uint8_t> type_visible;  // view state, not a document edit: never undone, never saved

@@ -1,5 +1,6 @@
 #include "editor/env_tools.h"
 
+#include <cctype>
 #include <cmath>
 
 namespace ug::editor {
@@ -53,43 +54,103 @@ void EnvObjectDrag::end() {
     doc_ = nullptr;
 }
 
-bool FootprintDrag::begin(Document* doc, glm::vec3 ground, std::string* error) {
-    if (active()) end();
-    doc_ = doc;
-    footprints_ = 0;
-    last_m_ = ground;
-    doc_->beginStroke("Footprints");
-    return step(ground, glm::vec2(1.0f, 0.0f), error);
+namespace {
+
+const char* const kWeatherBrushNames[kWeatherBrushCount] = {"footprints", "warm", "cold", "wet",
+                                                            "leaves", "trash", "grass", "erase"};
+
+}  // namespace
+
+const char* weatherBrushName(WeatherBrush brush) { return kWeatherBrushNames[int(brush)]; }
+
+bool weatherBrushFromName(const std::string& name, WeatherBrush* out) {
+    for (int k = 0; k < kWeatherBrushCount; ++k)
+        if (name == kWeatherBrushNames[k]) {
+            *out = WeatherBrush(k);
+            return true;
+        }
+    return false;
 }
 
-bool FootprintDrag::drag(glm::vec3 ground, std::string* error) {
+EnvFieldDesc weatherField(const WeatherSettings& s, glm::vec3 at) {
+    // A few degrees melt the paper's street snow (snow.h kSnowMeltPerDegreeM) or bring its icicles.
+    constexpr float kWarmthDeg = 8.0f, kWetness = 0.5f, kPile = 1.0f;
+    EnvFieldDesc f;
+    switch (s.brush) {
+        case WeatherBrush::Warm: f.channel = EnvChannel::Temperature, f.value = kWarmthDeg; break;
+        case WeatherBrush::Cold: f.channel = EnvChannel::Temperature, f.value = -kWarmthDeg; break;
+        case WeatherBrush::Wet: f.channel = EnvChannel::Humidity, f.value = kWetness; break;
+        case WeatherBrush::Leaves: f.channel = EnvChannel::Leaves, f.value = kPile; break;
+        case WeatherBrush::Trash: f.channel = EnvChannel::Trash, f.value = kPile; break;
+        case WeatherBrush::Grass: f.channel = EnvChannel::Grass, f.value = kPile; break;
+        case WeatherBrush::Footprints:
+        case WeatherBrush::Erase: return footprintField(at);  // not used: they have their own stamps
+    }
+    f.value *= s.strength;
+    f.shape = makePoint(at, s.radius_m, f.value);
+    return f;
+}
+
+float WeatherStroke::spacing() const {
+    return settings_.brush == WeatherBrush::Footprints ? kFootprintStrideM : 0.5f * settings_.radius_m;
+}
+
+bool WeatherStroke::begin(Document* doc, const WeatherSettings& settings, glm::vec3 ground, std::string* error) {
+    if (active()) end();
+    if (!(settings.radius_m > 0.0f) || !(settings.strength > 0.0f) || !std::isfinite(settings.radius_m) ||
+        !std::isfinite(settings.strength)) {
+        *error = std::string(weatherBrushName(settings.brush)) + " brush: radius and strength must be finite and > 0";
+        return false;
+    }
+    doc_ = doc;
+    settings_ = settings;
+    stamps_ = erased_ = 0;
+    last_m_ = ground;
+    std::string name = weatherBrushName(settings.brush);
+    name[0] = char(std::toupper(name[0]));
+    doc_->beginStroke(settings.brush == WeatherBrush::Footprints ? name : name + " brush");
+    return stamp(ground, glm::vec2(1.0f, 0.0f), error);
+}
+
+bool WeatherStroke::drag(glm::vec3 ground, std::string* error) {
     if (!active()) return true;
-    // Steps along the straight line from the last one: a fast mouse leaves every footprint in between.
+    // Stamps along the straight line from the last one: a fast mouse leaves every stamp in between.
     for (;;) {
         const glm::vec2 d = glm::vec2(ground) - glm::vec2(last_m_);
         const float len = glm::length(d);
-        if (len < kFootprintStrideM) return true;
+        if (len < spacing()) return true;
         const glm::vec2 heading = d / len;
-        const glm::vec2 xy = glm::vec2(last_m_) + heading * kFootprintStrideM;
+        const glm::vec2 xy = glm::vec2(last_m_) + heading * spacing();
         const glm::vec3 at(xy, groundHeightAt(*doc_, xy));
-        if (!step(at, heading, error)) return false;
+        if (!stamp(at, heading, error)) return false;
         last_m_ = at;
     }
 }
 
-bool FootprintDrag::step(glm::vec3 at, glm::vec2 heading, std::string* error) {
-    // Left foot, right foot: half a gait to either side of the walked line.
-    const glm::vec2 side = glm::vec2(-heading.y, heading.x) * ((footprints_ % 2 == 0) ? kFootprintHalfGaitM
-                                                                                        : -kFootprintHalfGaitM);
-    const glm::vec2 xy = glm::vec2(at) + side;
+bool WeatherStroke::stamp(glm::vec3 at, glm::vec2 heading, std::string* error) {
     EnvironmentDesc env = doc_->project().environment;
-    env.global_fields.push_back(footprintField(glm::vec3(xy, groundHeightAt(*doc_, xy))));
-    if (!doc_->setEnvironment(env, "Footprints", error)) return false;
-    ++footprints_;
-    return true;
+    if (settings_.brush == WeatherBrush::Erase) {
+        const size_t before = env.global_fields.size();
+        std::erase_if(env.global_fields, [&](const EnvFieldDesc& f) {
+            return !f.everywhere && glm::length(glm::vec2(f.shape.center_m) - glm::vec2(at)) <= settings_.radius_m;
+        });
+        ++stamps_;
+        if (env.global_fields.size() == before) return true;  // nothing there: no empty step
+        erased_ += int(before - env.global_fields.size());
+    } else if (settings_.brush == WeatherBrush::Footprints) {
+        // Left foot, right foot: half a gait to either side of the walked line.
+        const float side = stamps_ % 2 == 0 ? kFootprintHalfGaitM : -kFootprintHalfGaitM;
+        const glm::vec2 xy = glm::vec2(at) + glm::vec2(-heading.y, heading.x) * side;
+        env.global_fields.push_back(footprintField(glm::vec3(xy, groundHeightAt(*doc_, xy))));
+        ++stamps_;
+    } else {
+        env.global_fields.push_back(weatherField(settings_, at));
+        ++stamps_;
+    }
+    return doc_->setEnvironment(env, "Weather brush", error);  // the stroke names the step
 }
 
-void FootprintDrag::end() {
+void WeatherStroke::end() {
     if (!active()) return;
     doc_->endStroke();
     doc_ = nullptr;

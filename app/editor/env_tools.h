@@ -1,8 +1,7 @@
 // The environment tools in the viewport (issue 13), GL-free: with the Environment window open, the Select
 // tool picks a top-level environmental object (or group) by its origin on screen and drags it over the
 // ground, keeping its height above the ground (it stays on the surface below as the terrain rises and
-// falls); the footprint brush walks a trail of footprints (occlusion fields, Fig. 3 step 6) behind the
-// mouse. Each step is a Document::setEnvironment inside one stroke: the effects follow live and the whole
+// falls); the weather brushes leave local fields (footprints, warm, wet, piles, ...) behind the mouse. Each step is a Document::setEnvironment inside one stroke: the effects follow live and the whole
 // drag or trail is one undo step.
 #pragma once
 
@@ -17,7 +16,7 @@
 namespace ug::editor {
 
 constexpr size_t kNoEnvNode = SIZE_MAX;
-// A walker's stride and the feet's distance from the walked line.
+// A walker's stride and the feet's distance from the walked line (the footprint brush).
 constexpr float kFootprintStrideM = 0.4f;
 constexpr float kFootprintHalfGaitM = 0.09f;
 
@@ -47,22 +46,46 @@ class EnvObjectDrag {
     int moves_ = 0;
 };
 
-// Footprints along the ground points the mouse (or a script) passes: one every kFootprintStrideM of
-// path, left and right of it in turn.
-class FootprintDrag {
+// The weather brushes (Fig. 3 step 6 and §4's local fields): each stamp adds a field of the environment
+// at the ground under the brush (world space, in the global fields), so the effects follow it.
+//   footprints  a trail: one footprint (footprintField) every kFootprintStrideM, left and right in turn
+//   warm, cold  temperature +/- 8 degrees x strength over the brush's radius (snow melts, icicles go)
+//   wet         humidity +0.5 x strength (wet leaves, longer icicles)
+//   leaves, trash, grass   a pile: the channel +1 x strength (the scattered types fill it)
+//   erase       removes the local fields whose centre the brush covers (footprints, spots, piles)
+// Other stamps come every radius / 2 along the drag.
+enum class WeatherBrush : int { Footprints, Warm, Cold, Wet, Leaves, Trash, Grass, Erase };
+constexpr int kWeatherBrushCount = int(WeatherBrush::Erase) + 1;
+const char* weatherBrushName(WeatherBrush brush);  // "footprints", "warm", ...
+bool weatherBrushFromName(const std::string& name, WeatherBrush* out);
+
+struct WeatherSettings {
+    WeatherBrush brush = WeatherBrush::Footprints;
+    float radius_m = 0.5f;  // > 0 (footprints: their own size)
+    float strength = 1.0f;  // > 0
+};
+
+// The field one stamp adds at `at` (not for footprints, whose size is their own, nor erase).
+EnvFieldDesc weatherField(const WeatherSettings& settings, glm::vec3 at);
+
+class WeatherStroke {
   public:
     bool active() const { return doc_ != nullptr; }
-    bool begin(Document* doc, glm::vec3 ground_m, std::string* error);
+    // False with *error when the settings are unusable or the document refuses the first stamp.
+    bool begin(Document* doc, const WeatherSettings& settings, glm::vec3 ground_m, std::string* error);
     bool drag(glm::vec3 ground_m, std::string* error);
     void end();
-    int footprints() const { return footprints_; }
+    int stamps() const { return stamps_; }  // footprints left, spots added, or erase stamps
+    int erased() const { return erased_; }  // fields erase removed
 
   private:
-    bool step(glm::vec3 at, glm::vec2 heading, std::string* error);
+    float spacing() const;
+    bool stamp(glm::vec3 at, glm::vec2 heading, std::string* error);
 
     Document* doc_ = nullptr;
-    glm::vec3 last_m_{0.0f};  // where the last footprint's step was taken from the walked line
-    int footprints_ = 0;
+    WeatherSettings settings_;
+    glm::vec3 last_m_{0.0f};  // the last stamp's point on the walked line
+    int stamps_ = 0, erased_ = 0;
 };
 
 }  // namespace ug::editor

@@ -31,6 +31,20 @@ std::string nodeLabel(const EnvironmentDesc& env, const EnvNode& node, size_t in
     return label;
 }
 
+// The weather brushes' switch and settings (used in the view: env_tools.h WeatherStroke).
+void weatherBrush(EnvironmentPanelState* state) {
+    ImGui::Checkbox("Weather brush (drag on the ground)", &state->brush_on);
+    WeatherSettings& w = state->weather;
+    int brush = int(w.brush);
+    const char* names[kWeatherBrushCount];
+    for (int k = 0; k < kWeatherBrushCount; ++k) names[k] = weatherBrushName(WeatherBrush(k));
+    if (ImGui::Combo("brush", &brush, names, kWeatherBrushCount)) w.brush = WeatherBrush(brush);
+    if (w.brush != WeatherBrush::Footprints) {
+        ImGui::SliderFloat("brush radius (m)", &w.radius_m, 0.1f, 3.0f, "%.2f");
+        if (w.brush != WeatherBrush::Erase) ImGui::SliderFloat("brush strength", &w.strength, 0.1f, 3.0f, "%.2f");
+    }
+}
+
 void editGlobalFields(EnvironmentDesc* env, PanelEdit* e) {
     size_t local = 0;
     for (size_t i = 0; i < env->global_fields.size(); ++i) {
@@ -120,7 +134,7 @@ void drawEnvironmentPanel(Document* doc, EnvironmentPanelState* state, std::stri
     EnvironmentDesc& env = state->editing;
     if (state->selected != SIZE_MAX && state->selected >= env.roots.size()) state->selected = SIZE_MAX;
     PanelEdit e;
-    ImGui::Checkbox("Footprint brush (drag on the ground)", &state->footprints);
+    weatherBrush(state);
     if (ImGui::CollapsingHeader("Global fields", ImGuiTreeNodeFlags_DefaultOpen)) editGlobalFields(&env, &e);
     if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) {
         palette(&env, state, &e);

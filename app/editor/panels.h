@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "editor/env_tools.h"
 #include "editor/export_job.h"
 #include "editor/render_data.h"
 #include "editor/tools.h"
@@ -206,7 +207,8 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
 // ---- environment panel (environment_panel.cpp) ----
 struct EnvironmentPanelState {
     size_t selected = SIZE_MAX;  // a top-level node of the tree (SIZE_MAX: none)
-    bool footprints = false;     // the footprint brush: a left drag on the ground walks footprints
+    bool brush_on = false;       // a weather brush: a left drag on the ground stamps it (env_tools.h)
+    WeatherSettings weather;
     bool computing = false;      // the effects are being computed in the background
     std::string status;          // the last computation: snow, icicles, time
     std::string last_error;      // the last refused edit

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
+#include "editor/env_tools.h"
 #include "env/env_desc.h"
 #include "scene/project.h"
 
@@ -63,6 +64,8 @@ const char* replayKindName(ReplayKind kind) {
             return "env_global";
         case ReplayKind::Footprints:
             return "footprints";
+        case ReplayKind::WeatherStroke:
+            return "weather_stroke";
     }
     return "?";
 }
@@ -186,7 +189,14 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
                 return fail("radius, strength and falloff must be > 0");
             if (r.steps < 1 || r.steps > 100000) return fail("steps must be in [1, 100000]");
         }
-        if (r.kind == ReplayKind::Footprints && r.points.empty()) return fail("footprints need \"points\" [[x, y], ...]");
+        if (r.kind == ReplayKind::WeatherStroke) r.brush = a.value("brush", r.brush);
+        if ((r.kind == ReplayKind::Footprints || r.kind == ReplayKind::WeatherStroke) && r.points.empty())
+            return fail(std::string(replayKindName(r.kind)) + " needs \"points\" [[x, y], ...]");
+        if (r.kind == ReplayKind::WeatherStroke) {
+            WeatherBrush brush;
+            if (!weatherBrushFromName(r.brush, &brush)) return fail("unknown brush '" + r.brush + "'");
+            if (!(r.radius_m > 0.0f) || !(r.strength > 0.0f)) return fail("radius and strength must be > 0");
+        }
         if (r.kind == ReplayKind::EnvGlobal) {
             EnvChannel c;
             if (!envChannelFromName(r.channel, &c)) return fail("unknown channel '" + r.channel + "'");

@@ -42,9 +42,11 @@
 //    {"action": "env_remove", "node": 3},                         Delete, one undo step
 //    {"action": "env_global", "channel": "snow", "value": 0.2},   a global field's value (added when the
 //     channel has none), one undo step
-//    {"action": "footprints", "points": [[x, y], ...]},           the footprint brush walked along the
-//     polyline, one footprint step a frame, one undo step
-//     The env_ actions and footprints end when the effects computed for them are on screen; their
+//    {"action": "weather_stroke", "brush": "warm", "points": [[x, y], ...], "radius": 0.6, "strength": 1},
+//     a weather brush (env_tools.h: footprints, warm, cold, wet, leaves, trash, grass, erase) dragged along
+//     the polyline, a short step a frame, one undo step; {"action": "footprints", "points": [...]} is the
+//     footprint brush's
+//     The env_ actions and weather strokes end when the effects computed for them are on screen; their
 //     statistics add "environment" (the tree, the fields, the last computation's time and region).
 //    {"action": "wait_idle"}]
 //
@@ -93,9 +95,10 @@ enum class ReplayKind {
     EnvMove,
     EnvRemove,
     EnvGlobal,
-    Footprints
+    Footprints,
+    WeatherStroke
 };
-constexpr int kReplayKindCount = int(ReplayKind::Footprints) + 1;
+constexpr int kReplayKindCount = int(ReplayKind::WeatherStroke) + 1;
 const char* replayKindName(ReplayKind kind);  // the "action" string
 
 struct ReplayAction {
@@ -141,6 +144,7 @@ struct ReplayAction {
     size_t node = 0;
     glm::vec2 at_xy{0.0f};  // env_add: "at"; env_move: "to"
     std::string channel;    // env_global
+    std::string brush = "footprints";  // weather_stroke
     float value = 0.0f;
 };
 

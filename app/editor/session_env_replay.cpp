@@ -1,6 +1,6 @@
 // Replay actions on the environmental objects (replay.h: env_add, env_move, env_remove, env_global,
-// footprints), through the same code as the Environment window and the view's tools: the drag and the
-// footprint brush on rays straight down, one position a frame, one undo step each.
+// footprints, weather_stroke), through the same code as the Environment window and the view's tools: the
+// drag and the weather brushes on rays straight down, one position a frame, one undo step each.
 #include <cmath>
 
 #include "editor/editor_session.h"
@@ -91,12 +91,21 @@ bool EditorSession::startEnvReplayAction(const ReplayAction& a) {
             replay.finishing = false;
             break;
         }
-        case ReplayKind::Footprints: {
+        case ReplayKind::Footprints:
+        case ReplayKind::WeatherStroke: {
+            WeatherSettings weather;
+            if (a.kind == ReplayKind::WeatherStroke) {
+                weatherBrushFromName(a.brush, &weather.brush);  // checked when the script was read
+                weather.radius_m = a.radius_m;
+                weather.strength = a.strength;
+            }
             const glm::vec2 start = a.points.front();
-            replay.path = alongPolyline(a.points, 0.5f * kFootprintStrideM);
+            // Half a stamp's spacing a frame, so the stroke's path is followed closely.
+            const float spacing = weather.brush == WeatherBrush::Footprints ? kFootprintStrideM : 0.5f * weather.radius_m;
+            replay.path = alongPolyline(a.points, 0.5f * spacing);
             replay.step = 1;
             replay.finishing = false;
-            if (!footprint_drag.begin(doc, glm::vec3(start, groundZ(start)), &op_error)) replay.finishing = true;
+            if (!weather_stroke.begin(doc, weather, glm::vec3(start, groundZ(start)), &op_error)) replay.finishing = true;
             break;
         }
         default:
@@ -114,7 +123,7 @@ void EditorSession::stepEnvReplay() {
     if (replay.step < replay.path.size()) {
         const glm::vec2 xy = replay.path[replay.step];
         const bool ok = env_drag.active() ? env_drag.drag(rayDownOnto(*doc, xy), &op_error)
-                                          : footprint_drag.drag(glm::vec3(xy, groundZ(xy)), &op_error);
+                                          : weather_stroke.drag(glm::vec3(xy, groundZ(xy)), &op_error);
         if (!ok) messages.push_back(op_error);
     }
     if (++replay.step < replay.path.size()) return;
@@ -124,8 +133,9 @@ void EditorSession::stepEnvReplay() {
         replay.record["to"] = {to.x, to.y, to.z};
         env_drag.end();
     } else {
-        replay.record["footprints"] = footprint_drag.footprints();
-        footprint_drag.end();
+        replay.record["stamps"] = weather_stroke.stamps();
+        replay.record["erased"] = weather_stroke.erased();
+        weather_stroke.end();
     }
     replay.finishing = true;
 }

@@ -29,7 +29,6 @@ void EditorSession::startEnvironment() {
     live_environment.reset();
     last_environment = LiveEnvironmentResult{};
     environment_panel = EnvironmentPanelState{};
-    footprint_drag = FootprintDrag{};
     const Document& d = *scene->doc;
     environment_submitted = environment_shown = d.environmentGeneration();
     if (d.project().environment.types.empty()) return;  // nothing can be placed

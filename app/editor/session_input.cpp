@@ -130,15 +130,20 @@ void EditorSession::mouseTools() {
                                io.MousePos.y * io.DisplayFramebufferScale.y);
         const Ray ray = rayThroughPixel(view_proj, float(fb_w), float(fb_h), cursor);
         const bool mouse_free = !io.WantCaptureMouse && !io.KeyAlt;
-        if (windows.environment && environment_panel.footprints) {
-            // The footprint brush takes the left button from the tool while it is on.
+        if (windows.environment && environment_panel.brush_on) {
+            // A weather brush takes the left button from the tool while it is on; its ring shows where.
             const SurfaceHit ground = pickGround(*doc, ray);
+            const WeatherSettings& weather = environment_panel.weather;
+            if (ground.hit && mouse_free)
+                addBrushMarker(*doc, ground.point_m,
+                               weather.brush == WeatherBrush::Footprints ? kFootprintStrideM : weather.radius_m, true,
+                               &markers);
             std::string walk_error;
             bool ok = true;
             if (ground.hit && mouse_free && ImGui::IsMouseClicked(ImGuiMouseButton_Left))
-                ok = footprint_drag.begin(doc, ground.point_m, &walk_error);
-            else if (ground.hit && footprint_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left))
-                ok = footprint_drag.drag(ground.point_m, &walk_error);
+                ok = weather_stroke.begin(doc, weather, ground.point_m, &walk_error);
+            else if (ground.hit && weather_stroke.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left))
+                ok = weather_stroke.drag(ground.point_m, &walk_error);
             if (!ok) messages.push_back(walk_error);
         } else if (tools.tool == ToolKind::Select) {
             // Click picks; dragging the picked primitive moves it (Shift: up and down). With the Particles
@@ -212,7 +217,7 @@ void EditorSession::mouseTools() {
         if (move_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) move_drag.end();
         if (attractor_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) attractor_drag.end();
         if (env_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) env_drag.end();
-        if (footprint_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) footprint_drag.end();
+        if (weather_stroke.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) weather_stroke.end();
     }
 
 }

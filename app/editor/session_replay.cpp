@@ -58,7 +58,7 @@ bool EditorSession::stepReplay() {
                 move_drag.end();
                 replay.finishing = true;
             }
-        } else if (replay.started && (env_drag.active() || footprint_drag.active())) {
+        } else if (replay.started && (env_drag.active() || weather_stroke.active())) {
             stepEnvReplay();
         } else if (replay.started && a.kind == ReplayKind::GhostTile) {
             replay.finishing = !ghost_job;  // the job was applied or reported at this frame's start
@@ -310,6 +310,7 @@ bool EditorSession::runReplayAction(const ReplayAction& a) {
         case ReplayKind::EnvRemove:
         case ReplayKind::EnvGlobal:
         case ReplayKind::Footprints:
+        case ReplayKind::WeatherStroke:
             return startEnvReplayAction(a);  // finishing set there (a drag or a walk runs over frames)
         default:
             break;
@@ -333,7 +334,8 @@ void EditorSession::finishReplayAction() {
     if (kind == ReplayKind::SetVisible) r["drawn_instances_after"] = renderer->stats().instances_drawn;
     if (kind == ReplayKind::SetAttractor) r["particles"] = strandsJson();
     if (live_environment && (kind == ReplayKind::EnvAdd || kind == ReplayKind::EnvMove || kind == ReplayKind::EnvRemove ||
-                             kind == ReplayKind::EnvGlobal || kind == ReplayKind::Footprints))
+                             kind == ReplayKind::EnvGlobal || kind == ReplayKind::Footprints ||
+                             kind == ReplayKind::WeatherStroke))
         r["environment"] = environmentJson();
     if (kind == ReplayKind::View) {
         r["eye"] = vec3Json(camera.eye());

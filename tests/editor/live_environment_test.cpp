@@ -5,6 +5,7 @@
 // environment, bit for bit, and an undo gives back the first ones.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -90,13 +91,13 @@ TEST(EnvTools, TheFootprintBrushLeavesOneFootprintAStrideLeftAndRight) {
     ASSERT_TRUE(o.doc);
     Document& doc = *o.doc;
     const size_t fields = doc.project().environment.global_fields.size();
-    FootprintDrag walk;
+    WeatherStroke walk;
     std::string error;
-    ASSERT_TRUE(walk.begin(&doc, {0.5f, 3.2f, 0.0f}, &error)) << error;
+    ASSERT_TRUE(walk.begin(&doc, WeatherSettings{}, {0.5f, 3.2f, 0.0f}, &error)) << error;
     // One big jump of the mouse: every footprint in between is left.
     ASSERT_TRUE(walk.drag({0.5f + 6.5f * kFootprintStrideM, 3.2f, 0.0f}, &error)) << error;
     walk.end();
-    EXPECT_EQ(walk.footprints(), 7);
+    EXPECT_EQ(walk.stamps(), 7);
     const std::vector<EnvFieldDesc>& f = doc.project().environment.global_fields;
     ASSERT_EQ(f.size(), fields + 7);
     for (size_t k = 0; k < 7; ++k) {
@@ -106,8 +107,47 @@ TEST(EnvTools, TheFootprintBrushLeavesOneFootprintAStrideLeftAndRight) {
         EXPECT_NEAR(print.shape.center_m.x, 0.5f + float(k) * kFootprintStrideM, 1e-4f);
         EXPECT_NEAR(print.shape.center_m.y, 3.2f + (k % 2 == 0 ? kFootprintHalfGaitM : -kFootprintHalfGaitM), 1e-5f);
     }
+    EXPECT_EQ(doc.undoName(), "Footprints");
     ASSERT_TRUE(doc.undo());
     EXPECT_EQ(doc.project().environment.global_fields.size(), fields) << "the walk was one step";
+}
+
+// The temperature a point field adds at `p` (env/env_scene.h sums a channel's fields).
+float temperatureAt(const Document& doc, glm::vec3 p) { return doc.environment()->sample(p).temperature; }
+
+TEST(EnvTools, AWarmStrokeMeltsTheSnowUnderItAndEraseTakesItBack) {
+    OpenDocument o;
+    ASSERT_TRUE(o.doc);
+    Document& doc = *o.doc;
+    const glm::vec3 under(1.0f, 3.0f, 0.0f), beside(3.5f, 0.5f, 0.0f);
+    const float cold = temperatureAt(doc, under);
+    ASSERT_LT(cold, 0.0f);
+    const size_t fields = doc.project().environment.global_fields.size();
+    WeatherStroke warm;
+    std::string error;
+    ASSERT_TRUE(warm.begin(&doc, WeatherSettings{WeatherBrush::Warm, 0.6f, 1.0f}, {0.5f, 3.0f, 0.0f}, &error)) << error;
+    ASSERT_TRUE(warm.drag({1.5f, 3.0f, 0.0f}, &error)) << error;
+    warm.end();
+    EXPECT_EQ(warm.stamps(), 1 + 3) << "one stamp every radius / 2";
+    EXPECT_GT(temperatureAt(doc, under), 0.0f) << "above freezing under the stroke";
+    EXPECT_EQ(temperatureAt(doc, beside), cold) << "nothing changes away from it";
+    EXPECT_EQ(doc.undoName(), "Warm brush");
+
+    // Erase over half the stroke removes the stamps whose centre it covers, and nothing else.
+    WeatherStroke erase;
+    ASSERT_TRUE(erase.begin(&doc, WeatherSettings{WeatherBrush::Erase, 0.35f, 1.0f}, {0.5f, 3.0f, 0.0f}, &error)) << error;
+    erase.end();
+    EXPECT_EQ(erase.erased(), 2);
+    EXPECT_EQ(doc.project().environment.global_fields.size(), fields + 2);
+    ASSERT_TRUE(doc.undo());
+    ASSERT_TRUE(doc.undo());
+    EXPECT_EQ(temperatureAt(doc, under), cold);
+    // Bad settings are refused before anything changes.
+    WeatherStroke bad;
+    EXPECT_FALSE(bad.begin(&doc, WeatherSettings{WeatherBrush::Wet, std::nanf(""), 1.0f}, under, &error));
+    EXPECT_NE(error.find("wet brush"), std::string::npos) << error;
+    EXPECT_FALSE(bad.active());
+    EXPECT_EQ(doc.project().environment.global_fields.size(), fields);
 }
 
 TEST(LiveEnvironment, CoalescedEditsEndEqualToAFullComputationAndUndoGivesBackTheFirst) {
@@ -128,8 +168,8 @@ TEST(LiveEnvironment, CoalescedEditsEndEqualToAFullComputationAndUndoGivesBackTh
         live.submit(doc.environment(), doc.environmentGeneration());
     }
     drag.end();
-    FootprintDrag walk;
-    ASSERT_TRUE(walk.begin(&doc, {0.4f, 0.6f, 0.0f}, &error)) << error;
+    WeatherStroke walk;
+    ASSERT_TRUE(walk.begin(&doc, WeatherSettings{}, {0.4f, 0.6f, 0.0f}, &error)) << error;
     ASSERT_TRUE(walk.drag({2.4f, 1.2f, 0.0f}, &error)) << error;
     walk.end();
     live.submit(doc.environment(), doc.environmentGeneration());

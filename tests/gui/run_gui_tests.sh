@@ -404,7 +404,7 @@ stats = json.load(open(d + "/stats.json"))
 acts = {a["action"]: a for a in stats["actions"]}
 for k in ("env_global", "env_add", "env_move", "footprints"):
     assert acts[k].get("ok", True) and acts[k]["environment"]["last"]["ok"], acts[k]
-assert acts["env_move"]["moves"] == 5 and acts["footprints"]["footprints"] >= 15, (acts["env_move"], acts["footprints"])
+assert acts["env_move"]["moves"] == 5 and acts["footprints"]["stamps"] >= 15, (acts["env_move"], acts["footprints"])
 env = stats["environment"]
 assert env["objects"] == 16 and env["settled"], env
 loaded, edited, saved, undone = (env_meshes("%s/%s.glb" % (d, n)) for n in ("loaded", "edited", "saved", "undone"))
