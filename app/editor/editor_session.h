@@ -135,6 +135,9 @@ private:
     json environmentJson() const;     // the tree, fields and last computation, for the statistics
     // The strands and the effects are the document's (part of "settled").
     bool sideJobsSettled() const { return strandsSettled() && environmentSettled(); }
+    // An environment edit made now (if `generation_before` moved) waits for the frame that shows it.
+    void noteEnvStamp(uint64_t generation_before, int action);
+    void timeEnvStamps(Clock::time_point frame_end);  // after the frame: the shown ones timed
     // Ends every drag in the view (the document is about to change under it: undo, open, delete).
     void endViewDrags() {
         move_drag.end();
@@ -240,6 +243,7 @@ private:
     std::string ui_screenshot_path;  // replay "screenshot" with "ui": true: read after the panels are drawn
     bool screenshot_overlays = true;
     std::vector<PendingStamp> pending_stamps;
+    std::vector<PendingStamp> pending_env_stamps;  // generation: the environmentGeneration() to be shown
     ReplayState replay;
     float reach_m = 0.0f;
     int frame_index = 0;        // frames since the first result was on screen

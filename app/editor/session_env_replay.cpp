@@ -121,10 +121,12 @@ bool EditorSession::startEnvReplayAction(const ReplayAction& a) {
 void EditorSession::stepEnvReplay() {
     std::string op_error;
     if (replay.step < replay.path.size()) {
+        const uint64_t generation = doc->environmentGeneration();
         const glm::vec2 xy = replay.path[replay.step];
         const bool ok = env_drag.active() ? env_drag.drag(rayDownOnto(*doc, xy), &op_error)
                                           : weather_stroke.drag(glm::vec3(xy, groundZ(xy)), &op_error);
         if (!ok) messages.push_back(op_error);
+        noteEnvStamp(generation, int(replay.index));
     }
     if (++replay.step < replay.path.size()) return;
     if (env_drag.active()) {

@@ -29,6 +29,7 @@ void EditorSession::startEnvironment() {
     live_environment.reset();
     last_environment = LiveEnvironmentResult{};
     environment_panel = EnvironmentPanelState{};
+    pending_env_stamps.clear();
     const Document& d = *scene->doc;
     environment_submitted = environment_shown = d.environmentGeneration();
     if (d.project().environment.types.empty()) return;  // nothing can be placed
@@ -70,6 +71,23 @@ void EditorSession::syncEnvironment() {
     r.meshes.clear();
     last_environment = std::move(r);
     environment_panel.computing = live_environment->busy();
+}
+
+void EditorSession::noteEnvStamp(uint64_t generation_before, int action) {
+    if (scene && scene->doc->environmentGeneration() != generation_before)
+        pending_env_stamps.push_back({scene->doc->environmentGeneration(), Clock::now(), action});
+}
+
+void EditorSession::timeEnvStamps(Clock::time_point frame_end) {
+    std::erase_if(pending_env_stamps, [&](const PendingStamp& p) {
+        if (p.generation > environment_shown) return false;
+        const char* by = p.action >= 0 && size_t(p.action) < options.replay.size()
+                             ? replayKindName(options.replay[size_t(p.action)].kind)
+                             : "mouse";
+        result->env_stamp_to_frame_ms[by].push_back(
+            std::chrono::duration<double, std::milli>(frame_end - p.time).count());
+        return true;
+    });
 }
 
 bool EditorSession::environmentSettled() const {

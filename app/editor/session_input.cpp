@@ -140,11 +140,13 @@ void EditorSession::mouseTools() {
                                &markers);
             std::string walk_error;
             bool ok = true;
+            const uint64_t generation = doc->environmentGeneration();
             if (ground.hit && mouse_free && ImGui::IsMouseClicked(ImGuiMouseButton_Left))
                 ok = weather_stroke.begin(doc, weather, ground.point_m, &walk_error);
             else if (ground.hit && weather_stroke.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left))
                 ok = weather_stroke.drag(ground.point_m, &walk_error);
             if (!ok) messages.push_back(walk_error);
+            noteEnvStamp(generation, -1);
         } else if (tools.tool == ToolKind::Select) {
             // Click picks; dragging the picked primitive moves it (Shift: up and down). With the Particles
             // window open, its system's attractors are picked first; with the Environment window open, its
@@ -175,7 +177,9 @@ void EditorSession::mouseTools() {
                 if (!attractor_drag.drag(ray, io.KeyShift, &move_error)) messages.push_back(move_error);
             } else if (env_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
                 std::string move_error;
+                const uint64_t generation = doc->environmentGeneration();
                 if (!env_drag.drag(ray, &move_error)) messages.push_back(move_error);
+                noteEnvStamp(generation, -1);
             } else if (move_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
                 const uint64_t generation = doc->live().generation();
                 std::string move_error;

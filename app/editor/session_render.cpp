@@ -127,6 +127,7 @@ bool EditorSession::afterFrame() {
     // ---- after the frame: stamp timings, replay bookkeeping, autosave ----
     const gl::RenderStats& rs = renderer->stats();
     const auto frame_end = Clock::now();
+    timeEnvStamps(frame_end);
     for (size_t i = 0; i < pending_stamps.size();) {
         if (have_result && pending_stamps[i].generation <= shown_generation) {
             const double ms =

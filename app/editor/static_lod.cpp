@@ -279,4 +279,33 @@ uint64_t buildStaticDraws(const StaticEntryLods& entry, const glm::mat4& view_pr
     return triangles;
 }
 
+std::vector<StaticLodMesh> StaticLodCache::levels(const std::vector<std::shared_ptr<const TriangleMesh>>& meshes,
+                                                  const std::vector<bool>& split, int threads, size_t* built) {
+    assert(split.size() == meshes.size());
+    std::map<std::pair<const TriangleMesh*, bool>, size_t> known;
+    for (size_t k = 0; k < kept_.size(); ++k) known[{kept_[k].mesh.get(), kept_[k].split}] = k;
+    std::vector<const TriangleMesh*> missing;
+    std::vector<bool> missing_split;
+    std::vector<size_t> missing_at;
+    std::vector<StaticLodMesh> out(meshes.size());
+    for (size_t i = 0; i < meshes.size(); ++i) {
+        const auto it = known.find({meshes[i].get(), split[i]});
+        if (it != known.end()) {
+            out[i] = kept_[it->second].levels;
+        } else {
+            missing.push_back(meshes[i].get());
+            missing_split.push_back(split[i]);
+            missing_at.push_back(i);
+        }
+    }
+    std::vector<StaticLodMesh> fresh = buildStaticLodMeshes(missing, missing_split, threads);
+    for (size_t k = 0; k < fresh.size(); ++k) out[missing_at[k]] = std::move(fresh[k]);
+    std::vector<Kept> next;
+    next.reserve(meshes.size());
+    for (size_t i = 0; i < meshes.size(); ++i) next.push_back(Kept{meshes[i], split[i], out[i]});
+    kept_ = std::move(next);
+    if (built) *built = missing.size();
+    return out;
+}
+
 }  // namespace ug::editor

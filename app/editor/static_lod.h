@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -83,6 +84,25 @@ inline bool splitsStaticEntry(size_t instance_count, size_t triangles) {
 // workers (0: all hardware threads); the result does not depend on the thread count.
 std::vector<StaticLodMesh> buildStaticLodMeshes(const std::vector<const TriangleMesh*>& meshes,
                                                 const std::vector<bool>& split, int threads);
+
+// The levels kept from one set of static meshes to the next, by mesh object: an environment edit swaps in
+// the meshes it reached (a class's new snow) and keeps the others' objects (engine/env: updateEnvEffects
+// reuses them), so only the new ones are simplified again. Results equal buildStaticLodMeshes's.
+class StaticLodCache {
+public:
+    // Every mesh's levels; builds those of meshes (object and split flag) not in the previous call, and
+    // forgets the meshes this call does not name. *built: how many were built.
+    std::vector<StaticLodMesh> levels(const std::vector<std::shared_ptr<const TriangleMesh>>& meshes,
+                                      const std::vector<bool>& split, int threads, size_t* built = nullptr);
+
+private:
+    struct Kept {
+        std::shared_ptr<const TriangleMesh> mesh;  // held, so its address names it while kept
+        bool split = false;
+        StaticLodMesh levels;
+    };
+    std::vector<Kept> kept_;
+};
 
 // The level to draw a piece at, -1 for none: with the piece's object-space errors scaled by `scale` (the
 // instances' largest), the coarsest level whose error covers less than kStaticLodErrorPx at `distance_m`;

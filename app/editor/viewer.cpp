@@ -34,6 +34,18 @@
 
 namespace ug::editor {
 
+namespace {
+
+// Per source of the environment edits: how many, and their median and 95th percentile (ms).
+nlohmann::json envStampsJson(const std::map<std::string, std::vector<double>>& by) {
+    nlohmann::json j = nlohmann::json::object();
+    for (const auto& [source, ms] : by)
+        j[source] = {{"stamps", ms.size()}, {"p50", percentile(ms, 0.5)}, {"p95", percentile(ms, 0.95)}};
+    return j;
+}
+
+}  // namespace
+
 using nlohmann::json;
 
 namespace {
@@ -120,6 +132,7 @@ json viewerStatsJson(const ViewerResult& r, const LodSettings& lod) {
         {"viewport", r.viewport},
         {"particles", r.particles},
         {"environment", r.environment},
+        {"env_stamp_to_frame_ms", envStampsJson(r.env_stamp_to_frame_ms)},
         {"window_title", r.window_title}};
 }
 

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -81,6 +82,9 @@ struct ViewerResult {
     uint64_t user_primitives = 0;
     int autosaves = 0;
     std::vector<double> stamp_to_frame_ms;  // every stamp: from the edit to the end of the frame showing it
+    // Every environment edit (a drag step, a weather stamp): from the edit to the end of the first frame
+    // showing its effects, by what made it ("env_move", "footprints", "weather_stroke", "mouse").
+    std::map<std::string, std::vector<double>> env_stamp_to_frame_ms;
     double repack_ms_max = 0.0;             // the slowest CPU re-pack of a live result's tiles for the GPU
     double tile_update_ms_max = 0.0;  // the slowest incremental one (changed tiles re-packed and uploaded)
     nlohmann::json actions = nlohmann::json::array();  // per replay action (viewer.cpp, "Statistics")

@@ -36,6 +36,18 @@ SurfaceMaterial makeSurface(glm::vec3 color, float roughness) {
     return resolveMaterial(m, color);
 }
 
+// The library's shapes as shared meshes, made once: every result names the same mesh objects, so a viewer
+// that keeps per-mesh work (the editor's levels of detail) keeps it across edits.
+const std::shared_ptr<const TriangleMesh>& icicleShapeMesh(uint32_t shape) {
+    static const std::vector<std::shared_ptr<const TriangleMesh>> meshes = [] {
+        std::vector<std::shared_ptr<const TriangleMesh>> out;
+        for (const IcicleShape& s : icicleShapes()) out.push_back(std::make_shared<const TriangleMesh>(s.mesh));
+        return out;
+    }();
+    return meshes[shape];
+}
+
+
 }  // namespace
 
 const SurfaceMaterial& snowMaterial() {
@@ -87,11 +99,10 @@ std::vector<MeshInstances> envMeshInstances(const EnvScene& scene, const EnvEffe
         for (uint32_t o : cls.members)
             for (const IcicleInstance& ic : cls.icicles) icicles[ic.shape].push_back(placedIcicle(objects[o].placement, ic));
     }
-    const std::vector<IcicleShape>& shapes = icicleShapes();
     for (auto& [shape, transforms] : icicles) {
         MeshInstances m;
         m.name = "icicles/" + std::to_string(shape);
-        m.mesh = std::make_shared<const TriangleMesh>(shapes[shape].mesh);
+        m.mesh = icicleShapeMesh(shape);
         m.material = ice;
         m.instances = std::move(transforms);
         out.push_back(std::move(m));

@@ -257,6 +257,36 @@ TEST(StaticLod, SameLevelsForAnyThreadCount) {
     EXPECT_TRUE(one[2].pieces.empty());
 }
 
+TEST(StaticLod, TheCacheBuildsOnlyNewMeshesAndGivesWhatABuildGives) {
+    auto a = std::make_shared<const TriangleMesh>(gridMesh(60, 0.05f, 0.0f, 0.0f));
+    auto b = std::make_shared<const TriangleMesh>(sphereMesh(16, 32));
+    auto c = std::make_shared<const TriangleMesh>(sphereMesh(12, 24));
+    StaticLodCache cache;
+    size_t built = 0;
+    auto expectBuilt = [&](const std::vector<std::shared_ptr<const TriangleMesh>>& meshes, const std::vector<bool>& split) {
+        const std::vector<StaticLodMesh> got = cache.levels(meshes, split, 2, &built);
+        std::vector<const TriangleMesh*> raw;
+        for (const auto& m : meshes) raw.push_back(m.get());
+        const std::vector<StaticLodMesh> want = buildStaticLodMeshes(raw, split, 1);
+        ASSERT_EQ(got.size(), want.size());
+        for (size_t m = 0; m < got.size(); ++m) {
+            EXPECT_EQ(got[m].indices, want[m].indices) << m;
+            EXPECT_EQ(got[m].split, want[m].split) << m;
+            ASSERT_EQ(got[m].pieces.size(), want[m].pieces.size()) << m;
+        }
+    };
+    expectBuilt({a, b}, {false, false});
+    EXPECT_EQ(built, 2u);
+    expectBuilt({b, a}, {false, false});  // the same objects, in another order
+    EXPECT_EQ(built, 0u);
+    expectBuilt({a, c}, {false, false});  // b's replacement (a class's new snow)
+    EXPECT_EQ(built, 1u);
+    expectBuilt({a, c}, {true, false});   // split now: levels of other pieces
+    EXPECT_EQ(built, 1u);
+    expectBuilt({b}, {false});            // b was forgotten when a call did not name it
+    EXPECT_EQ(built, 1u);
+}
+
 TEST(StaticLod, ChunksKnowTheirLargestScaleAndPiecesTheirEngineBoxes) {
     MeshInstances entry;
     auto mesh = std::make_shared<TriangleMesh>(gridMesh(4, 0.25f, 0.0f, 0.0f));  // [0, 1]^2, |z| <= 0.1

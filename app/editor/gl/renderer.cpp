@@ -305,15 +305,16 @@ void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
     // Levels of detail first, for all entries at once (the pieces of every entry spread over the workers).
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<const MeshInstances*> entries;
-    std::vector<const TriangleMesh*> lod_meshes;
+    std::vector<std::shared_ptr<const TriangleMesh>> lod_meshes;
     std::vector<bool> split;
     for (const MeshInstances& entry : *meshes) {
         if (!entry.mesh || entry.mesh->indices.empty()) continue;
         entries.push_back(&entry);
-        lod_meshes.push_back(entry.mesh.get());
+        lod_meshes.push_back(entry.mesh);
         split.push_back(splitsStaticEntry(entry.instances.size(), entry.mesh->indices.size() / 3));
     }
-    std::vector<StaticLodMesh> lods = buildStaticLodMeshes(lod_meshes, split, 0);
+    // Meshes kept from the previous set (an edit's unchanged snow, the objects' bases) keep their levels.
+    std::vector<StaticLodMesh> lods = static_lod_cache_.levels(lod_meshes, split, 0);
     const auto t1 = std::chrono::steady_clock::now();
     for (size_t e = 0; e < entries.size(); ++e) {
         const MeshInstances& entry = *entries[e];

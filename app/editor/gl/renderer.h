@@ -193,6 +193,7 @@ private:
     std::vector<StaticBuffers> statics_;
     std::vector<StaticDrawRange> static_draws_;  // scratch, per entry per pass
     double static_lod_ms_ = 0.0, static_upload_ms_ = 0.0;  // the latest setStaticMeshes()
+    StaticLodCache static_lod_cache_;
     TextureCache static_textures_;
     SurfaceMaterial terrain_material_;
     unsigned terrain_texture_ = 0;  // impostor silhouettes, kCoverageElevations layers per type
