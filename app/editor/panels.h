@@ -95,6 +95,9 @@ struct WindowToggles {
     bool particles = false;     // opened by Window > Particles
     bool environment = false;   // opened by Window > Environment
 };
+// The toggle of a window by its replay name ("statistics", ..., "export", "particles", "environment");
+// null for an unknown name.
+bool* windowToggle(WindowToggles* windows, const std::string& name);
 
 // The Render panel's settings: LOD switch distances and what is drawn over the scene.
 struct RenderSettings {

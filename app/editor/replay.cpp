@@ -7,6 +7,7 @@
 
 #include "core/atomic_file.h"
 #include "editor/env_tools.h"
+#include "editor/panels.h"
 #include "env/env_desc.h"
 #include "scene/project.h"
 
@@ -66,6 +67,8 @@ const char* replayKindName(ReplayKind kind) {
             return "footprints";
         case ReplayKind::WeatherStroke:
             return "weather_stroke";
+        case ReplayKind::ShowWindow:
+            return "show_window";
     }
     return "?";
 }
@@ -190,6 +193,12 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             if (r.steps < 1 || r.steps > 100000) return fail("steps must be in [1, 100000]");
         }
         if (r.kind == ReplayKind::WeatherStroke) r.brush = a.value("brush", r.brush);
+        if (r.kind == ReplayKind::ShowWindow) {
+            r.window = a.value("window", std::string());
+            r.visible = a.value("open", true);
+            WindowToggles probe;
+            if (!windowToggle(&probe, r.window)) return fail("unknown window '" + r.window + "'");
+        }
         if ((r.kind == ReplayKind::Footprints || r.kind == ReplayKind::WeatherStroke) && r.points.empty())
             return fail(std::string(replayKindName(r.kind)) + " needs \"points\" [[x, y], ...]");
         if (r.kind == ReplayKind::WeatherStroke) {

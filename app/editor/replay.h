@@ -48,6 +48,9 @@
 //     footprint brush's
 //     The env_ actions and weather strokes end when the effects computed for them are on screen; their
 //     statistics add "environment" (the tree, the fields, the last computation's time and region).
+//    {"action": "show_window", "window": "environment", "open": true},   a panel opened or closed as by the
+//     Window menu (statistics, tools, inspector, ghost_tile, render, outliner, instantiation, export,
+//     particles, environment); view state only
 //    {"action": "wait_idle"}]
 //
 // "frame" (optional) is the earliest frame, counted from the first frame that shows the document's
@@ -96,9 +99,10 @@ enum class ReplayKind {
     EnvRemove,
     EnvGlobal,
     Footprints,
-    WeatherStroke
+    WeatherStroke,
+    ShowWindow
 };
-constexpr int kReplayKindCount = int(ReplayKind::WeatherStroke) + 1;
+constexpr int kReplayKindCount = int(ReplayKind::ShowWindow) + 1;
 const char* replayKindName(ReplayKind kind);  // the "action" string
 
 struct ReplayAction {
@@ -145,6 +149,7 @@ struct ReplayAction {
     glm::vec2 at_xy{0.0f};  // env_add: "at"; env_move: "to"
     std::string channel;    // env_global
     std::string brush = "footprints";  // weather_stroke
+    std::string window;                // show_window (and `visible`: open or close)
     float value = 0.0f;
 };
 

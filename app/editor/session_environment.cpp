@@ -106,6 +106,7 @@ nlohmann::json EditorSession::environmentJson() const {
               {"local_fields", local_fields},
               {"generation", d.environmentGeneration()},
               {"settled", environmentSettled()},
+              {"brush", environment_panel.brush_on ? weatherBrushName(environment_panel.weather.brush) : "off"},
               {"tree", environmentToJson(env)["tree"]}};
     if (scene->env_effects) {
         const EnvEffectsStats& s = scene->env_effects->stats;

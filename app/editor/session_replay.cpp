@@ -305,6 +305,9 @@ bool EditorSession::runReplayAction(const ReplayAction& a) {
             if (!std::isnan(a.pitch_deg)) camera.pitch_rad = glm::radians(a.pitch_deg);
             camera_moved = true;
             break;
+        case ReplayKind::ShowWindow:
+            *windowToggle(&windows, a.window) = a.visible;  // the name was checked when the script was read
+            break;
         case ReplayKind::EnvAdd:
         case ReplayKind::EnvMove:
         case ReplayKind::EnvRemove:

@@ -33,9 +33,12 @@ bool rayHeightField(const HeightField& terrain, const Ray& ray, float max_t_m, f
         return p.z - terrain.sample(p.x, p.y);
     };
     // Skip the part of the ray that is above the highest sample or below the lowest: a camera 100 m up
-    // does not march 100 m of air in half-cell steps.
-    const Bounds slab{glm::vec3(-INFINITY, -INFINITY, terrain.minHeight()),
-                      glm::vec3(INFINITY, INFINITY, terrain.maxHeight())};
+    // does not march 100 m of air in half-cell steps. The slab is a millimetre thicker on either side:
+    // over flat ground it has no thickness, and the ray's ends in it, rounded, could both stay a hair above
+    // the ground, so that a ray aimed straight at it missed (the street samples' flat terrain did).
+    constexpr float kSlabPadM = 1e-3f;
+    const Bounds slab{glm::vec3(-INFINITY, -INFINITY, terrain.minHeight() - kSlabPadM),
+                      glm::vec3(INFINITY, INFINITY, terrain.maxHeight() + kSlabPadM)};
     float t0 = 0.0f, t1 = 0.0f;
     if (!clipRayToBounds(ray, slab, max_t_m, &t0, &t1)) return false;
     if (above(0.0f) < 0.0f) return false;  // starts under the ground

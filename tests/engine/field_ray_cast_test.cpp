@@ -41,6 +41,28 @@ TEST(RayCast, SlantedRayHitsTheFirstCrossing) {
     EXPECT_NEAR(ray.at(t).z, 0.0f, 1e-3f);
 }
 
+TEST(RayCast, FlatGroundIsHitFromEveryAngle) {
+    // A flat field has a slab of no thickness: the rays the editor cast at the flat street (the one that
+    // failed: from (4.98, 0.93, 7.71) along (-0.26, 0.33, -0.91)) and a fan of others must all meet it.
+    const HeightField flat(glm::vec2(0.0f), 0.25f, 41, 41, std::vector<float>(41 * 41, 0.0f));
+    std::vector<Ray> rays{{glm::vec3(4.98f, 0.93f, 7.71f), glm::normalize(glm::vec3(-0.26f, 0.33f, -0.91f))}};
+    for (int i = 0; i < 200; ++i) {
+        const float a = 0.031f * float(i), pitch = 0.2f + 0.0065f * float(i);
+        rays.push_back({glm::vec3(5.0f, 5.0f, 3.0f + 0.01f * float(i)),
+                        glm::normalize(glm::vec3(std::cos(a) * std::cos(pitch), std::sin(a) * std::cos(pitch),
+                                                 -std::sin(pitch)))});
+    }
+    for (size_t k = 0; k < rays.size(); ++k) {
+        const Ray& ray = rays[k];
+        const float t_plane = -ray.origin_m.z / ray.direction.z;
+        const glm::vec3 p = ray.at(t_plane);
+        if (p.x < 0.0f || p.y < 0.0f || p.x > 10.0f || p.y > 10.0f) continue;  // beyond the samples: clamped, flat too
+        float t = 0.0f;
+        ASSERT_TRUE(rayHeightField(flat, ray, 100.0f, &t)) << "ray " << k;
+        EXPECT_NEAR(t, t_plane, 1e-3f) << "ray " << k;
+    }
+}
+
 TEST(RayCast, MissesAndStartsBelow) {
     const HeightField hf = tiltedPlane();
     float t = 0.0f;

@@ -449,6 +449,37 @@ else
   bad "xdotool is not installed: the particle tool's driven test needs it (scripts/install-deps.sh)"
 fi
 
+# The environment tools by real X input (issue 13): a bench placed from the Environment window's palette,
+# dragged in the view, footprints walked with the weather brush, then three Ctrl+Z.
+if command -v xdotool >/dev/null 2>&1; then
+  vwork="$tmp/driven-environment"
+  mkdir -p "$vwork"
+  cp -r "$root/assets" "$vwork/assets"
+  if out="$(xvfb-run -a -s "-screen 0 1600x900x24" bash "$root/tests/gui/driven_environment.sh" "$bin" \
+              "$vwork/assets/scenes/street_winter.json" "$vwork" "$cache" 2>&1)" &&
+     out="$(python3 - "$vwork" <<'PY' 2>&1
+import json, sys
+d = sys.argv[1]
+start, added, moved, walked, undone = (json.load(open("%s/%s.json" % (d, n)))["environment"]
+                                       for n in ("start.stats", "added", "moved", "walked", "undone"))
+assert added["objects"] == start["objects"] + 1 and added["tree"][-1]["object"] == "bench", added["tree"][-1]
+a, m = added["tree"][-1]["at"], moved["tree"][-1]["at"]
+assert m[0] - a[0] > 0.5 and abs(m[1] - a[1]) < 0.05 and m[2] == a[2], (a, m)
+steps = walked["local_fields"] - moved["local_fields"]
+assert steps >= 4 and walked["brush"] == "footprints", walked
+assert undone["tree"] == start["tree"] and undone["local_fields"] == start["local_fields"], "three undos did not give the scene back"
+assert all(s["settled"] for s in (added, moved, walked, undone))
+print("bench placed, moved %.2f m, %d footprints, undone" % (m[0] - a[0], steps))
+PY
+)"; then
+    ok "edit street_winter: a bench placed, dragged and footprints walked by real X input, and undone ($out)"
+  else
+    bad "edit street_winter: driven environment session: $out $(tail -5 "$vwork/session.log" 2>/dev/null)"
+  fi
+else
+  bad "xdotool is not installed: the environment tools' driven test needs it (scripts/install-deps.sh)"
+fi
+
 # An interactive session driven by real X input (xdotool): mouse tools, picking, shortcuts and the
 # unsaved-changes dialog (driven_session.sh). On a copy of the assets, since it saves the project.
 if command -v xdotool >/dev/null 2>&1; then
