@@ -52,6 +52,7 @@ run_scene rock_pile "$root/assets/scenes/rock_pile.json" 640x360 pile
 
 # ---- the live editing loop: replayed strokes on the meadow (tools.h, replay.h) ----
 meadow="$root/assets/scenes/meadow.json"
+street="$root/assets/scenes/street_winter.json"
 config="$tmp/config"
 mkdir -p "$tmp/saved"
 touch "$tmp/not_a_folder"
@@ -370,36 +371,11 @@ EOF
 if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$edir/assets/scenes/street_winter.json" --frames 3 --size 960x540 \
      --cache "$cache" --config "$edir/config" --replay "$edir/script.json" --stats "$edir/stats.json" >"$edir/log" 2>&1 &&
    "$bin" instantiate "$edir/assets/scenes/street_winter.json" -o "$edir/saved.glb" --cache "$cache" >/dev/null 2>&1 &&
-   out="$(python3 - "$edir" <<'PY' 2>&1
-import hashlib, json, struct, sys
+   out="$(python3 - "$edir" "$root/tests/gui" <<'PY' 2>&1
+import json, sys
+sys.path.insert(0, sys.argv[2])
+from env_meshes import env_meshes
 d = sys.argv[1]
-def env_meshes(path):
-    """Every environment mesh's vertices, triangles and placements, hashed from the GLB's own bytes."""
-    b = open(path, "rb").read()
-    n = struct.unpack("<I", b[12:16])[0]
-    doc = json.loads(b[20:20 + n])
-    binary = b[20 + n + 8:]
-    def data(i):
-        a = doc["accessors"][i]
-        v = doc["bufferViews"][a["bufferView"]]
-        start = v.get("byteOffset", 0) + a.get("byteOffset", 0)
-        return binary[start:start + v["byteLength"] - a.get("byteOffset", 0)]
-    out = {}
-    for m, mesh in enumerate(doc["meshes"]):
-        if not mesh["name"].split("/")[0] in ("env", "snow", "icicles"):
-            continue
-        h = hashlib.sha1()
-        for p in mesh["primitives"]:
-            h.update(data(p["attributes"]["POSITION"]))
-            h.update(data(p["indices"]))
-        for node in doc["nodes"]:
-            if node.get("mesh") == m:
-                inst = node.get("extensions", {}).get("EXT_mesh_gpu_instancing", {}).get("attributes", {})
-                h.update(json.dumps(node.get("translation")).encode())
-                if "TRANSLATION" in inst:
-                    h.update(data(inst["TRANSLATION"]))
-        out[mesh["name"]] = h.hexdigest()
-    return out
 stats = json.load(open(d + "/stats.json"))
 acts = {a["action"]: a for a in stats["actions"]}
 for k in ("env_global", "env_add", "env_move", "footprints"):
@@ -528,6 +504,43 @@ else
   wait "$runner" 2>/dev/null
   bad "edit: the interactive session wrote no statistics or no autosave: $(tail -5 "$tmp/kill.log")"
 fi
+# kill -9 while editing the environment: the bench moved and footprints walked, autosaved, killed; the
+# recovered session holds the same tree and exports the same environment meshes (effects).
+econfig="$tmp/kill-env-config"
+ework="$tmp/kill-env"
+mkdir -p "$ework"
+cat >"$ework/edit.json" <<EOF
+[{"frame": 1, "action": "env_move", "node": 12, "to": [6.6, 6.9], "steps": 3},
+ {"action": "footprints", "points": [[1.0, 6.6], [4.0, 6.6]]},
+ {"action": "export", "path": "$ework/edited.glb"},
+ {"action": "wait_idle"}]
+EOF
+echo "[{\"frame\": 1, \"action\": \"export\", \"path\": \"$ework/recovered.glb\"}]" >"$ework/recover.json"
+xvfb-run -a -s "-screen 0 1280x720x24" sh -c 'echo $$ >"$0"; exec "$@"' "$ework/pid" "$bin" edit "$street" \
+  --size 640x360 --cache "$cache" --config "$econfig" --replay "$ework/edit.json" --stats "$ework/edit.stats.json" \
+  --autosave-interval 1 >"$ework/log" 2>&1 &
+runner=$!
+for _ in $(seq 1 120); do [ -s "$ework/edit.stats.json" ] && break; sleep 0.5; done
+sleep 2.5  # more than the autosave interval after the last edit
+if [ -s "$ework/edit.stats.json" ] && ls "$econfig"/recovery/*.meta.json >/dev/null 2>&1; then
+  kill -9 "$(cat "$ework/pid")"
+  wait "$runner" 2>/dev/null
+  if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$street" --recover yes --replay "$ework/recover.json" \
+       --frames 3 --size 640x360 --cache "$cache" --config "$econfig" --stats "$ework/recovered.stats.json" \
+       >"$ework/recovered.log" 2>&1 &&
+     out="$(python3 "$root/tests/gui/env_meshes.py" "$ework/edited.glb" "$ework/recovered.glb" 2>&1)" &&
+     python3 -c 'import json, sys; a, b = (json.load(open(p))["environment"] for p in sys.argv[1:]); assert a["tree"] == b["tree"] and a["local_fields"] == b["local_fields"] > 19, (a, b)' \
+       "$ework/edit.stats.json" "$ework/recovered.stats.json" 2>>"$ework/recovered.log"; then
+    ok "edit street_winter: kill -9 after environment edits, then --recover yes: the same tree and effects ($out)"
+  else
+    bad "edit street_winter: environment recovery after kill -9: ${out:-} $(tail -5 "$ework/recovered.log")"
+  fi
+else
+  [ -f "$ework/pid" ] && kill -9 "$(cat "$ework/pid")" 2>/dev/null
+  wait "$runner" 2>/dev/null
+  bad "edit street_winter: the environment session wrote no statistics or no autosave: $(tail -5 "$ework/log")"
+fi
+
 # --recover yes without an autosave: exit 1, says so. The editor's own exit status is recorded by a wrapper:
 # xvfb-run returns 5 when it cannot clean up its temporary folder after a client that exits at once, which
 # says nothing about the editor.
