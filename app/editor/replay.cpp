@@ -161,7 +161,9 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             if (r.kind == ReplayKind::EnvAdd || r.kind == ReplayKind::EnvMove) {
                 const json& at = a.at(r.kind == ReplayKind::EnvAdd ? "at" : "to");
                 r.at_xy = glm::vec2(at.at(0).get<float>(), at.at(1).get<float>());
+                if (r.kind == ReplayKind::EnvAdd && at.size() > 2) r.at_z = at.at(2).get<float>();
             }
+            if (r.kind == ReplayKind::EnvAdd) r.env_scale = a.value("scale", 1.0f);
             if (r.kind == ReplayKind::EnvAdd) r.type = a.at("type").get<std::string>();
             if (r.kind == ReplayKind::EnvMove || r.kind == ReplayKind::EnvRemove) r.node = a.at("node").get<size_t>();
             if (r.kind == ReplayKind::EnvGlobal) {

@@ -35,8 +35,8 @@
 //     charge replaces the keys by one), one undo step; ends when the strands re-grown for it are on
 //     screen; its statistics add "particles": {"ok", "error"?, "strands", "incremental", "recomputed",
 //     "reused", "grow_seconds"}
-//    {"action": "env_add", "type": "bench", "at": [x, y], "yaw_deg": 90},   the Environment window's Add:
-//     the type on the ground at (x, y), one undo step
+//    {"action": "env_add", "type": "bench", "at": [x, y], "yaw_deg": 90, "scale": 1},   the Environment
+//     window's Add: the type on the ground at (x, y) (or at [x, y, z]: on a pavement), one undo step
 //    {"action": "env_move", "node": 3, "to": [x, y], "steps": 10},   Select-drag the top-level node over the
 //     ground (its height above the ground kept), one step a frame, one undo step
 //    {"action": "env_remove", "node": 3},                         Delete, one undo step
@@ -147,6 +147,8 @@ struct ReplayAction {
     // env_add (type: `type`, turn: yaw_deg), env_move, env_remove, env_global
     size_t node = 0;
     glm::vec2 at_xy{0.0f};  // env_add: "at"; env_move: "to"
+    float at_z = NAN;       // env_add: "at"'s third value (NaN: on the ground)
+    float env_scale = 1.0f; // env_add
     std::string channel;    // env_global
     std::string brush = "footprints";  // weather_stroke
     std::string window;                // show_window (and `visible`: open or close)

@@ -48,8 +48,9 @@ bool EditorSession::startEnvReplayAction(const ReplayAction& a) {
                 *error = "env_add: no environmental-object type '" + a.type + "'";
                 return false;
             }
-            node.transform.translation = glm::vec3(a.at_xy, groundZ(a.at_xy));
+            node.transform.translation = glm::vec3(a.at_xy, std::isnan(a.at_z) ? groundZ(a.at_xy) : a.at_z);
             if (!std::isnan(a.yaw_deg)) node.transform.yaw_deg = a.yaw_deg;
+            node.transform.scale = a.env_scale;
             edited.roots.push_back(std::move(node));
             replay.record["node"] = edited.roots.size() - 1;
             replay.record["ok"] = doc->setEnvironment(edited, "Add object", &op_error);

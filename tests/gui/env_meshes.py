@@ -40,6 +40,23 @@ def env_meshes(path):
     return out
 
 
+def triangles(path, prefix):
+    """Triangles of the meshes whose name starts with `prefix`, times their placements."""
+    b = open(path, "rb").read()
+    n = struct.unpack("<I", b[12:16])[0]
+    doc = json.loads(b[20:20 + n])
+    total = 0
+    for m, mesh in enumerate(doc["meshes"]):
+        if not mesh["name"].startswith(prefix):
+            continue
+        tris = sum(doc["accessors"][p["indices"]]["count"] // 3 for p in mesh["primitives"])
+        for node in doc["nodes"]:
+            if node.get("mesh") == m:
+                inst = node.get("extensions", {}).get("EXT_mesh_gpu_instancing", {}).get("attributes", {})
+                total += tris * (doc["accessors"][inst["TRANSLATION"]]["count"] if "TRANSLATION" in inst else 1)
+    return total
+
+
 if __name__ == "__main__":
     a, b = env_meshes(sys.argv[1]), env_meshes(sys.argv[2])
     if a != b or not a:
