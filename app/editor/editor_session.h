@@ -30,6 +30,7 @@
 #include "editor/export_job.h"
 #include "editor/gl/renderer.h"
 #include "editor/gl/window.h"
+#include "editor/channel_map.h"
 #include "editor/env_tools.h"
 #include "editor/live_environment.h"
 #include "editor/live_strands.h"
@@ -138,6 +139,8 @@ private:
     // An environment edit made now (if `generation_before` moved) waits for the frame that shows it.
     void noteEnvStamp(uint64_t generation_before, int action);
     void timeEnvStamps(Clock::time_point frame_end);  // after the frame: the shown ones timed
+    // The channel view's overlay, built again only when the environment or the view's settings changed.
+    const MarkerGeometry& channelMapGeometry();
     // Ends every drag in the view (the document is about to change under it: undo, open, delete).
     void endViewDrags() {
         move_drag.end();
@@ -223,6 +226,13 @@ private:
     EnvObjectDrag env_drag;                             // the Select tool on an object (the window open)
     WeatherStroke weather_stroke;                       // a weather brush's stroke (footprints, warm, ...)
     EnvironmentPanelState environment_panel;
+    ChannelMap channel_map;
+    struct ChannelMapKey {
+        const Document* doc = nullptr;
+        uint64_t environment = 0;
+        ChannelMapSettings settings;
+        bool operator==(const ChannelMapKey&) const = default;
+    } channel_map_key;
     // ---- outliner, instantiation and export panels, New / Open ----
     std::vector<uint8_t> type_visible;  // view state, not a document edit: never undone, never saved
     InstantiationView inst_view;

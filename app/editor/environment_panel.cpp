@@ -45,6 +45,28 @@ void weatherBrush(EnvironmentPanelState* state) {
     }
 }
 
+// The channel view: which channel (or the shelter), the slice's height, and the legend of the last map.
+void channelView(EnvironmentPanelState* state) {
+    ChannelMapSettings& v = state->view;
+    ImGui::Checkbox("show on a slice over the ground", &v.on);
+    const char* names[kChannelMapChannels];
+    for (int c = 0; c < kChannelMapChannels; ++c) names[c] = channelMapName(c);
+    ImGui::Combo("channel", &v.channel, names, kChannelMapChannels);
+    ImGui::SliderFloat("slice height (m)", &v.height_m, 0.0f, 4.0f, "%.2f");
+    if (!v.on) return;
+    // The legend: the ramp in five steps, its ends' values.
+    ImGui::Text("%.3g", state->view_lo);
+    for (int k = 0; k < 5; ++k) {
+        const glm::vec3 c = channelMapColor(float(k) / 4.0f);
+        ImGui::SameLine();
+        ImGui::PushID(k);
+        ImGui::ColorButton("##ramp", ImVec4(c.x, c.y, c.z, 1.0f), ImGuiColorEditFlags_NoTooltip, ImVec2(24, 14));
+        ImGui::PopID();
+    }
+    ImGui::SameLine();
+    ImGui::Text("%.3g", state->view_hi);
+}
+
 void editGlobalFields(EnvironmentDesc* env, PanelEdit* e) {
     size_t local = 0;
     for (size_t i = 0; i < env->global_fields.size(); ++i) {
@@ -136,6 +158,7 @@ void drawEnvironmentPanel(Document* doc, EnvironmentPanelState* state, std::stri
     PanelEdit e;
     weatherBrush(state);
     if (ImGui::CollapsingHeader("Global fields", ImGuiTreeNodeFlags_DefaultOpen)) editGlobalFields(&env, &e);
+    if (ImGui::CollapsingHeader("View a channel")) channelView(state);
     if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) {
         palette(&env, state, &e);
         ImGui::BeginChild("tree", ImVec2(0, 110), true);

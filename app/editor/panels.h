@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "editor/channel_map.h"
 #include "editor/env_tools.h"
 #include "editor/export_job.h"
 #include "editor/render_data.h"
@@ -212,6 +213,8 @@ struct EnvironmentPanelState {
     size_t selected = SIZE_MAX;  // a top-level node of the tree (SIZE_MAX: none)
     bool brush_on = false;       // a weather brush: a left drag on the ground stamps it (env_tools.h)
     WeatherSettings weather;
+    ChannelMapSettings view;     // the channel view (channel_map.h); its legend's ends from the last map
+    float view_lo = 0.0f, view_hi = 0.0f;
     bool computing = false;      // the effects are being computed in the background
     std::string status;          // the last computation: snow, icicles, time
     std::string last_error;      // the last refused edit

@@ -69,6 +69,8 @@ const char* replayKindName(ReplayKind kind) {
             return "weather_stroke";
         case ReplayKind::ShowWindow:
             return "show_window";
+        case ReplayKind::EnvView:
+            return "env_view";
     }
     return "?";
 }
@@ -195,6 +197,12 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             if (r.steps < 1 || r.steps > 100000) return fail("steps must be in [1, 100000]");
         }
         if (r.kind == ReplayKind::WeatherStroke) r.brush = a.value("brush", r.brush);
+        if (r.kind == ReplayKind::EnvView) {
+            r.channel = a.value("channel", std::string("snow"));
+            r.value = a.value("height", 0.05f);
+            int c = 0;
+            if (r.channel != "off" && !channelMapFromName(r.channel, &c)) return fail("unknown channel '" + r.channel + "'");
+        }
         if (r.kind == ReplayKind::ShowWindow) {
             r.window = a.value("window", std::string());
             r.visible = a.value("open", true);

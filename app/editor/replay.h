@@ -48,6 +48,8 @@
 //     footprint brush's
 //     The env_ actions and weather strokes end when the effects computed for them are on screen; their
 //     statistics add "environment" (the tree, the fields, the last computation's time and region).
+//    {"action": "env_view", "channel": "shelter", "height": 0.3},   the Environment window's channel view
+//     ("off" hides it); view state only; its statistics add "channel_map" {"channel", "lo", "hi", "cells"}
 //    {"action": "show_window", "window": "environment", "open": true},   a panel opened or closed as by the
 //     Window menu (statistics, tools, inspector, ghost_tile, render, outliner, instantiation, export,
 //     particles, environment); view state only
@@ -100,9 +102,10 @@ enum class ReplayKind {
     EnvGlobal,
     Footprints,
     WeatherStroke,
-    ShowWindow
+    ShowWindow,
+    EnvView
 };
-constexpr int kReplayKindCount = int(ReplayKind::ShowWindow) + 1;
+constexpr int kReplayKindCount = int(ReplayKind::EnvView) + 1;
 const char* replayKindName(ReplayKind kind);  // the "action" string
 
 struct ReplayAction {

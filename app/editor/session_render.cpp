@@ -60,6 +60,8 @@ bool EditorSession::renderFrame() {
         if (windows.particles && particles_panel.selected < doc->particles()->size())
             addParticleMarkers((*doc->particles())[particles_panel.selected], particles_panel.selected_attractor,
                                &markers);
+        // The Environment window's channel view, while it is on.
+        if (windows.environment && environment_panel.view.on) markers.append(channelMapGeometry());
         const float r = render_settings.overlay_radius_m;
         const CandidateSet& c = doc->ghostTile().candidates;
         if (render_settings.tile_grid) addTileOverlay(instances, camera.target, r, &markers);

@@ -305,6 +305,12 @@ bool EditorSession::runReplayAction(const ReplayAction& a) {
             if (!std::isnan(a.pitch_deg)) camera.pitch_rad = glm::radians(a.pitch_deg);
             camera_moved = true;
             break;
+        case ReplayKind::EnvView:
+            windows.environment = true;
+            environment_panel.view.on = a.channel != "off";
+            channelMapFromName(a.channel, &environment_panel.view.channel);  // checked when read
+            environment_panel.view.height_m = a.value;
+            break;
         case ReplayKind::ShowWindow:
             *windowToggle(&windows, a.window) = a.visible;  // the name was checked when the script was read
             break;
@@ -336,6 +342,13 @@ void EditorSession::finishReplayAction() {
     if (kind == ReplayKind::Export) r.update(export_record);
     if (kind == ReplayKind::SetVisible) r["drawn_instances_after"] = renderer->stats().instances_drawn;
     if (kind == ReplayKind::SetAttractor) r["particles"] = strandsJson();
+    if (kind == ReplayKind::EnvView && environment_panel.view.on) {
+        channelMapGeometry();
+        r["channel_map"] = {{"channel", channelMapName(environment_panel.view.channel)},
+                            {"lo", channel_map.lo},
+                            {"hi", channel_map.hi},
+                            {"cells", channel_map.values.size()}};
+    }
     if (live_environment && (kind == ReplayKind::EnvAdd || kind == ReplayKind::EnvMove || kind == ReplayKind::EnvRemove ||
                              kind == ReplayKind::EnvGlobal || kind == ReplayKind::Footprints ||
                              kind == ReplayKind::WeatherStroke))

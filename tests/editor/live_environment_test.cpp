@@ -12,6 +12,7 @@
 #include <random>
 
 #include "../engine/env_edit_scene.h"
+#include "editor/channel_map.h"
 #include "editor/env_tools.h"
 #include "editor/live_environment.h"
 #include "env/env_outputs.h"
@@ -148,6 +149,42 @@ TEST(EnvTools, AWarmStrokeMeltsTheSnowUnderItAndEraseTakesItBack) {
     EXPECT_NE(error.find("wet brush"), std::string::npos) << error;
     EXPECT_FALSE(bad.active());
     EXPECT_EQ(doc.project().environment.global_fields.size(), fields);
+}
+
+TEST(ChannelMap, TheShelterMapIsLowUnderTheShelterOpenElsewhereAndColouredByItsLegend) {
+    OpenDocument o;
+    ASSERT_TRUE(o.doc);
+    const Document& doc = *o.doc;
+    ChannelMapSettings view;
+    view.on = true;
+    view.channel = kChannelMapChannels - 1;  // the shelter
+    view.height_m = 0.3f;
+    ASSERT_STREQ(channelMapName(view.channel), "shelter");
+    const ChannelMap map = buildChannelMap(doc, view, 0.1f);
+    ASSERT_EQ(map.columns, 40);  // the 4 m extent
+    ASSERT_EQ(map.rows, 40);
+    ASSERT_EQ(map.values.size(), 1600u);
+    EXPECT_EQ(map.geometry.hull.size(), 1600u * 6u);
+    const auto value = [&](glm::vec2 xy) {
+        return map.values[size_t(std::floor(xy.y / 0.1f)) * 40u + size_t(std::floor(xy.x / 0.1f))];
+    };
+    const glm::vec3 shelter = doc.project().environment.roots[1].transform.translation;
+    EXPECT_LT(value(glm::vec2(shelter) + glm::vec2(0.05f)), 0.5f) << "under the shelter's roof";
+    EXPECT_EQ(value({0.25f, 3.75f}), 1.0f) << "in the open";
+    EXPECT_EQ(map.lo, 0.0f);
+    EXPECT_EQ(map.hi, 1.0f);
+    // Each cell's colour is its value's place on the ramp between the legend's ends.
+    for (size_t k = 0; k < map.values.size(); k += 97)
+        EXPECT_EQ(map.geometry.hull[k * 6].color, channelMapColor((map.values[k] - map.lo) / (map.hi - map.lo)));
+    // The slice follows the ground: every corner 0.3 m above it.
+    for (size_t k = 0; k < map.geometry.hull.size(); k += 331) {
+        const glm::vec3 p = map.geometry.hull[k].position;
+        EXPECT_NEAR(p.z, groundHeightAt(doc, glm::vec2(p)) + 0.3f, 1e-5f);
+    }
+    int c = -1;
+    EXPECT_TRUE(channelMapFromName("temperature", &c));
+    EXPECT_EQ(c, int(EnvChannel::Temperature));
+    EXPECT_FALSE(channelMapFromName("rain", &c));
 }
 
 TEST(LiveEnvironment, CoalescedEditsEndEqualToAFullComputationAndUndoGivesBackTheFirst) {

@@ -426,7 +426,9 @@ $(step 3)
  {"action": "env_add", "type": "bench", "at": [6.6, 6.5], "yaw_deg": 180},
 $(step 4)
  {"action": "env_add", "type": "bus_shelter", "at": [6.6, 6.7], "yaw_deg": 180},
+ {"action": "env_view", "channel": "shelter", "height": 0.3},
 $(step 5)
+ {"action": "env_view", "channel": "off"},
  {"action": "footprints", "points": [[0.6, 6.2], [3.0, 6.5], [5.2, 7.6]]},
  {"action": "view", "target": [5.0, 6.0, 0.5], "distance": 9, "yaw_deg": -110, "pitch_deg": 35},
  {"action": "screenshot", "path": "$fdir/step6.png", "overlays": false},
@@ -455,6 +457,8 @@ assert snow[0] == 0 and snow[1] > 0, snow           # no snow before the global 
 assert icicles[1] == 0 and icicles[2] > 0, icicles   # the lamppost's lamp grows icicles in the cold
 assert bench[3] > 0 and bench[4] < 0.1 * bench[3], bench  # the shelter keeps the bench dry
 assert env_meshes(d + "/step6.glb") != env_meshes(d + "/step5.glb")  # footprints change the snow
+view = [a for a in stats["actions"] if a["action"] == "env_view"][0]["channel_map"]
+assert view["channel"] == "shelter" and view["lo"] < 0.5 and view["hi"] == 1.0, view  # sheltered under the roof
 print("6 steps as instantiate writes them; snow triangles %s; bench snow %d -> %d under the shelter" % (
     snow, bench[3], bench[4]))
 PY
