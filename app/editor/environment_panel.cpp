@@ -21,13 +21,17 @@ namespace ug::editor {
 namespace {
 
 std::string nodeLabel(const EnvironmentDesc& env, const EnvNode& node, size_t index) {
+    // Objects and references by their type or group, groups by their size.
     char label[160];
     const glm::vec3 t = node.transform.translation;
     const char* what = node.kind == EnvNodeKind::Object && node.type < env.types.size() ? env.types[node.type].name.c_str()
                        : node.kind == EnvNodeKind::Reference                          ? node.target.c_str()
                        : node.kind == EnvNodeKind::Lod                                 ? "LOD group"
                                                                                        : "group";
-    std::snprintf(label, sizeof label, "%zu  %s  (%.1f, %.1f)", index, what, t.x, t.y);
+    if (node.kind == EnvNodeKind::Group || node.kind == EnvNodeKind::Lod)
+        std::snprintf(label, sizeof label, "%zu  %s of %zu  (%.1f, %.1f)", index, what, node.children.size(), t.x, t.y);
+    else
+        std::snprintf(label, sizeof label, "%zu  %s  (%.1f, %.1f)", index, what, t.x, t.y);
     return label;
 }
 
@@ -87,29 +91,102 @@ void editGlobalFields(EnvironmentDesc* env, PanelEdit* e) {
     ImGui::TextDisabled("%zu local fields (footprints, warm and wet spots)", local);
 }
 
-// The selected node's transform, and Duplicate / Delete. Returns false when the node was deleted.
-bool editSelected(EnvironmentDesc* env, size_t* selected, PanelEdit* e) {
-    EnvNode& node = env->roots[*selected];
-    ImGui::Text("%s", nodeLabel(*env, node, *selected).c_str());
+// A structural edit's outcome, applied to the edited copy (env_tree_edits.h); a refusal is reported.
+void structural(bool ok, const std::string& why, PanelEdit* e, std::string* message) {
+    if (ok) e->changed = true;
+    else *message = why;
+}
+
+// The selected node's transform (in its parent's space), and the tree's edits: Duplicate, Delete, Group,
+// Ungroup, Make reusable (a top-level group becomes a named group and a reference to it), Instance (one
+// more reference to a reusable group, at the view's centre).
+void editSelected(EnvironmentDesc* env, EnvironmentPanelState* state, PanelEdit* e, std::string* message) {
+    EnvPath& path = state->selected;
+    EnvNode& node = *envNodeAt(env, path);
+    ImGui::Text("%s  %s", envPathText(path).c_str(), nodeLabel(*env, node, path.back()).c_str());
     dragged(ImGui::DragFloat3("position (m)", &node.transform.translation.x, 0.01f), e);
     dragged(ImGui::DragFloat("turn (deg)", &node.transform.yaw_deg, 0.5f, -360.0f, 360.0f), e);
     dragged(ImGui::DragFloat("scale", &node.transform.scale, 0.005f, 0.05f, 20.0f), e);
+    std::vector<EnvNode>& siblings = path.size() == 1 ? env->roots : envNodeAt(env, EnvPath(path.begin(), path.end() - 1))->children;
+    std::string why;
     if (ImGui::Button("Duplicate")) {
         EnvNode copy = node;
         copy.transform.translation.x += 0.5f;  // beside the original, not inside it
-        env->roots.push_back(std::move(copy));
-        *selected = env->roots.size() - 1;
+        siblings.push_back(std::move(copy));
+        path.back() = uint32_t(siblings.size() - 1);
         e->changed = true;
-        return true;
+        return;
     }
     ImGui::SameLine();
     if (ImGui::Button("Delete")) {
-        env->roots.erase(env->roots.begin() + std::ptrdiff_t(*selected));
-        *selected = SIZE_MAX;
+        siblings.erase(siblings.begin() + std::ptrdiff_t(path.back()));
+        path.clear();
         e->changed = true;
-        return false;
+        return;
     }
-    return true;
+    ImGui::SameLine();
+    if (ImGui::Button("Group")) return structural(groupEnvNode(env, path, &why), why, e, message);
+    if (node.kind == EnvNodeKind::Group) {
+        ImGui::SameLine();
+        if (ImGui::Button("Ungroup")) {
+            structural(ungroupEnvNode(env, path, &why), why, e, message);
+            return;
+        }
+        if (path.size() == 1) {
+            ImGui::SameLine();
+            if (ImGui::Button("Make reusable")) {
+                std::string name = "group_" + std::to_string(env->groups.size() + 1);
+                structural(makeEnvGroupReusable(env, path, name, &why), why, e, message);
+                return;
+            }
+        }
+    }
+    if (node.kind == EnvNodeKind::Reference) {
+        ImGui::SameLine();
+        if (ImGui::Button("Instance")) {
+            EnvTransform at = node.transform;
+            at.translation = state->place_at;
+            const std::string target = node.target;
+            structural(addEnvReference(env, target, at, &why), why, e, message);
+            if (e->changed) path = {uint32_t(env->roots.size() - 1)};
+        }
+    }
+}
+
+// One node of the tree and its subtree: click selects; a node dragged onto a group moves into it (it
+// stays where it is in the world).
+void treeNode(EnvironmentDesc* env, const EnvPath& path, EnvironmentPanelState* state, EnvPath* drag_from,
+              EnvPath* drop_into) {
+    const EnvNode& node = *envNodeAt(*env, path);
+    const bool has_children = node.kind == EnvNodeKind::Group || node.kind == EnvNodeKind::Lod;
+    ImGuiTreeNodeFlags flags = ImGuiTreeNodeFlags_OpenOnArrow | ImGuiTreeNodeFlags_SpanAvailWidth;
+    if (!has_children) flags |= ImGuiTreeNodeFlags_Leaf | ImGuiTreeNodeFlags_NoTreePushOnOpen;
+    if (path == state->selected) flags |= ImGuiTreeNodeFlags_Selected;
+    ImGui::PushID(int(path.back()));
+    const bool open = ImGui::TreeNodeEx("node", flags, "%s", nodeLabel(*env, node, path.back()).c_str());
+    if (ImGui::IsItemClicked() && !ImGui::IsItemToggledOpen()) state->selected = path;
+    if (ImGui::BeginDragDropSource()) {
+        ImGui::SetDragDropPayload("UG_ENV_NODE", path.data(), path.size() * sizeof(uint32_t));
+        ImGui::Text("%s", nodeLabel(*env, node, path.back()).c_str());
+        ImGui::EndDragDropSource();
+    }
+    if (node.kind == EnvNodeKind::Group && ImGui::BeginDragDropTarget()) {
+        if (const ImGuiPayload* p = ImGui::AcceptDragDropPayload("UG_ENV_NODE")) {
+            const uint32_t* from = static_cast<const uint32_t*>(p->Data);
+            *drag_from = EnvPath(from, from + size_t(p->DataSize) / sizeof(uint32_t));
+            *drop_into = path;
+        }
+        ImGui::EndDragDropTarget();
+    }
+    if (open && has_children) {
+        for (size_t c = 0; c < node.children.size(); ++c) {
+            EnvPath child = path;
+            child.push_back(uint32_t(c));
+            treeNode(env, child, state, drag_from, drop_into);
+        }
+        ImGui::TreePop();
+    }
+    ImGui::PopID();
 }
 
 void palette(EnvironmentDesc* env, EnvironmentPanelState* state, PanelEdit* e) {
@@ -125,7 +202,7 @@ void palette(EnvironmentDesc* env, EnvironmentPanelState* state, PanelEdit* e) {
         node.type = uint32_t(state->add_type);
         node.transform.translation = state->place_at;
         env->roots.push_back(std::move(node));
-        state->selected = env->roots.size() - 1;
+        state->selected = {uint32_t(env->roots.size() - 1)};
         e->changed = true;
     }
 }
@@ -154,7 +231,7 @@ void drawEnvironmentPanel(Document* doc, EnvironmentPanelState* state, std::stri
         state->editing_doc = doc;
     }
     EnvironmentDesc& env = state->editing;
-    if (state->selected != SIZE_MAX && state->selected >= env.roots.size()) state->selected = SIZE_MAX;
+    if (!envNodeAt(env, state->selected)) state->selected.clear();
     PanelEdit e;
     weatherBrush(state);
     if (ImGui::CollapsingHeader("Global fields", ImGuiTreeNodeFlags_DefaultOpen)) editGlobalFields(&env, &e);
@@ -162,13 +239,17 @@ void drawEnvironmentPanel(Document* doc, EnvironmentPanelState* state, std::stri
     if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) {
         palette(&env, state, &e);
         ImGui::BeginChild("tree", ImVec2(0, 110), true);
-        for (size_t i = 0; i < env.roots.size(); ++i) {
-            ImGui::PushID(int(i));
-            if (ImGui::Selectable(nodeLabel(env, env.roots[i], i).c_str(), i == state->selected)) state->selected = i;
-            ImGui::PopID();
-        }
+        EnvPath drag_from, drop_into;
+        for (size_t i = 0; i < env.roots.size(); ++i) treeNode(&env, {uint32_t(i)}, state, &drag_from, &drop_into);
         ImGui::EndChild();
-        if (state->selected != SIZE_MAX) editSelected(&env, &state->selected, &e);
+        if (!drop_into.empty()) {
+            std::string why;
+            EnvPath moved;
+            structural(moveEnvNodeInto(&env, drag_from, drop_into, &moved, &why), why, &e, message);
+            if (e.changed) state->selected = moved;
+        } else if (!state->selected.empty()) {
+            editSelected(&env, state, &e, message);
+        }
     }
 
     commitPanelEdit(

@@ -210,7 +210,7 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
 
 // ---- environment panel (environment_panel.cpp) ----
 struct EnvironmentPanelState {
-    size_t selected = SIZE_MAX;  // a top-level node of the tree (SIZE_MAX: none)
+    EnvPath selected;            // a node of the tree (empty: none)
     bool brush_on = false;       // a weather brush: a left drag on the ground stamps it (env_tools.h)
     WeatherSettings weather;
     ChannelMapSettings view;     // the channel view (channel_map.h); its legend's ends from the last map

@@ -71,8 +71,23 @@ const char* replayKindName(ReplayKind kind) {
             return "show_window";
         case ReplayKind::EnvView:
             return "env_view";
+        case ReplayKind::EnvTree:
+            return "env_tree";
     }
     return "?";
+}
+
+bool editsEnvironment(ReplayKind kind) {
+    switch (kind) {
+        case ReplayKind::EnvAdd:
+        case ReplayKind::EnvMove:
+        case ReplayKind::EnvRemove:
+        case ReplayKind::EnvGlobal:
+        case ReplayKind::EnvTree:
+        case ReplayKind::Footprints:
+        case ReplayKind::WeatherStroke: return true;
+        default: return false;
+    }
 }
 
 bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, std::string* error) {
@@ -197,6 +212,22 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             if (r.steps < 1 || r.steps > 100000) return fail("steps must be in [1, 100000]");
         }
         if (r.kind == ReplayKind::WeatherStroke) r.brush = a.value("brush", r.brush);
+        if (r.kind == ReplayKind::EnvTree) {
+            try {
+                r.op = a.at("op").get<std::string>();
+                r.name = a.value("name", std::string());
+                if (a.contains("node")) r.node_path = a["node"].get<std::vector<uint32_t>>();
+                if (a.contains("group")) r.group_path = a["group"].get<std::vector<uint32_t>>();
+                if (a.contains("at")) r.at_xy = glm::vec2(a["at"].at(0).get<float>(), a["at"].at(1).get<float>());
+            } catch (const json::exception& e) {
+                return fail(std::string("env_tree: ") + e.what());
+            }
+            const bool op_known = r.op == "group" || r.op == "ungroup" || r.op == "into" || r.op == "reusable" ||
+                               r.op == "instance";
+            if (!op_known) return fail("env_tree: unknown op '" + r.op + "'");
+            if (r.op != "instance" && r.node_path.empty()) return fail("env_tree: " + r.op + " needs \"node\"");
+            if (r.op == "into" && r.group_path.empty()) return fail("env_tree: into needs \"group\"");
+        }
         if (r.kind == ReplayKind::EnvView) {
             r.channel = a.value("channel", std::string("snow"));
             r.value = a.value("height", 0.05f);

@@ -48,6 +48,10 @@
 //     footprint brush's
 //     The env_ actions and weather strokes end when the effects computed for them are on screen; their
 //     statistics add "environment" (the tree, the fields, the last computation's time and region).
+//    {"action": "env_tree", "op": "group" | "ungroup" | "into" | "reusable" | "instance", "node": [1, 0],
+//     "group": [2], "name": "stop", "at": [x, y]},   the window's tree edits (env/env_tree_edits.h): a node
+//     by its path; "into" moves it into "group"; "reusable" names a top-level group; "instance" places the
+//     named group again at (x, y) on the ground. One undo step.
 //    {"action": "env_view", "channel": "shelter", "height": 0.3},   the Environment window's channel view
 //     ("off" hides it); view state only; its statistics add "channel_map" {"channel", "lo", "hi", "cells"}
 //    {"action": "show_window", "window": "environment", "open": true},   a panel opened or closed as by the
@@ -103,10 +107,14 @@ enum class ReplayKind {
     Footprints,
     WeatherStroke,
     ShowWindow,
-    EnvView
+    EnvView,
+    EnvTree
 };
-constexpr int kReplayKindCount = int(ReplayKind::EnvView) + 1;
+constexpr int kReplayKindCount = int(ReplayKind::EnvTree) + 1;
 const char* replayKindName(ReplayKind kind);  // the "action" string
+// The actions that edit the environment (env_add, env_move, env_remove, env_global, env_tree, footprints,
+// weather_stroke): they end when the effects computed for them are on screen.
+bool editsEnvironment(ReplayKind kind);
 
 struct ReplayAction {
     ReplayKind kind = ReplayKind::WaitIdle;
@@ -155,6 +163,8 @@ struct ReplayAction {
     std::string channel;    // env_global
     std::string brush = "footprints";  // weather_stroke
     std::string window;                // show_window (and `visible`: open or close)
+    std::string op, name;              // env_tree (and `at_xy`)
+    std::vector<uint32_t> node_path, group_path;
     float value = 0.0f;
 };
 

@@ -54,14 +54,26 @@ bool EditorSession::startEnvReplayAction(const ReplayAction& a) {
             edited.roots.push_back(std::move(node));
             replay.record["node"] = edited.roots.size() - 1;
             replay.record["ok"] = doc->setEnvironment(edited, "Add object", &op_error);
-            environment_panel.selected = edited.roots.size() - 1;
+            environment_panel.selected = {uint32_t(edited.roots.size() - 1)};
+            break;
+        }
+        case ReplayKind::EnvTree: {
+            // The Environment window's tree buttons and drag and drop, on the same edits.
+            EnvironmentDesc edited = env;
+            bool ok = false;
+            if (a.op == "group") ok = groupEnvNode(&edited, a.node_path, &op_error);
+            else if (a.op == "ungroup") ok = ungroupEnvNode(&edited, a.node_path, &op_error);
+            else if (a.op == "into") ok = moveEnvNodeInto(&edited, a.node_path, a.group_path, nullptr, &op_error);
+            else if (a.op == "reusable") ok = makeEnvGroupReusable(&edited, a.node_path, a.name, &op_error);
+            else ok = addEnvReference(&edited, a.name, EnvTransform{glm::vec3(a.at_xy, groundZ(a.at_xy)), 0.0f, 1.0f}, &op_error);
+            replay.record["ok"] = ok && doc->setEnvironment(edited, "Edit the tree", &op_error);
             break;
         }
         case ReplayKind::EnvRemove: {
             EnvironmentDesc edited = env;
             edited.roots.erase(edited.roots.begin() + std::ptrdiff_t(a.node));
             replay.record["ok"] = doc->setEnvironment(edited, "Delete object", &op_error);
-            environment_panel.selected = SIZE_MAX;
+            environment_panel.selected.clear();
             break;
         }
         case ReplayKind::EnvGlobal: {
@@ -82,7 +94,7 @@ bool EditorSession::startEnvReplayAction(const ReplayAction& a) {
         }
         case ReplayKind::EnvMove: {
             const glm::vec3 from = env.roots[a.node].transform.translation;
-            environment_panel.selected = a.node;
+            environment_panel.selected = {uint32_t(a.node)};
             replay.record["from"] = {from.x, from.y, from.z};
             replay.path.clear();
             for (int k = 1; k <= a.steps; ++k)

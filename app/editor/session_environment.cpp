@@ -17,12 +17,6 @@ bool isEnvironmentMesh(const MeshInstances& m) {
     return m.name.rfind("env/", 0) == 0 || m.name.rfind("snow/", 0) == 0 || m.name.rfind("icicles/", 0) == 0;
 }
 
-size_t countObjects(const std::vector<EnvNode>& nodes) {
-    size_t n = 0;
-    for (const EnvNode& node : nodes) n += (node.kind == EnvNodeKind::Object ? 1 : 0) + countObjects(node.children);
-    return n;
-}
-
 }  // namespace
 
 void EditorSession::startEnvironment() {
@@ -113,7 +107,8 @@ nlohmann::json EditorSession::environmentJson() const {
     const EnvironmentDesc& env = d.project().environment;
     size_t local_fields = 0;
     for (const EnvFieldDesc& f : env.global_fields) local_fields += f.everywhere ? 0 : 1;
-    json j = {{"objects", countObjects(env.roots)},
+    // Objects as placed: references to reusable groups expanded (the compiled scene's).
+    json j = {{"objects", d.environment()->objects().size()},
               {"roots", env.roots.size()},
               {"global_fields", env.global_fields.size() - local_fields},
               {"local_fields", local_fields},

@@ -161,7 +161,7 @@ void EditorSession::mouseTools() {
                         ? pickEnvNode(*doc, view_proj, float(fb_w), float(fb_h), cursor, 25.0f)
                         : kNoEnvNode;
                 particles_panel.selected_attractor = attractor;
-                if (env_node != kNoEnvNode) environment_panel.selected = env_node;
+                if (env_node != kNoEnvNode) environment_panel.selected = {uint32_t(env_node)};
                 if (attractor != kNoAttractor) {
                     tools.selected = 0;
                     attractor_drag.begin(doc, particles_panel.selected, attractor, ray);

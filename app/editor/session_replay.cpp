@@ -314,14 +314,8 @@ bool EditorSession::runReplayAction(const ReplayAction& a) {
         case ReplayKind::ShowWindow:
             *windowToggle(&windows, a.window) = a.visible;  // the name was checked when the script was read
             break;
-        case ReplayKind::EnvAdd:
-        case ReplayKind::EnvMove:
-        case ReplayKind::EnvRemove:
-        case ReplayKind::EnvGlobal:
-        case ReplayKind::Footprints:
-        case ReplayKind::WeatherStroke:
-            return startEnvReplayAction(a);  // finishing set there (a drag or a walk runs over frames)
         default:
+            if (editsEnvironment(a.kind)) return startEnvReplayAction(a);  // finishing set there (drags run on)
             break;
     }
     if (!continue_move) replay.finishing = a.kind != ReplayKind::GhostTile || !ghost_job;
@@ -349,10 +343,7 @@ void EditorSession::finishReplayAction() {
                             {"hi", channel_map.hi},
                             {"cells", channel_map.values.size()}};
     }
-    if (live_environment && (kind == ReplayKind::EnvAdd || kind == ReplayKind::EnvMove || kind == ReplayKind::EnvRemove ||
-                             kind == ReplayKind::EnvGlobal || kind == ReplayKind::Footprints ||
-                             kind == ReplayKind::WeatherStroke))
-        r["environment"] = environmentJson();
+    if (live_environment && editsEnvironment(kind)) r["environment"] = environmentJson();
     if (kind == ReplayKind::View) {
         r["eye"] = vec3Json(camera.eye());
         r["target"] = vec3Json(camera.target);

@@ -67,20 +67,6 @@ bool validateEnvironmentEdit(const EnvironmentDesc& env, const std::string& sour
     return readEnvironment(reader, j, "/environment", &read);
 }
 
-EnvNode* envNodeAt(EnvironmentDesc* env, const std::vector<uint32_t>& path) {
-    if (path.empty() || path[0] >= env->roots.size()) return nullptr;
-    EnvNode* node = &env->roots[path[0]];
-    for (size_t i = 1; i < path.size(); ++i) {
-        if (path[i] >= node->children.size()) return nullptr;
-        node = &node->children[path[i]];
-    }
-    return node;
-}
-
-const EnvNode* envNodeAt(const EnvironmentDesc& env, const std::vector<uint32_t>& path) {
-    return envNodeAt(const_cast<EnvironmentDesc*>(&env), path);
-}
-
 EnvFieldDesc footprintField(glm::vec3 at) {
     // The street sample's footprints: a boot-sized support, most but not all of the snow pressed away.
     constexpr float kFootprintRadiusM = 0.13f, kFootprintOcclusion = 0.85f;

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "env/env_desc.h"
+#include "env/env_tree_edits.h"
 #include "scene/edit_commands.h"
 
 namespace ug {
@@ -28,11 +29,6 @@ private:
 // numbers, types that exist, the tree's depth and size), with the errors placed by JSON Pointer under
 // `source` ("street.json: /environment/tree/3/scale: ..."). The editor's edits go through here.
 bool validateEnvironmentEdit(const EnvironmentDesc& env, const std::string& source, std::string* error);
-
-// A node of the tree by its path of child indices from the roots ({2}: the third root; {2, 0}: its first
-// child). Null when the path leads nowhere.
-EnvNode* envNodeAt(EnvironmentDesc* env, const std::vector<uint32_t>& path);
-const EnvNode* envNodeAt(const EnvironmentDesc& env, const std::vector<uint32_t>& path);
 
 // A footprint (Fig. 3, step 6): an occlusion point field on the ground at `at` (world space) that keeps
 // most of the snow off a foot-sized disc.

@@ -5,11 +5,13 @@
 hold=0.3
 key() { xdotool keydown "$1"; sleep "$hold"; xdotool keyup "$1"; sleep "$hold"; }
 chord() { xdotool keydown "$1"; sleep 0.1; key "$2"; xdotool keyup "$1"; sleep "$hold"; }
-click() { xdotool mousemove "$1" "$2"; sleep 0.5; xdotool mousedown 1; sleep 0.4; xdotool mouseup 1; sleep 0.8; }
+# Dear ImGui 1.86 reads the mouse once a frame: a press must last a frame where the pointer already is,
+# and a frame takes up to a second here, so presses are held a second before anything else moves.
+click() { xdotool mousemove "$1" "$2"; sleep 1; xdotool mousedown 1; sleep 1; xdotool mouseup 1; sleep 1; }
 # drag X0 Y0 X1 Y1: the left button held from one point to the other in 10 moves.
 drag() {
-  xdotool mousemove "$1" "$2"; sleep 0.5
-  xdotool mousedown 1; sleep 0.4
+  xdotool mousemove "$1" "$2"; sleep 1
+  xdotool mousedown 1; sleep 1
   for k in $(seq 1 10); do xdotool mousemove $(($1 + ($3 - $1) * k / 10)) $(($2 + ($4 - $2) * k / 10)); sleep 0.15; done
   sleep 0.3
   xdotool mouseup 1; sleep 0.5
