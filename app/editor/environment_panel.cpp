@@ -235,7 +235,6 @@ void drawEnvironmentPanel(Document* doc, EnvironmentPanelState* state, std::stri
     PanelEdit e;
     weatherBrush(state);
     if (ImGui::CollapsingHeader("Global fields", ImGuiTreeNodeFlags_DefaultOpen)) editGlobalFields(&env, &e);
-    if (ImGui::CollapsingHeader("View a channel")) channelView(state);
     if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) {
         palette(&env, state, &e);
         ImGui::BeginChild("tree", ImVec2(0, 110), true);
@@ -251,6 +250,8 @@ void drawEnvironmentPanel(Document* doc, EnvironmentPanelState* state, std::stri
             editSelected(&env, state, &e, message);
         }
     }
+
+    if (ImGui::CollapsingHeader("View a channel")) channelView(state);
 
     commitPanelEdit(
         doc, e, "Edit environment",
