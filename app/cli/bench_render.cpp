@@ -129,10 +129,11 @@ void addViewRows(const std::string& name, const ViewMeasure& m, bool triangle_ba
                      "scene draws per frame"});
 }
 
-// The winter street edited in the editor's window: a footprint walk and a bench dragged (issue 13's rows).
-bool benchEnvironmentEdits(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error) {
+// A scripted editor run on a bundled scene that times the GPU's work every frame, writes nothing to the
+// config folder (no autosave or recent files from a benchmark) and renders 5 frames after its script.
+editor::ViewerOptions timedEditorRun(const BenchContext& ctx, const std::string& scene) {
     editor::ViewerOptions options;
-    options.scene_path = ctx.assets_dir + "/scenes/street_winter.json";
+    options.scene_path = ctx.assets_dir + "/scenes/" + scene + ".json";
     options.cache_dir = ctx.cache_dir;
     options.threads = ctx.threads;
     options.width = kWidth;
@@ -141,6 +142,12 @@ bool benchEnvironmentEdits(const BenchContext& ctx, std::vector<BenchRow>* rows,
     options.quiet = true;
     options.frames = 5;
     options.config_dir.clear();
+    return options;
+}
+
+// The winter street edited in the editor's window: a footprint walk and a bench dragged (issue 13's rows).
+bool benchEnvironmentEdits(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error) {
+    editor::ViewerOptions options = timedEditorRun(ctx, "street_winter");
     editor::ReplayAction walk;
     walk.kind = editor::ReplayKind::Footprints;
     walk.frame = 2;
@@ -219,14 +226,7 @@ bool benchRender(const BenchContext& ctx, std::vector<BenchRow>* rows, std::stri
         return true;
     }
 
-    editor::ViewerOptions options;
-    options.scene_path = ctx.assets_dir + "/scenes/meadow.json";
-    options.cache_dir = ctx.cache_dir;
-    options.threads = ctx.threads;
-    options.width = kWidth;
-    options.height = kHeight;
-    options.finish_each_frame = true;
-    options.quiet = true;
+    editor::ViewerOptions options = timedEditorRun(ctx, "meadow");
     editor::ReplayAction stroke;
     stroke.kind = editor::ReplayKind::PaintStroke;
     stroke.frame = 2;
@@ -234,8 +234,6 @@ bool benchRender(const BenchContext& ctx, std::vector<BenchRow>* rows, std::stri
     stroke.radius_m = 1.5f;
     stroke.points = {glm::vec2(-10.0f, -9.0f), glm::vec2(10.0f, -9.0f)};  // 20 m / 0.5 m: 40 stamps
     options.replay = {stroke};
-    options.frames = 5;
-    options.config_dir.clear();  // no autosave or recent files from a benchmark
     editor::ViewerResult edit;
     if (editor::runViewer(options, &edit, error) != editor::ViewerStatus::Ok) return false;
     rows->push_back({"editor.stamp_to_frame_p95_ms", editor::percentile(edit.stamp_to_frame_ms, 0.95), "ms", "<= 50",

@@ -266,6 +266,14 @@ else
   bad "edit street_autumn: export looks: $(tail -5 "$adir/log" "$adir/gltf.txt" 2>/dev/null)"
 fi
 
+# edit_and_instantiate DIR SCENE SIZE: the editor on DIR's copy of the assets' SCENE with DIR/script.json
+# (statistics in DIR/stats.json, log in DIR/log), then `instantiate` on the scene it saved (DIR/saved.glb).
+edit_and_instantiate() {
+  xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$1/assets/scenes/$2" --frames 3 --size "$3" \
+    --cache "$cache" --config "$1/config" --replay "$1/script.json" --stats "$1/stats.json" >"$1/log" 2>&1 &&
+    "$bin" instantiate "$1/assets/scenes/$2" -o "$1/saved.glb" --cache "$cache" >/dev/null 2>&1
+}
+
 # ---- a project's particle systems in the editor: drawn and exported as `instantiate` writes them ----
 sdir="$tmp/strands"
 mkdir -p "$sdir"
@@ -319,9 +327,7 @@ cat >"$pdir/script.json" <<EOF
  {"action": "save"},
  {"action": "wait_idle"}]
 EOF
-if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$pdir/assets/scenes/meadow_strands.json" --frames 3 --size 960x540 \
-     --cache "$cache" --config "$pdir/config" --replay "$pdir/script.json" --stats "$pdir/stats.json" >"$pdir/log" 2>&1 &&
-   "$bin" instantiate "$pdir/assets/scenes/meadow_strands.json" -o "$pdir/saved.glb" --cache "$cache" >/dev/null 2>&1 &&
+if edit_and_instantiate "$pdir" meadow_strands.json 960x540 &&
    out="$(python3 - "$pdir" "$sdir/cli.glb" <<'PY' 2>&1
 import json, struct, sys
 d, original = sys.argv[1], sys.argv[2]
@@ -368,9 +374,7 @@ cat >"$edir/script.json" <<EOF
  {"action": "export", "path": "$edir/undone.glb"},
  {"action": "wait_idle"}]
 EOF
-if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$edir/assets/scenes/street_winter.json" --frames 3 --size 960x540 \
-     --cache "$cache" --config "$edir/config" --replay "$edir/script.json" --stats "$edir/stats.json" >"$edir/log" 2>&1 &&
-   "$bin" instantiate "$edir/assets/scenes/street_winter.json" -o "$edir/saved.glb" --cache "$cache" >/dev/null 2>&1 &&
+if edit_and_instantiate "$edir" street_winter.json 960x540 &&
    out="$(python3 - "$edir" "$root/tests/gui" <<'PY' 2>&1
 import json, sys
 sys.path.insert(0, sys.argv[2])
@@ -415,9 +419,7 @@ cat >"$tdir/script.json" <<EOF
  {"action": "export", "path": "$tdir/undone.glb"},
  {"action": "wait_idle"}]
 EOF
-if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$tdir/assets/scenes/street_winter.json" --frames 3 --size 640x360 \
-     --cache "$cache" --config "$tdir/config" --replay "$tdir/script.json" --stats "$tdir/stats.json" >"$tdir/log" 2>&1 &&
-   "$bin" instantiate "$tdir/assets/scenes/street_winter.json" -o "$tdir/saved.glb" --cache "$cache" >/dev/null 2>&1 &&
+if edit_and_instantiate "$tdir" street_winter.json 640x360 &&
    out="$(python3 - "$tdir" "$root/tests/gui" <<'PY' 2>&1
 import json, sys
 sys.path.insert(0, sys.argv[2])
