@@ -11,6 +11,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -103,6 +104,13 @@ private:
     };
     std::vector<Kept> kept_;
 };
+
+// Whether a static mesh is drawn into the sun's shadow map. The terrain's snow is not, as the terrain is
+// not (renderer.cpp): a layer lying on the ground shadows only itself, at grazing sun, which the sun term
+// shades already; and it is the biggest static mesh of a winter scene, redrawn whenever an edit swaps
+// meshes (about a third of such a frame on llvmpipe). The objects' snow casts: a snowed roof's shadow is
+// the roof's and its snow's.
+inline bool castsSunShadow(std::string_view mesh_name) { return mesh_name.rfind("snow/terrain/", 0) != 0; }
 
 // The level to draw a piece at, -1 for none: with the piece's object-space errors scaled by `scale` (the
 // instances' largest), the coarsest level whose error covers less than kStaticLodErrorPx at `distance_m`;

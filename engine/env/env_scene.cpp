@@ -610,6 +610,19 @@ float EnvScene::surfaceTopIn(glm::vec2 lo, glm::vec2 hi) const {
     return top;
 }
 
+bool sameRestSurfaces(const EnvScene& a, const EnvScene& b) {
+    if (a.terrain() != b.terrain() || a.objects().size() != b.objects().size() || a.types().size() != b.types().size())
+        return false;
+    for (size_t t = 0; t < a.types().size(); ++t)
+        if (a.types()[t].spans != b.types()[t].spans) return false;
+    for (size_t o = 0; o < a.objects().size(); ++o) {
+        const EnvObject& x = a.objects()[o];
+        const EnvObject& y = b.objects()[o];
+        if (x.type != y.type || !(x.placement == y.placement)) return false;
+    }
+    return true;
+}
+
 float EnvScene::channelBound(EnvChannel c, const Bounds& box) const {
     thread_local std::vector<uint32_t> ids;
     fieldsMeeting(box, &ids);

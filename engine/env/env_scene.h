@@ -193,4 +193,10 @@ bool compileEnvScene(const EnvironmentDesc& desc, const std::string& base_dir, c
                      std::shared_ptr<const HeightField> terrain, EnvScene* out, std::string* error,
                      const EnvScene* previous = nullptr);
 
+// True when what details rest on is the same in both (RestSurfaces: surfaceBelow and surfaceTopIn answer
+// alike everywhere): the same objects in the same order, placed alike, of types with the same meshes. An
+// edit of fields only (a footprint, a warm brush, the global snow) keeps the support, so the instances
+// resting on it need not be settled again.
+bool sameRestSurfaces(const EnvScene& a, const EnvScene& b);
+
 }  // namespace ug

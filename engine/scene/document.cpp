@@ -329,7 +329,9 @@ bool Document::commit(const EditEffect& effect, std::string* error) {
         ++tile_generation_;
     }
     if (effect.particles) ++particles_generation_;
+    bool support_moved = false;
     if (effect.environment) {
+        support_moved = !sameRestSurfaces(*environment_, *env);
         // The live worker may still settle on the old objects (SettleInput points at them).
         retired_environments_.push_back(environment_);
         environment_ = env;
@@ -339,7 +341,7 @@ bool Document::commit(const EditEffect& effect, std::string* error) {
         const uint64_t generation = live_->reset(instancerInput(), settleInputOf());
         if (effect.tile) tile_live_generation_ = generation;
     } else if (effect.environment) {
-        live_->submit(compiled_.types, all.dirty, settleInputOf());
+        live_->submit(compiled_.types, all.dirty, settleInputOf(), support_moved);
     } else if (!all.types.empty()) {
         live_->submit(compiled_.types, all.dirty);
     }

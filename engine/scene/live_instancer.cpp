@@ -56,7 +56,7 @@ uint64_t LiveInstancer::reset(InstancerInput input, SettleInput settle) {
 }
 
 uint64_t LiveInstancer::submit(std::vector<InstanceTypeSettings> types, std::vector<Bounds> dirty,
-                              std::optional<SettleInput> support) {
+                              std::optional<SettleInput> support, bool support_moved) {
     uint64_t generation = 0;
     {
         std::lock_guard<std::mutex> lock(mutex_);
@@ -66,7 +66,11 @@ uint64_t LiveInstancer::submit(std::vector<InstanceTypeSettings> types, std::vec
             pending_.input.types = std::move(types);  // the full run will cover this edit
             if (support) pending_.settle = std::move(*support);
         } else {
-            if (support) pending_.support = std::move(support);  // the newest support wins
+            if (support) {
+                pending_.support = std::move(support);  // the newest support wins
+                // Coalesced edits: a move in any of them moved the support since the worker's last run.
+                pending_.support_moved = pending_.support_moved || support_moved;
+            }
             pending_.valid = true;
             pending_.types = std::move(types);
             // Merged regions: the worker's state differs from the newest settings only inside the union
@@ -168,8 +172,8 @@ bool LiveInstancer::runJob(Job& job, InstanceStats* stats, std::vector<uint64_t>
     } else {
         base_.types = job.types;
     }
-    const bool support_moved = !job.full && job.support;
-    if (support_moved) settle_ = std::move(*job.support);
+    if (!job.full && job.support) settle_ = std::move(*job.support);
+    const bool support_moved = !job.full && job.support_moved;
     const InstanceOptions options{.threads = threads_, .cancel = &cancel_};
     if (!job.full && instantiated_) {
         if (!instantiator_.update(std::move(job.types), job.dirty, options, stats, changed, error)) {

@@ -73,10 +73,12 @@ public:
     uint64_t reset(InstancerInput input, SettleInput settle = {});
     // An edit: `types` replaces the settings; their fields changed only inside `dirty`. Requires a
     // previous reset(). Returns the generation.
-    // `support` (optional; what the instances rest on changed: an environmental object moved): the new
-    // settling input, and every result is settled again with it (its tile and models as for reset()).
+    // `support` (optional; a new environment): the new settling input (its tile and models as for reset()).
+    // `support_moved`: what the instances rest on changed (an environmental object moved), so every result
+    // is settled again with it; otherwise (an edit of fields only) the input only replaces the old one,
+    // which the caller may then free, and only the edited region is settled.
     uint64_t submit(std::vector<InstanceTypeSettings> types, std::vector<Bounds> dirty,
-                    std::optional<SettleInput> support = std::nullopt);
+                    std::optional<SettleInput> support = std::nullopt, bool support_moved = true);
 
     // Non-blocking: true and *out filled when a result newer than the previous poll is ready.
     bool poll(LiveResult* out);
@@ -100,7 +102,8 @@ private:
         SettleInput settle;    // full
         std::vector<InstanceTypeSettings> types;
         std::vector<Bounds> dirty;
-        std::optional<SettleInput> support;  // update: settle everything again with this
+        std::optional<SettleInput> support;  // update: settle with this from now on
+        bool support_moved = false;          // ... and settle everything again
         uint64_t generation = 0;
     };
     void run();

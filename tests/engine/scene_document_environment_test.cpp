@@ -160,6 +160,32 @@ TEST(DocumentEnvironment, EditsFollowLiveAndUndoGivesBackTheExactEffectsAndInsta
     EXPECT_TRUE(settledLive(*doc).store == states.back().store);
 }
 
+// A field edit keeps what the instances rest on (so the live instancer settles only the edited region);
+// moving an object does not.
+TEST(DocumentEnvironment, AFieldEditKeepsTheRestSurfacesAMoveChangesThem) {
+    TempDir dir;
+    DocumentOptions options;
+    auto doc = openProject(dir, &options);
+    ASSERT_TRUE(doc);
+    std::string error;
+    const std::shared_ptr<const EnvScene> start = doc->environment();
+    EnvironmentDesc env = doc->project().environment;
+    env.global_fields.push_back(footprintField({1.0f, 3.2f, 0.0f}));
+    env.global_fields[0].value = 0.3f;
+    ASSERT_TRUE(doc->setEnvironment(env, "Footprints", &error)) << error;
+    EXPECT_NE(doc->environment(), start);
+    EXPECT_TRUE(sameRestSurfaces(*start, *doc->environment()));
+
+    env = doc->project().environment;
+    envNodeAt(&env, {0})->transform.translation.y += 0.5f;  // the bench
+    ASSERT_TRUE(doc->setEnvironment(env, "Move object", &error)) << error;
+    EXPECT_FALSE(sameRestSurfaces(*start, *doc->environment()));
+    // Where a slat of the bench's seat was (0.45 m up), the support is now the flat ground.
+    EXPECT_NEAR(start->surfaceBelow(1.0f, 1.1f, 2.0f), 0.45f, 0.01f);
+    EXPECT_EQ(doc->environment()->surfaceBelow(1.0f, 1.1f, 2.0f), 0.0f);
+    settledLive(*doc);
+}
+
 TEST(DocumentEnvironment, ABadEditIsRefusedWithItsPlaceAndChangesNothing) {
     TempDir dir;
     DocumentOptions options;

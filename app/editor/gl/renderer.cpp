@@ -349,6 +349,7 @@ void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
         b.material = entry.material ? *entry.material : SurfaceMaterial{};
         b.color = entry.material ? entry.material->base_color : mesh.base_color;
         b.texture = uploadTexture(b.material.texture, &static_textures_);
+        b.casts_shadow = castsSunShadow(entry.name);
         statics_.push_back(std::move(b));
     }
     const auto t2 = std::chrono::steady_clock::now();
@@ -359,6 +360,7 @@ void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
 void Renderer::drawStaticMeshes(const ShaderProgram& program, const glm::mat4& view_proj, const glm::vec3& eye,
                                 float pixels_per_radian, bool shadow) {
     for (const StaticBuffers& b : statics_) {
+        if (shadow && !b.casts_shadow) continue;
         if (!boxInFrustum(view_proj, b.bounds)) {
             if (!shadow) ++stats_.static_meshes_culled;
             continue;
@@ -578,7 +580,8 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
     glPolygonOffset(1.5f, 2.0f);
     // The terrain receives shadows but casts none: on llvmpipe its triangles would fill every texel of
     // the map each time it is drawn, and the sun term already darkens slopes turned away from it. The
-    // static meshes (benches, snow, icicles) cast: their shadows are what places them on the ground.
+    // static meshes (benches, their snow, icicles) cast: their shadows are what places them on the ground;
+    // the terrain's snow does not (castsSunShadow).
     if (!statics_.empty()) {
         glUseProgram(shadow_static_.id);
         glUniformMatrix4fv(loc(shadow_static_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(frame.view_proj));

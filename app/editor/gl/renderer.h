@@ -189,6 +189,7 @@ private:
         SurfaceMaterial material;
         glm::vec3 color{0.6f};
         unsigned texture = 0;  // owned by static_textures_
+        bool casts_shadow = true;  // castsSunShadow
     };
     std::vector<StaticBuffers> statics_;
     std::vector<StaticDrawRange> static_draws_;  // scratch, per entry per pass
