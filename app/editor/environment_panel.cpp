@@ -86,15 +86,21 @@ void editGlobalFields(EnvironmentDesc* env, PanelEdit* e) {
                                  temperature ? -40.0f : 0.0f, temperature ? 40.0f : 2.0f,
                                  temperature ? "%.1f C" : "%.3f"),
                 e);
+        named(e, std::string("Set ") + envChannelName(f.channel));
         ImGui::PopID();
     }
     ImGui::TextDisabled("%zu local fields (footprints, warm and wet spots)", local);
 }
 
-// A structural edit's outcome, applied to the edited copy (env_tree_edits.h); a refusal is reported.
-void structural(bool ok, const std::string& why, PanelEdit* e, std::string* message) {
-    if (ok) e->changed = true;
-    else *message = why;
+// A structural edit's outcome, applied to the edited copy (env_tree_edits.h) as the undo step `name`; a
+// refusal is reported.
+void structural(bool ok, const char* name, const std::string& why, PanelEdit* e, std::string* message) {
+    if (ok) {
+        e->changed = true;
+        e->name = name;
+    } else {
+        *message = why;
+    }
 }
 
 // The selected node's transform (in its parent's space), and the tree's edits: Duplicate, Delete, Group,
@@ -105,8 +111,11 @@ void editSelected(EnvironmentDesc* env, EnvironmentPanelState* state, PanelEdit*
     EnvNode& node = *envNodeAt(env, path);
     ImGui::Text("%s  %s", envPathText(path).c_str(), nodeLabel(*env, node, path.back()).c_str());
     dragged(ImGui::DragFloat3("position (m)", &node.transform.translation.x, 0.01f), e);
+    named(e, "Move object");
     dragged(ImGui::DragFloat("turn (deg)", &node.transform.yaw_deg, 0.5f, -360.0f, 360.0f), e);
+    named(e, "Turn object");
     dragged(ImGui::DragFloat("scale", &node.transform.scale, 0.005f, 0.05f, 20.0f), e);
+    named(e, "Scale object");
     std::vector<EnvNode>& siblings = path.size() == 1 ? env->roots : envNodeAt(env, EnvPath(path.begin(), path.end() - 1))->children;
     std::string why;
     if (ImGui::Button("Duplicate")) {
@@ -115,6 +124,7 @@ void editSelected(EnvironmentDesc* env, EnvironmentPanelState* state, PanelEdit*
         siblings.push_back(std::move(copy));
         path.back() = uint32_t(siblings.size() - 1);
         e->changed = true;
+        e->name = "Duplicate object";
         return;
     }
     ImGui::SameLine();
@@ -122,21 +132,22 @@ void editSelected(EnvironmentDesc* env, EnvironmentPanelState* state, PanelEdit*
         siblings.erase(siblings.begin() + std::ptrdiff_t(path.back()));
         path.clear();
         e->changed = true;
+        e->name = "Delete object";
         return;
     }
     ImGui::SameLine();
-    if (ImGui::Button("Group")) return structural(groupEnvNode(env, path, &why), why, e, message);
+    if (ImGui::Button("Group")) return structural(groupEnvNode(env, path, &why), "Group", why, e, message);
     if (node.kind == EnvNodeKind::Group) {
         ImGui::SameLine();
         if (ImGui::Button("Ungroup")) {
-            structural(ungroupEnvNode(env, path, &why), why, e, message);
+            structural(ungroupEnvNode(env, path, &why), "Ungroup", why, e, message);
             return;
         }
         if (path.size() == 1) {
             ImGui::SameLine();
             if (ImGui::Button("Make reusable")) {
                 std::string name = "group_" + std::to_string(env->groups.size() + 1);
-                structural(makeEnvGroupReusable(env, path, name, &why), why, e, message);
+                structural(makeEnvGroupReusable(env, path, name, &why), "Make group reusable", why, e, message);
                 return;
             }
         }
@@ -147,7 +158,7 @@ void editSelected(EnvironmentDesc* env, EnvironmentPanelState* state, PanelEdit*
             EnvTransform at = node.transform;
             at.translation = state->place_at;
             const std::string target = node.target;
-            structural(addEnvReference(env, target, at, &why), why, e, message);
+            structural(addEnvReference(env, target, at, &why), "Instance group", why, e, message);
             if (e->changed) path = {uint32_t(env->roots.size() - 1)};
         }
     }
@@ -204,6 +215,7 @@ void palette(EnvironmentDesc* env, EnvironmentPanelState* state, PanelEdit* e) {
         env->roots.push_back(std::move(node));
         state->selected = {uint32_t(env->roots.size() - 1)};
         e->changed = true;
+        e->name = "Add " + env->types[size_t(state->add_type)].name;
     }
 }
 
@@ -244,7 +256,7 @@ void drawEnvironmentPanel(Document* doc, EnvironmentPanelState* state, std::stri
         if (!drop_into.empty()) {
             std::string why;
             EnvPath moved;
-            structural(moveEnvNodeInto(&env, drag_from, drop_into, &moved, &why), why, &e, message);
+            structural(moveEnvNodeInto(&env, drag_from, drop_into, &moved, &why), "Move into group", why, &e, message);
             if (e.changed) state->selected = moved;
         } else if (!state->selected.empty()) {
             editSelected(&env, state, &e, message);
@@ -255,7 +267,7 @@ void drawEnvironmentPanel(Document* doc, EnvironmentPanelState* state, std::stri
 
     commitPanelEdit(
         doc, e, "Edit environment",
-        [&](std::string* error) { return doc->setEnvironment(env, "Edit environment", error); },
+        [&](const std::string& name, std::string* error) { return doc->setEnvironment(env, name, error); },
         &state->last_error, message);
     ImGui::End();
 }

@@ -196,7 +196,7 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
 
     commitPanelEdit(
         doc, e, "Edit particles",
-        [&](std::string* error) { return doc->setParticleSystem(state->selected, system, error); },
+        [&](const std::string&, std::string* error) { return doc->setParticleSystem(state->selected, system, error); },
         &state->last_error, message);
     ImGui::End();
 }

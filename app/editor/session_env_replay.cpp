@@ -53,7 +53,7 @@ bool EditorSession::startEnvReplayAction(const ReplayAction& a) {
             node.transform.scale = a.env_scale;
             edited.roots.push_back(std::move(node));
             replay.record["node"] = edited.roots.size() - 1;
-            replay.record["ok"] = doc->setEnvironment(edited, "Add object", &op_error);
+            replay.record["ok"] = doc->setEnvironment(edited, "Add " + a.type, &op_error);
             environment_panel.selected = {uint32_t(edited.roots.size() - 1)};
             break;
         }
@@ -61,12 +61,24 @@ bool EditorSession::startEnvReplayAction(const ReplayAction& a) {
             // The Environment window's tree buttons and drag and drop, on the same edits.
             EnvironmentDesc edited = env;
             bool ok = false;
-            if (a.op == "group") ok = groupEnvNode(&edited, a.node_path, &op_error);
-            else if (a.op == "ungroup") ok = ungroupEnvNode(&edited, a.node_path, &op_error);
-            else if (a.op == "into") ok = moveEnvNodeInto(&edited, a.node_path, a.group_path, nullptr, &op_error);
-            else if (a.op == "reusable") ok = makeEnvGroupReusable(&edited, a.node_path, a.name, &op_error);
-            else ok = addEnvReference(&edited, a.name, EnvTransform{glm::vec3(a.at_xy, groundZ(a.at_xy)), 0.0f, 1.0f}, &op_error);
-            replay.record["ok"] = ok && doc->setEnvironment(edited, "Edit the tree", &op_error);
+            const char* name = nullptr;  // the window's undo names
+            if (a.op == "group") {
+                ok = groupEnvNode(&edited, a.node_path, &op_error);
+                name = "Group";
+            } else if (a.op == "ungroup") {
+                ok = ungroupEnvNode(&edited, a.node_path, &op_error);
+                name = "Ungroup";
+            } else if (a.op == "into") {
+                ok = moveEnvNodeInto(&edited, a.node_path, a.group_path, nullptr, &op_error);
+                name = "Move into group";
+            } else if (a.op == "reusable") {
+                ok = makeEnvGroupReusable(&edited, a.node_path, a.name, &op_error);
+                name = "Make group reusable";
+            } else {
+                ok = addEnvReference(&edited, a.name, EnvTransform{glm::vec3(a.at_xy, groundZ(a.at_xy)), 0.0f, 1.0f}, &op_error);
+                name = "Instance group";
+            }
+            replay.record["ok"] = ok && doc->setEnvironment(edited, name, &op_error);
             break;
         }
         case ReplayKind::EnvRemove: {
@@ -89,7 +101,7 @@ bool EditorSession::startEnvReplayAction(const ReplayAction& a) {
                 it = edited.global_fields.insert(edited.global_fields.end(), f);
             }
             it->value = a.value;
-            replay.record["ok"] = doc->setEnvironment(edited, "Global field", &op_error);
+            replay.record["ok"] = doc->setEnvironment(edited, "Set " + a.channel, &op_error);
             break;
         }
         case ReplayKind::EnvMove: {

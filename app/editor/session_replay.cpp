@@ -376,6 +376,7 @@ void EditorSession::finishReplayAction() {
         r["stamp_to_frame_ms"] = replay.stamp_ms;
     }
     r["dirty"] = d.isDirty();
+    r["undo_name"] = d.canUndo() ? d.undoName() : "";  // what Edit > Undo would now say
     r["uploads"] = replay.uploads;
     json tiles = json::array();
     for (uint64_t key : replay.uploaded_tiles) {

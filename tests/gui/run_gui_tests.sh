@@ -428,6 +428,8 @@ d = sys.argv[1]
 stats = json.load(open(d + "/stats.json"))
 edits = [a for a in stats["actions"] if a["action"] == "env_tree"]
 assert len(edits) == 4 and all(a["ok"] for a in edits), [a.get("error") for a in edits]
+assert [a["undo_name"] for a in edits] == ["Group", "Move into group", "Make group reusable", "Instance group"], \
+    [a["undo_name"] for a in edits]
 assert edits[-1]["environment"]["objects"] == 18, edits[-1]["environment"]["objects"]
 saved = json.load(open(d + "/assets/scenes/street_winter.json"))["environment"]
 assert list(saved["groups"]) == ["stop"], saved.get("groups")
