@@ -47,6 +47,24 @@ EnvTransform worldOf(const EnvironmentDesc& env, const EnvPath& path) {
     return world;
 }
 
+// How many objects the node expands to (references followed; the compiled tree has no cycles and at most
+// kMaxEnvTreeDepth levels, which bounds the recursion).
+size_t objectCount(const EnvironmentDesc& env, const EnvNode& node, int depth = 0) {
+    if (depth > kMaxEnvTreeDepth) return 0;
+    switch (node.kind) {
+        case EnvNodeKind::Object: return 1;
+        case EnvNodeKind::Reference:
+            for (const NamedEnvGroup& g : env.groups)
+                if (g.name == node.target) return objectCount(env, g.group, depth + 1);
+            return 0;
+        case EnvNodeKind::Group:
+        case EnvNodeKind::Lod: break;
+    }
+    size_t n = 0;
+    for (const EnvNode& c : node.children) n += objectCount(env, c, depth + 1);
+    return n;
+}
+
 bool fail(std::string* error, const EnvPath& path, const std::string& why) {
     *error = envPathText(path) + ": " + why;
     return false;
@@ -72,6 +90,46 @@ EnvNode* envNodeAt(EnvironmentDesc* env, const EnvPath& path) {
 
 const EnvNode* envNodeAt(const EnvironmentDesc& env, const EnvPath& path) {
     return envNodeAt(const_cast<EnvironmentDesc*>(&env), path);
+}
+
+EnvTransform envWorldTransform(const EnvironmentDesc& env, const EnvPath& path) { return worldOf(env, path); }
+
+bool setEnvWorldTransform(EnvironmentDesc* env, const EnvPath& path, const EnvTransform& world) {
+    EnvNode* node = envNodeAt(env, path);
+    if (!node) return false;
+    node->transform = relativeTo(worldOf(*env, EnvPath(path.begin(), path.end() - 1)), world);
+    return true;
+}
+
+bool envObjectRange(const EnvironmentDesc& env, const EnvPath& path, size_t* first, size_t* count) {
+    if (!envNodeAt(env, path)) return false;
+    size_t before = 0;
+    const std::vector<EnvNode>* siblings = &env.roots;
+    for (size_t k = 0; k < path.size(); ++k) {
+        for (uint32_t i = 0; i < path[k]; ++i) before += objectCount(env, (*siblings)[i]);
+        siblings = &(*siblings)[path[k]].children;
+    }
+    *first = before;
+    *count = objectCount(env, *envNodeAt(env, path));
+    return true;
+}
+
+EnvPath envPathOfObject(const EnvironmentDesc& env, size_t object) {
+    EnvPath path;
+    const std::vector<EnvNode>* siblings = &env.roots;
+    for (;;) {
+        size_t i = 0;
+        for (; i < siblings->size(); ++i) {
+            const size_t n = objectCount(env, (*siblings)[i]);
+            if (object < n) break;
+            object -= n;
+        }
+        if (i == siblings->size()) return {};
+        path.push_back(uint32_t(i));
+        const EnvNode& node = (*siblings)[i];
+        if (node.kind != EnvNodeKind::Group && node.kind != EnvNodeKind::Lod) return path;
+        siblings = &node.children;
+    }
 }
 
 bool groupEnvNode(EnvironmentDesc* env, const EnvPath& path, std::string* error) {

@@ -19,6 +19,19 @@ std::string envPathText(const EnvPath& path);  // "/tree/2/children/0"
 EnvNode* envNodeAt(EnvironmentDesc* env, const EnvPath& path);  // null when the path leads nowhere
 const EnvNode* envNodeAt(const EnvironmentDesc& env, const EnvPath& path);
 
+// The transform from the node's space to the world (its ancestors' and its own, composed).
+EnvTransform envWorldTransform(const EnvironmentDesc& env, const EnvPath& path);
+// Sets the node's transform (in its parent's space) so that its world transform is `world`: how the view's
+// handles move, turn and scale a nested node. False (nothing changed) when the path leads nowhere.
+bool setEnvWorldTransform(EnvironmentDesc* env, const EnvPath& path, const EnvTransform& world);
+
+// The compiled scene's objects (EnvScene::objects, in tree order, references expanded) that the node
+// expands to: [*first, *first + *count). False when the path leads nowhere.
+bool envObjectRange(const EnvironmentDesc& env, const EnvPath& path, size_t* first, size_t* count);
+// The deepest tree node that object `object` belongs to: the object's own node, or the reference it was
+// expanded from (a reusable group's insides are not tree nodes). Empty when there is no such object.
+EnvPath envPathOfObject(const EnvironmentDesc& env, size_t object);
+
 // The node becomes the only child of a new group standing where it stood (the group takes its transform,
 // the node the identity). The group is at the same path.
 bool groupEnvNode(EnvironmentDesc* env, const EnvPath& path, std::string* error);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 
 #include "env/env_scene.h"
@@ -123,6 +124,53 @@ TEST(EnvTreeEdits, AReusableGroupInstancedAgainAddsItsObjects) {
     ASSERT_TRUE(addEnvReference(&env, "stop", EnvTransform{{8.0f, 8.0f, 0.0f}, 90.0f, 1.0f}, &error)) << error;
     EXPECT_FALSE(addEnvReference(&env, "nowhere", EnvTransform{}, &error));
     EXPECT_EQ(placed(env).size(), placed(before).size() + 2);
+}
+
+// The object ranges and the object -> node map agree with the compiler's expansion: each compiled object
+// lies in its node's range, and an object's node is placed (world transform) where the compiler put it.
+TEST(EnvTreeEdits, ObjectRangesAndPathsFollowTheCompiledTree) {
+    EnvironmentDesc env = street();
+    std::string error;
+    ASSERT_TRUE(makeEnvGroupReusable(&env, {1}, "stop", &error)) << error;
+    ASSERT_TRUE(addEnvReference(&env, "stop", EnvTransform{{8.0f, 8.0f, 0.0f}, 90.0f, 1.0f}, &error)) << error;
+    ASSERT_TRUE(groupEnvNode(&env, {0}, &error)) << error;  // root 0: a group holding the first bench
+    EnvScene scene;
+    ASSERT_TRUE(compileEnvScene(env, "", "test", nullptr, &scene, &error)) << error;
+    ASSERT_EQ(scene.objects().size(), 5u);
+    const std::vector<EnvPath> expected{{0, 0}, {1}, {1}, {2}, {2}};
+    for (size_t o = 0; o < scene.objects().size(); ++o) {
+        const EnvPath path = envPathOfObject(env, o);
+        EXPECT_EQ(path, expected[o]) << "object " << o;
+        size_t first = 0, count = 0;
+        ASSERT_TRUE(envObjectRange(env, path, &first, &count));
+        EXPECT_TRUE(first <= o && o < first + count) << "object " << o << " outside [" << first << ", +" << count << ")";
+    }
+    size_t first = 0, count = 0;
+    ASSERT_TRUE(envObjectRange(env, {2}, &first, &count));
+    EXPECT_EQ(first, 3u);
+    EXPECT_EQ(count, 2u);
+    const glm::vec3 at = envWorldTransform(env, {0, 0}).translation;
+    const glm::vec3 compiled = scene.objects()[0].placement.toWorld(glm::vec3(0.0f));
+    EXPECT_NEAR(glm::distance(at, compiled), 0.0f, 1e-5f);
+    EXPECT_TRUE(envPathOfObject(env, 5).empty());
+    EXPECT_FALSE(envObjectRange(env, {7}, &first, &count));
+}
+
+// A nested node given a world transform lands there once compiled (through its parent's turn and scale).
+TEST(EnvTreeEdits, AWorldTransformPlacesANestedNode) {
+    EnvironmentDesc env = street();
+    const EnvTransform want{{4.0f, -2.0f, 0.25f}, 70.0f, 1.5f};
+    ASSERT_TRUE(setEnvWorldTransform(&env, {1, 1}, want));  // the shelter inside the turned, scaled group
+    EXPECT_FALSE(setEnvWorldTransform(&env, {1, 5}, want));
+    EnvScene scene;
+    std::string error;
+    ASSERT_TRUE(compileEnvScene(env, "", "test", nullptr, &scene, &error)) << error;
+    const EnvPlacement& p = scene.objects()[2].placement;
+    EXPECT_NEAR(glm::distance(p.toWorld(glm::vec3(0.0f)), want.translation), 0.0f, 1e-5f);
+    // One metre along the object's x lands 1.5 m away, turned 70 degrees.
+    const glm::vec3 x = p.toWorld(glm::vec3(1.0f, 0.0f, 0.0f)) - want.translation;
+    EXPECT_NEAR(glm::length(x), 1.5f, 1e-5f);
+    EXPECT_NEAR(std::atan2(x.y, x.x) * 180.0f / 3.14159265f, 70.0f, 1e-3f);
 }
 
 }  // namespace
