@@ -31,6 +31,7 @@
 #include "editor/gl/renderer.h"
 #include "editor/gl/window.h"
 #include "editor/channel_map.h"
+#include "editor/env_handles.h"
 #include "editor/env_tools.h"
 #include "editor/live_environment.h"
 #include "editor/live_strands.h"
@@ -146,6 +147,7 @@ private:
         move_drag.end();
         attractor_drag.end();
         env_drag.end();
+        env_handle_drag.end();
         weather_stroke.end();
     }
     // ---- session_input.cpp ----
@@ -224,6 +226,7 @@ private:
     uint64_t environment_shown = 0;                     // and the one on screen
     LiveEnvironmentResult last_environment;             // its statistics (meshes moved out)
     EnvObjectDrag env_drag;                             // the Select tool on an object (the window open)
+    EnvHandleDrag env_handle_drag;                      // ... on the selected node's turn or scale handle
     WeatherStroke weather_stroke;                       // a weather brush's stroke (footprints, warm, ...)
     EnvironmentPanelState environment_panel;
     ChannelMap channel_map;

@@ -5,28 +5,33 @@
 
 namespace ug::editor {
 
-size_t pickEnvNode(const Document& doc, const glm::mat4& view_proj, float width, float height, glm::vec2 cursor,
-                   float max_px) {
+EnvPath pickEnvNode(const Document& doc, const glm::mat4& view_proj, float width, float height, glm::vec2 cursor,
+                    float max_px, bool nested) {
     std::vector<glm::vec3> origins;
-    for (const EnvNode& node : doc.project().environment.roots) origins.push_back(node.transform.translation);
-    return nearestOnScreen(origins, view_proj, width, height, cursor, max_px);
+    for (const EnvObject& o : doc.environment()->objects()) origins.push_back(o.placement.t);
+    const size_t object = nearestOnScreen(origins, view_proj, width, height, cursor, max_px);
+    if (object == SIZE_MAX) return {};
+    EnvPath path = envPathOfObject(doc.project().environment, object);
+    if (!nested && path.size() > 1) path.erase(path.begin() + 1, path.end());
+    return path;
 }
 
-EnvironmentDesc withRootMovedTo(const Document& doc, size_t root, glm::vec2 xy) {
+EnvironmentDesc withNodeMovedTo(const Document& doc, const EnvPath& path, glm::vec2 xy) {
     EnvironmentDesc env = doc.project().environment;
-    if (root >= env.roots.size()) return env;
-    glm::vec3& t = env.roots[root].transform.translation;
-    const float above = t.z - groundHeightAt(doc, glm::vec2(t));
-    t = glm::vec3(xy, groundHeightAt(doc, xy) + above);
+    if (!envNodeAt(env, path)) return env;
+    EnvTransform world = envWorldTransform(env, path);
+    const float above = world.translation.z - groundHeightAt(doc, glm::vec2(world.translation));
+    world.translation = glm::vec3(xy, groundHeightAt(doc, xy) + above);
+    setEnvWorldTransform(&env, path, world);
     return env;
 }
 
-bool EnvObjectDrag::begin(Document* doc, size_t root, const Ray& ray) {
+bool EnvObjectDrag::begin(Document* doc, const EnvPath& path, const Ray& ray) {
     if (active()) end();
-    if (root >= doc->project().environment.roots.size()) return false;
+    if (!envNodeAt(doc->project().environment, path)) return false;
     doc_ = doc;
-    root_ = root;
-    start_m_ = doc->project().environment.roots[root].transform.translation;
+    path_ = path;
+    start_m_ = envWorldTransform(doc->project().environment, path).translation;
     grab_m_ = dragGrab(ray, start_m_);
     applied_offset_m_ = glm::vec3(0.0f);
     moves_ = 0;
@@ -40,8 +45,8 @@ bool EnvObjectDrag::drag(const Ray& ray, std::string* error) {
     if (!dragOffset(ray, grab_m_, applied_offset_m_, false, &offset)) return true;
     // Below a centimetre the snow would not visibly change: a still mouse does not recompute it.
     if (glm::length(offset - applied_offset_m_) < 0.01f) return true;
-    if (root_ >= doc_->project().environment.roots.size()) return true;  // the tree changed under the drag
-    if (!doc_->setEnvironment(withRootMovedTo(*doc_, root_, glm::vec2(start_m_ + offset)), "Move object", error))
+    if (!envNodeAt(doc_->project().environment, path_)) return true;  // the tree changed under the drag
+    if (!doc_->setEnvironment(withNodeMovedTo(*doc_, path_, glm::vec2(start_m_ + offset)), "Move object", error))
         return false;
     applied_offset_m_ = offset;
     ++moves_;

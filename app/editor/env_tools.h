@@ -1,6 +1,6 @@
 // The environment tools in the viewport (issue 13), GL-free: with the Environment window open, the Select
-// tool picks a top-level environmental object (or group) by its origin on screen and drags it over the
-// ground, keeping its height above the ground (it stays on the surface below as the terrain rises and
+// tool picks an environmental object by its origin on screen and drags its top-level node (or, with Ctrl,
+// its own node inside a group) over the ground, keeping its height above the ground (it stays on the surface below as the terrain rises and
 // falls); the weather brushes leave local fields (footprints, warm, wet, piles, ...) behind the mouse. Each step is a Document::setEnvironment inside one stroke: the effects follow live and the whole
 // drag or trail is one undo step.
 #pragma once
@@ -11,27 +11,30 @@
 #include <glm/glm.hpp>
 
 #include "editor/tools.h"
+#include "env/env_tree_edits.h"
 #include "scene/document.h"
 
 namespace ug::editor {
 
-constexpr size_t kNoEnvNode = SIZE_MAX;
 // A walker's stride and the feet's distance from the walked line (the footprint brush).
 constexpr float kFootprintStrideM = 0.4f;
 constexpr float kFootprintHalfGaitM = 0.09f;
 
-// The top-level node whose origin is nearest the cursor on screen, within max_px; kNoEnvNode for none.
-size_t pickEnvNode(const Document& doc, const glm::mat4& view_proj, float width_px, float height_px,
-                   glm::vec2 cursor_px, float max_px);
+// The node that a click on the view picks: the object whose origin is nearest the cursor on screen within
+// max_px, and of it its top-level node (a click: a group moves as one) or, `nested`, its own node (Ctrl +
+// click: a node inside a group, or the reference a reusable group's object came from). Empty for none.
+EnvPath pickEnvNode(const Document& doc, const glm::mat4& view_proj, float width_px, float height_px,
+                    glm::vec2 cursor_px, float max_px, bool nested);
 
-// The environment with top-level node `root` moved to (x, y), at its height above the ground kept.
-EnvironmentDesc withRootMovedTo(const Document& doc, size_t root, glm::vec2 xy_m);
+// The environment with node `path` moved to (x, y) in the world, at its height above the ground kept
+// (unchanged when the path leads nowhere).
+EnvironmentDesc withNodeMovedTo(const Document& doc, const EnvPath& path, glm::vec2 xy_m);
 
 class EnvObjectDrag {
   public:
     bool active() const { return doc_ != nullptr; }
-    size_t root() const { return root_; }
-    bool begin(Document* doc, size_t root, const Ray& ray);
+    const EnvPath& path() const { return path_; }
+    bool begin(Document* doc, const EnvPath& path, const Ray& ray);
     // False with *error when the document refuses the move (the drag stays open; end() closes it).
     bool drag(const Ray& ray, std::string* error);
     void end();
@@ -39,8 +42,8 @@ class EnvObjectDrag {
 
   private:
     Document* doc_ = nullptr;
-    size_t root_ = 0;
-    glm::vec3 start_m_{0.0f};
+    EnvPath path_;
+    glm::vec3 start_m_{0.0f};  // the node's origin in the world
     glm::vec3 grab_m_{0.0f};
     glm::vec3 applied_offset_m_{0.0f};
     int moves_ = 0;

@@ -73,6 +73,8 @@ const char* replayKindName(ReplayKind kind) {
             return "env_view";
         case ReplayKind::EnvTree:
             return "env_tree";
+        case ReplayKind::EnvHandle:
+            return "env_handle";
     }
     return "?";
 }
@@ -81,6 +83,7 @@ bool editsEnvironment(ReplayKind kind) {
     switch (kind) {
         case ReplayKind::EnvAdd:
         case ReplayKind::EnvMove:
+        case ReplayKind::EnvHandle:
         case ReplayKind::EnvRemove:
         case ReplayKind::EnvGlobal:
         case ReplayKind::EnvTree:
@@ -175,14 +178,22 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
                 r.influence_m = a.value("influence", NAN);
                 r.charge = a.value("charge", NAN);
             }
-            if (r.kind == ReplayKind::EnvAdd || r.kind == ReplayKind::EnvMove) {
+            if (r.kind == ReplayKind::EnvAdd || r.kind == ReplayKind::EnvMove || r.kind == ReplayKind::EnvHandle) {
                 const json& at = a.at(r.kind == ReplayKind::EnvAdd ? "at" : "to");
                 r.at_xy = glm::vec2(at.at(0).get<float>(), at.at(1).get<float>());
                 if (r.kind == ReplayKind::EnvAdd && at.size() > 2) r.at_z = at.at(2).get<float>();
             }
             if (r.kind == ReplayKind::EnvAdd) r.env_scale = a.value("scale", 1.0f);
             if (r.kind == ReplayKind::EnvAdd) r.type = a.at("type").get<std::string>();
-            if (r.kind == ReplayKind::EnvMove || r.kind == ReplayKind::EnvRemove) r.node = a.at("node").get<size_t>();
+            if (r.kind == ReplayKind::EnvRemove) r.node = a.at("node").get<size_t>();
+            if (r.kind == ReplayKind::EnvMove || r.kind == ReplayKind::EnvHandle) {
+                const json& n = a.at("node");  // a top-level index or a path
+                r.node_path = n.is_array() ? n.get<std::vector<uint32_t>>() : std::vector<uint32_t>{n.get<uint32_t>()};
+            }
+            if (r.kind == ReplayKind::EnvHandle) {
+                r.handle = a.at("handle").get<std::string>();
+                r.snap = a.value("snap", false);
+            }
             if (r.kind == ReplayKind::EnvGlobal) {
                 r.channel = a.at("channel").get<std::string>();
                 r.value = a.at("value").get<float>();
@@ -251,8 +262,12 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
             EnvChannel c;
             if (!envChannelFromName(r.channel, &c)) return fail("unknown channel '" + r.channel + "'");
         }
-        if (r.kind == ReplayKind::EnvMove && (r.steps < 1 || r.steps > 100000))
+        if ((r.kind == ReplayKind::EnvMove || r.kind == ReplayKind::EnvHandle) && (r.steps < 1 || r.steps > 100000))
             return fail("steps must be in [1, 100000]");
+        if ((r.kind == ReplayKind::EnvMove || r.kind == ReplayKind::EnvHandle) && r.node_path.empty())
+            return fail("\"node\" must name a node (an index or a path)");
+        if (r.kind == ReplayKind::EnvHandle && r.handle != "turn" && r.handle != "scale")
+            return fail("unknown handle '" + r.handle + "' (turn or scale)");
         if (r.kind == ReplayKind::Move) {
             if (r.points.size() != 2) return fail("a move needs \"from\" [x, y] and \"to\" [x, y]");
             if (r.steps < 1 || r.steps > 100000) return fail("steps must be in [1, 100000]");

@@ -37,8 +37,12 @@
 //     "reused", "grow_seconds"}
 //    {"action": "env_add", "type": "bench", "at": [x, y], "yaw_deg": 90, "scale": 1},   the Environment
 //     window's Add: the type on the ground at (x, y) (or at [x, y, z]: on a pavement), one undo step
-//    {"action": "env_move", "node": 3, "to": [x, y], "steps": 10},   Select-drag the top-level node over the
-//     ground (its height above the ground kept), one step a frame, one undo step
+//    {"action": "env_move", "node": 3, "to": [x, y], "steps": 10},   Select-drag the top-level node (or the
+//     node at a path, "node": [1, 0]) over the ground (its height above the ground kept), one step a frame,
+//     one undo step
+//    {"action": "env_handle", "node": 3, "handle": "turn" | "scale", "to": [x, y], "steps": 10, "snap": false},
+//     the selected node's handle in the view (env_handles.h) dragged from where it is to (x, y), one step a
+//     frame ("snap": as with Ctrl held), one undo step; its statistics add "yaw_deg" and "scale" (world)
 //    {"action": "env_remove", "node": 3},                         Delete, one undo step
 //    {"action": "env_global", "channel": "snow", "value": 0.2},   a global field's value (added when the
 //     channel has none), one undo step
@@ -108,12 +112,13 @@ enum class ReplayKind {
     WeatherStroke,
     ShowWindow,
     EnvView,
-    EnvTree
+    EnvTree,
+    EnvHandle
 };
-constexpr int kReplayKindCount = int(ReplayKind::EnvTree) + 1;
+constexpr int kReplayKindCount = int(ReplayKind::EnvHandle) + 1;
 const char* replayKindName(ReplayKind kind);  // the "action" string
-// The actions that edit the environment (env_add, env_move, env_remove, env_global, env_tree, footprints,
-// weather_stroke): they end when the effects computed for them are on screen.
+// The actions that edit the environment (env_add, env_move, env_handle, env_remove, env_global, env_tree,
+// footprints, weather_stroke): they end when the effects computed for them are on screen.
 bool editsEnvironment(ReplayKind kind);
 
 struct ReplayAction {
@@ -156,15 +161,17 @@ struct ReplayAction {
     glm::vec3 a_m{0.0f};
     float influence_m = NAN, charge = NAN;  // NaN: keep
     // env_add (type: `type`, turn: yaw_deg), env_move, env_remove, env_global
-    size_t node = 0;
-    glm::vec2 at_xy{0.0f};  // env_add: "at"; env_move: "to"
+    size_t node = 0;        // env_remove
+    glm::vec2 at_xy{0.0f};  // env_add: "at"; env_move, env_handle: "to"
+    std::string handle;     // env_handle
+    bool snap = false;      // env_handle
     float at_z = NAN;       // env_add: "at"'s third value (NaN: on the ground)
     float env_scale = 1.0f; // env_add
     std::string channel;    // env_global
     std::string brush = "footprints";  // weather_stroke
     std::string window;                // show_window (and `visible`: open or close)
     std::string op, name;              // env_tree (and `at_xy`)
-    std::vector<uint32_t> node_path, group_path;
+    std::vector<uint32_t> node_path, group_path;  // env_tree; node_path: env_move, env_handle too
     float value = 0.0f;
 };
 

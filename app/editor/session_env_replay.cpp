@@ -30,8 +30,7 @@ bool EditorSession::startEnvReplayAction(const ReplayAction& a) {
     }
     std::string op_error;
     const EnvironmentDesc& env = doc->project().environment;
-    const bool needs_node = a.kind == ReplayKind::EnvMove || a.kind == ReplayKind::EnvRemove;
-    if (needs_node && a.node >= env.roots.size()) {
+    if (a.kind == ReplayKind::EnvRemove && a.node >= env.roots.size()) {
         *error = std::string(replayKindName(a.kind)) + ": no node " + std::to_string(a.node) + " (the tree has " +
                  std::to_string(env.roots.size()) + " at its top)";
         return false;
@@ -104,16 +103,28 @@ bool EditorSession::startEnvReplayAction(const ReplayAction& a) {
             replay.record["ok"] = doc->setEnvironment(edited, "Set " + a.channel, &op_error);
             break;
         }
-        case ReplayKind::EnvMove: {
-            const glm::vec3 from = env.roots[a.node].transform.translation;
-            environment_panel.selected = {uint32_t(a.node)};
+        case ReplayKind::EnvMove:
+        case ReplayKind::EnvHandle: {
+            // The node's origin (a move) or the handle's point, dragged to "to" in `steps` frames.
+            EnvHandleFrame frame;
+            const EnvHandle handle = a.handle == "turn" ? EnvHandle::Turn : EnvHandle::Scale;
+            if (!envNodeAt(env, a.node_path) || (a.kind == ReplayKind::EnvHandle && !envHandleFrame(*doc, a.node_path, &frame))) {
+                *error = std::string(replayKindName(a.kind)) + ": no node " + envPathText(a.node_path);
+                return false;
+            }
+            const glm::vec3 from = a.kind == ReplayKind::EnvMove ? envWorldTransform(env, a.node_path).translation
+                                                                 : envHandlePoint(frame, handle);
+            environment_panel.selected = a.node_path;
             replay.record["from"] = {from.x, from.y, from.z};
             replay.path.clear();
             for (int k = 1; k <= a.steps; ++k)
                 replay.path.push_back(glm::mix(glm::vec2(from), a.at_xy, float(k) / float(a.steps)));
             replay.step = 0;
-            env_drag.begin(doc, a.node, rayDownOnto(*doc, glm::vec2(from)));
-            replay.finishing = false;
+            const bool begun = a.kind == ReplayKind::EnvMove
+                                   ? env_drag.begin(doc, a.node_path, rayDownOnto(*doc, glm::vec2(from)))
+                                   : env_handle_drag.begin(doc, a.node_path, handle, rayDownOnto(*doc, glm::vec2(from)));
+            if (!begun) op_error = std::string(replayKindName(a.kind)) + ": could not grab " + envPathText(a.node_path);
+            replay.finishing = !begun;
             break;
         }
         case ReplayKind::Footprints:
@@ -148,17 +159,25 @@ void EditorSession::stepEnvReplay() {
     if (replay.step < replay.path.size()) {
         const uint64_t generation = doc->environmentGeneration();
         const glm::vec2 xy = replay.path[replay.step];
-        const bool ok = env_drag.active() ? env_drag.drag(rayDownOnto(*doc, xy), &op_error)
-                                          : weather_stroke.drag(glm::vec3(xy, groundZ(xy)), &op_error);
+        const bool snap = options.replay[replay.index].snap;
+        const bool ok = env_drag.active()          ? env_drag.drag(rayDownOnto(*doc, xy), &op_error)
+                        : env_handle_drag.active() ? env_handle_drag.drag(rayDownOnto(*doc, xy), snap, &op_error)
+                                                   : weather_stroke.drag(glm::vec3(xy, groundZ(xy)), &op_error);
         if (!ok) messages.push_back(op_error);
         noteEnvStamp(generation, int(replay.index));
     }
     if (++replay.step < replay.path.size()) return;
     if (env_drag.active()) {
-        const glm::vec3 to = doc->project().environment.roots[env_drag.root()].transform.translation;
+        const glm::vec3 to = envWorldTransform(doc->project().environment, env_drag.path()).translation;
         replay.record["moves"] = env_drag.moves();
         replay.record["to"] = {to.x, to.y, to.z};
         env_drag.end();
+    } else if (env_handle_drag.active()) {
+        const EnvTransform world = envWorldTransform(doc->project().environment, environment_panel.selected);
+        replay.record["moves"] = env_handle_drag.moves();
+        replay.record["yaw_deg"] = world.yaw_deg;
+        replay.record["scale"] = world.scale;
+        env_handle_drag.end();
     } else {
         replay.record["stamps"] = weather_stroke.stamps();
         replay.record["erased"] = weather_stroke.erased();

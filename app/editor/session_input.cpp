@@ -151,21 +151,33 @@ void EditorSession::mouseTools() {
             // Click picks; dragging the picked primitive moves it (Shift: up and down). With the Particles
             // window open, its system's attractors are picked first; with the Environment window open, its
             // objects next.
+            // The selected environmental node's turn and scale handles (env_handles.h).
+            EnvHandleFrame handles;
+            const bool has_handles = windows.environment && !environment_panel.selected.empty() &&
+                                     envHandleFrame(*doc, environment_panel.selected, &handles);
             if (mouse_free && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
                 const size_t attractor =
                     windows.particles ? pickAttractor(*doc, particles_panel.selected, view_proj, float(fb_w),
                                                       float(fb_h), cursor, 20.0f)
                                       : kNoAttractor;
-                const size_t env_node =
-                    attractor == kNoAttractor && windows.environment
-                        ? pickEnvNode(*doc, view_proj, float(fb_w), float(fb_h), cursor, 25.0f)
-                        : kNoEnvNode;
+                const EnvHandle handle =
+                    attractor == kNoAttractor && has_handles
+                        ? pickEnvHandle(handles, view_proj, float(fb_w), float(fb_h), cursor, 12.0f)
+                        : EnvHandle::None;
+                // Ctrl + click: the node inside a group.
+                const EnvPath env_node =
+                    attractor == kNoAttractor && handle == EnvHandle::None && windows.environment
+                        ? pickEnvNode(*doc, view_proj, float(fb_w), float(fb_h), cursor, 25.0f, io.KeyCtrl)
+                        : EnvPath{};
                 particles_panel.selected_attractor = attractor;
-                if (env_node != kNoEnvNode) environment_panel.selected = {uint32_t(env_node)};
+                if (!env_node.empty()) environment_panel.selected = env_node;
                 if (attractor != kNoAttractor) {
                     tools.selected = 0;
                     attractor_drag.begin(doc, particles_panel.selected, attractor, ray);
-                } else if (env_node != kNoEnvNode) {
+                } else if (handle != EnvHandle::None) {
+                    tools.selected = 0;
+                    env_handle_drag.begin(doc, environment_panel.selected, handle, ray);
+                } else if (!env_node.empty()) {
                     tools.selected = 0;
                     env_drag.begin(doc, env_node, ray);
                 } else {
@@ -179,6 +191,11 @@ void EditorSession::mouseTools() {
                 std::string move_error;
                 const uint64_t generation = doc->environmentGeneration();
                 if (!env_drag.drag(ray, &move_error)) messages.push_back(move_error);
+                noteEnvStamp(generation, -1);
+            } else if (env_handle_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+                std::string handle_error;
+                const uint64_t generation = doc->environmentGeneration();
+                if (!env_handle_drag.drag(ray, io.KeyCtrl, &handle_error)) messages.push_back(handle_error);
                 noteEnvStamp(generation, -1);
             } else if (move_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
                 const uint64_t generation = doc->live().generation();
@@ -221,6 +238,7 @@ void EditorSession::mouseTools() {
         if (move_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) move_drag.end();
         if (attractor_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) attractor_drag.end();
         if (env_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) env_drag.end();
+        if (env_handle_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) env_handle_drag.end();
         if (weather_stroke.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) weather_stroke.end();
     }
 

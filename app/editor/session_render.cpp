@@ -62,6 +62,11 @@ bool EditorSession::renderFrame() {
                                &markers);
         // The Environment window's channel view, while it is on.
         if (windows.environment && environment_panel.view.on) markers.append(channelMapGeometry());
+        // The selected environmental node's ring with its turn and scale handles, for the Select tool.
+        EnvHandleFrame handles;
+        if (windows.environment && tools.tool == ToolKind::Select && !environment_panel.brush_on &&
+            envHandleFrame(*doc, environment_panel.selected, &handles))
+            addEnvHandleMarkers(handles, env_handle_drag.handle(), &markers);
         const float r = render_settings.overlay_radius_m;
         const CandidateSet& c = doc->ghostTile().candidates;
         if (render_settings.tile_grid) addTileOverlay(instances, camera.target, r, &markers);

@@ -58,7 +58,7 @@ bool EditorSession::stepReplay() {
                 move_drag.end();
                 replay.finishing = true;
             }
-        } else if (replay.started && (env_drag.active() || weather_stroke.active())) {
+        } else if (replay.started && (env_drag.active() || env_handle_drag.active() || weather_stroke.active())) {
             stepEnvReplay();
         } else if (replay.started && a.kind == ReplayKind::GhostTile) {
             replay.finishing = !ghost_job;  // the job was applied or reported at this frame's start

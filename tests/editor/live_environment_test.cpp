@@ -11,37 +11,18 @@
 #include <memory>
 #include <random>
 
-#include "../engine/env_edit_scene.h"
 #include "editor/channel_map.h"
 #include "editor/env_tools.h"
 #include "editor/live_environment.h"
 #include "env/env_outputs.h"
+#include "editor_test_util.h"
 #include "scene/document.h"
 
 namespace ug::editor {
 namespace {
 
-namespace fs = std::filesystem;
-
-struct OpenDocument {
-    fs::path dir;
-    std::unique_ptr<Document> doc;
-    OpenDocument() {
-        std::random_device rd;
-        dir = fs::temp_directory_path() / ("ug_live_env_test_" + std::to_string(rd()) + std::to_string(rd()));
-        fs::create_directories(dir);
-        std::ofstream(dir / "street.json") << test::envEditProjectJson();
-        std::string error;
-        doc = Document::open((dir / "street.json").string(),
-                             DocumentOptions{.cache_dir = (dir / "cache").string(), .threads = 2}, &error);
-        EXPECT_TRUE(doc) << error;
-    }
-    ~OpenDocument() {
-        doc.reset();
-        std::error_code ec;
-        fs::remove_all(dir, ec);
-    }
-};
+using test::expectSameMeshes;
+using OpenDocument = test::OpenEnvDocument;
 
 std::vector<MeshInstances> fullMeshes(const Document& doc) {
     EnvEffects fx;
@@ -50,27 +31,13 @@ std::vector<MeshInstances> fullMeshes(const Document& doc) {
     return envMeshInstances(*doc.environment(), fx);
 }
 
-void expectSameMeshes(const std::vector<MeshInstances>& a, const std::vector<MeshInstances>& b) {
-    ASSERT_EQ(a.size(), b.size());
-    for (size_t i = 0; i < a.size(); ++i) {
-        EXPECT_EQ(a[i].name, b[i].name);
-        EXPECT_EQ(a[i].mesh->positions, b[i].mesh->positions) << a[i].name;
-        EXPECT_EQ(a[i].mesh->indices, b[i].mesh->indices) << a[i].name;
-        ASSERT_EQ(a[i].instances.size(), b[i].instances.size()) << a[i].name;
-        for (size_t k = 0; k < a[i].instances.size(); ++k) {
-            EXPECT_EQ(a[i].instances[k].position, b[i].instances[k].position) << a[i].name;
-            EXPECT_EQ(a[i].instances[k].rotation, b[i].instances[k].rotation) << a[i].name;
-        }
-    }
-}
-
 TEST(EnvTools, DraggingAnObjectKeepsItsHeightAboveTheGroundAndIsOneUndoStep) {
     OpenDocument o;
     ASSERT_TRUE(o.doc);
     Document& doc = *o.doc;
     const glm::vec3 start = doc.project().environment.roots[0].transform.translation;
     EnvObjectDrag drag;
-    ASSERT_TRUE(drag.begin(&doc, 0, rayDownOnto(doc, glm::vec2(start))));
+    ASSERT_TRUE(drag.begin(&doc, {0}, rayDownOnto(doc, glm::vec2(start))));
     std::string error;
     for (int k = 1; k <= 5; ++k)
         ASSERT_TRUE(drag.drag(rayDownOnto(doc, glm::vec2(start) + glm::vec2(0.2f * float(k), 0.1f * float(k))), &error))
@@ -199,7 +166,7 @@ TEST(LiveEnvironment, CoalescedEditsEndEqualToAFullComputationAndUndoGivesBackTh
     // A drag of the shelter and a walk, submitted as fast as the UI would, without waiting.
     EnvObjectDrag drag;
     const glm::vec3 start = doc.project().environment.roots[1].transform.translation;
-    ASSERT_TRUE(drag.begin(&doc, 1, rayDownOnto(doc, glm::vec2(start))));
+    ASSERT_TRUE(drag.begin(&doc, {1}, rayDownOnto(doc, glm::vec2(start))));
     for (int k = 1; k <= 6; ++k) {
         ASSERT_TRUE(drag.drag(rayDownOnto(doc, glm::vec2(start) - glm::vec2(0.15f * float(k), 0.0f)), &error)) << error;
         live.submit(doc.environment(), doc.environmentGeneration());

@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "editor/live_strands.h"
+#include "editor_test_util.h"
 #include "particles/particle_output.h"
 
 namespace ug::editor {
@@ -46,15 +47,7 @@ std::vector<MeshInstances> outputsOf(const std::vector<ParticleSystemFile>& syst
     return out;
 }
 
-void expectSameMeshes(const std::vector<MeshInstances>& a, const std::vector<MeshInstances>& b) {
-    ASSERT_EQ(a.size(), b.size());
-    for (size_t i = 0; i < a.size(); ++i) {
-        EXPECT_EQ(a[i].name, b[i].name);
-        EXPECT_EQ(a[i].mesh->positions, b[i].mesh->positions) << a[i].name;
-        EXPECT_EQ(a[i].mesh->indices, b[i].mesh->indices) << a[i].name;
-        EXPECT_EQ(a[i].extras_json, b[i].extras_json) << a[i].name;
-    }
-}
+using test::expectSameMeshes;
 
 TEST(LiveStrands, GrowsWhatTheOutputsGrowAndCoalescesSubmissions) {
     auto systems = std::make_shared<std::vector<ParticleSystemFile>>(
