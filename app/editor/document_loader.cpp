@@ -64,6 +64,7 @@ void DocumentLoader::work() {
             return failWith(request_.scene_path + ": " + error);
         s.static_meshes = envMeshInstances(*doc.environment(), *fx);
         s.env_effects = std::move(fx);
+        s.env_scene = doc.environment();
     }
     if (!doc.particles()->empty()) {
         // The strands the CLI's exports carry (scene/scene_particles.h); the editor's export takes them

@@ -32,7 +32,8 @@ struct EditorScene {
     // The environmental objects' base geometry and effects (snow, icicles) as the renderer draws them
     // (env/env_outputs.h); empty without an environment.
     std::shared_ptr<const EnvEffects> env_effects;
-    std::vector<MeshInstances> static_meshes;
+    std::shared_ptr<const EnvScene> env_scene;  // what env_effects were computed for
+    std::vector<MeshInstances> static_meshes;   // every one, as the export writes them
 };
 
 struct LoadRequest {

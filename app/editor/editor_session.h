@@ -133,6 +133,8 @@ private:
     // icicles swapped into the static meshes.
     void startEnvironment();
     void syncEnvironment();
+    // The scene's static meshes to the renderer, less the objects the Outliner hides (drawn_static_meshes).
+    void showStaticMeshes();
     bool environmentSettled() const;  // the effects on screen are the document's environment's
     json environmentJson() const;     // the tree, fields and last computation, for the statistics
     // The strands and the effects are the document's (part of "settled").
@@ -229,6 +231,8 @@ private:
     EnvHandleDrag env_handle_drag;                      // ... on the selected node's turn or scale handle
     WeatherStroke weather_stroke;                       // a weather brush's stroke (footprints, warm, ...)
     EnvironmentPanelState environment_panel;
+    std::vector<uint8_t> env_hidden_drawn;           // the objects hidden in the view (envObjectMask)
+    std::vector<MeshInstances> drawn_static_meshes;  // the statics drawn while some are hidden
     ChannelMap channel_map;
     struct ChannelMapKey {
         const Document* doc = nullptr;

@@ -13,27 +13,13 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "editor/env_tree_view.h"
 #include "editor/panel_edit.h"
 #include "editor/panels.h"
 
 namespace ug::editor {
 
 namespace {
-
-std::string nodeLabel(const EnvironmentDesc& env, const EnvNode& node, size_t index) {
-    // Objects and references by their type or group, groups by their size.
-    char label[160];
-    const glm::vec3 t = node.transform.translation;
-    const char* what = node.kind == EnvNodeKind::Object && node.type < env.types.size() ? env.types[node.type].name.c_str()
-                       : node.kind == EnvNodeKind::Reference                          ? node.target.c_str()
-                       : node.kind == EnvNodeKind::Lod                                 ? "LOD group"
-                                                                                       : "group";
-    if (node.kind == EnvNodeKind::Group || node.kind == EnvNodeKind::Lod)
-        std::snprintf(label, sizeof label, "%zu  %s of %zu  (%.1f, %.1f)", index, what, node.children.size(), t.x, t.y);
-    else
-        std::snprintf(label, sizeof label, "%zu  %s  (%.1f, %.1f)", index, what, t.x, t.y);
-    return label;
-}
 
 // The weather brushes' switch and settings (used in the view: env_tools.h WeatherStroke).
 void weatherBrush(EnvironmentPanelState* state) {
@@ -109,7 +95,7 @@ void structural(bool ok, const char* name, const std::string& why, PanelEdit* e,
 void editSelected(EnvironmentDesc* env, EnvironmentPanelState* state, PanelEdit* e, std::string* message) {
     EnvPath& path = state->selected;
     EnvNode& node = *envNodeAt(env, path);
-    ImGui::Text("%s  %s", envPathText(path).c_str(), nodeLabel(*env, node, path.back()).c_str());
+    ImGui::Text("%s  %s", envPathText(path).c_str(), envNodeLabel(*env, node, path.back()).c_str());
     dragged(ImGui::DragFloat3("position (m)", &node.transform.translation.x, 0.01f), e);
     named(e, "Move object");
     dragged(ImGui::DragFloat("turn (deg)", &node.transform.yaw_deg, 0.5f, -360.0f, 360.0f), e);
@@ -164,42 +150,6 @@ void editSelected(EnvironmentDesc* env, EnvironmentPanelState* state, PanelEdit*
     }
 }
 
-// One node of the tree and its subtree: click selects; a node dragged onto a group moves into it (it
-// stays where it is in the world).
-void treeNode(EnvironmentDesc* env, const EnvPath& path, EnvironmentPanelState* state, EnvPath* drag_from,
-              EnvPath* drop_into) {
-    const EnvNode& node = *envNodeAt(*env, path);
-    const bool has_children = node.kind == EnvNodeKind::Group || node.kind == EnvNodeKind::Lod;
-    ImGuiTreeNodeFlags flags = ImGuiTreeNodeFlags_OpenOnArrow | ImGuiTreeNodeFlags_SpanAvailWidth;
-    if (!has_children) flags |= ImGuiTreeNodeFlags_Leaf | ImGuiTreeNodeFlags_NoTreePushOnOpen;
-    if (path == state->selected) flags |= ImGuiTreeNodeFlags_Selected;
-    ImGui::PushID(int(path.back()));
-    const bool open = ImGui::TreeNodeEx("node", flags, "%s", nodeLabel(*env, node, path.back()).c_str());
-    if (ImGui::IsItemClicked() && !ImGui::IsItemToggledOpen()) state->selected = path;
-    if (ImGui::BeginDragDropSource()) {
-        ImGui::SetDragDropPayload("UG_ENV_NODE", path.data(), path.size() * sizeof(uint32_t));
-        ImGui::Text("%s", nodeLabel(*env, node, path.back()).c_str());
-        ImGui::EndDragDropSource();
-    }
-    if (node.kind == EnvNodeKind::Group && ImGui::BeginDragDropTarget()) {
-        if (const ImGuiPayload* p = ImGui::AcceptDragDropPayload("UG_ENV_NODE")) {
-            const uint32_t* from = static_cast<const uint32_t*>(p->Data);
-            *drag_from = EnvPath(from, from + size_t(p->DataSize) / sizeof(uint32_t));
-            *drop_into = path;
-        }
-        ImGui::EndDragDropTarget();
-    }
-    if (open && has_children) {
-        for (size_t c = 0; c < node.children.size(); ++c) {
-            EnvPath child = path;
-            child.push_back(uint32_t(c));
-            treeNode(env, child, state, drag_from, drop_into);
-        }
-        ImGui::TreePop();
-    }
-    ImGui::PopID();
-}
-
 void palette(EnvironmentDesc* env, EnvironmentPanelState* state, PanelEdit* e) {
     state->add_type = std::clamp(state->add_type, 0, int(env->types.size()) - 1);
     if (ImGui::BeginCombo("type", env->types[size_t(state->add_type)].name.c_str())) {
@@ -250,13 +200,13 @@ void drawEnvironmentPanel(Document* doc, EnvironmentPanelState* state, std::stri
     if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) {
         palette(&env, state, &e);
         ImGui::BeginChild("tree", ImVec2(0, 110), true);
-        EnvPath drag_from, drop_into;
-        for (size_t i = 0; i < env.roots.size(); ++i) treeNode(&env, {uint32_t(i)}, state, &drag_from, &drop_into);
+        EnvTreeDrop drop;
+        drawEnvTreeRows(env, &state->selected, nullptr, &drop);
         ImGui::EndChild();
-        if (!drop_into.empty()) {
+        if (!drop.into.empty()) {
             std::string why;
             EnvPath moved;
-            structural(moveEnvNodeInto(&env, drag_from, drop_into, &moved, &why), "Move into group", why, &e, message);
+            structural(moveEnvNodeInto(&env, drop.node, drop.into, &moved, &why), "Move into group", why, &e, message);
             if (e.changed) state->selected = moved;
         } else if (!state->selected.empty()) {
             editSelected(&env, state, &e, message);

@@ -30,6 +30,7 @@ LiveEnvironmentResult LiveEnvironment::compute(const Submission& s) {
     if (ok) {
         out.meshes = envMeshInstances(*s.scene, *fx);
         out.effects = fx;
+        out.scene = s.scene;
         base_scene_ = s.scene;
         base_effects_ = std::move(fx);
     } else {

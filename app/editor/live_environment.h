@@ -21,6 +21,7 @@ struct LiveEnvironmentResult {
     uint64_t generation = 0;            // the document's environmentGeneration() it was computed for
     std::vector<MeshInstances> meshes;  // "env/...", "snow/...", "icicles/..." (envMeshInstances)
     std::shared_ptr<const EnvEffects> effects;  // null when it failed
+    std::shared_ptr<const EnvScene> scene;      // what `effects` were computed for
     std::string error;                  // why it failed (the previous meshes stay on screen)
     double seconds = 0.0;
     size_t dirty_boxes = 0;             // the edit's region (0: computed in full)

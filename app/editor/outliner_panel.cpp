@@ -55,7 +55,7 @@ std::string densitySummary(const DensityField& f, const std::vector<Primitive>& 
 }  // namespace
 
 void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uint8_t>* visible,
-                  ToolState* tools, UiRequests* requests, bool* open) {
+                  ToolState* tools, EnvironmentPanelState* environment, UiRequests* requests, bool* open) {
     if (!*open) return;
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - 10, vp->Pos.y + 260), ImGuiCond_FirstUseEver,
@@ -129,6 +129,17 @@ void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uin
     ImGui::SameLine();
     if (ImGui::Button("Delete")) requests->delete_selected = true;
     if (!has_selection) ImGui::EndDisabled();
+    const EnvironmentDesc& env = doc->project().environment;
+    if (!env.roots.empty()) {
+        ImGui::Separator();
+        // Edited in Window > Environment (and with the Select tool in the view while it is open).
+        if (ImGui::TreeNodeEx("##environment", ImGuiTreeNodeFlags_DefaultOpen | ImGuiTreeNodeFlags_SpanAvailWidth,
+                              "Environmental objects  %zu", env.roots.size())) {
+            if (!envNodeAt(env, environment->selected)) environment->selected.clear();
+            drawEnvTreeRows(env, &environment->selected, &environment->hidden, &requests->env_drop);
+            ImGui::TreePop();
+        }
+    }
     ImGui::End();
 }
 

@@ -10,6 +10,7 @@
 
 #include "editor/channel_map.h"
 #include "editor/env_tools.h"
+#include "editor/env_tree_view.h"
 #include "editor/export_job.h"
 #include "editor/render_data.h"
 #include "editor/tools.h"
@@ -36,7 +37,10 @@ struct UiRequests {
     bool show_export = false;   // File > Export glTF...: show the Export window
     bool start_export = false;  // the Export window's Export button
     bool cancel_export = false;
+    EnvTreeDrop env_drop;  // the Outliner's tree: a node dropped onto a group (moves into it)
 };
+
+struct EnvironmentPanelState;
 
 // What the Statistics window shows.
 struct StatisticsView {
@@ -143,9 +147,11 @@ struct ExportView {
 
 // Layers (detail types: swatch, instance count, visibility, "paint with this type"), each with its user
 // primitives (click selects; Delete / Duplicate raise the requests) and a summary of the file's own
-// density tree. `visible` is view state (one byte per type), not a document edit.
+// density tree. `visible` is view state (one byte per type), not a document edit. Below them, the
+// environmental objects' tree (env_tree_view.h): an eye per node, selection shared with the Environment
+// window (`environment`), drag onto a group to regroup (requests->env_drop).
 void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uint8_t>* visible,
-                  ToolState* tools, UiRequests* requests, bool* open);
+                  ToolState* tools, EnvironmentPanelState* environment, UiRequests* requests, bool* open);
 // Per type strategy, layer, orientation and size constraints, and the seed: each finished edit is one
 // Document::setInstancing / setSeed (one undo step); errors go to *message. Then the statistics.
 void drawInstantiationPanel(Document* doc, const std::vector<std::string>& type_names,
@@ -210,7 +216,8 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
 
 // ---- environment panel (environment_panel.cpp) ----
 struct EnvironmentPanelState {
-    EnvPath selected;            // a node of the tree (empty: none)
+    EnvPath selected;            // a node of the tree (empty: none); the Outliner's too
+    std::vector<EnvPath> hidden; // nodes hidden in the view by the Outliner's eyes (view only)
     bool brush_on = false;       // a weather brush: a left drag on the ground stamps it (env_tools.h)
     WeatherSettings weather;
     ChannelMapSettings view;     // the channel view (channel_map.h); its legend's ends from the last map

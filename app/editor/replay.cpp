@@ -199,7 +199,13 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
                 r.value = a.at("value").get<float>();
             }
             if (r.kind == ReplayKind::SetVisible) {
-                r.type = a.at("type").get<std::string>();
+                // A detail type's layer, or an environmental node (the Outliner's eyes).
+                if (a.contains("node")) {
+                    const json& n = a["node"];
+                    r.node_path = n.is_array() ? n.get<std::vector<uint32_t>>() : std::vector<uint32_t>{n.get<uint32_t>()};
+                } else {
+                    r.type = a.at("type").get<std::string>();
+                }
                 r.visible = a.at("visible").get<bool>();
                 r.types.clear();
             }

@@ -29,7 +29,9 @@
 //    {"action": "export", "path": "out.glb", "plain_nodes": false, "chunk": 8},   waits for the file
 //    {"action": "open", "path": "other.json"},    waits for the load; a failed one keeps the document
 //    {"action": "new"},                           an untitled document from assets/scenes/default.json
-//    {"action": "set_visible", "type": "rock", "visible": false},   the outliner's eye (view state only)
+//    {"action": "set_visible", "type": "rock", "visible": false},   the outliner's eye (view state only); or
+//     "node": 11 (or a path [11, 0]): an environmental node's eye; its statistics add "static_triangles_before"
+//     and "static_triangles_after" (the static meshes drawn)
 //    {"action": "set_attractor", "system": 0, "attractor": 1, "a_m": [x, y, z], "influence": 0.3,
 //     "charge": 1.5},   the Particles window's edit of one attractor (keys but the indices optional; a
 //     charge replaces the keys by one), one undo step; ends when the strands re-grown for it are on

@@ -111,9 +111,9 @@ void EditorSession::adoptLoadedDocument() {
     Document& d = *scene->doc;
     renderer->setScene(d.compiled().extent, scene->has_terrain ? &scene->terrain : nullptr, &scene->meshes,
                        d.ghostTile().candidates, d.ghostTile().settings.tile_size_m, &scene->terrain_material);
-    renderer->setStaticMeshes(&scene->static_meshes);  // environmental objects, snow, icicles, strands
     startStrands();
     startEnvironment();
+    showStaticMeshes();  // environmental objects, snow, icicles, strands
     // Every document opens framed, as on startup (a camera left where the last scene was would show
     // nothing of this one); the first result frames it again by the cells that fill.
     camera_moved = false;
@@ -169,6 +169,16 @@ void EditorSession::handleEditRequests() {
                 else
                     messages.push_back(op_error);
             }
+        }
+        if (!requests.env_drop.into.empty()) {
+            // The Outliner's tree: the node moves into the group, staying where it is in the world.
+            EnvironmentDesc env = doc->project().environment;
+            EnvPath moved;
+            if (moveEnvNodeInto(&env, requests.env_drop.node, requests.env_drop.into, &moved, &op_error) &&
+                doc->setEnvironment(env, "Move into group", &op_error))
+                environment_panel.selected = moved;
+            else
+                messages.push_back(op_error);
         }
         if (drawSaveAsDialog(&save_as_open, &save_as_path) == DialogAnswer::Yes) {
             if (!doc->saveAs(save_as_path, &op_error))

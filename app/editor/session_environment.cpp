@@ -8,6 +8,7 @@
 
 #include "editor/editor_session.h"
 #include "env/env_json.h"
+#include "env/env_outputs.h"
 
 namespace ug::editor {
 
@@ -35,6 +36,11 @@ void EditorSession::syncEnvironment() {
         environment_panel.computing = false;
         return;
     }
+    // The Outliner's eyes: the view changes when the objects they hide do.
+    if (scene->env_scene &&
+        envObjectMask(scene->env_scene->desc(), environment_panel.hidden, scene->env_scene->objects().size()) !=
+            env_hidden_drawn)
+        showStaticMeshes();
     Document& d = *scene->doc;
     if (d.environmentGeneration() != environment_submitted) {
         environment_submitted = d.environmentGeneration();
@@ -51,9 +57,10 @@ void EditorSession::syncEnvironment() {
         std::vector<MeshInstances>& statics = scene->static_meshes;
         std::erase_if(statics, isEnvironmentMesh);
         statics.insert(statics.begin(), std::make_move_iterator(r.meshes.begin()), std::make_move_iterator(r.meshes.end()));
-        renderer->setStaticMeshes(&statics);
         scene->env_effects = r.effects;
+        scene->env_scene = r.scene;
         environment_shown = r.generation;
+        showStaticMeshes();
     }
     if (!r.error.empty()) messages.push_back(r.error);
     char status[160];
@@ -65,6 +72,24 @@ void EditorSession::syncEnvironment() {
     r.meshes.clear();
     last_environment = std::move(r);
     environment_panel.computing = live_environment->busy();
+}
+
+void EditorSession::showStaticMeshes() {
+    env_hidden_drawn.clear();
+    if (scene->env_scene && scene->env_effects)
+        env_hidden_drawn =
+            envObjectMask(scene->env_scene->desc(), environment_panel.hidden, scene->env_scene->objects().size());
+    if (env_hidden_drawn.empty()) {
+        drawn_static_meshes.clear();
+        renderer->setStaticMeshes(&scene->static_meshes);
+        return;
+    }
+    // The scene's list stays whole (the export writes it); the view draws a copy without the hidden objects
+    // (the meshes are shared, so their levels of detail are kept).
+    drawn_static_meshes = envMeshInstances(*scene->env_scene, *scene->env_effects, &env_hidden_drawn);
+    for (const MeshInstances& m : scene->static_meshes)
+        if (!isEnvironmentMesh(m)) drawn_static_meshes.push_back(m);
+    renderer->setStaticMeshes(&drawn_static_meshes);
 }
 
 void EditorSession::noteEnvStamp(uint64_t generation_before, int action) {

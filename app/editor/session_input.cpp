@@ -99,7 +99,7 @@ void EditorSession::drawUi() {
         outliner.instances_per_type = view.instances_per_type;
         if (scene)
             for (const DetailLodMesh& m : scene->meshes) outliner.colors.push_back(m.color);
-        drawOutliner(doc, outliner, &type_visible, &tools, &requests, &windows.outliner);
+        drawOutliner(doc, outliner, &type_visible, &tools, &environment_panel, &requests, &windows.outliner);
         for (size_t t = 0; t < type_visible.size(); ++t) renderer->setTypeVisible(t, type_visible[t] != 0);
         inst_view.pending = scene && !settled;
         std::string panel_message;

@@ -279,6 +279,19 @@ bool EditorSession::runReplayAction(const ReplayAction& a) {
             break;
         }
         case ReplayKind::SetVisible: {
+            replay.record["static_triangles_before"] = renderer->stats().static_triangles;
+            if (!a.node_path.empty()) {
+                if (!envNodeAt(doc->project().environment, a.node_path)) {
+                    *error = "set_visible: no environmental node " + envPathText(a.node_path);
+                    return false;
+                }
+                replay.record["node"] = a.node_path;
+                replay.record["visible"] = a.visible;
+                std::erase(environment_panel.hidden, a.node_path);
+                if (!a.visible) environment_panel.hidden.push_back(a.node_path);
+                if (scene) showStaticMeshes();  // this frame already draws it so
+                break;
+            }
             const size_t t = replayType(a.type);
             if (t == kNoType) return false;
             replay.record["type"] = a.type;
@@ -334,7 +347,10 @@ void EditorSession::finishReplayAction() {
     r["instance_store_hash_after"] = hex64(instanceStoreHash(*store));
     const ReplayKind kind = options.replay[replay.index].kind;
     if (kind == ReplayKind::Export) r.update(export_record);
-    if (kind == ReplayKind::SetVisible) r["drawn_instances_after"] = renderer->stats().instances_drawn;
+    if (kind == ReplayKind::SetVisible) {
+        r["drawn_instances_after"] = renderer->stats().instances_drawn;
+        r["static_triangles_after"] = renderer->stats().static_triangles;
+    }
     if (kind == ReplayKind::SetAttractor) r["particles"] = strandsJson();
     if (kind == ReplayKind::EnvView && environment_panel.view.on) {
         channelMapGeometry();

@@ -44,7 +44,7 @@ void EditorSession::syncStrands() {
             std::vector<MeshInstances>& statics = scene->static_meshes;
             std::erase_if(statics, isStrandMesh);
             for (MeshInstances& m : r.meshes) statics.push_back(std::move(m));
-            renderer->setStaticMeshes(&statics);
+            showStaticMeshes();
             strands_shown = r.generation;
         }
         if (!r.error.empty()) messages.push_back(r.error);

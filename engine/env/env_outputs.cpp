@@ -60,9 +60,11 @@ const SurfaceMaterial& iceMaterial() {
     return m;
 }
 
-std::vector<MeshInstances> envMeshInstances(const EnvScene& scene, const EnvEffects& effects) {
+std::vector<MeshInstances> envMeshInstances(const EnvScene& scene, const EnvEffects& effects,
+                                            const std::vector<uint8_t>* hidden) {
     std::vector<MeshInstances> out;
     const auto& objects = scene.objects();
+    auto shown = [&](uint32_t o) { return !hidden || o >= hidden->size() || (*hidden)[o] == 0; };
     auto snow = std::make_shared<const SurfaceMaterial>(snowMaterial());
     auto ice = std::make_shared<const SurfaceMaterial>(iceMaterial());
     // Base geometry, per type, only the objects in the result (its region).
@@ -72,7 +74,7 @@ std::vector<MeshInstances> envMeshInstances(const EnvScene& scene, const EnvEffe
         std::vector<std::pair<uint32_t, InstanceTransform>> ordered;
         for (const EffectClass& c : effects.classes)
             for (uint32_t o : c.members)
-                if (objects[o].type == t) ordered.push_back({o, placed(objects[o].placement)});
+                if (objects[o].type == t && shown(o)) ordered.push_back({o, placed(objects[o].placement)});
         if (ordered.empty()) continue;
         std::sort(ordered.begin(), ordered.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
         MeshInstances m;
@@ -93,11 +95,13 @@ std::vector<MeshInstances> envMeshInstances(const EnvScene& scene, const EnvEffe
             m.name = "snow/" + scene.types()[cls.type].desc.name + "/" + std::to_string(c);
             m.mesh = cls.snow;
             m.material = snow;
-            for (uint32_t o : cls.members) m.instances.push_back(placed(objects[o].placement));
-            out.push_back(std::move(m));
+            for (uint32_t o : cls.members)
+                if (shown(o)) m.instances.push_back(placed(objects[o].placement));
+            if (!m.instances.empty()) out.push_back(std::move(m));
         }
         for (uint32_t o : cls.members)
-            for (const IcicleInstance& ic : cls.icicles) icicles[ic.shape].push_back(placedIcicle(objects[o].placement, ic));
+            if (shown(o))
+                for (const IcicleInstance& ic : cls.icicles) icicles[ic.shape].push_back(placedIcicle(objects[o].placement, ic));
     }
     for (auto& [shape, transforms] : icicles) {
         MeshInstances m;

@@ -7,6 +7,7 @@
 // Materials: the types' own (resolved against their mesh colour), snow and ice.
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "env/env_effects.h"
@@ -17,6 +18,9 @@ namespace ug {
 const SurfaceMaterial& snowMaterial();
 const SurfaceMaterial& iceMaterial();
 
-std::vector<MeshInstances> envMeshInstances(const EnvScene& scene, const EnvEffects& effects);
+// `hidden` (optional, one entry per object): objects whose entry is non-zero are left out with their snow
+// and icicles (the editor's hidden nodes); a mesh left with no instance is left out.
+std::vector<MeshInstances> envMeshInstances(const EnvScene& scene, const EnvEffects& effects,
+                                            const std::vector<uint8_t>* hidden = nullptr);
 
 }  // namespace ug

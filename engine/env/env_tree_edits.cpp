@@ -132,6 +132,17 @@ EnvPath envPathOfObject(const EnvironmentDesc& env, size_t object) {
     }
 }
 
+std::vector<uint8_t> envObjectMask(const EnvironmentDesc& env, const std::vector<EnvPath>& paths, size_t objects) {
+    std::vector<uint8_t> mask;
+    for (const EnvPath& path : paths) {
+        size_t first = 0, count = 0;
+        if (!envObjectRange(env, path, &first, &count) || count == 0) continue;
+        mask.resize(objects, 0);
+        for (size_t o = first; o < std::min(objects, first + count); ++o) mask[o] = 1;
+    }
+    return mask;
+}
+
 bool groupEnvNode(EnvironmentDesc* env, const EnvPath& path, std::string* error) {
     EnvNode* node = envNodeAt(env, path);
     if (!node) return fail(error, path, "no such node");

@@ -32,6 +32,10 @@ bool envObjectRange(const EnvironmentDesc& env, const EnvPath& path, size_t* fir
 // expanded from (a reusable group's insides are not tree nodes). Empty when there is no such object.
 EnvPath envPathOfObject(const EnvironmentDesc& env, size_t object);
 
+// A mask over the compiled scene's `objects` objects: 1 for those the nodes at `paths` expand to. Empty
+// when none is marked (paths that lead nowhere are skipped).
+std::vector<uint8_t> envObjectMask(const EnvironmentDesc& env, const std::vector<EnvPath>& paths, size_t objects);
+
 // The node becomes the only child of a new group standing where it stood (the group takes its transform,
 // the node the identity). The group is at the same path.
 bool groupEnvNode(EnvironmentDesc* env, const EnvPath& path, std::string* error);

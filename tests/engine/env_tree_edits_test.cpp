@@ -153,6 +153,8 @@ TEST(EnvTreeEdits, ObjectRangesAndPathsFollowTheCompiledTree) {
     const glm::vec3 compiled = scene.objects()[0].placement.toWorld(glm::vec3(0.0f));
     EXPECT_NEAR(glm::distance(at, compiled), 0.0f, 1e-5f);
     EXPECT_TRUE(envPathOfObject(env, 5).empty());
+    EXPECT_EQ(envObjectMask(env, {{2}, {0, 0}, {9}}, 5), (std::vector<uint8_t>{1, 0, 0, 1, 1}));
+    EXPECT_TRUE(envObjectMask(env, {{9}}, 5).empty());
     EXPECT_FALSE(envObjectRange(env, {7}, &first, &count));
 }
 

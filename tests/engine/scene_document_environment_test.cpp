@@ -186,6 +186,48 @@ TEST(DocumentEnvironment, AFieldEditKeepsTheRestSurfacesAMoveChangesThem) {
     settledLive(*doc);
 }
 
+// The editor's hidden nodes: the outputs without an object leave out its base mesh, its snow and its
+// icicles, and keep every other object's exactly.
+TEST(DocumentEnvironment, AHiddenObjectLeavesTheMeshListsWithItsEffects) {
+    TempDir dir;
+    DocumentOptions options;
+    auto doc = openProject(dir, &options);
+    ASSERT_TRUE(doc);
+    EnvEffects fx;
+    std::string error;
+    ASSERT_TRUE(computeEnvEffects(*doc->environment(), {.threads = 2}, &fx, &error)) << error;
+    const std::vector<MeshInstances> all = envMeshInstances(*doc->environment(), fx);
+    const std::vector<uint8_t> hide_bench{1, 0};
+    const std::vector<MeshInstances> shown = envMeshInstances(*doc->environment(), fx, &hide_bench);
+    size_t bench_meshes = 0, icicles_all = 0, icicles_shown = 0;
+    for (const MeshInstances& m : all) {
+        if (m.name.rfind("icicles/", 0) == 0) icicles_all += m.instances.size();
+        if (m.name.find("bench") != std::string::npos) ++bench_meshes;
+    }
+    EXPECT_GE(bench_meshes, 2u) << "the bench and its snow";
+    for (const MeshInstances& m : shown) {
+        EXPECT_EQ(m.name.find("bench"), std::string::npos) << m.name;
+        if (m.name.rfind("icicles/", 0) == 0) icicles_shown += m.instances.size();
+    }
+    EXPECT_GT(icicles_all, 0u);
+    EXPECT_LT(icicles_shown, icicles_all) << "the bench's icicles go with it";
+    // Everything else unchanged, in order.
+    std::vector<const MeshInstances*> others;
+    for (const MeshInstances& m : all)
+        if (m.name.find("bench") == std::string::npos && m.name.rfind("icicles/", 0) != 0) others.push_back(&m);
+    std::vector<const MeshInstances*> kept;
+    for (const MeshInstances& m : shown)
+        if (m.name.rfind("icicles/", 0) != 0) kept.push_back(&m);
+    ASSERT_EQ(others.size(), kept.size());
+    for (size_t i = 0; i < kept.size(); ++i) {
+        EXPECT_EQ(others[i]->name, kept[i]->name);
+        EXPECT_EQ(others[i]->mesh, kept[i]->mesh);
+        ASSERT_EQ(others[i]->instances.size(), kept[i]->instances.size());
+        for (size_t k = 0; k < kept[i]->instances.size(); ++k)
+            EXPECT_EQ(others[i]->instances[k].position, kept[i]->instances[k].position);
+    }
+}
+
 TEST(DocumentEnvironment, ABadEditIsRefusedWithItsPlaceAndChangesNothing) {
     TempDir dir;
     DocumentOptions options;

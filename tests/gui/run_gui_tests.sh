@@ -447,7 +447,9 @@ fi
 # ---- the view's handles (env_handles.h): the street's bench turned a quarter round by its turn handle, the
 # lamppost scaled by its scale handle, and the bench, put in a group, turned back inside it (a nested node);
 # each is what the drag asked (the angle and the ratio of distances from the pivot), the export equals
-# `instantiate` on the saved file, and four undos give the loaded scene's meshes back.
+# `instantiate` on the saved file, and four undos give the loaded scene's meshes back. The Outliner's eye
+# hides the bus shelter in the view (fewer static triangles drawn, as many again when shown) but not in
+# the export.
 hdir="$tmp/env-handles"
 mkdir -p "$hdir"
 cp -r "$root/assets" "$hdir/assets"
@@ -460,7 +462,9 @@ cat >"$hdir/script.json" <<EOF
  {"action": "env_handle", "node": [12, 0], "handle": "turn", "to": [2.4, 8.6], "steps": 6, "snap": true},
  {"action": "view", "target": [5.0, 7.0, 0.0], "distance": 9.0, "yaw_deg": -100, "pitch_deg": 50},
  {"action": "screenshot", "path": "$hdir/handles.png", "ui": true},
+ {"action": "set_visible", "node": 11, "visible": false},
  {"action": "export", "path": "$hdir/edited.glb"},
+ {"action": "set_visible", "node": 11, "visible": true},
  {"action": "save"},
  {"action": "undo"}, {"action": "undo"}, {"action": "undo"}, {"action": "undo"},
  {"action": "export", "path": "$hdir/undone.glb"},
@@ -475,6 +479,9 @@ d = sys.argv[1]
 stats = json.load(open(d + "/stats.json"))
 acts = [a for a in stats["actions"] if a["action"] in ("env_handle", "env_tree")]
 assert len(acts) == 4 and all(a.get("ok", True) for a in acts), acts
+hide, show = [a for a in stats["actions"] if a["action"] == "set_visible"]
+assert hide["static_triangles_after"] < hide["static_triangles_before"], hide
+assert show["static_triangles_after"] == hide["static_triangles_before"], (hide, show)
 turn, scale, _, nested = acts
 assert turn["moves"] > 0 and scale["moves"] > 0 and nested["moves"] > 0, acts
 # The bench (origin 3.4, 8.6, turned 180): its handle dragged to straight south of the origin turns it to -90.
