@@ -133,6 +133,7 @@ private:
     // icicles swapped into the static meshes.
     void startEnvironment();
     void syncEnvironment();
+    void placeFromPalette(const Ray& ray, bool mouse_free);  // the palette armed: a click places its type
     // The scene's static meshes to the renderer, less the objects the Outliner hides (drawn_static_meshes).
     void showStaticMeshes();
     bool environmentSettled() const;  // the effects on screen are the document's environment's
@@ -231,6 +232,7 @@ private:
     EnvHandleDrag env_handle_drag;                      // ... on the selected node's turn or scale handle
     WeatherStroke weather_stroke;                       // a weather brush's stroke (footprints, warm, ...)
     EnvironmentPanelState environment_panel;
+    std::vector<float> palette_coverage;             // per type: the part of its thumbnail the mesh covers
     std::vector<uint8_t> env_hidden_drawn;           // the objects hidden in the view (envObjectMask)
     std::vector<MeshInstances> drawn_static_meshes;  // the statics drawn while some are hidden
     ChannelMap channel_map;

@@ -1,7 +1,9 @@
 #include "editor/env_tools.h"
 
 #include <cctype>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace ug::editor {
 
@@ -14,6 +16,28 @@ EnvPath pickEnvNode(const Document& doc, const glm::mat4& view_proj, float width
     EnvPath path = envPathOfObject(doc.project().environment, object);
     if (!nested && path.size() > 1) path.erase(path.begin() + 1, path.end());
     return path;
+}
+
+bool placementPoint(const Document& doc, const Ray& ray, glm::vec3* out) {
+    const SurfaceHit ground = pickGround(doc, ray);
+    if (!ground.hit) return false;
+    *out = ground.point_m;
+    const EnvScene& env = *doc.environment();
+    if (env.objects().empty()) return true;
+    constexpr float kStepM = 0.02f;
+    constexpr int kMaxSteps = 20000;
+    const float reach = glm::distance(ray.origin_m, ground.point_m);
+    const float step = std::max(kStepM, reach / float(kMaxSteps));
+    for (float t = 0.0f; t < reach; t += step) {
+        const glm::vec3 q = ray.at(t);
+        const EnvScene::Support s = env.supportBelow(q);
+        if (s.inside || !(s.z > -std::numeric_limits<float>::infinity())) continue;  // in a wall, or over nothing
+        if (q.z - s.z <= step) {
+            *out = glm::vec3(q.x, q.y, s.z);
+            return true;
+        }
+    }
+    return true;
 }
 
 EnvironmentDesc withNodeMovedTo(const Document& doc, const EnvPath& path, glm::vec2 xy) {

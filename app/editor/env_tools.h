@@ -26,6 +26,12 @@ constexpr float kFootprintHalfGaitM = 0.09f;
 EnvPath pickEnvNode(const Document& doc, const glm::mat4& view_proj, float width_px, float height_px,
                     glm::vec2 cursor_px, float max_px, bool nested);
 
+// Where a click along `ray` places a new object: the first point of the ray (in 2 cm steps, up to where it
+// meets the ground) at or just above what an object dropped there would stand on (the terrain, or the top
+// of another object's base geometry: a pavement slab, a table, a roof), at that surface's height. False
+// when the ray misses the ground.
+bool placementPoint(const Document& doc, const Ray& ray, glm::vec3* out);
+
 // The environment with node `path` moved to (x, y) in the world, at its height above the ground kept
 // (unchanged when the path leads nowhere).
 EnvironmentDesc withNodeMovedTo(const Document& doc, const EnvPath& path, glm::vec2 xy_m);

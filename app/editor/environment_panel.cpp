@@ -167,6 +167,32 @@ void palette(EnvironmentDesc* env, EnvironmentPanelState* state, PanelEdit* e) {
         e->changed = true;
         e->name = "Add " + env->types[size_t(state->add_type)].name;
     }
+    // The pictures: a click picks the type and arms "place by clicking in the view" (on the ground or on
+    // top of another object); a second click on the same picture disarms it.
+    constexpr float kSide = 0.5f * float(kPaletteThumbnailPx);
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+    for (size_t t = 0; t < env->types.size() && t < state->thumbnails.size(); ++t) {
+        ImGui::PushID(int(t));
+        const bool chosen = int(t) == state->add_type;
+        const ImVec4 frame = chosen && state->placing ? ImVec4(1.0f, 0.75f, 0.1f, 1.0f)
+                             : chosen                  ? ImVec4(0.35f, 0.55f, 0.9f, 1.0f)
+                                                       : ImVec4(0.2f, 0.2f, 0.22f, 1.0f);
+        ImGui::PushStyleColor(ImGuiCol_Button, frame);
+        // Rows come bottom-up from the renderer: the picture is flipped back by its coordinates.
+        if (ImGui::ImageButton(reinterpret_cast<ImTextureID>(uintptr_t(state->thumbnails[t])), ImVec2(kSide, kSide),
+                               ImVec2(0, 1), ImVec2(1, 0), 2)) {
+            state->placing = !(chosen && state->placing);
+            state->add_type = int(t);
+        }
+        ImGui::PopStyleColor();
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s: click, then click in the view to place it", env->types[t].name.c_str());
+        ImGui::PopID();
+        const float next = ImGui::GetItemRectMax().x + ImGui::GetStyle().ItemSpacing.x + kSide + 4.0f;
+        if (t + 1 < env->types.size() && next < right) ImGui::SameLine();
+    }
+    if (state->placing)
+        ImGui::TextColored(ImVec4(1.0f, 0.75f, 0.1f, 1.0f), "click in the view to place a %s (Esc: stop)",
+                           env->types[size_t(state->add_type)].name.c_str());
 }
 
 }  // namespace

@@ -215,6 +215,8 @@ struct ParticlesPanelState {
 void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* message, bool* open);
 
 // ---- environment panel (environment_panel.cpp) ----
+constexpr int kPaletteThumbnailPx = 96;  // the palette's pictures (drawn at half size)
+
 struct EnvironmentPanelState {
     EnvPath selected;            // a node of the tree (empty: none); the Outliner's too
     std::vector<EnvPath> hidden; // nodes hidden in the view by the Outliner's eyes (view only)
@@ -226,6 +228,8 @@ struct EnvironmentPanelState {
     std::string status;          // the last computation: snow, icicles, time
     std::string last_error;      // the last refused edit
     int add_type = 0;            // the palette's choice
+    std::vector<uint64_t> thumbnails;  // per type: its picture (a texture for ImGui::Image; 0: none)
+    bool placing = false;        // the next left click in the view places the palette's type there
     glm::vec3 place_at{0.0f};    // where Add places an object: the ground under the view's centre
     // The copy the widgets edit (as for the Particles window).
     EnvironmentDesc editing;

@@ -184,6 +184,7 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
                 if (r.kind == ReplayKind::EnvAdd && at.size() > 2) r.at_z = at.at(2).get<float>();
             }
             if (r.kind == ReplayKind::EnvAdd) r.env_scale = a.value("scale", 1.0f);
+            if (r.kind == ReplayKind::EnvAdd) r.on_surface = a.value("on_surface", false);
             if (r.kind == ReplayKind::EnvAdd) r.type = a.at("type").get<std::string>();
             if (r.kind == ReplayKind::EnvRemove) r.node = a.at("node").get<size_t>();
             if (r.kind == ReplayKind::EnvMove || r.kind == ReplayKind::EnvHandle) {

@@ -38,7 +38,9 @@
 //     screen; its statistics add "particles": {"ok", "error"?, "strands", "incremental", "recomputed",
 //     "reused", "grow_seconds"}
 //    {"action": "env_add", "type": "bench", "at": [x, y], "yaw_deg": 90, "scale": 1},   the Environment
-//     window's Add: the type on the ground at (x, y) (or at [x, y, z]: on a pavement), one undo step
+//     window's Add: the type on the ground at (x, y) (or at [x, y, z]: on a pavement; or with "on_surface":
+//     true on whatever an object dropped at (x, y) would stand on, as a click in the view places it), one
+//     undo step
 //    {"action": "env_move", "node": 3, "to": [x, y], "steps": 10},   Select-drag the top-level node (or the
 //     node at a path, "node": [1, 0]) over the ground (its height above the ground kept), one step a frame,
 //     one undo step
@@ -169,6 +171,7 @@ struct ReplayAction {
     bool snap = false;      // env_handle
     float at_z = NAN;       // env_add: "at"'s third value (NaN: on the ground)
     float env_scale = 1.0f; // env_add
+    bool on_surface = false;  // env_add: on what an object dropped at (x, y) stands on (a slab, a table)
     std::string channel;    // env_global
     std::string brush = "footprints";  // weather_stroke
     std::string window;                // show_window (and `visible`: open or close)

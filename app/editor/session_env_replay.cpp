@@ -48,8 +48,11 @@ bool EditorSession::startEnvReplayAction(const ReplayAction& a) {
                 return false;
             }
             node.transform.translation = glm::vec3(a.at_xy, std::isnan(a.at_z) ? groundZ(a.at_xy) : a.at_z);
+            if (a.on_surface) placementPoint(*doc, rayDownOnto(*doc, a.at_xy), &node.transform.translation);
             if (!std::isnan(a.yaw_deg)) node.transform.yaw_deg = a.yaw_deg;
             node.transform.scale = a.env_scale;
+            const glm::vec3 at = node.transform.translation;
+            replay.record["at"] = {at.x, at.y, at.z};
             edited.roots.push_back(std::move(node));
             replay.record["node"] = edited.roots.size() - 1;
             replay.record["ok"] = doc->setEnvironment(edited, "Add " + a.type, &op_error);

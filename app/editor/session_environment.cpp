@@ -29,6 +29,15 @@ void EditorSession::startEnvironment() {
     environment_submitted = environment_shown = d.environmentGeneration();
     if (d.project().environment.types.empty()) return;  // nothing can be placed
     live_environment = std::make_unique<LiveEnvironment>(doc_options.threads, d.environment(), scene->env_effects);
+    // The palette's pictures, rendered once per document by the renderer (the window only shows them).
+    renderer->releaseThumbnails();
+    palette_coverage.clear();
+    for (const EnvObjectType& type : d.environment()->types()) {
+        float coverage = 0.0f;
+        const SurfaceMaterial look = resolveMaterial(type.desc.material, type.mesh->base_color);
+        environment_panel.thumbnails.push_back(renderer->meshThumbnail(*type.mesh, look, kPaletteThumbnailPx, &coverage));
+        palette_coverage.push_back(coverage);
+    }
 }
 
 void EditorSession::syncEnvironment() {
@@ -140,7 +149,8 @@ nlohmann::json EditorSession::environmentJson() const {
               {"generation", d.environmentGeneration()},
               {"settled", environmentSettled()},
               {"brush", environment_panel.brush_on ? weatherBrushName(environment_panel.weather.brush) : "off"},
-              {"tree", environmentToJson(env)["tree"]}};
+              {"tree", environmentToJson(env)["tree"]},
+              {"palette_coverage", palette_coverage}};
     if (scene->env_effects) {
         const EnvEffectsStats& s = scene->env_effects->stats;
         j["snow_triangles"] = s.snow_triangles;

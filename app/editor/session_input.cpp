@@ -1,5 +1,6 @@
 #include "editor/editor_session.h"
 
+#include <GLFW/glfw3.h>
 #include <imgui.h>
 
 #include <algorithm>
@@ -130,7 +131,9 @@ void EditorSession::mouseTools() {
                                io.MousePos.y * io.DisplayFramebufferScale.y);
         const Ray ray = rayThroughPixel(view_proj, float(fb_w), float(fb_h), cursor);
         const bool mouse_free = !io.WantCaptureMouse && !io.KeyAlt;
-        if (windows.environment && environment_panel.brush_on) {
+        if (windows.environment && environment_panel.placing) {
+            placeFromPalette(ray, mouse_free);
+        } else if (windows.environment && environment_panel.brush_on) {
             // A weather brush takes the left button from the tool while it is on; its ring shows where.
             const SurfaceHit ground = pickGround(*doc, ray);
             const WeatherSettings& weather = environment_panel.weather;
@@ -242,6 +245,34 @@ void EditorSession::mouseTools() {
         if (weather_stroke.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) weather_stroke.end();
     }
 
+}
+
+void EditorSession::placeFromPalette(const Ray& ray, bool mouse_free) {
+    // The palette's type at what the cursor points at (the ground, or the top of an object), shown by a
+    // ring; a click places it (one undo step) and disarms the palette, unless Shift is held (place more).
+    EnvironmentPanelState& p = environment_panel;
+    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false) || size_t(p.add_type) >= doc->project().environment.types.size()) {
+        p.placing = false;
+        return;
+    }
+    glm::vec3 at;
+    if (!mouse_free || !placementPoint(*doc, ray, &at)) return;
+    addBrushMarker(*doc, at, 0.3f, false, &markers);
+    if (!ImGui::IsMouseClicked(ImGuiMouseButton_Left)) return;
+    EnvironmentDesc env = doc->project().environment;
+    EnvNode node;
+    node.type = uint32_t(p.add_type);
+    node.transform.translation = at;
+    env.roots.push_back(std::move(node));
+    std::string place_error;
+    const uint64_t generation = doc->environmentGeneration();
+    if (doc->setEnvironment(env, "Add " + env.types[size_t(p.add_type)].name, &place_error)) {
+        p.selected = {uint32_t(env.roots.size() - 1)};
+        noteEnvStamp(generation, -1);
+    } else {
+        messages.push_back(place_error);
+    }
+    p.placing = ImGui::GetIO().KeyShift;
 }
 
 float EditorSession::groundZ(glm::vec2 xy) const { return scene ? groundHeightAt(*scene->doc, xy) : -1.0e30f; }

@@ -3,8 +3,10 @@
 # start script opens it and looks down on the winter street's open snow, right of the window), the palette's type is set to
 # "bench" and "Add at the view's centre" clicked; the new bench is dragged 150 px to the right by its
 # origin (the Select tool); the weather brush is switched on (footprints, its default) and dragged across
-# the open snow; Ctrl+Z three times. F12 writes the statistics after each step (WORKDIR/added.json,
-# moved.json, walked.json, undone.json; the start script's in start.stats.json). Runs inside an X server
+# the open snow; the palette's trash-can picture is clicked and then the pavement in the view (a trash can
+# stands there, on the slab); Ctrl+Z four times. F12 writes the statistics after each step
+# (WORKDIR/added.json, moved.json, walked.json, placed.json, undone.json; the start script's in
+# start.stats.json). Runs inside an X server
 # (run_gui_tests.sh starts it with xvfb-run at 1600x900); exits non-zero only when a step cannot be driven,
 # the checks are the caller's. Coordinates are the default layout's at 1600 x 900.
 # usage: driven_environment.sh UNDERGROWTH_BIN PROJECT.json WORKDIR CACHE
@@ -37,6 +39,11 @@ dump moved "$settled"
 click 368 83
 drag 760 525 1100 525
 dump walked "$settled"
+# The palette's fifth picture (the trash can) arms it; a click on the pavement in the view places one there.
+click 623 346
+click 1100 700
+dump placed "$settled"
+undo
 undo
 undo
 undo

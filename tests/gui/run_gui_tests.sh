@@ -447,9 +447,10 @@ fi
 # ---- the view's handles (env_handles.h): the street's bench turned a quarter round by its turn handle, the
 # lamppost scaled by its scale handle, and the bench, put in a group, turned back inside it (a nested node);
 # each is what the drag asked (the angle and the ratio of distances from the pivot), the export equals
-# `instantiate` on the saved file, and four undos give the loaded scene's meshes back. The Outliner's eye
-# hides the bus shelter in the view (fewer static triangles drawn, as many again when shown) but not in
-# the export.
+# `instantiate` on the saved file, and five undos give the loaded scene's meshes back. A trash can placed
+# "on the surface" stands on the pavement slab's top, not the road under it. The Outliner's eye hides the
+# bus shelter in the view (fewer static triangles drawn, as many again when shown) but not in the export.
+# Every palette picture shows its type (the mesh covers part of it, not all).
 hdir="$tmp/env-handles"
 mkdir -p "$hdir"
 cp -r "$root/assets" "$hdir/assets"
@@ -460,13 +461,14 @@ cat >"$hdir/script.json" <<EOF
  {"action": "env_handle", "node": 10, "handle": "scale", "to": [3.4, 4.6], "steps": 4},
  {"action": "env_tree", "op": "group", "node": [12]},
  {"action": "env_handle", "node": [12, 0], "handle": "turn", "to": [2.4, 8.6], "steps": 6, "snap": true},
+ {"action": "env_add", "type": "trash_can", "at": [3.0, 4.3], "on_surface": true},
  {"action": "view", "target": [5.0, 7.0, 0.0], "distance": 9.0, "yaw_deg": -100, "pitch_deg": 50},
  {"action": "screenshot", "path": "$hdir/handles.png", "ui": true},
  {"action": "set_visible", "node": 11, "visible": false},
  {"action": "export", "path": "$hdir/edited.glb"},
  {"action": "set_visible", "node": 11, "visible": true},
  {"action": "save"},
- {"action": "undo"}, {"action": "undo"}, {"action": "undo"}, {"action": "undo"},
+ {"action": "undo"}, {"action": "undo"}, {"action": "undo"}, {"action": "undo"}, {"action": "undo"},
  {"action": "export", "path": "$hdir/undone.glb"},
  {"action": "wait_idle"}]
 EOF
@@ -496,11 +498,16 @@ assert abs(nested["yaw_deg"] % 360 - 180.0) < 0.01, nested
 saved = json.load(open(d + "/assets/scenes/street_winter.json"))["environment"]["tree"]
 assert "group" in saved[12], saved[12]
 assert env_meshes(d + "/edited.glb") == env_meshes(d + "/saved.glb"), "the export differs from instantiate"
-assert env_meshes(d + "/undone.glb") == env_meshes(d + "/loaded.glb"), "four undos did not give the scene back"
-print("turned to -90, scaled %.3f, turned back inside a group; export as instantiate; undone" % scale["scale"])
+assert env_meshes(d + "/undone.glb") == env_meshes(d + "/loaded.glb"), "five undos did not give the scene back"
+placed = [a for a in stats["actions"] if a["action"] == "env_add"][0]
+assert placed["ok"] and abs(placed["at"][2] - 0.12) < 0.005, placed["at"]
+palette = placed["environment"]["palette_coverage"]
+assert len(palette) == 11 and all(0.01 < c < 0.9 for c in palette), palette
+print("turned to -90, scaled %.3f, turned back inside a group; a trash can on a slab at z %.3f; export as instantiate; undone"
+      % (scale["scale"], placed["at"][2]))
 PY
 )"; then
-  ok "edit street_winter: turned and scaled by the view's handles (a nested node too), exported as instantiate on the saved file, undone ($out)"
+  ok "edit street_winter: turned and scaled by the view's handles (a nested node too), placed on a slab, hidden in the view only, palette pictures drawn, exported as instantiate on the saved file, undone ($out)"
 else
   bad "edit street_winter: handles: $out $(tail -5 "$hdir/log" 2>/dev/null)"
 fi
@@ -610,7 +617,8 @@ else
 fi
 
 # The environment tools by real X input (issue 13): a bench placed from the Environment window's palette,
-# dragged in the view, footprints walked with the weather brush, then three Ctrl+Z.
+# dragged in the view, footprints walked with the weather brush, a trash can placed by a click on its
+# picture and one in the view, then four Ctrl+Z.
 if command -v xdotool >/dev/null 2>&1; then
   vwork="$tmp/driven-environment"
   mkdir -p "$vwork"
@@ -620,19 +628,22 @@ if command -v xdotool >/dev/null 2>&1; then
      out="$(python3 - "$vwork" <<'PY' 2>&1
 import json, sys
 d = sys.argv[1]
-start, added, moved, walked, undone = (json.load(open("%s/%s.json" % (d, n)))["environment"]
-                                       for n in ("start.stats", "added", "moved", "walked", "undone"))
+start, added, moved, walked, placed, undone = (json.load(open("%s/%s.json" % (d, n)))["environment"]
+                                               for n in ("start.stats", "added", "moved", "walked", "placed", "undone"))
 assert added["objects"] == start["objects"] + 1 and added["tree"][-1]["object"] == "bench", added["tree"][-1]
 a, m = added["tree"][-1]["at"], moved["tree"][-1]["at"]
 assert m[0] - a[0] > 0.5 and abs(m[1] - a[1]) < 0.05 and m[2] == a[2], (a, m)
 steps = walked["local_fields"] - moved["local_fields"]
 assert steps >= 4 and walked["brush"] == "footprints", walked
-assert undone["tree"] == start["tree"] and undone["local_fields"] == start["local_fields"], "three undos did not give the scene back"
-assert all(s["settled"] for s in (added, moved, walked, undone))
-print("bench placed, moved %.2f m, %d footprints, undone" % (m[0] - a[0], steps))
+assert placed["objects"] == walked["objects"] + 1 and placed["tree"][-1]["object"] == "trash_can", placed["tree"][-1]
+assert placed["tree"][-1]["at"][2] > 0.05, ("not on the pavement slab", placed["tree"][-1])
+assert undone["tree"] == start["tree"] and undone["local_fields"] == start["local_fields"], "four undos did not give the scene back"
+assert all(s["settled"] for s in (added, moved, walked, placed, undone))
+print("bench placed, moved %.2f m, %d footprints, a trash can placed on a slab at z %.2f, undone"
+      % (m[0] - a[0], steps, placed["tree"][-1]["at"][2]))
 PY
 )"; then
-    ok "edit street_winter: a bench placed, dragged and footprints walked by real X input, and undone ($out)"
+    ok "edit street_winter: a bench placed, dragged, footprints walked and a trash can placed from its picture by real X input, and undone ($out)"
   else
     bad "edit street_winter: driven environment session: $out $(tail -5 "$vwork/session.log" 2>/dev/null)"
   fi

@@ -6,6 +6,7 @@
 #include <cstring>
 
 #include <epoxy/gl.h>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
 #include "editor/shadow_frame.h"
@@ -90,6 +91,7 @@ Renderer::~Renderer() {
         destroyProgram(p);
     if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
     if (marker_vao_) glDeleteVertexArrays(1, &marker_vao_);
+    releaseThumbnails();
     if (marker_buffer_) glDeleteBuffers(1, &marker_buffer_);
     for (IndirectBuffer* b : {&indirect_, &shadow_indirect_})
         if (b->id) glDeleteBuffers(1, &b->id);
@@ -864,6 +866,102 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
     }
     glDisable(GL_PROGRAM_POINT_SIZE);
     glBindBuffer(GL_DRAW_INDIRECT_BUFFER, 0);
+}
+
+unsigned Renderer::meshThumbnail(const TriangleMesh& mesh, const SurfaceMaterial& material, int px, float* coverage) {
+    *coverage = 0.0f;
+    if (mesh.indices.empty() || mesh.positions.empty() || px < 8 || px > 1024) return 0;
+    TriangleMesh lit = mesh;
+    if (lit.normals.size() != lit.positions.size()) computeNormals(&lit);
+    // The camera: 30 degrees across, from the front-left and above, far enough for the bounding sphere.
+    const Bounds3 b = meshBounds(mesh);
+    const glm::vec3 centre = 0.5f * (b.min + b.max);
+    const float radius = std::max(0.5f * glm::length(b.max - b.min), 1e-3f);
+    const float fov = glm::radians(30.0f);
+    const glm::vec3 eye = centre + radius / std::sin(0.5f * fov) * glm::normalize(glm::vec3(-0.55f, -1.0f, 0.6f));
+    const glm::mat4 view_proj = glm::perspective(fov, 1.0f, 0.05f * radius, 8.0f * radius / std::sin(0.5f * fov)) *
+                                glm::lookAt(eye, centre, glm::vec3(0.0f, 0.0f, 1.0f));
+
+    GLuint texture = 0, depth = 0, fbo = 0, vao = 0, vbo = 0, ebo = 0, instance = 0;
+    glGenTextures(1, &texture);
+    glBindTexture(GL_TEXTURE_2D, texture);
+    glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, px, px, 0, GL_RGBA, GL_UNSIGNED_BYTE, nullptr);
+    setSampling(GL_TEXTURE_2D, GL_LINEAR, GL_LINEAR, GL_CLAMP_TO_EDGE);
+    glGenRenderbuffers(1, &depth);
+    glBindRenderbuffer(GL_RENDERBUFFER, depth);
+    glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, px, px);
+    glGenFramebuffers(1, &fbo);
+    glBindFramebuffer(GL_FRAMEBUFFER, fbo);
+    glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, texture, 0);
+    glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth);
+    const bool complete = glCheckFramebufferStatus(GL_FRAMEBUFFER) == GL_FRAMEBUFFER_COMPLETE;
+    if (complete) {
+        uploadMesh(lit.positions, lit.normals, lit.indices, &vao, &vbo, &ebo);
+        glBindVertexArray(vao);
+        const GpuStaticInstance identity;
+        glGenBuffers(1, &instance);
+        glBindBuffer(GL_ARRAY_BUFFER, instance);
+        glBufferData(GL_ARRAY_BUFFER, sizeof identity, &identity, GL_STATIC_DRAW);
+        for (GLuint attribute : {2u, 3u}) {
+            glEnableVertexAttribArray(attribute);
+            glVertexAttribPointer(attribute, 4, GL_FLOAT, GL_FALSE, sizeof(GpuStaticInstance),
+                                  reinterpret_cast<void*>(uintptr_t(attribute - 2) * sizeof(glm::vec4)));
+            glVertexAttribDivisor(attribute, 1);
+        }
+        glViewport(0, 0, px, px);
+        glClearColor(0.0f, 0.0f, 0.0f, 0.0f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+        glDepthMask(GL_TRUE);
+        glDisable(GL_CULL_FACE);  // library meshes need not be closed
+        glUseProgram(static_mesh_.id);
+        glUniformMatrix4fv(loc(static_mesh_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+        glUniform3fv(loc(static_mesh_, "u_color"), 1, glm::value_ptr(material.base_color));
+        bindMaterial(static_mesh_, material, 0, kTextureBoxModel);
+        const bool shadow_was_valid = shadow_valid_;
+        shadow_valid_ = false;  // no shadow map here
+        setLighting(static_mesh_, eye, 0.0f);
+        shadow_valid_ = shadow_was_valid;
+        glDrawElementsInstanced(GL_TRIANGLES, GLsizei(lit.indices.size()), GL_UNSIGNED_INT, nullptr, 1);
+        // The shader's alpha is its ambient share (for the occlusion pass): made opaque where the mesh is
+        // (its depth is nearer than the far plane) and clear elsewhere, for the window to draw it over.
+        const size_t pixels = size_t(px) * size_t(px);
+        std::vector<uint8_t> rgba(pixels * 4);
+        std::vector<float> z(pixels);
+        glPixelStorei(GL_PACK_ALIGNMENT, 1);
+        glReadPixels(0, 0, px, px, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+        glReadPixels(0, 0, px, px, GL_DEPTH_COMPONENT, GL_FLOAT, z.data());
+        size_t covered = 0;
+        for (size_t i = 0; i < pixels; ++i) {
+            const bool drawn = z[i] < 1.0f;
+            rgba[4 * i + 3] = drawn ? 255 : 0;
+            covered += drawn ? 1 : 0;
+        }
+        *coverage = float(covered) / float(pixels);
+        glBindTexture(GL_TEXTURE_2D, texture);
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, px, px, GL_RGBA, GL_UNSIGNED_BYTE, rgba.data());
+        glBindVertexArray(0);
+        glDeleteVertexArrays(1, &vao);
+        glDeleteBuffers(1, &vbo);
+        glDeleteBuffers(1, &ebo);
+        glDeleteBuffers(1, &instance);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &fbo);
+    glDeleteRenderbuffers(1, &depth);
+    if (!complete) {
+        glDeleteTextures(1, &texture);
+        return 0;
+    }
+    thumbnails_.push_back(texture);
+    return texture;
+}
+
+void Renderer::releaseThumbnails() {
+    if (!thumbnails_.empty()) glDeleteTextures(GLsizei(thumbnails_.size()), thumbnails_.data());
+    thumbnails_.clear();
 }
 
 void Renderer::readPixels(int width, int height, std::vector<uint8_t>* rgba) const {

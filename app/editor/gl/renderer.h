@@ -117,6 +117,13 @@ public:
     // The default framebuffer's back buffer as RGBA8, rows top-down (read before the UI is drawn on it).
     void readPixels(int width_px, int height_px, std::vector<uint8_t>* rgba) const;
 
+    // A picture of `mesh` (object space, Z up) seen from the front, to the left and above, lit by the
+    // sun, framed to fill a px x px RGBA8 texture on a clear background (the Environment window's
+    // palette). The texture is the renderer's (freed with it); 0 on failure. *coverage: the fraction of
+    // the pixels the mesh covers (a test that something was drawn, and framed).
+    unsigned meshThumbnail(const TriangleMesh& mesh, const SurfaceMaterial& material, int px, float* coverage);
+    void releaseThumbnails();  // every meshThumbnail texture (a new document's palette replaces them)
+
 private:
     struct TypeBuffers {
         unsigned vao = 0, impostor_vao = 0;
@@ -182,6 +189,7 @@ private:
     unsigned candidate_buffer_ = 0;
     unsigned silhouette_array_ = 0;
     TextureCache textures_;  // material images -> GL textures (the scene's)
+    std::vector<unsigned> thumbnails_;  // meshThumbnail's textures
     struct StaticBuffers {
         unsigned vao = 0, vertex_buffer = 0, index_buffer = 0, instance_buffer = 0;  // indices: every level
         Bounds bounds;  // engine space, all instances
