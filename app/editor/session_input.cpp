@@ -24,7 +24,7 @@ namespace ug::editor {
 void EditorSession::drawUi() {
     // ---- UI: navigation, tools, panels, dialogs ----
     stamps_before_frame = pending_stamps.size();
-    window.beginUiFrame();
+    window.beginUiFrame(scripted);
     // While another document loads, the current one is shown but not edited: it is replaced (and its
     // edits dropped) when the new one is ready, and is editable again if that load fails.
     doc = scene && !loader ? scene->doc.get() : nullptr;

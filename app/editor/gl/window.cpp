@@ -4,6 +4,7 @@
 // epoxy must come first: GLFW would otherwise pull in the system GL header.
 #include <GLFW/glfw3.h>
 
+#include <cfloat>
 #include <cstdlib>
 
 #include <imgui.h>
@@ -87,9 +88,10 @@ void Window::requestClose() { glfwSetWindowShouldClose(window_, GLFW_TRUE); }
 void Window::cancelClose() { glfwSetWindowShouldClose(window_, GLFW_FALSE); }
 void Window::pollEvents() { glfwPollEvents(); }
 
-void Window::beginUiFrame() {
+void Window::beginUiFrame(bool ignore_mouse) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
+    if (ignore_mouse) ImGui::GetIO().MousePos = ImVec2(-FLT_MAX, -FLT_MAX);
     ImGui::NewFrame();
 }
 

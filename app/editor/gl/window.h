@@ -33,7 +33,9 @@ public:
     void requestClose();
     void cancelClose();  // the user chose to keep editing (the unsaved-changes prompt)
     void pollEvents();
-    void beginUiFrame();  // the backends' NewFrame, then ImGui::NewFrame
+    // The backends' NewFrame, then ImGui::NewFrame. `ignore_mouse` (scripted runs): the pointer counts as
+    // outside the window, so wherever the X server left it, no widget is hovered in a screenshot.
+    void beginUiFrame(bool ignore_mouse = false);
     void renderUi();      // ImGui::Render and the OpenGL3 backend's draw
     void swapBuffers();
     void finish();        // glFinish: frame times that include the GPU's (llvmpipe's) work
