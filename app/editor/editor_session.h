@@ -143,8 +143,8 @@ private:
     // An environment edit made now (if `generation_before` moved) waits for the frame that shows it.
     void noteEnvStamp(uint64_t generation_before, int action);
     void timeEnvStamps(Clock::time_point frame_end);  // after the frame: the shown ones timed
-    // The channel view's overlay, built again only when the environment or the view's settings changed.
-    const MarkerGeometry& channelMapGeometry();
+    // The channel view's map built again (and uploaded) when the environment or the view's settings changed.
+    void updateChannelMap();
     // Ends every drag in the view (the document is about to change under it: undo, open, delete).
     void endViewDrags() {
         move_drag.end();

@@ -39,6 +39,7 @@ void weatherBrush(EnvironmentPanelState* state) {
 void channelView(EnvironmentPanelState* state) {
     ChannelMapSettings& v = state->view;
     ImGui::Checkbox("show on a slice over the ground", &v.on);
+    ImGui::Checkbox("and on the objects' surfaces", &v.surfaces);
     const char* names[kChannelMapChannels];
     for (int c = 0; c < kChannelMapChannels; ++c) names[c] = channelMapName(c);
     ImGui::Combo("channel", &v.channel, names, kChannelMapChannels);

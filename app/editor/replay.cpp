@@ -249,6 +249,7 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
         if (r.kind == ReplayKind::EnvView) {
             r.channel = a.value("channel", std::string("snow"));
             r.value = a.value("height", 0.05f);
+            r.on_surface = a.value("surfaces", true);
             int c = 0;
             if (r.channel != "off" && !channelMapFromName(r.channel, &c)) return fail("unknown channel '" + r.channel + "'");
         }

@@ -60,8 +60,10 @@
 //     "group": [2], "name": "stop", "at": [x, y]},   the window's tree edits (env/env_tree_edits.h): a node
 //     by its path; "into" moves it into "group"; "reusable" names a top-level group; "instance" places the
 //     named group again at (x, y) on the ground. One undo step.
-//    {"action": "env_view", "channel": "shelter", "height": 0.3},   the Environment window's channel view
-//     ("off" hides it); view state only; its statistics add "channel_map" {"channel", "lo", "hi", "cells"}
+//    {"action": "env_view", "channel": "shelter", "height": 0.3, "surfaces": true},   the Environment window's
+//     channel view on the slice at that height and (unless "surfaces" is false) on the objects' surfaces
+//     ("off" hides it); view state only; its statistics add "channel_map" {"channel", "lo", "hi", "cells",
+//     "surface_triangles"}
 //    {"action": "show_window", "window": "environment", "open": true},   a panel opened or closed as by the
 //     Window menu (statistics, tools, inspector, ghost_tile, render, outliner, instantiation, export,
 //     particles, environment); view state only
@@ -171,7 +173,8 @@ struct ReplayAction {
     bool snap = false;      // env_handle
     float at_z = NAN;       // env_add: "at"'s third value (NaN: on the ground)
     float env_scale = 1.0f; // env_add
-    bool on_surface = false;  // env_add: on what an object dropped at (x, y) stands on (a slab, a table)
+    bool on_surface = false;  // env_add: on what an object dropped at (x, y) stands on (a slab, a table);
+                              // env_view: the map on the objects' surfaces too
     std::string channel;    // env_global
     std::string brush = "footprints";  // weather_stroke
     std::string window;                // show_window (and `visible`: open or close)

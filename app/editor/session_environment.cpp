@@ -118,17 +118,17 @@ void EditorSession::timeEnvStamps(Clock::time_point frame_end) {
     });
 }
 
-const MarkerGeometry& EditorSession::channelMapGeometry() {
-    // A 10 m street at 0.1 m cells: 10,000 samples with their shelter rays, a few tens of ms, once per change.
+void EditorSession::updateChannelMap() {
+    // A 10 m street at 0.1 m cells: 10,000 samples with their shelter rays, and its objects' vertices, a few
+    // tens of ms, once per change.
     constexpr float kChannelMapCellM = 0.1f;
     const ChannelMapKey key{doc, doc->environmentGeneration(), environment_panel.view};
-    if (!(key == channel_map_key)) {
-        channel_map = buildChannelMap(*doc, environment_panel.view, kChannelMapCellM);
-        channel_map_key = key;
-        environment_panel.view_lo = channel_map.lo;
-        environment_panel.view_hi = channel_map.hi;
-    }
-    return channel_map.geometry;
+    if (key == channel_map_key) return;
+    channel_map = buildChannelMap(*doc, environment_panel.view, kChannelMapCellM);
+    channel_map_key = key;
+    environment_panel.view_lo = channel_map.lo;
+    environment_panel.view_hi = channel_map.hi;
+    renderer->setChannelOverlay(channel_map.geometry.hull);
 }
 
 bool EditorSession::environmentSettled() const {

@@ -60,8 +60,6 @@ bool EditorSession::renderFrame() {
         if (windows.particles && particles_panel.selected < doc->particles()->size())
             addParticleMarkers((*doc->particles())[particles_panel.selected], particles_panel.selected_attractor,
                                &markers);
-        // The Environment window's channel view, while it is on.
-        if (windows.environment && environment_panel.view.on) markers.append(channelMapGeometry());
         // The selected environmental node's ring with its turn and scale handles, for the Select tool.
         EnvHandleFrame handles;
         if (windows.environment && tools.tool == ToolKind::Select && !environment_panel.brush_on &&
@@ -74,6 +72,11 @@ bool EditorSession::renderFrame() {
         if (render_settings.sphere_sets) addSphereOverlay(instances, c, doc->models(), camera.target, r, &markers);
     }
     if (!screenshot_request_path.empty() && !screenshot_overlays) markers.clear();
+    // The Environment window's channel view, while it is on: uploaded when it changes, not every frame.
+    const bool channel_view = doc && have_result && windows.environment && environment_panel.view.on &&
+                              (screenshot_request_path.empty() || screenshot_overlays);
+    if (channel_view) updateChannelMap();
+    renderer->showChannelOverlay(channel_view);
     renderer->setMarkers(markers);
     renderer->setLook(render_settings.look);
     renderer->render(camera, fb_w, fb_h, render_settings.lod);

@@ -323,6 +323,7 @@ bool EditorSession::runReplayAction(const ReplayAction& a) {
             environment_panel.view.on = a.channel != "off";
             channelMapFromName(a.channel, &environment_panel.view.channel);  // checked when read
             environment_panel.view.height_m = a.value;
+            environment_panel.view.surfaces = a.on_surface;
             break;
         case ReplayKind::ShowWindow:
             *windowToggle(&windows, a.window) = a.visible;  // the name was checked when the script was read
@@ -353,11 +354,12 @@ void EditorSession::finishReplayAction() {
     }
     if (kind == ReplayKind::SetAttractor) r["particles"] = strandsJson();
     if (kind == ReplayKind::EnvView && environment_panel.view.on) {
-        channelMapGeometry();
+        updateChannelMap();
         r["channel_map"] = {{"channel", channelMapName(environment_panel.view.channel)},
                             {"lo", channel_map.lo},
                             {"hi", channel_map.hi},
-                            {"cells", channel_map.values.size()}};
+                            {"cells", channel_map.values.size()},
+                            {"surface_triangles", channel_map.surface_triangles}};
     }
     if (live_environment && editsEnvironment(kind)) r["environment"] = environmentJson();
     if (kind == ReplayKind::View) {

@@ -131,7 +131,7 @@ TEST(ChannelMap, TheShelterMapIsLowUnderTheShelterOpenElsewhereAndColouredByItsL
     ASSERT_EQ(map.columns, 40);  // the 4 m extent
     ASSERT_EQ(map.rows, 40);
     ASSERT_EQ(map.values.size(), 1600u);
-    EXPECT_EQ(map.geometry.hull.size(), 1600u * 6u);
+    EXPECT_EQ(map.geometry.hull.size(), 1600u * 6u + 3u * map.surface_triangles);
     const auto value = [&](glm::vec2 xy) {
         return map.values[size_t(std::floor(xy.y / 0.1f)) * 40u + size_t(std::floor(xy.x / 0.1f))];
     };
@@ -143,8 +143,8 @@ TEST(ChannelMap, TheShelterMapIsLowUnderTheShelterOpenElsewhereAndColouredByItsL
     // Each cell's colour is its value's place on the ramp between the legend's ends.
     for (size_t k = 0; k < map.values.size(); k += 97)
         EXPECT_EQ(map.geometry.hull[k * 6].color, channelMapColor((map.values[k] - map.lo) / (map.hi - map.lo)));
-    // The slice follows the ground: every corner 0.3 m above it.
-    for (size_t k = 0; k < map.geometry.hull.size(); k += 331) {
+    // The slice follows the ground: every corner 0.3 m above it (the cells come first, then the surfaces).
+    for (size_t k = 0; k < 1600u * 6u; k += 331) {
         const glm::vec3 p = map.geometry.hull[k].position;
         EXPECT_NEAR(p.z, groundHeightAt(doc, glm::vec2(p)) + 0.3f, 1e-5f);
     }
@@ -152,6 +152,45 @@ TEST(ChannelMap, TheShelterMapIsLowUnderTheShelterOpenElsewhereAndColouredByItsL
     EXPECT_TRUE(channelMapFromName("temperature", &c));
     EXPECT_EQ(c, int(EnvChannel::Temperature));
     EXPECT_FALSE(channelMapFromName("rain", &c));
+}
+
+// On the objects' surfaces: every triangle of their base meshes, each vertex coloured by the channel just
+// outside it; the shelter's roof is open on top, the seat of its own bench under it is sheltered.
+TEST(ChannelMap, OnTheSurfacesTheRoofIsOpenAndTheSeatUnderItSheltered) {
+    OpenDocument o;
+    ASSERT_TRUE(o.doc);
+    const Document& doc = *o.doc;
+    ChannelMapSettings view;
+    view.on = true;
+    view.channel = kChannelMapChannels - 1;  // the shelter
+    const ChannelMap map = buildChannelMap(doc, view, 0.1f);
+    const EnvScene& env = *doc.environment();
+    ASSERT_EQ(env.objects().size(), 2u);
+    const TriangleMesh& bench = *env.types()[env.objects()[0].type].mesh;
+    const TriangleMesh& shelter = *env.types()[env.objects()[1].type].mesh;
+    EXPECT_EQ(map.surface_triangles, (bench.indices.size() + shelter.indices.size()) / 3);
+    ASSERT_EQ(map.surface_values.size(), bench.positions.size() + shelter.positions.size());
+    EXPECT_EQ(map.geometry.hull.size(), size_t(map.columns * map.rows) * 6u + 3u * map.surface_triangles);
+    // The shelter's up-facing vertices: open at the roof's top, sheltered low down (its bench's seat).
+    float top_z = -1e9f;
+    for (const glm::vec3& p : shelter.positions) top_z = std::max(top_z, p.z);
+    float roof = 1.0f, seat = 1.0f;
+    for (size_t v = 0; v < shelter.positions.size(); ++v) {
+        if (shelter.normals[v].z < 0.9f) continue;
+        const float value = map.surface_values[bench.positions.size() + v];
+        if (shelter.positions[v].z > top_z - 0.01f) roof = std::min(roof, value);
+        if (shelter.positions[v].z < 1.0f) seat = std::min(seat, value);
+    }
+    EXPECT_EQ(roof, 1.0f) << "the roof's top is open";
+    EXPECT_LT(seat, 0.5f) << "the seat under the roof is sheltered";
+    // Each drawn vertex carries its value's colour: the first triangle of the shelter's mesh.
+    const size_t first = size_t(map.columns * map.rows) * 6u + bench.indices.size();
+    for (size_t k = 0; k < 3; ++k)
+        EXPECT_EQ(map.geometry.hull[first + k].color,
+                  channelMapColor((map.surface_values[bench.positions.size() + shelter.indices[k]] - map.lo) /
+                                  (map.hi - map.lo)));
+    view.surfaces = false;
+    EXPECT_EQ(buildChannelMap(doc, view, 0.1f).surface_triangles, 0u);
 }
 
 TEST(LiveEnvironment, CoalescedEditsEndEqualToAFullComputationAndUndoGivesBackTheFirst) {

@@ -91,6 +91,8 @@ Renderer::~Renderer() {
         destroyProgram(p);
     if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
     if (marker_vao_) glDeleteVertexArrays(1, &marker_vao_);
+    if (overlay_vao_) glDeleteVertexArrays(1, &overlay_vao_);
+    if (overlay_buffer_) glDeleteBuffers(1, &overlay_buffer_);
     releaseThumbnails();
     if (marker_buffer_) glDeleteBuffers(1, &marker_buffer_);
     for (IndirectBuffer* b : {&indirect_, &shadow_indirect_})
@@ -136,14 +138,17 @@ bool Renderer::init(const std::string& dir, std::string* error) {
     glGenBuffers(1, &shadow_indirect_.id);
 
     glGenVertexArrays(1, &empty_vao_);
-    glGenVertexArrays(1, &marker_vao_);
-    glGenBuffers(1, &marker_buffer_);
-    glBindVertexArray(marker_vao_);
-    glBindBuffer(GL_ARRAY_BUFFER, marker_buffer_);
-    glEnableVertexAttribArray(0);
-    glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(MarkerVertex), nullptr);
-    glEnableVertexAttribArray(1);
-    glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(MarkerVertex), reinterpret_cast<void*>(3 * sizeof(float)));
+    // Markers (every frame) and the channel overlay (kept until replaced): position, colour.
+    for (auto [vao, buffer] : {std::pair{&marker_vao_, &marker_buffer_}, std::pair{&overlay_vao_, &overlay_buffer_}}) {
+        glGenVertexArrays(1, vao);
+        glGenBuffers(1, buffer);
+        glBindVertexArray(*vao);
+        glBindBuffer(GL_ARRAY_BUFFER, *buffer);
+        glEnableVertexAttribArray(0);
+        glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(MarkerVertex), nullptr);
+        glEnableVertexAttribArray(1);
+        glVertexAttribPointer(1, 3, GL_FLOAT, GL_FALSE, sizeof(MarkerVertex), reinterpret_cast<void*>(3 * sizeof(float)));
+    }
     glBindVertexArray(0);
     return true;
 }
@@ -694,7 +699,29 @@ void Renderer::composite(unsigned target_fbo, int width, int height, const Orbit
     glEnable(GL_DEPTH_TEST);
 }
 
+void Renderer::setChannelOverlay(const std::vector<MarkerVertex>& triangles) {
+    overlay_vertices_ = uint32_t(triangles.size());
+    glBindBuffer(GL_ARRAY_BUFFER, overlay_buffer_);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(std::max<size_t>(triangles.size(), 1) * sizeof(MarkerVertex)),
+                 triangles.empty() ? nullptr : triangles.data(), GL_STATIC_DRAW);
+}
+
 void Renderer::drawHulls(const glm::mat4& view_proj) {
+    // The channel overlay as the hulls are drawn, more opaque: its colours are the information.
+    if (overlay_vertices_ > 0 && overlay_visible_) {
+        glDisable(GL_CULL_FACE);
+        glEnable(GL_BLEND);
+        glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
+        glDepthMask(GL_FALSE);
+        glUseProgram(hull_.id);
+        glUniformMatrix4fv(loc(hull_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+        glUniform1f(loc(hull_, "u_alpha"), 0.5f);
+        glBindVertexArray(overlay_vao_);
+        glDrawArrays(GL_TRIANGLES, 0, GLsizei(overlay_vertices_));
+        ++stats_.draw_calls;
+        glDisable(GL_BLEND);
+        glDepthMask(GL_TRUE);
+    }
     // Hulls: translucent over the scene, depth-tested so the ground and details in front hide them, no
     // depth write so hulls behind hulls and the skeletons inside still show. Both faces: the inside of a
     // hull the camera is in still tints the view. Drawn where the scene's depth is (the offscreen target

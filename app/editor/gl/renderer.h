@@ -107,6 +107,10 @@ public:
     // Hull triangles (translucent) and overlay lines and points (skeletons, brush, tile grid, anchors,
     // sphere sets), drawn after the scene; uploaded now (small, capped by markers.h).
     void setMarkers(const MarkerGeometry& markers);
+    // The channel view's translucent triangles (channel_map.h), uploaded now and drawn every frame until
+    // replaced (empty: none); `showChannelOverlay` hides them without uploading again.
+    void setChannelOverlay(const std::vector<MarkerVertex>& triangles);
+    void showChannelOverlay(bool visible) { overlay_visible_ = visible; }
 
     void setLook(const ViewportLook& look) { look_ = look; }
     const ViewportLook& look() const { return look_; }
@@ -183,6 +187,9 @@ private:
     bool shadow_map_dirty_ = true;  // the casters changed since the map was drawn
     unsigned marker_vao_ = 0, marker_buffer_ = 0;
     uint32_t marker_hull_vertices_ = 0, marker_line_vertices_ = 0, marker_points_ = 0, marker_dots_ = 0;
+    unsigned overlay_vao_ = 0, overlay_buffer_ = 0;
+    uint32_t overlay_vertices_ = 0;
+    bool overlay_visible_ = true;
     unsigned empty_vao_ = 0;
     unsigned terrain_vao_ = 0, terrain_vertices_ = 0, terrain_indices_ = 0;
     uint32_t terrain_index_count_ = 0;
