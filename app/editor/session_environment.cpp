@@ -27,14 +27,17 @@ void EditorSession::startEnvironment() {
     pending_env_stamps.clear();
     const Document& d = *scene->doc;
     environment_submitted = environment_shown = d.environmentGeneration();
-    if (d.project().environment.types.empty()) return;  // nothing can be placed
-    live_environment = std::make_unique<LiveEnvironment>(doc_options.threads, d.environment(), scene->env_effects);
-    // The palette's pictures, rendered once per document by the renderer (the window only shows them).
     renderer->releaseThumbnails();
     palette_coverage.clear();
+    if (d.project().environment.types.empty()) return;  // nothing can be placed
+    live_environment = std::make_unique<LiveEnvironment>(doc_options.threads, d.environment(), scene->env_effects);
+    // The palette's pictures, rendered once per document by the renderer (the window only shows them), in
+    // the types' colours (their textures are not baked for this: tens of ms each).
     for (const EnvObjectType& type : d.environment()->types()) {
         float coverage = 0.0f;
-        const SurfaceMaterial look = resolveMaterial(type.desc.material, type.mesh->base_color);
+        Material flat = type.desc.material;
+        flat.texture = TextureKind::None;
+        const SurfaceMaterial look = resolveMaterial(flat, type.mesh->base_color);
         environment_panel.thumbnails.push_back(renderer->meshThumbnail(*type.mesh, look, kPaletteThumbnailPx, &coverage));
         palette_coverage.push_back(coverage);
     }

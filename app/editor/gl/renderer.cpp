@@ -707,35 +707,28 @@ void Renderer::setChannelOverlay(const std::vector<MarkerVertex>& triangles) {
 }
 
 void Renderer::drawHulls(const glm::mat4& view_proj) {
-    // The channel overlay as the hulls are drawn, more opaque: its colours are the information.
-    if (overlay_vertices_ > 0 && overlay_visible_) {
-        glDisable(GL_CULL_FACE);
-        glEnable(GL_BLEND);
-        glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
-        glDepthMask(GL_FALSE);
-        glUseProgram(hull_.id);
-        glUniformMatrix4fv(loc(hull_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
-        glUniform1f(loc(hull_, "u_alpha"), 0.5f);
-        glBindVertexArray(overlay_vao_);
-        glDrawArrays(GL_TRIANGLES, 0, GLsizei(overlay_vertices_));
-        ++stats_.draw_calls;
-        glDisable(GL_BLEND);
-        glDepthMask(GL_TRUE);
-    }
     // Hulls: translucent over the scene, depth-tested so the ground and details in front hide them, no
     // depth write so hulls behind hulls and the skeletons inside still show. Both faces: the inside of a
     // hull the camera is in still tints the view. Drawn where the scene's depth is (the offscreen target
-    // when there is one), so the composite needs to carry no depth.
-    if (marker_hull_vertices_ > 0) {
+    // when there is one), so the composite needs to carry no depth. The channel overlay is drawn the same
+    // way, more opaque: its colours are the information.
+    const struct {
+        unsigned vao;
+        uint32_t vertices;
+        float alpha;
+    } layers[] = {{overlay_vao_, overlay_visible_ ? overlay_vertices_ : 0u, 0.5f},
+                  {marker_vao_, marker_hull_vertices_, 0.22f}};
+    for (const auto& layer : layers) {
+        if (layer.vertices == 0) continue;
         glDisable(GL_CULL_FACE);
         glEnable(GL_BLEND);
         glBlendFunc(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA);
         glDepthMask(GL_FALSE);
         glUseProgram(hull_.id);
         glUniformMatrix4fv(loc(hull_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
-        glUniform1f(loc(hull_, "u_alpha"), 0.22f);
-        glBindVertexArray(marker_vao_);
-        glDrawArrays(GL_TRIANGLES, 0, GLsizei(marker_hull_vertices_));
+        glUniform1f(loc(hull_, "u_alpha"), layer.alpha);
+        glBindVertexArray(layer.vao);
+        glDrawArrays(GL_TRIANGLES, 0, GLsizei(layer.vertices));
         ++stats_.draw_calls;
         glDisable(GL_BLEND);
         glDepthMask(GL_TRUE);
