@@ -148,16 +148,10 @@ editor::ViewerOptions timedEditorRun(const BenchContext& ctx, const std::string&
 // The winter street edited in the editor's window: a footprint walk and a bench dragged (issue 13's rows).
 bool benchEnvironmentEdits(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string* error) {
     editor::ViewerOptions options = timedEditorRun(ctx, "street_winter");
-    editor::ReplayAction walk;
-    walk.kind = editor::ReplayKind::Footprints;
-    walk.frame = 2;
-    walk.points = {glm::vec2(0.6f, 3.3f), glm::vec2(8.6f, 3.5f)};
-    editor::ReplayAction move;
-    move.kind = editor::ReplayKind::EnvMove;
-    move.node = 12;  // the bench
-    move.at_xy = glm::vec2(6.4f, 8.6f);
-    move.steps = 12;
-    options.replay = {walk, move};
+    // In the GUI tests' vocabulary (editor/replay.h), read by the same parser; node 12 is the bench.
+    const char* script = R"([{"frame": 2, "action": "footprints", "points": [[0.6, 3.3], [8.6, 3.5]]},
+                             {"action": "env_move", "node": 12, "to": [6.4, 8.6], "steps": 12}])";
+    if (!editor::parseReplayScript(script, "bench: street_winter edits", &options.replay, error)) return false;
     editor::ViewerResult r;
     if (editor::runViewer(options, &r, error) != editor::ViewerStatus::Ok) return false;
     const struct {
@@ -227,13 +221,10 @@ bool benchRender(const BenchContext& ctx, std::vector<BenchRow>* rows, std::stri
     }
 
     editor::ViewerOptions options = timedEditorRun(ctx, "meadow");
-    editor::ReplayAction stroke;
-    stroke.kind = editor::ReplayKind::PaintStroke;
-    stroke.frame = 2;
-    stroke.types["rock"] = 1.0f;
-    stroke.radius_m = 1.5f;
-    stroke.points = {glm::vec2(-10.0f, -9.0f), glm::vec2(10.0f, -9.0f)};  // 20 m / 0.5 m: 40 stamps
-    options.replay = {stroke};
+    // 20 m at a stamp every 0.5 m: 40 stamps.
+    const char* script = R"([{"frame": 2, "action": "paint_stroke", "type": "rock", "radius": 1.5,
+                              "points": [[-10, -9], [10, -9]]}])";
+    if (!editor::parseReplayScript(script, "bench: meadow stroke", &options.replay, error)) return false;
     editor::ViewerResult edit;
     if (editor::runViewer(options, &edit, error) != editor::ViewerStatus::Ok) return false;
     rows->push_back({"editor.stamp_to_frame_p95_ms", editor::percentile(edit.stamp_to_frame_ms, 0.95), "ms", "<= 50",

@@ -96,6 +96,11 @@ bool editsEnvironment(ReplayKind kind) {
 bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, std::string* error) {
     std::string text;
     if (!readTextFile(path, &text, error)) return false;
+    return parseReplayScript(text, path, out, error);
+}
+
+bool parseReplayScript(const std::string& text, const std::string& path, std::vector<ReplayAction>* out,
+                       std::string* error) {
     const json j = json::parse(text, nullptr, false);
     if (!j.is_array()) {
         *error = path + ": expected a JSON list of actions";

@@ -189,6 +189,9 @@ bool applyInstancingChanges(const std::string& action_json, InstancingDesc* desc
 
 // Reads a script; errors name the file, the action's index and the reason.
 bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, std::string* error);
+// The same from the script's text (`path` names it in errors): the benchmark's scripted runs.
+bool parseReplayScript(const std::string& text, const std::string& path, std::vector<ReplayAction>* out,
+                       std::string* error);
 
 // A ghost_tile action's edits written into `spec` (ghost_tile_job.h); false when its type is unknown.
 bool applyReplayGhostTile(const ReplayAction& action, GhostTileSpec* spec, std::string* error);
