@@ -156,12 +156,26 @@ bool WeatherStroke::drag(glm::vec3 ground, std::string* error) {
     }
 }
 
+namespace {
+
+// How far (x, y) is from a local field's skeleton seen from above: its segment (a trail) or its centre.
+float skeletonDistanceXY(const Primitive& shape, glm::vec2 xy) {
+    const glm::vec2 a(shape.center_m);
+    if (shape.kind != PrimitiveKind::Segment) return glm::length(xy - a);
+    const glm::vec2 ab = glm::vec2(shape.end_m) - a;
+    const float len2 = glm::dot(ab, ab);
+    const float t = len2 > 0.0f ? std::clamp(glm::dot(xy - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+    return glm::length(xy - (a + t * ab));
+}
+
+}  // namespace
+
 bool WeatherStroke::stamp(glm::vec3 at, glm::vec2 heading, std::string* error) {
     EnvironmentDesc env = doc_->project().environment;
     if (settings_.brush == WeatherBrush::Erase) {
         const size_t before = env.global_fields.size();
         std::erase_if(env.global_fields, [&](const EnvFieldDesc& f) {
-            return !f.everywhere && glm::length(glm::vec2(f.shape.center_m) - glm::vec2(at)) <= settings_.radius_m;
+            return !f.everywhere && skeletonDistanceXY(f.shape, glm::vec2(at)) <= settings_.radius_m;
         });
         ++stamps_;
         if (env.global_fields.size() == before) return true;  // nothing there: no empty step

@@ -61,7 +61,8 @@ class EnvObjectDrag {
 //   warm, cold  temperature +/- 8 degrees x strength over the brush's radius (snow melts, icicles go)
 //   wet         humidity +0.5 x strength (wet leaves, longer icicles)
 //   leaves, trash, grass   a pile: the channel +1 x strength (the scattered types fill it)
-//   erase       removes the local fields whose centre the brush covers (footprints, spots, piles)
+//   erase       removes the local fields whose skeleton the brush covers (footprints, spots, piles: their
+//               centre; a trail: any point of its segment)
 // Other stamps come every radius / 2 along the drag.
 enum class WeatherBrush : int { Footprints, Warm, Cold, Wet, Leaves, Trash, Grass, Erase };
 constexpr int kWeatherBrushCount = int(WeatherBrush::Erase) + 1;

@@ -110,6 +110,20 @@ TEST(EnvTools, AWarmStrokeMeltsTheSnowUnderItAndEraseTakesItBack) {
     ASSERT_TRUE(doc.undo());
     ASSERT_TRUE(doc.undo());
     EXPECT_EQ(temperatureAt(doc, under), cold);
+    // A trail (a segment field) is erased from anywhere along it, not only at its first end.
+    EnvironmentDesc env = doc.project().environment;
+    EnvFieldDesc trail;
+    trail.channel = EnvChannel::Occlusion;
+    trail.value = 0.8f;
+    trail.shape = makeSegment({0.5f, 0.5f, 0.0f}, {3.5f, 0.5f, 0.0f}, 0.2f, trail.value);
+    env.global_fields.push_back(trail);
+    ASSERT_TRUE(doc.setEnvironment(env, "Trail", &error)) << error;
+    WeatherStroke erase_trail;
+    ASSERT_TRUE(erase_trail.begin(&doc, WeatherSettings{WeatherBrush::Erase, 0.3f, 1.0f}, {2.5f, 0.7f, 0.0f}, &error))
+        << error;
+    erase_trail.end();
+    EXPECT_EQ(erase_trail.erased(), 1);
+    EXPECT_EQ(doc.project().environment.global_fields.size(), fields);
     // Bad settings are refused before anything changes.
     WeatherStroke bad;
     EXPECT_FALSE(bad.begin(&doc, WeatherSettings{WeatherBrush::Wet, std::nanf(""), 1.0f}, under, &error));
