@@ -169,6 +169,7 @@ void EditorSession::fillDocumentResult() {
     Document& d = *scene->doc;
     result->document_path = d.path();
     result->dirty = d.isDirty();
+    result->undo_name = d.canUndo() ? d.undoName() : "";
     result->user_primitives = 0;
     for (size_t t = 0; t < d.project().detail_types.size(); ++t)
         result->user_primitives += d.primitiveIds(t).size();
@@ -177,14 +178,40 @@ void EditorSession::fillDocumentResult() {
     if (!d.particles()->empty()) {
         json systems = json::array();
         for (const ParticleSystemFile& s : *d.particles()) {
-            json attractors = json::array();
-            for (const Attractor& a : s.scene.attractors) attractors.push_back({a.a_m.x, a.a_m.y, a.a_m.z});
-            systems.push_back({{"name", s.name}, {"attractors", std::move(attractors)}});
+            const auto xyz = [](glm::vec3 p) { return json::array({p.x, p.y, p.z}); };
+            json attractors = json::array(), generators = json::array(), cutters = json::array(),
+                 charge_keys = json::array();
+            for (const Attractor& a : s.scene.attractors) {
+                attractors.push_back(xyz(a.a_m));
+                json keys = json::array();
+                for (const ChargeKey& k : a.charge) keys.push_back({k.step, k.charge});
+                charge_keys.push_back(std::move(keys));
+            }
+            for (const ParticleGenerator& g : s.scene.generators) generators.push_back(xyz(g.center_m));
+            for (const Cutter& c : s.scene.cutters) cutters.push_back(xyz(c.center_m));
+            systems.push_back({{"name", s.name},
+                               {"attractors", std::move(attractors)},
+                               {"charge_keys", std::move(charge_keys)},
+                               {"generators", std::move(generators)},
+                               {"cutters", std::move(cutters)}});
         }
+        // Where the open window's system's dots are on screen: a driven session grabs them there.
+        json handles_px = json::array();
+        if (windows.particles && particles_panel.selected < d.particles()->size()) {
+            const glm::mat4 camera_view_proj = camera.viewProjection();  // the camera now, after a replayed view
+            for (const ParticleHandlePoint& h : particleHandlePoints((*d.particles())[particles_panel.selected].scene)) {
+                const glm::vec2 px = projectToPixel(camera_view_proj, float(last_fb_w), float(last_fb_h), h.position_m);
+                handles_px.push_back({{"part", particlePartName(h.handle.part)}, {"index", h.handle.index}, {"px", {px.x, px.y}}});
+            }
+        }
+        const ParticleHandle picked = particles_panel.selected_handle;
         result->particles = {{"systems", std::move(systems)},
-                             {"selected_attractor", particles_panel.selected_attractor == kNoAttractor
-                                                        ? json(nullptr)
-                                                        : json(particles_panel.selected_attractor)},
+                             {"selected_attractor",
+                              picked.part == ParticlePart::Attractor ? json(picked.index) : json(nullptr)},
+                             {"selected_handle", picked ? json{{"part", particlePartName(picked.part)},
+                                                               {"index", picked.index}}
+                                                        : json(nullptr)},
+                             {"handles_px", std::move(handles_px)},
                              {"strands_settled", strandsSettled()},
                              {"last", strandsJson()}};
     }

@@ -148,7 +148,7 @@ private:
     // Ends every drag in the view (the document is about to change under it: undo, open, delete).
     void endViewDrags() {
         move_drag.end();
-        attractor_drag.end();
+        particle_drag.end();
         env_drag.end();
         env_handle_drag.end();
         weather_stroke.end();
@@ -221,7 +221,7 @@ private:
     uint64_t strands_submitted = 0;             // the particlesGeneration() last submitted
     uint64_t strands_shown = 0;                 // and the one on screen
     LiveStrandsResult last_strands;             // its statistics (meshes moved out)
-    AttractorDrag attractor_drag;               // the Select tool on an attractor (the Particles window open)
+    ParticleHandleDrag particle_drag;           // the Select tool on a particle handle (the Particles window open)
     ParticlesPanelState particles_panel;
     // ---- environmental objects: effects computed again off the UI thread ----
     std::unique_ptr<LiveEnvironment> live_environment;  // null: the project has no environmental-object types

@@ -197,14 +197,13 @@ void addLine(glm::vec3 a, glm::vec3 b, glm::vec3 color, MarkerGeometry* out) {
 
 }  // namespace
 
-void addParticleMarkers(const ParticleSystemFile& system, size_t selected_attractor, MarkerGeometry* out) {
+void addParticleMarkers(const ParticleSystemFile& system, ParticleHandle selected, MarkerGeometry* out) {
     const ParticleScene& scene = system.scene;
     for (size_t i = 0; i < scene.attractors.size(); ++i) {
         const Attractor& a = scene.attractors[i];
-        const glm::vec3 color = i == selected_attractor          ? kSelectedColor
-                                : chargeAt(a.charge, 0) < 0.0f ? kRepelColor
-                                                               : kAttractColor;
-        out->points.push_back({a.a_m, color});
+        const glm::vec3 color = selected == ParticleHandle{ParticlePart::Attractor, i} ? kSelectedColor
+                                : chargeAt(a.charge, 0) < 0.0f                    ? kRepelColor
+                                                                                  : kAttractColor;
         if (a.kind == AttractorKind::Segment) {
             addLine(a.a_m, a.b_m, color, out);
             out->points.push_back({a.b_m, color});
@@ -247,9 +246,6 @@ void addParticleMarkers(const ParticleSystemFile& system, size_t selected_attrac
                 }
                 break;
         }
-        glm::vec3 centre = g.center_m;
-        if (g.on_terrain && scene.terrain) centre.z = scene.terrain->sample(centre.x, centre.y) + 0.01f;
-        out->points.push_back({centre, kGeneratorColor});
     }
     for (const Cutter& c : scene.cutters) {
         switch (c.kind) {
@@ -272,6 +268,15 @@ void addParticleMarkers(const ParticleSystemFile& system, size_t selected_attrac
                 break;
             }
         }
+    }
+    // The dots the Select tool picks and drags (particle_tools.h), in the part's colour.
+    for (const ParticleHandlePoint& h : particleHandlePoints(scene)) {
+        glm::vec3 color = h.handle.part == ParticlePart::Generator ? kGeneratorColor
+                          : h.handle.part == ParticlePart::Cutter  ? kCutterColor
+                          : chargeAt(scene.attractors[h.handle.index].charge, 0) < 0.0f ? kRepelColor
+                                                                                      : kAttractColor;
+        if (h.handle == selected) color = kSelectedColor;
+        out->points.push_back({h.position_m, color});
     }
 }
 

@@ -17,6 +17,7 @@
 #include <glm/glm.hpp>
 #include <vector>
 
+#include "editor/particle_tools.h"
 #include "editor/render_data.h"
 #include "scene/document.h"
 
@@ -59,14 +60,15 @@ void addPrimitiveHulls(const Document& doc, const std::vector<DetailLodMesh>& me
 
 // A particle system's skeletons (the Particles window's system, while it is open): each attractor a dot
 // (a segment's line, a sphere's three great circles) and its reach as three great circles, green when its
-// charge at step 0 attracts and red when it repels, the selected one in kSelectedColor; generators in
+// charge at step 0 attracts and red when it repels; generators in
 // blue (a rectangle's outline, a sphere's circles, a box's or a mesh's bounding edges around its centre);
-// cutters in orange (a plane as a 1 m square around its centre, a sphere's circles, a box's edges).
+// cutters in orange (a plane as a 1 m square around its centre, a sphere's circles, a box's edges); every
+// handle's dot (particle_tools.h), the selected one in kSelectedColor.
 constexpr glm::vec3 kAttractColor{0.35f, 0.9f, 0.35f};
 constexpr glm::vec3 kRepelColor{0.95f, 0.35f, 0.3f};
 constexpr glm::vec3 kGeneratorColor{0.4f, 0.65f, 1.0f};
 constexpr glm::vec3 kCutterColor{1.0f, 0.6f, 0.2f};
-void addParticleMarkers(const ParticleSystemFile& system, size_t selected_attractor, MarkerGeometry* out);
+void addParticleMarkers(const ParticleSystemFile& system, ParticleHandle selected, MarkerGeometry* out);
 
 // Overlay caps: beyond them the tiles nearest the target win.
 constexpr size_t kOverlayTileCap = 400;         // tile outlines (12 edges each)

@@ -12,6 +12,7 @@
 #include "editor/env_tools.h"
 #include "editor/env_tree_view.h"
 #include "editor/export_job.h"
+#include "editor/particle_tools.h"
 #include "editor/render_data.h"
 #include "editor/tools.h"
 #include "instancer/instantiator.h"
@@ -200,7 +201,8 @@ void drawGhostTilePanel(const Document* doc, GhostTilePanelState* state, bool* o
 // ---- particles panel (particles_panel.cpp) ----
 struct ParticlesPanelState {
     size_t selected = 0;     // the system shown
-    size_t selected_attractor = SIZE_MAX;  // picked in the viewport (SIZE_MAX: none)
+    ParticleHandle selected_handle;  // picked in the viewport (an attractor, generator or cutter), or none
+    glm::vec3 place_at{0.0f};        // where Add puts a new part: the ground under the view's centre
     bool growing = false;    // its strands are growing in the background
     std::string status;      // the last growth: strands, time, share re-grown
     std::string last_error;  // the last refused edit

@@ -1,33 +1,90 @@
 #include "editor/particle_tools.h"
 
+#include <algorithm>
+
 namespace ug::editor {
 
-size_t pickAttractor(const Document& doc, size_t system, const glm::mat4& view_proj, float width, float height,
-                     glm::vec2 cursor, float max_px) {
-    if (system >= doc.particles()->size()) return kNoAttractor;
-    std::vector<glm::vec3> centres;
-    for (const Attractor& a : (*doc.particles())[system].scene.attractors) centres.push_back(a.a_m);
-    return nearestOnScreen(centres, view_proj, width, height, cursor, max_px);
+const char* particlePartName(ParticlePart part) {
+    switch (part) {
+        case ParticlePart::Attractor: return "attractor";
+        case ParticlePart::Generator: return "generator";
+        case ParticlePart::Cutter: return "cutter";
+        case ParticlePart::None: break;
+    }
+    return "";
 }
 
-bool AttractorDrag::begin(Document* doc, size_t system, size_t attractor, const Ray& ray) {
+std::vector<ParticleHandlePoint> particleHandlePoints(const ParticleScene& scene) {
+    std::vector<ParticleHandlePoint> points;
+    for (size_t i = 0; i < scene.attractors.size(); ++i)
+        points.push_back({{ParticlePart::Attractor, i}, scene.attractors[i].a_m});
+    for (size_t i = 0; i < scene.generators.size(); ++i) {
+        const ParticleGenerator& g = scene.generators[i];
+        glm::vec3 p = g.center_m;
+        if (g.on_terrain && scene.terrain) p.z = scene.terrain->sample(p.x, p.y) + 0.01f;
+        points.push_back({{ParticlePart::Generator, i}, p});
+    }
+    for (size_t i = 0; i < scene.cutters.size(); ++i) {
+        const Cutter& c = scene.cutters[i];
+        const glm::vec3 p = c.kind == CutterKind::Plane ? c.center_m + c.normal * c.threshold_m : c.center_m;
+        points.push_back({{ParticlePart::Cutter, i}, p});
+    }
+    return points;
+}
+
+ParticleHandle pickParticleHandle(const Document& doc, size_t system, const glm::mat4& view_proj, float width,
+                                  float height, glm::vec2 cursor, float max_px) {
+    if (system >= doc.particles()->size()) return {};
+    const std::vector<ParticleHandlePoint> handles = particleHandlePoints((*doc.particles())[system].scene);
+    std::vector<glm::vec3> dots;
+    for (const ParticleHandlePoint& h : handles) dots.push_back(h.position_m);
+    // Ties go to the first: an attractor sitting on a generator's centre is the one picked.
+    const size_t nearest = nearestOnScreen(dots, view_proj, width, height, cursor, max_px);
+    return nearest < handles.size() ? handles[nearest].handle : ParticleHandle{};
+}
+
+bool moveParticleHandle(ParticleScene* scene, ParticleHandle handle, glm::vec3 offset) {
+    switch (handle.part) {
+        case ParticlePart::Attractor: {
+            if (handle.index >= scene->attractors.size()) return false;
+            Attractor& a = scene->attractors[handle.index];
+            a.a_m += offset;
+            if (a.kind == AttractorKind::Segment) a.b_m += offset;  // a segment moves whole
+            return true;
+        }
+        case ParticlePart::Generator:
+            if (handle.index >= scene->generators.size()) return false;
+            scene->generators[handle.index].center_m += offset;
+            return true;
+        case ParticlePart::Cutter:
+            if (handle.index >= scene->cutters.size()) return false;
+            scene->cutters[handle.index].center_m += offset;
+            return true;
+        case ParticlePart::None: break;
+    }
+    return false;
+}
+
+bool ParticleHandleDrag::begin(Document* doc, size_t system, ParticleHandle handle, const Ray& ray) {
     if (active()) end();
-    if (system >= doc->particles()->size() || attractor >= (*doc->particles())[system].scene.attractors.size())
-        return false;
-    const Attractor& a = (*doc->particles())[system].scene.attractors[attractor];
+    if (system >= doc->particles()->size()) return false;
+    const ParticleScene& scene = (*doc->particles())[system].scene;
+    const std::vector<ParticleHandlePoint> handles = particleHandlePoints(scene);
+    const auto it = std::find_if(handles.begin(), handles.end(),
+                                 [&](const ParticleHandlePoint& h) { return h.handle == handle; });
+    if (it == handles.end()) return false;
     doc_ = doc;
     system_ = system;
-    attractor_ = attractor;
-    start_a_ = a.a_m;
-    start_b_ = a.b_m;
-    grab_m_ = dragGrab(ray, a.a_m);
+    handle_ = handle;
+    start_ = scene;
+    grab_m_ = dragGrab(ray, it->position_m);
     applied_offset_m_ = glm::vec3(0.0f);
     moves_ = 0;
-    doc_->beginStroke("Move attractor");
+    doc_->beginStroke(std::string("Move ") + particlePartName(handle.part));
     return true;
 }
 
-bool AttractorDrag::drag(const Ray& ray, bool vertical, std::string* error) {
+bool ParticleHandleDrag::drag(const Ray& ray, bool vertical, std::string* error) {
     if (!active()) return true;
     glm::vec3 offset;
     if (!dragOffset(ray, grab_m_, applied_offset_m_, vertical, &offset)) return true;
@@ -35,20 +92,35 @@ bool AttractorDrag::drag(const Ray& ray, bool vertical, std::string* error) {
     if (glm::length(offset - applied_offset_m_) < 1e-3f) return true;
     if (system_ >= doc_->particles()->size()) return true;  // the systems changed under the drag
     ParticleSystemFile system = (*doc_->particles())[system_];
-    if (attractor_ >= system.scene.attractors.size()) return true;
-    Attractor& a = system.scene.attractors[attractor_];
-    a.a_m = start_a_ + offset;
-    if (a.kind == AttractorKind::Segment) a.b_m = start_b_ + offset;  // a segment moves whole
+    // The rest of the system as the document holds it now; the handle from where the drag began.
+    ParticleScene moved = start_;
+    if (!moveParticleHandle(&moved, handle_, offset)) return true;
+    switch (handle_.part) {
+        case ParticlePart::Attractor:
+            if (handle_.index >= system.scene.attractors.size()) return true;
+            system.scene.attractors[handle_.index] = moved.attractors[handle_.index];
+            break;
+        case ParticlePart::Generator:
+            if (handle_.index >= system.scene.generators.size()) return true;
+            system.scene.generators[handle_.index] = moved.generators[handle_.index];
+            break;
+        case ParticlePart::Cutter:
+            if (handle_.index >= system.scene.cutters.size()) return true;
+            system.scene.cutters[handle_.index] = moved.cutters[handle_.index];
+            break;
+        case ParticlePart::None: return true;
+    }
     if (!doc_->setParticleSystem(system_, system, error)) return false;
     applied_offset_m_ = offset;
     ++moves_;
     return true;
 }
 
-void AttractorDrag::end() {
+void ParticleHandleDrag::end() {
     if (!active()) return;
     doc_->endStroke();
     doc_ = nullptr;
+    start_ = ParticleScene{};
 }
 
 }  // namespace ug::editor

@@ -1,5 +1,6 @@
 // The particle tool in the viewport (issue 14), GL-free: with the Particles window open, the Select tool
-// picks an attractor of the window's system by its dot on screen and drags it like a primitive (on the
+// picks a handle of the window's system by its dot on screen (an attractor's centre, a generator's centre,
+// a cutter's centre or, for a plane, the point where it cuts) and drags it like a primitive (on the
 // horizontal plane at its height; Shift: up and down). Each step of the drag is a
 // Document::setParticleSystem in one stroke, so the strands re-grow as the mouse moves (live_strands.h)
 // and the drag is one undo step.
@@ -7,6 +8,7 @@
 
 #include <cstddef>
 #include <string>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -15,19 +17,44 @@
 
 namespace ug::editor {
 
-constexpr size_t kNoAttractor = SIZE_MAX;
+enum class ParticlePart : uint8_t { None, Attractor, Generator, Cutter };
 
-// The attractor of `system` whose centre is nearest the cursor on screen, within max_px; kNoAttractor for
-// none. view_proj maps world to clip space of a width x height viewport (pixels, y down from the top).
-size_t pickAttractor(const Document& doc, size_t system, const glm::mat4& view_proj, float width_px, float height_px,
-                     glm::vec2 cursor_px, float max_px);
+// One draggable part of a particle system: which list and where in it.
+struct ParticleHandle {
+    ParticlePart part = ParticlePart::None;
+    size_t index = 0;
 
-class AttractorDrag {
+    bool operator==(const ParticleHandle&) const = default;
+    explicit operator bool() const { return part != ParticlePart::None; }
+};
+
+const char* particlePartName(ParticlePart part);  // "attractor", "generator", "cutter" ("" for None)
+
+// Where each handle's dot is drawn and picked: attractors first, then generators (a seed-on-terrain
+// rectangle's dot on the ground under its centre), then cutters (a plane's dot where it cuts).
+struct ParticleHandlePoint {
+    ParticleHandle handle;
+    glm::vec3 position_m{0.0f};
+};
+std::vector<ParticleHandlePoint> particleHandlePoints(const ParticleScene& scene);
+
+// The handle of `system` whose dot is nearest the cursor on screen, within max_px; none for none (or no
+// such system). view_proj maps world to clip space of a width x height viewport (pixels, y down from the
+// top).
+ParticleHandle pickParticleHandle(const Document& doc, size_t system, const glm::mat4& view_proj, float width_px,
+                                  float height_px, glm::vec2 cursor_px, float max_px);
+
+// The same scene with the handle moved by `offset` (a segment attractor moves whole); false when there is
+// no such handle.
+bool moveParticleHandle(ParticleScene* scene, ParticleHandle handle, glm::vec3 offset);
+
+class ParticleHandleDrag {
   public:
     bool active() const { return doc_ != nullptr; }
     size_t system() const { return system_; }
-    size_t attractor() const { return attractor_; }
-    bool begin(Document* doc, size_t system, size_t attractor, const Ray& ray);
+    ParticleHandle handle() const { return handle_; }
+    // Opens the stroke "Move attractor" (generator, cutter); false when there is no such handle.
+    bool begin(Document* doc, size_t system, ParticleHandle handle, const Ray& ray);
     // False with *error when the document refuses the move (the drag stays open; end() closes it).
     bool drag(const Ray& ray, bool vertical, std::string* error);
     void end();
@@ -35,8 +62,9 @@ class AttractorDrag {
 
   private:
     Document* doc_ = nullptr;
-    size_t system_ = 0, attractor_ = 0;
-    glm::vec3 start_a_{0.0f}, start_b_{0.0f};
+    size_t system_ = 0;
+    ParticleHandle handle_;
+    ParticleScene start_;  // the system's scene when the drag began: each step moves it by the whole offset
     glm::vec3 grab_m_{0.0f};
     glm::vec3 applied_offset_m_{0.0f};
     int moves_ = 0;

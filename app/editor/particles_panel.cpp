@@ -12,6 +12,7 @@
 #include <algorithm>
 #include <cstdio>
 
+#include "editor/charge_curve.h"
 #include "editor/panel_edit.h"
 #include "editor/panels.h"
 
@@ -23,26 +24,136 @@ const char* const kAttractorKinds[] = {"point", "segment", "sphere"};
 const char* const kGeneratorKinds[] = {"rectangle", "sphere", "box", "mesh"};
 const char* const kCutterKinds[] = {"plane", "sphere", "box"};
 const char* const kActionKinds[] = {"stop", "kill", "split", "countdown"};
+const char* const kCutterSides[] = {"above the threshold", "below the threshold"};
+
+// A list entry of the system (a generator, an attractor or a cutter): a tree node, highlighted while its
+// dot is the one picked in the view, with a remove button beside it.
+struct PartRow {
+    bool open = false;
+    bool remove = false;
+};
+PartRow partRow(const char* label, bool selected) {
+    ImGuiTreeNodeFlags flags = ImGuiTreeNodeFlags_DefaultOpen;
+    if (selected) flags |= ImGuiTreeNodeFlags_Selected;
+    PartRow row;
+    row.open = ImGui::TreeNodeEx(label, flags);
+    ImGui::SameLine();
+    row.remove = ImGui::SmallButton("remove");
+    return row;
+}
 
 void editGenerator(ParticleGenerator* g, PanelEdit* e) {
-    ImGui::Text("%s", kGeneratorKinds[size_t(g->kind)]);
     dragged(ImGui::DragFloat3("centre (m)", &g->center_m.x, 0.01f), e);
+    switch (g->kind) {
+        case GeneratorKind::Rectangle:
+            dragged(ImGui::DragFloat3("half side u (m)", &g->axis_u_m.x, 0.005f), e);
+            dragged(ImGui::DragFloat3("half side v (m)", &g->axis_v_m.x, 0.005f), e);
+            e->changed |= ImGui::Checkbox("on the terrain", &g->on_terrain);
+            break;
+        case GeneratorKind::Sphere:
+            dragged(ImGui::DragFloat("radius (m)", &g->radius_m, 0.005f, 0.001f, 1e4f), e);
+            break;
+        case GeneratorKind::Box:
+            dragged(ImGui::DragFloat3("half extents (m)", &g->half_extents_m.x, 0.005f, 0.001f, 1e4f), e);
+            break;
+        case GeneratorKind::Mesh:
+            ImGui::TextDisabled("%s", g->mesh_file.c_str());
+            dragged(ImGui::DragFloat("scale", &g->scale, 0.01f, 0.01f, 1e4f), e);
+            break;
+    }
     ImGui::InputScalar("count", ImGuiDataType_U32, &g->count);
     finished(e);
     dragged(ImGui::DragFloat("heading cone (deg)", &g->heading_cone_deg, 0.2f, 0.0f, 179.0f), e);
 }
 
-void editCharge(std::vector<ChargeKey>* keys, uint32_t steps, PanelEdit* e) {
-    // a(t) over the walk's steps, as the growth samples it.
-    float plot[256];
-    const int n = int(std::min<uint32_t>(steps + 1, 256));
-    float lo = 0.0f, hi = 0.0f;
-    for (int i = 0; i < n; ++i) {
-        plot[i] = chargeAt(*keys, uint32_t(uint64_t(i) * steps / std::max(1, n - 1)));
-        lo = std::min(lo, plot[i]);
-        hi = std::max(hi, plot[i]);
+// a(t) over the walk's steps, drawn and edited on the plot (charge_curve.h): drag a key, double-click to
+// add one on the curve, right-click to remove one. A drag is one undo step.
+void chargeCurve(std::vector<ChargeKey>* keys, uint32_t steps, PanelEdit* e) {
+    const ImVec2 size(std::max(120.0f, ImGui::GetContentRegionAvail().x), 72.0f);
+    const ImVec2 p0 = ImGui::GetCursorScreenPos();
+    ImGui::InvisibleButton("a(t)", size, ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight);
+    ImGuiStorage* store = ImGui::GetStateStorage();
+    const ImGuiID dragged_key = ImGui::GetID("dragged key"), frozen_lo = ImGui::GetID("lo"), frozen_hi = ImGui::GetID("hi");
+    ChargeCurveFrame f;
+    f.min_px = {p0.x + 8.0f, p0.y + 6.0f};
+    f.max_px = {p0.x + size.x - 8.0f, p0.y + size.y - 6.0f};
+    f.steps = std::max<uint32_t>(1, steps);
+    const bool dragging = ImGui::IsItemActive() && store->GetInt(dragged_key, -1) >= 0;
+    // The range is frozen while a key is dragged, so the curve does not rescale under the mouse.
+    if (dragging) {
+        f.lo = store->GetFloat(frozen_lo, -1.0f);
+        f.hi = store->GetFloat(frozen_hi, 1.0f);
+    } else {
+        chargeCurveRange(*keys, &f.lo, &f.hi);
     }
-    ImGui::PlotLines("a(t)", plot, n, 0, nullptr, lo - 0.1f, hi + 0.1f, ImVec2(0, 48));
+    const glm::vec2 mouse(ImGui::GetIO().MousePos.x, ImGui::GetIO().MousePos.y);
+    const size_t hovered_key = ImGui::IsItemHovered() ? nearestChargeKey(*keys, f, mouse, 8.0f) : kNoChargeKey;
+    if (ImGui::IsItemActivated() && ImGui::IsMouseClicked(ImGuiMouseButton_Left) && hovered_key != kNoChargeKey) {
+        store->SetInt(dragged_key, int(hovered_key));
+        store->SetFloat(frozen_lo, f.lo);
+        store->SetFloat(frozen_hi, f.hi);
+        e->drag_started = true;
+        e->name = "Edit a(t)";
+    }
+    if (dragging) {
+        e->name = "Edit a(t)";
+        if (moveChargeKey(keys, size_t(store->GetInt(dragged_key, 0)), chargeKeyAtPixel(f, mouse))) e->changed = true;
+    }
+    if (ImGui::IsItemDeactivated() && store->GetInt(dragged_key, -1) >= 0) {
+        store->SetInt(dragged_key, -1);
+        e->drag_ended = true;
+        e->name = "Edit a(t)";
+    }
+    if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left) && hovered_key == kNoChargeKey) {
+        ChargeKey key = chargeKeyAtPixel(f, mouse);
+        key.charge = chargeAt(*keys, key.step);  // on the curve: adding a key changes nothing until it moves
+        if (insertChargeKey(keys, key) != kNoChargeKey) {
+            e->changed = true;
+            e->name = "Add a(t) key";
+        }
+    }
+    if (ImGui::IsItemHovered() && ImGui::IsMouseClicked(ImGuiMouseButton_Right) && removeChargeKey(keys, hovered_key)) {
+        e->changed = true;
+        e->name = "Remove a(t) key";
+    }
+
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->AddRectFilled(p0, ImVec2(p0.x + size.x, p0.y + size.y), ImGui::GetColorU32(ImGuiCol_FrameBg));
+    const glm::vec2 zero_a = chargeKeyPixel(f, {0, 0.0f}), zero_b = chargeKeyPixel(f, {f.steps, 0.0f});
+    draw->AddLine(ImVec2(zero_a.x, zero_a.y), ImVec2(zero_b.x, zero_b.y), IM_COL32(140, 140, 140, 160));
+    ImVec2 line[130];
+    const int n = int(std::size(line));
+    for (int i = 0; i < n; ++i) {
+        const uint32_t step = uint32_t(uint64_t(i) * f.steps / uint64_t(n - 1));
+        const glm::vec2 q = chargeKeyPixel(f, {step, chargeAt(*keys, step)});
+        line[i] = ImVec2(q.x, q.y);
+    }
+    draw->AddPolyline(line, n, ImGui::GetColorU32(ImGuiCol_PlotLines), 0, 1.5f);
+    for (size_t k = 0; k < keys->size(); ++k) {
+        const glm::vec2 q = chargeKeyPixel(f, (*keys)[k]);
+        const bool hot = k == hovered_key || (dragging && int(k) == store->GetInt(dragged_key, -1));
+        draw->AddCircleFilled(ImVec2(q.x, q.y), hot ? 5.0f : 3.5f,
+                              hot ? IM_COL32(255, 220, 90, 255) : ImGui::GetColorU32(ImGuiCol_PlotLinesHovered));
+    }
+    // The range's ends at the right (a key at step 0 sits on the left edge), the steps at the bottom.
+    const ImU32 text = ImGui::GetColorU32(ImGuiCol_TextDisabled);
+    char label[48];
+    std::snprintf(label, sizeof label, "%+.2g", double(f.hi));
+    draw->AddText(ImVec2(p0.x + size.x - ImGui::CalcTextSize(label).x - 4.0f, p0.y), text, label);
+    std::snprintf(label, sizeof label, "%+.2g", double(f.lo));
+    draw->AddText(ImVec2(p0.x + size.x - ImGui::CalcTextSize(label).x - 4.0f, p0.y + size.y - ImGui::GetFontSize()),
+                  text, label);
+    std::snprintf(label, sizeof label, "step %u", f.steps);
+    draw->AddText(ImVec2(f.max_px.x - ImGui::CalcTextSize(label).x - 40.0f, p0.y + size.y - ImGui::GetFontSize()),
+                  text, label);
+    if (hovered_key != kNoChargeKey)
+        ImGui::SetTooltip("step %u: %.2f", (*keys)[hovered_key].step, double((*keys)[hovered_key].charge));
+    else if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("a(t) over %u steps: drag a key, double-click to add one, right-click to remove one", f.steps);
+}
+
+void editCharge(std::vector<ChargeKey>* keys, uint32_t steps, PanelEdit* e) {
+    chargeCurve(keys, steps, e);
     for (size_t k = 0; k < keys->size(); ++k) {
         ImGui::PushID(int(k));
         ChargeKey& key = (*keys)[k];
@@ -51,11 +162,11 @@ void editCharge(std::vector<ChargeKey>* keys, uint32_t steps, PanelEdit* e) {
         finished(e);
         ImGui::SameLine();
         ImGui::SetNextItemWidth(90);
-        dragged(ImGui::DragFloat("charge", &key.charge, 0.02f, -100.0f, 100.0f), e);
+        dragged(ImGui::DragFloat("charge", &key.charge, 0.02f, -kMaxChargeMagnitude, kMaxChargeMagnitude), e);
         if (keys->size() > 1) {
             ImGui::SameLine();
             if (ImGui::SmallButton("x")) {
-                keys->erase(keys->begin() + std::ptrdiff_t(k));
+                removeChargeKey(keys, k);
                 e->changed = true;
                 ImGui::PopID();
                 break;
@@ -85,15 +196,47 @@ void editAttractor(Attractor* a, uint32_t steps, PanelEdit* e) {
     editCharge(&a->charge, steps, e);
 }
 
-void editCutter(Cutter* c, PanelEdit* e) {
-    ImGui::Text("%s, triggers %s", kCutterKinds[size_t(c->kind)], c->side == CutterSide::Above ? "above" : "below");
-    dragged(ImGui::DragFloat3("centre (m)", &c->center_m.x, 0.01f), e);
-    dragged(ImGui::DragFloat("threshold (m)", &c->threshold_m, 0.005f), e);
-    int action = int(c->action.kind);
-    if (ImGui::Combo("action", &action, kActionKinds, 4)) {
-        c->action.kind = StrandActionKind(action);
+void editAction(StrandAction* action, PanelEdit* e) {
+    int kind = int(action->kind);
+    if (ImGui::Combo("action", &kind, kActionKinds, 4)) {
+        action->kind = StrandActionKind(kind);
         e->changed = true;
     }
+    if (action->kind == StrandActionKind::Split) {
+        ImGui::InputScalar("children", ImGuiDataType_U32, &action->split_count);
+        finished(e);
+        dragged(ImGui::DragFloat("split cone (deg)", &action->split_angle_deg, 0.5f, 0.0f, 179.0f), e);
+    }
+    if (action->kind == StrandActionKind::Countdown) {
+        ImGui::InputScalar("countdown steps", ImGuiDataType_U32, &action->countdown_steps);
+        finished(e);
+    }
+}
+
+void editCutter(Cutter* c, PanelEdit* e) {
+    dragged(ImGui::DragFloat3("centre (m)", &c->center_m.x, 0.01f), e);
+    switch (c->kind) {
+        case CutterKind::Plane: {
+            glm::vec3 n = c->normal;
+            if (ImGui::DragFloat3("normal", &n.x, 0.01f, -1.0f, 1.0f) && glm::length(n) > 1e-3f) {
+                c->normal = glm::normalize(n);  // the document keeps a unit normal
+                e->changed = true;
+            }
+            dragged(false, e);
+            break;
+        }
+        case CutterKind::Sphere: dragged(ImGui::DragFloat("radius (m)", &c->radius_m, 0.005f, 0.0f, 1e4f), e); break;
+        case CutterKind::Box:
+            dragged(ImGui::DragFloat3("half extents (m)", &c->half_extents_m.x, 0.005f, 0.0f, 1e4f), e);
+            break;
+    }
+    dragged(ImGui::DragFloat("threshold (m)", &c->threshold_m, 0.005f), e);
+    int side = int(c->side);
+    if (ImGui::Combo("triggers", &side, kCutterSides, 2)) {
+        c->side = CutterSide(side);
+        e->changed = true;
+    }
+    editAction(&c->action, e);
 }
 
 void editWalk(WalkSettings* w, PanelEdit* e) {
@@ -107,6 +250,60 @@ void editWalk(WalkSettings* w, PanelEdit* e) {
     dragged(ImGui::DragFloat("step (m)", &w->step_length_m, 0.0005f, 1e-5f, 10.0f, "%.4f"), e);
     dragged(ImGui::DragFloat("radius (m)", &w->strand_radius_m, 0.0001f, 1e-6f, 1.0f, "%.4f"), e);
     e->changed |= ImGui::Checkbox("collisions", &w->collisions);
+}
+
+// New parts start at the view's centre (`at`, on the ground), small and gentle: somewhere to drag from.
+ParticleGenerator newGenerator(glm::vec3 at, bool has_terrain) {
+    ParticleGenerator g;
+    g.center_m = at;
+    g.axis_u_m = {0.25f, 0.0f, 0.0f};
+    g.axis_v_m = {0.0f, 0.25f, 0.0f};
+    g.count = 400;
+    g.heading_cone_deg = 10.0f;
+    g.on_terrain = has_terrain;
+    return g;
+}
+
+Attractor newAttractor(glm::vec3 at) {
+    Attractor a;
+    a.a_m = at + glm::vec3(0.0f, 0.0f, 0.3f);
+    a.influence_m = 0.3f;
+    a.charge = {ChargeKey{0, 1.0f}};
+    return a;
+}
+
+Cutter newCutter(glm::vec3 at, float height_m) {
+    Cutter c;  // a horizontal plane that stops the strands at `height_m` above `at`
+    c.center_m = at + glm::vec3(0.0f, 0.0f, height_m);
+    return c;
+}
+
+// The rows of one of the system's lists: each part's tree node (highlighted while its dot is the one
+// picked in the view) with its fields, and a remove button.
+template <class T, class Label, class Edit>
+void partRows(std::vector<T>* list, ParticlePart part, ParticlesPanelState* state, PanelEdit* e, Label label, Edit edit) {
+    for (size_t i = 0; i < list->size(); ++i) {
+        ImGui::PushID(int(part) * 1000 + int(i));
+        const PartRow row = partRow(label(i).c_str(), state->selected_handle == ParticleHandle{part, i});
+        if (row.open) {
+            edit(&(*list)[i]);
+            ImGui::TreePop();
+        }
+        ImGui::PopID();
+        if (row.remove) {
+            list->erase(list->begin() + std::ptrdiff_t(i));
+            e->changed = true;
+            e->name = std::string("Remove ") + particlePartName(part);
+            if (state->selected_handle.part == part) state->selected_handle = {};  // its index moved on
+            break;
+        }
+    }
+}
+
+std::string partLabel(const char* part, size_t i, const char* kind) {
+    char label[64];
+    std::snprintf(label, sizeof label, "%s %zu (%s)", part, i, kind);
+    return label;
 }
 
 }  // namespace
@@ -129,7 +326,7 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
         for (size_t i = 0; i < systems.size(); ++i)
             if (ImGui::Selectable(systems[i].name.c_str(), i == state->selected)) {
                 state->selected = i;
-                state->selected_attractor = SIZE_MAX;
+                state->selected_handle = {};
             }
         ImGui::EndCombo();
     }
@@ -145,52 +342,39 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
     ParticleSystemFile& system = state->editing;
     ParticleScene& scene = system.scene;
     PanelEdit e;
+    const glm::vec3 at = state->place_at;
     if (ImGui::CollapsingHeader("Generators")) {
-        for (size_t i = 0; i < scene.generators.size(); ++i) {
-            ImGui::PushID(int(i));
-            editGenerator(&scene.generators[i], &e);
-            ImGui::Separator();
-            ImGui::PopID();
+        partRows(&scene.generators, ParticlePart::Generator, state, &e,
+                 [&](size_t i) { return partLabel("generator", i, kGeneratorKinds[size_t(scene.generators[i].kind)]); },
+                 [&](ParticleGenerator* g) { editGenerator(g, &e); });
+        if (ImGui::Button("Add generator")) {
+            scene.generators.push_back(newGenerator(at, scene.terrain != nullptr));
+            e.changed = true;
+            e.name = "Add generator";
         }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("a 0.5 m square of 400 strands on the ground at the view's centre");
     }
     if (ImGui::CollapsingHeader("Attractors", ImGuiTreeNodeFlags_DefaultOpen)) {
-        for (size_t i = 0; i < scene.attractors.size(); ++i) {
-            ImGui::PushID(int(100 + i));
-            char label[48];
-            std::snprintf(label, sizeof label, "attractor %zu (%s)", i, kAttractorKinds[size_t(scene.attractors[i].kind)]);
-            ImGuiTreeNodeFlags flags = ImGuiTreeNodeFlags_DefaultOpen;
-            if (i == state->selected_attractor) flags |= ImGuiTreeNodeFlags_Selected;  // picked in the view
-            const bool open_node = ImGui::TreeNodeEx(label, flags);
-            ImGui::SameLine();
-            const bool remove = ImGui::SmallButton("remove");
-            if (open_node) {
-                editAttractor(&scene.attractors[i], scene.walk.steps, &e);
-                ImGui::TreePop();
-            }
-            ImGui::PopID();
-            if (remove) {
-                scene.attractors.erase(scene.attractors.begin() + std::ptrdiff_t(i));
-                e.changed = true;
-                break;
-            }
-        }
+        partRows(&scene.attractors, ParticlePart::Attractor, state, &e,
+                 [&](size_t i) { return partLabel("attractor", i, kAttractorKinds[size_t(scene.attractors[i].kind)]); },
+                 [&](Attractor* a) { editAttractor(a, scene.walk.steps, &e); });
         if (ImGui::Button("Add attractor")) {
-            // Above the first generator, attracting gently and only nearby: a place to start dragging from.
-            Attractor a;
-            a.a_m = scene.generators.front().center_m + glm::vec3(0.0f, 0.0f, 0.3f);
-            a.influence_m = 0.3f;
-            a.charge = {ChargeKey{0, 1.0f}};
-            scene.attractors.push_back(a);
+            scene.attractors.push_back(newAttractor(at));
             e.changed = true;
+            e.name = "Add attractor";
         }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("a point 30 cm above the view's centre, attracting within 30 cm");
     }
-    if (!scene.cutters.empty() && ImGui::CollapsingHeader("Cutters")) {
-        for (size_t i = 0; i < scene.cutters.size(); ++i) {
-            ImGui::PushID(int(200 + i));
-            editCutter(&scene.cutters[i], &e);
-            ImGui::Separator();
-            ImGui::PopID();
+    if (ImGui::CollapsingHeader("Cutters")) {
+        partRows(&scene.cutters, ParticlePart::Cutter, state, &e,
+                 [&](size_t i) { return partLabel("cutter", i, kCutterKinds[size_t(scene.cutters[i].kind)]); },
+                 [&](Cutter* c) { editCutter(c, &e); });
+        if (ImGui::Button("Add cutter")) {
+            scene.cutters.push_back(newCutter(at, 0.2f));
+            e.changed = true;
+            e.name = "Add cutter";
         }
+        if (ImGui::IsItemHovered()) ImGui::SetTooltip("a horizontal plane 20 cm above the view's centre that stops the strands");
     }
     if (ImGui::CollapsingHeader("Walk")) editWalk(&scene.walk, &e);
 

@@ -75,9 +75,10 @@ void EditorSession::drawUi() {
     drawGhostTilePanel(doc, &ghost_panel, &windows.ghost_tile);
     {
         std::string particles_message;
+        particles_panel.place_at = glm::vec3(glm::vec2(camera.target), groundZ(glm::vec2(camera.target)));
         drawParticlesPanel(doc, &particles_panel, &particles_message, &windows.particles);
         if (!particles_message.empty()) messages.push_back(particles_message);
-        environment_panel.place_at = glm::vec3(glm::vec2(camera.target), groundZ(glm::vec2(camera.target)));
+        environment_panel.place_at = particles_panel.place_at;
         std::string environment_message;
         drawEnvironmentPanel(doc, &environment_panel, &environment_message, &windows.environment);
         if (!environment_message.empty()) messages.push_back(environment_message);
@@ -152,31 +153,31 @@ void EditorSession::mouseTools() {
             noteEnvStamp(generation, -1);
         } else if (tools.tool == ToolKind::Select) {
             // Click picks; dragging the picked primitive moves it (Shift: up and down). With the Particles
-            // window open, its system's attractors are picked first; with the Environment window open, its
+            // window open, its system's handles (attractors, generators, cutters) are picked first; with the Environment window open, its
             // objects next.
             // The selected environmental node's turn and scale handles (env_handles.h).
             EnvHandleFrame handles;
             const bool has_handles = windows.environment && !environment_panel.selected.empty() &&
                                      envHandleFrame(*doc, environment_panel.selected, &handles);
             if (mouse_free && ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
-                const size_t attractor =
-                    windows.particles ? pickAttractor(*doc, particles_panel.selected, view_proj, float(fb_w),
+                const ParticleHandle particle =
+                    windows.particles ? pickParticleHandle(*doc, particles_panel.selected, view_proj, float(fb_w),
                                                       float(fb_h), cursor, 20.0f)
-                                      : kNoAttractor;
+                                      : ParticleHandle{};
                 const EnvHandle handle =
-                    attractor == kNoAttractor && has_handles
+                    !particle && has_handles
                         ? pickEnvHandle(handles, view_proj, float(fb_w), float(fb_h), cursor, 12.0f)
                         : EnvHandle::None;
                 // Ctrl + click: the node inside a group.
                 const EnvPath env_node =
-                    attractor == kNoAttractor && handle == EnvHandle::None && windows.environment
+                    !particle && handle == EnvHandle::None && windows.environment
                         ? pickEnvNode(*doc, view_proj, float(fb_w), float(fb_h), cursor, 25.0f, io.KeyCtrl)
                         : EnvPath{};
-                particles_panel.selected_attractor = attractor;
+                particles_panel.selected_handle = particle;
                 if (!env_node.empty()) environment_panel.selected = env_node;
-                if (attractor != kNoAttractor) {
+                if (particle) {
                     tools.selected = 0;
-                    attractor_drag.begin(doc, particles_panel.selected, attractor, ray);
+                    particle_drag.begin(doc, particles_panel.selected, particle, ray);
                 } else if (handle != EnvHandle::None) {
                     tools.selected = 0;
                     env_handle_drag.begin(doc, environment_panel.selected, handle, ray);
@@ -187,9 +188,9 @@ void EditorSession::mouseTools() {
                     tools.selected = pickPrimitive(*doc, view_proj, float(fb_w), float(fb_h), cursor, 20.0f);
                     if (tools.selected != 0) move_drag.begin(doc, tools.selected, ray);
                 }
-            } else if (attractor_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
+            } else if (particle_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
                 std::string move_error;
-                if (!attractor_drag.drag(ray, io.KeyShift, &move_error)) messages.push_back(move_error);
+                if (!particle_drag.drag(ray, io.KeyShift, &move_error)) messages.push_back(move_error);
             } else if (env_drag.active() && ImGui::IsMouseDown(ImGuiMouseButton_Left)) {
                 std::string move_error;
                 const uint64_t generation = doc->environmentGeneration();
@@ -239,7 +240,7 @@ void EditorSession::mouseTools() {
             stroke.end();
         }
         if (move_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) move_drag.end();
-        if (attractor_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) attractor_drag.end();
+        if (particle_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) particle_drag.end();
         if (env_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) env_drag.end();
         if (env_handle_drag.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) env_handle_drag.end();
         if (weather_stroke.active() && !ImGui::IsMouseDown(ImGuiMouseButton_Left)) weather_stroke.end();

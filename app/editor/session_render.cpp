@@ -58,7 +58,7 @@ bool EditorSession::renderFrame() {
         }
         // The Particles window's system, while the window is open.
         if (windows.particles && particles_panel.selected < doc->particles()->size())
-            addParticleMarkers((*doc->particles())[particles_panel.selected], particles_panel.selected_attractor,
+            addParticleMarkers((*doc->particles())[particles_panel.selected], particles_panel.selected_handle,
                                &markers);
         // The selected environmental node's ring with its turn and scale handles, for the Select tool.
         EnvHandleFrame handles;

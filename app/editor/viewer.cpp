@@ -120,6 +120,7 @@ json viewerStatsJson(const ViewerResult& r, const LodSettings& lod) {
          {{"path", r.document_path},
           {"recovered", r.recovered},
           {"dirty", r.dirty},
+          {"undo_name", r.undo_name},
           {"user_primitives", r.user_primitives},
           {"autosaves", r.autosaves}}},
         {"stamps", r.stamp_to_frame_ms.size()},

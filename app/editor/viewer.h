@@ -79,6 +79,7 @@ struct ViewerResult {
     std::string document_path;
     bool recovered = false;
     bool dirty = false;
+    std::string undo_name;  // what Ctrl+Z would undo now ("" for nothing)
     uint64_t user_primitives = 0;
     int autosaves = 0;
     std::vector<double> stamp_to_frame_ms;  // every stamp: from the edit to the end of the frame showing it
@@ -96,8 +97,11 @@ struct ViewerResult {
     // panel's document name, whether ImGui has the keyboard. Interactive runs with --stats rewrite the
     // statistics on F12 too, so a driven session can read it after each step.
     nlohmann::json viewport = nlohmann::json::object();
-    // The particle systems as the document holds them ({"systems": [{"name", "attractors": [[x, y, z]]}],
-    // "selected_attractor", "strands_settled", "last": the last growth's statistics}); {} without any.
+    // The particle systems as the document holds them ({"systems": [{"name", "attractors", "generators",
+    // "cutters": [[x, y, z]] centres, "charge_keys": per attractor [[step, charge]]}], "selected_attractor",
+    // "selected_handle": {"part", "index"}, "handles_px": the open window's dots on screen [{"part", "index",
+    // "px"}], "strands_settled", "last": the last growth's statistics}); {}
+    // without any.
     nlohmann::json particles = nlohmann::json::object();
     nlohmann::json environment = nlohmann::json::object();  // the environmental objects (none: empty)
     std::string window_title;

@@ -23,7 +23,7 @@ TEST(ParticleMarkers, AttractorsGeneratorsAndCuttersAreDrawnWhereTheyAct) {
     cut.threshold_m = 0.2f;
     system.scene.cutters.push_back(cut);
     MarkerGeometry m;
-    addParticleMarkers(system, SIZE_MAX, &m);
+    addParticleMarkers(system, ParticleHandle{ParticlePart::Cutter, 0}, &m);
 
     // The attractor: a dot at its place, red (repelling at step 0), and its reach as three circles.
     ASSERT_FALSE(m.points.empty());
@@ -47,6 +47,13 @@ TEST(ParticleMarkers, AttractorsGeneratorsAndCuttersAreDrawnWhereTheyAct) {
     EXPECT_EQ(reach, 3u * 2u * 32u);
     EXPECT_EQ(outline, 8u);
     EXPECT_EQ(cutter, 10u);  // the square and the normal's tick
+    // Every handle's dot where the Select tool picks it: the generator's centre in blue, the cutter's
+    // point on its plane in the selection's colour (it is the one selected).
+    ASSERT_EQ(m.points.size(), 3u);
+    EXPECT_EQ(m.points[1].position, g.center_m);
+    EXPECT_EQ(m.points[1].color, kGeneratorColor);
+    EXPECT_EQ(m.points[2].position, glm::vec3(0.0f, 0.0f, 0.3f));
+    EXPECT_EQ(m.points[2].color, kSelectedColor);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
-// The particle tool in the viewport (app/editor/particle_tools.h) on a real Document: an attractor is
-// picked by its dot on screen, dragged on the horizontal plane (or up and down), each step a document edit
-// and the whole drag one undo step.
+// The particle tool in the viewport (app/editor/particle_tools.h) on a real Document: an attractor, a
+// generator or a cutter is picked by its dot on screen, dragged on the horizontal plane (or up and down),
+// each step a document edit and the whole drag one undo step.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -27,6 +27,7 @@ protected:
           "generators": [{"kind": "rectangle", "axis_u_m": [0.3, 0, 0], "axis_v_m": [0, 0.3, 0], "count": 50}],
           "attractors": [{"kind": "point", "a_m": [0, 0, 3], "charge": 1},
                          {"kind": "point", "a_m": [0.5, 0, 0.3], "influence_m": 0.3, "charge": 2}],
+          "cutters": [{"kind": "plane", "center_m": [-0.5, 0.5, 0], "threshold_m": 0.2, "action": {"kind": "stop"}}],
           "walk": {"steps": 6, "step_length_m": 0.01, "strand_radius_m": 0.001}})";
         const std::string models = (fs::path(UG_SOURCE_DIR) / "assets" / "models").string();
         const std::string json = R"({"format": "undergrowth-project", "format_version": 4, "name": "tool_test",
@@ -47,29 +48,45 @@ protected:
         std::error_code ec;
         fs::remove_all(dir_, ec);
     }
-    glm::vec3 attractor(size_t i) const { return (*doc_->particles())[0].scene.attractors[i].a_m; }
+    const ParticleScene& scene() const { return (*doc_->particles())[0].scene; }
+    glm::vec3 attractor(size_t i) const { return scene().attractors[i].a_m; }
+    // Pixel of a world point looking straight down from 5 m over the origin, 800 x 600.
+    static glm::mat4 topView() {
+        return glm::perspective(glm::radians(60.0f), 800.0f / 600.0f, 0.1f, 100.0f) *
+               glm::lookAt(glm::vec3(0, 0, 5), glm::vec3(0), glm::vec3(0, 1, 0));
+    }
+    static glm::vec2 pixel(glm::vec3 p) {
+        const glm::vec4 clip = topView() * glm::vec4(p, 1.0f);
+        return {(clip.x / clip.w * 0.5f + 0.5f) * 800.0f, (0.5f - clip.y / clip.w * 0.5f) * 600.0f};
+    }
     static Ray down(glm::vec2 xy) { return Ray{glm::vec3(xy, 10.0f), glm::vec3(0.0f, 0.0f, -1.0f)}; }
 
     fs::path dir_;
     std::unique_ptr<Document> doc_;
 };
 
-TEST_F(ParticleTool, PicksTheAttractorUnderTheCursor) {
-    // Looking straight down from 5 m over the origin, 800 x 600.
-    const glm::mat4 view_proj = glm::perspective(glm::radians(60.0f), 800.0f / 600.0f, 0.1f, 100.0f) *
-                                glm::lookAt(glm::vec3(0, 0, 5), glm::vec3(0), glm::vec3(0, 1, 0));
-    const glm::vec4 clip = view_proj * glm::vec4(attractor(1), 1.0f);
-    const glm::vec2 px((clip.x / clip.w * 0.5f + 0.5f) * 800.0f, (0.5f - clip.y / clip.w * 0.5f) * 600.0f);
-    EXPECT_EQ(pickAttractor(*doc_, 0, view_proj, 800, 600, px + glm::vec2(5, -5), 20.0f), 1u);
-    EXPECT_EQ(pickAttractor(*doc_, 0, view_proj, 800, 600, px + glm::vec2(60, 0), 20.0f), kNoAttractor);
-    EXPECT_EQ(pickAttractor(*doc_, 3, view_proj, 800, 600, px, 20.0f), kNoAttractor);  // no such system
+TEST_F(ParticleTool, PicksTheHandleUnderTheCursor) {
+    const glm::mat4 view_proj = topView();
+    const glm::vec2 px = pixel(attractor(1));
+    EXPECT_EQ(pickParticleHandle(*doc_, 0, view_proj, 800, 600, px + glm::vec2(5, -5), 20.0f),
+              (ParticleHandle{ParticlePart::Attractor, 1}));
+    EXPECT_FALSE(pickParticleHandle(*doc_, 0, view_proj, 800, 600, px + glm::vec2(60, 0), 20.0f));
+    EXPECT_FALSE(pickParticleHandle(*doc_, 3, view_proj, 800, 600, px, 20.0f));  // no such system
+    // The generator by its centre; the plane cutter by the point where it cuts (its centre + 0.2 m up).
+    EXPECT_EQ(pickParticleHandle(*doc_, 0, view_proj, 800, 600, pixel(glm::vec3(0.0f)) + glm::vec2(3, 3), 20.0f),
+              (ParticleHandle{ParticlePart::Generator, 0}));
+    const std::vector<ParticleHandlePoint> dots = particleHandlePoints(scene());
+    ASSERT_EQ(dots.size(), 4u);
+    EXPECT_EQ(dots[3].handle, (ParticleHandle{ParticlePart::Cutter, 0}));
+    EXPECT_EQ(dots[3].position_m, glm::vec3(-0.5f, 0.5f, 0.2f));
+    EXPECT_EQ(pickParticleHandle(*doc_, 0, view_proj, 800, 600, pixel(dots[3].position_m), 20.0f), dots[3].handle);
 }
 
 TEST_F(ParticleTool, ADragMovesTheAttractorAndIsOneUndoStep) {
     const glm::vec3 start = attractor(1);
     const uint64_t generation = doc_->particlesGeneration();
-    AttractorDrag drag;
-    ASSERT_TRUE(drag.begin(doc_.get(), 0, 1, down(glm::vec2(start))));
+    ParticleHandleDrag drag;
+    ASSERT_TRUE(drag.begin(doc_.get(), 0, {ParticlePart::Attractor, 1}, down(glm::vec2(start))));
     std::string error;
     for (int k = 1; k <= 5; ++k) ASSERT_TRUE(drag.drag(down(glm::vec2(start) + 0.04f * float(k) * glm::vec2(1, 0.5f)), false, &error)) << error;
     // Horizontal: the height is kept, the place follows the ray's point on the plane through the grab.
@@ -91,8 +108,64 @@ TEST_F(ParticleTool, ADragMovesTheAttractorAndIsOneUndoStep) {
     EXPECT_EQ(attractor(1), start);
     EXPECT_FALSE(doc_->canUndo());
     // No such attractor: nothing begins.
-    EXPECT_FALSE(drag.begin(doc_.get(), 0, 2, down(glm::vec2(0))));
+    EXPECT_FALSE(drag.begin(doc_.get(), 0, {ParticlePart::Attractor, 2}, down(glm::vec2(0))));
+    EXPECT_FALSE(drag.begin(doc_.get(), 0, {ParticlePart::Cutter, 1}, down(glm::vec2(0))));
+    EXPECT_FALSE(drag.begin(doc_.get(), 0, {}, down(glm::vec2(0))));
     EXPECT_FALSE(drag.active());
+}
+
+TEST_F(ParticleTool, GeneratorsAndCuttersDragLikeAttractors) {
+    const ParticleScene before = scene();
+    ParticleHandleDrag drag;
+    std::string error;
+    // The generator: its centre moves, the strands' seeds with it; nothing else changes.
+    ASSERT_TRUE(drag.begin(doc_.get(), 0, {ParticlePart::Generator, 0}, down(glm::vec2(0.0f))));
+    for (int k = 1; k <= 4; ++k) ASSERT_TRUE(drag.drag(down(glm::vec2(0.05f * float(k), -0.02f * float(k))), false, &error)) << error;
+    drag.end();
+    EXPECT_EQ(doc_->undoName(), "Move generator");
+    EXPECT_NEAR(scene().generators[0].center_m.x, 0.2f, 1e-5f);
+    EXPECT_NEAR(scene().generators[0].center_m.y, -0.08f, 1e-5f);
+    EXPECT_EQ(scene().generators[0].center_m.z, 0.0f);
+    EXPECT_EQ(scene().generators[0].axis_u_m, before.generators[0].axis_u_m);
+    EXPECT_EQ(scene().attractors, before.attractors);
+    EXPECT_EQ(scene().cutters, before.cutters);
+    // The cutter, grabbed at the point where it cuts: moved up by 0.1 m (Shift), its threshold kept.
+    const glm::vec3 cut = before.cutters[0].center_m + glm::vec3(0, 0, 0.2f);
+    ASSERT_TRUE(drag.begin(doc_.get(), 0, {ParticlePart::Cutter, 0}, Ray{cut + glm::vec3(0, -3, 0), glm::vec3(0, 1, 0)}));
+    const glm::vec3 eye = cut + glm::vec3(0, -3, 0);
+    ASSERT_TRUE(drag.drag(Ray{eye, glm::normalize(cut + glm::vec3(0, 0, 0.1f) - eye)}, true, &error)) << error;
+    drag.end();
+    EXPECT_EQ(doc_->undoName(), "Move cutter");
+    EXPECT_NEAR(scene().cutters[0].center_m.z, 0.1f, 1e-4f);
+    EXPECT_EQ(scene().cutters[0].center_m.x, before.cutters[0].center_m.x);
+    EXPECT_EQ(scene().cutters[0].threshold_m, before.cutters[0].threshold_m);
+    // Two undo steps, one a drag, back to the file's system.
+    ASSERT_TRUE(doc_->undo());
+    ASSERT_TRUE(doc_->undo());
+    EXPECT_EQ(scene().generators, before.generators);
+    EXPECT_EQ(scene().cutters, before.cutters);
+    EXPECT_FALSE(doc_->canUndo());
+}
+
+TEST(ParticleHandles, MoveOnlyTheirOwnPart) {
+    ParticleScene s;
+    s.attractors.resize(2);
+    s.attractors[1].kind = AttractorKind::Segment;
+    s.attractors[1].b_m = {1, 0, 0};
+    s.generators.resize(1);
+    s.cutters.resize(1);
+    const ParticleScene before = s;
+    const glm::vec3 d(0.1f, 0.2f, 0.3f);
+    ASSERT_TRUE(moveParticleHandle(&s, {ParticlePart::Attractor, 1}, d));
+    EXPECT_EQ(s.attractors[1].a_m, d);  // a segment moves whole
+    EXPECT_EQ(s.attractors[1].b_m, glm::vec3(1, 0, 0) + d);
+    EXPECT_EQ(s.attractors[0], before.attractors[0]);
+    ASSERT_TRUE(moveParticleHandle(&s, {ParticlePart::Cutter, 0}, d));
+    EXPECT_EQ(s.cutters[0].center_m, d);
+    EXPECT_EQ(s.generators, before.generators);
+    EXPECT_FALSE(moveParticleHandle(&s, {ParticlePart::Generator, 1}, d));
+    EXPECT_FALSE(moveParticleHandle(&s, {}, d));
+    EXPECT_EQ(s.generators, before.generators);
 }
 
 }  // namespace

@@ -587,7 +587,8 @@ else
   bad "edit: Fig. 3 sequence: $(tail -5 "$fdir/log")"
 fi
 
-# The particle tool by real X input: an attractor dragged in the view with the mouse, then Ctrl+Z.
+# The particle tool by real X input: an attractor dragged in the view with the mouse, then Ctrl+Z; the
+# generator's dot dragged; a key of a(t) dragged on the Particles window's plot, then Ctrl+Z.
 if command -v xdotool >/dev/null 2>&1; then
   xwork="$tmp/driven-particles"
   mkdir -p "$xwork"
@@ -597,7 +598,8 @@ if command -v xdotool >/dev/null 2>&1; then
      out="$(python3 - "$xwork" <<'PY' 2>&1
 import json, sys
 d = sys.argv[1]
-start, dragged, undone = (json.load(open("%s/%s.json" % (d, n)))["particles"] for n in ("start.stats", "dragged", "undone"))
+stats = {n: json.load(open("%s/%s.json" % (d, n))) for n in ("start.stats", "dragged", "undone", "generator", "curve", "curve_undone")}
+start, dragged, undone = (stats[n]["particles"] for n in ("start.stats", "dragged", "undone"))
 a0, a1, a2 = (p["systems"][0]["attractors"][1] for p in (start, dragged, undone))
 assert dragged["selected_attractor"] == 1, dragged
 assert a1[0] - a0[0] > 0.15 and abs(a1[1] - a0[1]) < 0.05 and a1[2] == a0[2], (a0, a1)
@@ -605,10 +607,22 @@ last = dragged["last"]
 assert last["ok"] and last["incremental"] and last["reused"] > last["recomputed"], last
 assert a2 == a0, ("Ctrl+Z did not put the attractor back", a0, a2)
 assert dragged["systems"][1]["attractors"][1][0] - start["systems"][1]["attractors"][1][0] > 0.15, "the shared file's other entry did not follow"
-print("moved %.2f m by the mouse, %d %% re-grown" % (a1[0] - a0[0], 100 * last["recomputed"] // (last["recomputed"] + last["reused"])))
+# The generator's dot dragged 100 px right: its centre moves along x, one undo step, the strands re-grown.
+g0, g1 = (stats[n]["particles"]["systems"][0]["generators"][0] for n in ("undone", "generator"))
+assert stats["generator"]["particles"]["selected_handle"] == {"part": "generator", "index": 0}, stats["generator"]["particles"]
+assert g1[0] - g0[0] > 0.15 and abs(g1[1] - g0[1]) < 0.05 and g1[2] == g0[2], (g0, g1)
+assert stats["generator"]["document"]["undo_name"] == "Move generator", stats["generator"]["document"]
+assert stats["generator"]["particles"]["last"]["ok"], stats["generator"]["particles"]["last"]
+# The a(t) key dragged on the window's plot: later and negative (repelling), one undo step that Ctrl+Z takes back.
+k0, k1, k2 = (stats[n]["particles"]["systems"][0]["charge_keys"][1] for n in ("generator", "curve", "curve_undone"))
+assert k0 == [[0, 3.0]] and len(k1) == 1 and k1[0][0] > 4 and k1[0][1] < 0, (k0, k1)
+assert stats["curve"]["document"]["undo_name"] == "Edit a(t)", stats["curve"]["document"]
+assert k2 == k0 and stats["curve_undone"]["document"]["undo_name"] == "Move generator", (k2, stats["curve_undone"]["document"])
+print("moved %.2f m by the mouse, %d %% re-grown; generator moved %.2f m; a(t) key to step %d, charge %.2f" % (
+    a1[0] - a0[0], 100 * last["recomputed"] // (last["recomputed"] + last["reused"]), g1[0] - g0[0], k1[0][0], k1[0][1]))
 PY
 )"; then
-    ok "edit meadow_strands: an attractor dragged by real X input re-grows its strands and undoes ($out)"
+    ok "edit meadow_strands: an attractor, a generator and an a(t) key dragged by real X input re-grow the strands and undo ($out)"
   else
     bad "edit meadow_strands: attractor drag by X input: $out $(tail -3 "$xwork/session.log" 2>/dev/null)"
   fi
