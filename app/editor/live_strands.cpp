@@ -14,12 +14,11 @@ LiveStrandsResult LiveStrands::grow(const std::vector<ParticleSystemFile>& syste
     LiveStrandsResult out;
     out.generation = generation;
     out.report.incremental = !systems.empty();
-    // A system's regrower keeps its record across edits; a different number of systems (another document)
-    // starts every one afresh.
-    if (regrowers_.size() != systems.size()) {
-        regrowers_.clear();
-        for (size_t i = 0; i < systems.size(); ++i) regrowers_.push_back(std::make_unique<StrandRegrower>());
-    }
+    // A system's regrower keeps its record across edits. Systems are only ever added or taken away at the
+    // end (New system and its undo); another document gets another LiveStrands.
+    regrowers_.resize(systems.size());
+    for (std::unique_ptr<StrandRegrower>& r : regrowers_)
+        if (!r) r = std::make_unique<StrandRegrower>();
     for (size_t i = 0; i < systems.size(); ++i) {
         const ParticleSystemFile& system = systems[i];
         Strands strands;

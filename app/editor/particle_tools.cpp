@@ -65,6 +65,35 @@ bool moveParticleHandle(ParticleScene* scene, ParticleHandle handle, glm::vec3 o
     return false;
 }
 
+ParticleSystemFile newGrassSystem(glm::vec3 at, bool on_terrain) {
+    ParticleSystemFile s;
+    s.name = s.file_name = "strands";
+    ParticleGenerator g;
+    g.center_m = at;
+    g.axis_u_m = {0.3f, 0.0f, 0.0f};
+    g.axis_v_m = {0.0f, 0.3f, 0.0f};
+    g.count = 600;
+    g.heading_cone_deg = 12.0f;
+    g.on_terrain = on_terrain;
+    s.scene.generators.push_back(g);
+    Attractor up;  // far above: the strands grow upwards, a little each way
+    up.a_m = at + glm::vec3(0.0f, 0.0f, 60.0f);
+    s.scene.attractors.push_back(up);
+    WalkSettings& w = s.scene.walk;
+    w.steps = 20;
+    w.trials = 8;
+    w.cone_deg = 22.0f;
+    w.step_length_m = 0.012f;
+    w.strand_radius_m = 0.0015f;
+    w.collisions = true;
+    s.mesh.shape = StrandShape::Blade;
+    s.mesh.blade_width_m = 0.005f;
+    s.mesh.blade_tip = 0.15f;
+    s.material.base_color = glm::vec3(0.3f, 0.46f, 0.12f);
+    s.material.roughness = 0.85f;
+    return s;
+}
+
 bool ParticleHandleDrag::begin(Document* doc, size_t system, ParticleHandle handle, const Ray& ray) {
     if (active()) end();
     if (system >= doc->particles()->size()) return false;

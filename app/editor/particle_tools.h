@@ -48,6 +48,11 @@ ParticleHandle pickParticleHandle(const Document& doc, size_t system, const glm:
 // no such handle.
 bool moveParticleHandle(ParticleScene* scene, ParticleHandle handle, glm::vec3 offset);
 
+// The system the Particles window's "New system" adds: a patch of grass blades (a 0.6 m square of 600
+// strands at `at`, dropped onto the terrain when there is one) pulled up by a far attractor, with
+// collisions on; somewhere to start from.
+ParticleSystemFile newGrassSystem(glm::vec3 at, bool on_terrain);
+
 class ParticleHandleDrag {
   public:
     bool active() const { return doc_ != nullptr; }

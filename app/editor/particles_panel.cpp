@@ -1,6 +1,7 @@
 // The Particles window (issue 14): the project's particle systems, one at a time. Generators, attractors
-// (their place, reach and charge keys, with a plot of a(t) over the steps), cutters and the walk are
-// edited in place; the strands re-grow in the background as they change (live_strands.h), re-growing
+// (their place, reach and charge keys, with a(t) drawn and edited on its plot: charge_curve.h), cutters
+// and the walk are edited in place, parts added at the view's centre and removed; New system adds a grass
+// patch in a new file. The strands re-grow in the background as they change (live_strands.h), re-growing
 // only what an attractor's move reaches.
 //
 // Undo granularity: a drag (a position, a reach, a charge) is one stroke, so the strands follow the mouse
@@ -306,6 +307,27 @@ std::string partLabel(const char* part, size_t i, const char* kind) {
     return label;
 }
 
+// "New system": a grass patch at the view's centre in a new file beside the project (Document::
+// addParticleSystem), selected at once. One undo step. True when it was added: the document's systems
+// are then another vector (references into the old one dangle).
+bool newSystemButton(Document* doc, ParticlesPanelState* state, std::string* message) {
+    if (!ImGui::Button("New system")) {
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("a patch of grass strands at the view's centre, in a new file beside the project");
+        return false;
+    }
+    std::string error;
+    if (doc->addParticleSystem(newGrassSystem(state->place_at, doc->terrain() != nullptr), &error)) {
+        state->selected = doc->particles()->size() - 1;
+        state->selected_handle = {};
+        state->last_error.clear();
+        return true;
+    }
+    state->last_error = error;
+    *message = error;
+    return false;
+}
+
 }  // namespace
 
 void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* message, bool* open) {
@@ -316,12 +338,15 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
     if (!beginDocumentPanel("Particles", open, doc != nullptr)) return;
     const std::vector<ParticleSystemFile>& systems = *doc->particles();
     if (systems.empty()) {
-        ImGui::TextWrapped("The project has no particle system. Add one to its \"particles\" list "
-                           "(docs/scene-format.md) and open it again.");
+        ImGui::TextWrapped("The project has no particle system: New system grows a patch of grass strands at the "
+                           "view's centre, to edit from here.");
+        newSystemButton(doc, state, message);
+        if (!state->last_error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "%s", state->last_error.c_str());
         ImGui::End();
         return;
     }
     state->selected = std::min(state->selected, systems.size() - 1);
+    ImGui::SetNextItemWidth(std::max(80.0f, ImGui::GetContentRegionAvail().x - 160.0f));
     if (ImGui::BeginCombo("system", systems[state->selected].name.c_str())) {
         for (size_t i = 0; i < systems.size(); ++i)
             if (ImGui::Selectable(systems[i].name.c_str(), i == state->selected)) {
@@ -329,6 +354,11 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
                 state->selected_handle = {};
             }
         ImGui::EndCombo();
+    }
+    ImGui::SameLine();
+    if (newSystemButton(doc, state, message)) {
+        ImGui::End();  // drawn from the new system next frame
+        return;
     }
     if (state->growing) ImGui::TextDisabled("growing...");
     else ImGui::TextDisabled("%s", state->status.c_str());

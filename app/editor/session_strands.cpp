@@ -29,6 +29,9 @@ void EditorSession::startStrands() {
 }
 
 void EditorSession::syncStrands() {
+    // A document without systems gets its worker with the first one (New system).
+    if (scene && !live_strands && !scene->doc->particles()->empty())
+        live_strands = std::make_unique<LiveStrands>(doc_options.threads);
     if (!scene || !live_strands) {
         particles_panel.growing = false;
         return;

@@ -435,6 +435,38 @@ bool Document::setParticleSystem(size_t index, const ParticleSystemFile& system,
     return execute(std::make_unique<SetParticleSystemsCommand>(std::move(after)), error);
 }
 
+bool Document::addParticleSystem(const ParticleSystemFile& system, std::string* error) {
+    if (project_.base_dir.empty() || path_.empty()) {
+        *error = "save the project first: a particle system is a file beside it";
+        return false;
+    }
+    ParticleSystemFile placed = system;
+    const auto taken = [&](const std::string& name) {
+        for (const ParticleSystemFile& s : *particles_)
+            if (s.name == name) return true;
+        return false;
+    };
+    for (int n = 2; taken(placed.name); ++n) placed.name = system.name + "_" + std::to_string(n);
+    placed.file_name = placed.name;
+    placed.scene.terrain = terrain_;
+    std::string why;
+    if (!validateParticleScene(placed.scene, &why)) {
+        *error = "new particle system (" + placed.name + "): " + why;
+        return false;
+    }
+    ParticleSystemRef ref;
+    ref.file = newParticleFileName(project_, placed.name);
+    const fs::path file = resolveProjectPath(project_, ref.file);
+    std::error_code ec;
+    fs::create_directories(file.parent_path(), ec);
+    if (ec) {
+        *error = file.parent_path().string() + ": " + ec.message();
+        return false;
+    }
+    if (!writeTextFileAtomically(file.string(), particleSystemToJson(placed).dump(2) + "\n", error)) return false;
+    return execute(std::make_unique<AddParticleSystemCommand>(std::move(ref), std::move(placed)), error);
+}
+
 std::unique_ptr<GhostTileJob> Document::startGhostTileJob(GhostTileSpec spec, std::string* error) const {
     if (!validateGhostTileSpec(spec, project_, error)) return nullptr;
     GhostTileJobContext context;

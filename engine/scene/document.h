@@ -159,6 +159,11 @@ public:
     // the same file take it too (particle_commands.h). Refused with the entry and field named when the
     // system is invalid (validateParticleScene). Saving writes the changed particle files.
     bool setParticleSystem(size_t index, const ParticleSystemFile& system, std::string* error);
+    // A new system (placed as given, no offset) in a new file beside the project ("particles/<name>.json",
+    // particle_commands.h), its name made unique among the project's systems, one undo step. The file is
+    // written at once, so an autosave recovered after a crash finds it; Save writes it again with the
+    // edits since. Refused for a project never saved (no folder to put the file in) or an invalid system.
+    bool addParticleSystem(const ParticleSystemFile& system, std::string* error);
     // The environmental objects' tree and fields become `environment`'s (its type library must be the
     // project's: types are not edited here), one undo step named `name` ("Move object", "Footprints").
     // Compiled at once (errors name the node or field); the scattered types and the settling follow.

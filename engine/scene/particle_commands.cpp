@@ -44,6 +44,34 @@ void SetParticleSystemsCommand::revert(EditTarget t, EditEffect* effect) {
     effect->particles = true;
 }
 
+bool AddParticleSystemCommand::apply(EditTarget t, EditEffect* effect, std::string*) {
+    t.project->particles.push_back(ref_);
+    auto systems = std::make_shared<std::vector<ParticleSystemFile>>(**t.particles);
+    systems->push_back(system_);
+    *t.particles = std::move(systems);
+    effect->particles = true;
+    return true;
+}
+
+void AddParticleSystemCommand::revert(EditTarget t, EditEffect* effect) {
+    t.project->particles.pop_back();
+    auto systems = std::make_shared<std::vector<ParticleSystemFile>>(**t.particles);
+    systems->pop_back();
+    *t.particles = std::move(systems);
+    effect->particles = true;
+}
+
+std::string newParticleFileName(const Project& project, const std::string& stem) {
+    std::set<std::string> named;
+    for (size_t i = 0; i < project.particles.size(); ++i) named.insert(entryFile(project, i));
+    for (int n = 1;; ++n) {
+        const std::string file = "particles/" + stem + (n == 1 ? "" : "_" + std::to_string(n)) + ".json";
+        const std::string path = std::filesystem::path(resolveProjectPath(project, file)).lexically_normal().string();
+        std::error_code ec;
+        if (!named.count(path) && !std::filesystem::exists(path, ec)) return file;
+    }
+}
+
 std::vector<ParticleFileWrite> particleFilesToWrite(const Project& project, const std::vector<ParticleSystemFile>& systems,
                                                     const std::vector<ParticleSystemFile>& saved) {
     std::vector<ParticleFileWrite> out;

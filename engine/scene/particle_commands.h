@@ -31,6 +31,25 @@ private:
     ParticleSystems after_, before_;
 };
 
+// A new system: `ref` appended to the project's "particles" list and `system` (placed) to the systems, one
+// undo step; undo takes both away (the file written when it was added stays on disk, unreferenced).
+class AddParticleSystemCommand : public Command {
+public:
+    AddParticleSystemCommand(ParticleSystemRef ref, ParticleSystemFile system)
+        : ref_(std::move(ref)), system_(std::move(system)) {}
+    std::string name() const override { return "Add particle system"; }
+    bool apply(EditTarget target, EditEffect* effect, std::string* error) override;
+    void revert(EditTarget target, EditEffect* effect) override;
+
+private:
+    ParticleSystemRef ref_;
+    ParticleSystemFile system_;
+};
+
+// A file for a new system beside the project, as its "particles" list names it: "particles/<stem>.json",
+// or "<stem>_2.json", "_3", ... while that file exists on disk or an entry names it.
+std::string newParticleFileName(const Project& project, const std::string& stem);
+
 // A particle file to write when the project is saved.
 struct ParticleFileWrite {
     std::string path;  // as the project resolves it

@@ -610,6 +610,73 @@ TEST(Document, ParticleEditsAreUndoableSharedByTheFileAndSavedToIt) {
     EXPECT_FALSE(fs::exists(grass));
 }
 
+TEST(Document, ANewParticleSystemIsAFileBesideTheProjectAndOneUndoStep) {
+    // A project without systems gets one: its file written at once under particles/, the project's list
+    // naming it, one undo step; a second with the same name is renamed and filed apart; Save writes the
+    // list and the edits, a reopened project grows both; an autosave recovered after a crash keeps them.
+    TempDir dir;
+    const fs::path a = dir.path() / "scene.json";
+    auto doc = openDoc(writeProject(a, projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    ASSERT_TRUE(doc->particles()->empty());
+    ParticleSystemFile grass;
+    grass.name = "grass";
+    ParticleGenerator g;
+    g.axis_u_m = {0.3f, 0.0f, 0.0f};
+    g.axis_v_m = {0.0f, 0.3f, 0.0f};
+    g.count = 30;
+    g.on_terrain = true;
+    grass.scene.generators.push_back(g);
+    grass.scene.walk.steps = 4;
+    const uint64_t generation = doc->particlesGeneration();
+    std::string error;
+    ASSERT_TRUE(doc->addParticleSystem(grass, &error)) << error;
+    EXPECT_NE(doc->particlesGeneration(), generation);
+    EXPECT_EQ(doc->undoName(), "Add particle system");
+    ASSERT_EQ(doc->project().particles.size(), 1u);
+    EXPECT_EQ(doc->project().particles[0].file, "particles/grass.json");
+    ASSERT_EQ(doc->particles()->size(), 1u);
+    EXPECT_NE((*doc->particles())[0].scene.terrain, nullptr);  // seeds on the project's ground
+    ParticleSystemFile on_disk;
+    ASSERT_TRUE(loadParticleSystem((dir.path() / "particles" / "grass.json").string(), &on_disk, &error)) << error;
+    EXPECT_EQ(on_disk.name, "grass");
+    EXPECT_EQ(on_disk.scene.generators, (*doc->particles())[0].scene.generators);
+    // The same name again: renamed, in its own file.
+    ASSERT_TRUE(doc->addParticleSystem(grass, &error)) << error;
+    ASSERT_EQ(doc->particles()->size(), 2u);
+    EXPECT_EQ((*doc->particles())[1].name, "grass_2");
+    EXPECT_EQ(doc->project().particles[1].file, "particles/grass_2.json");
+    // Undo takes the entry away (its file stays, unreferenced); redo brings it back.
+    ASSERT_TRUE(doc->undo());
+    EXPECT_EQ(doc->particles()->size(), 1u);
+    EXPECT_EQ(doc->project().particles.size(), 1u);
+    ASSERT_TRUE(doc->redo());
+    ASSERT_EQ(doc->particles()->size(), 2u);
+    // An invalid system is refused naming the field (a project never saved: below).
+    ParticleSystemFile bad = grass;
+    bad.scene.walk.trials = 0;
+    EXPECT_FALSE(doc->addParticleSystem(bad, &error));
+    EXPECT_NE(error.find("walk.trials"), std::string::npos) << error;
+    EXPECT_EQ(doc->particles()->size(), 2u);
+    // Edited, autosaved, recovered: the new systems and their edit are there.
+    ParticleSystemFile edited = (*doc->particles())[1];
+    edited.scene.generators[0].center_m = {0.5f, 0.0f, 0.0f};
+    ASSERT_TRUE(doc->setParticleSystem(1, edited, &error)) << error;
+    ASSERT_TRUE(doc->autosave(&error)) << error;
+    {
+        auto recovered = Document::recover(a.string(), optionsFor(dir), &error);
+        ASSERT_TRUE(recovered) << error;
+        ASSERT_EQ(recovered->particles()->size(), 2u);
+        EXPECT_EQ((*recovered->particles())[1].scene.generators[0].center_m, glm::vec3(0.5f, 0.0f, 0.0f));
+    }
+    ASSERT_TRUE(doc->save(&error)) << error;
+    auto reopened = openDoc(a.string(), optionsFor(dir));
+    ASSERT_TRUE(reopened);
+    ASSERT_EQ(reopened->particles()->size(), 2u);
+    EXPECT_EQ((*reopened->particles())[1].name, "grass_2");
+    EXPECT_EQ((*reopened->particles())[1].scene.generators[0].center_m, glm::vec3(0.5f, 0.0f, 0.0f));
+}
+
 TEST(Document, AFailedSaveKeepsTheDocumentDirtyAndTheFileUntouched) {
     TempDir dir;
     const std::string path = writeProject(dir.path() / "scene.json", projectJson(modelsDir()));
@@ -769,6 +836,10 @@ TEST(Document, ANewProjectWithNoDensityOpensEmptyAndFillsAsYouPaint) {
     EXPECT_EQ(liveStore(*doc).instanceCount(), 0u);
     EXPECT_FALSE(doc->save(&error));
     EXPECT_NE(error.find("Save As"), std::string::npos);
+    // A particle system is a file beside the project: none before it has a folder.
+    EXPECT_FALSE(doc->addParticleSystem(ParticleSystemFile{}, &error));
+    EXPECT_NE(error.find("save the project first"), std::string::npos) << error;
+    EXPECT_TRUE(doc->particles()->empty());
     const uint64_t id = doc->addPrimitive(0, makePoint({0.2f, 0.2f, 0.0f}, 0.7f), &error);
     ASSERT_NE(id, 0u) << error;
     // The extent is derived from the densities, as the CLI will derive it from the saved file.

@@ -2,9 +2,9 @@
 # The particle tool driven by real X input (xdotool): with the Particles window open (the start script's
 # set_attractor opens it and puts the wind attractor in the left patch, in the middle of the view), a
 # left-drag from the attractor's dot moves it and the strands re-grow; Ctrl+Z puts it back. Then the
-# generator's dot is dragged, and the attractor's a(t) key on the window's plot. F12 writes the statistics
-# after each step (WORKDIR/dragged.json, undone.json, generator.json, curve.json, curve_undone.json; the
-# start script's in
+# generator's dot is dragged, the attractor's a(t) key on the window's plot, and New system clicked. F12 writes the statistics
+# after each step (WORKDIR/dragged.json, undone.json, generator.json, curve.json, curve_undone.json, new_system.json;
+# the start script's in
 # start.stats.json). Runs inside an X server (run_gui_tests.sh starts it with xvfb-run at 1600x900); exits
 # non-zero only when a step cannot be driven, the checks are the caller's.
 # usage: driven_particles.sh UNDERGROWTH_BIN PROJECT.json WORKDIR CACHE
@@ -41,5 +41,8 @@ drag 387 443 547 488
 dump curve "$settled"
 undo
 dump curve_undone "$settled"
+# New system, right of the window's system combo: a grass patch at the view's centre, in a new file.
+click 655 66
+dump new_system '"name": "strands"'
 quit_editor
 exit 0

@@ -588,7 +588,7 @@ else
 fi
 
 # The particle tool by real X input: an attractor dragged in the view with the mouse, then Ctrl+Z; the
-# generator's dot dragged; a key of a(t) dragged on the Particles window's plot, then Ctrl+Z.
+# generator's dot dragged; a key of a(t) dragged on the Particles window's plot, then Ctrl+Z; New system.
 if command -v xdotool >/dev/null 2>&1; then
   xwork="$tmp/driven-particles"
   mkdir -p "$xwork"
@@ -598,7 +598,7 @@ if command -v xdotool >/dev/null 2>&1; then
      out="$(python3 - "$xwork" <<'PY' 2>&1
 import json, sys
 d = sys.argv[1]
-stats = {n: json.load(open("%s/%s.json" % (d, n))) for n in ("start.stats", "dragged", "undone", "generator", "curve", "curve_undone")}
+stats = {n: json.load(open("%s/%s.json" % (d, n))) for n in ("start.stats", "dragged", "undone", "generator", "curve", "curve_undone", "new_system")}
 start, dragged, undone = (stats[n]["particles"] for n in ("start.stats", "dragged", "undone"))
 a0, a1, a2 = (p["systems"][0]["attractors"][1] for p in (start, dragged, undone))
 assert dragged["selected_attractor"] == 1, dragged
@@ -618,11 +618,23 @@ k0, k1, k2 = (stats[n]["particles"]["systems"][0]["charge_keys"][1] for n in ("g
 assert k0 == [[0, 3.0]] and len(k1) == 1 and k1[0][0] > 4 and k1[0][1] < 0, (k0, k1)
 assert stats["curve"]["document"]["undo_name"] == "Edit a(t)", stats["curve"]["document"]
 assert k2 == k0 and stats["curve_undone"]["document"]["undo_name"] == "Move generator", (k2, stats["curve_undone"]["document"])
-print("moved %.2f m by the mouse, %d %% re-grown; generator moved %.2f m; a(t) key to step %d, charge %.2f" % (
-    a1[0] - a0[0], 100 * last["recomputed"] // (last["recomputed"] + last["reused"]), g1[0] - g0[0], k1[0][0], k1[0][1]))
+# New system: a third system named "strands" at the view's centre, its file written beside the project,
+# one undo step, its strands grown.
+new = stats["new_system"]
+names = [s["name"] for s in new["particles"]["systems"]]
+assert names == ["meadow_grass_strands", "meadow_grass_strands_2", "strands"], names
+assert new["document"]["undo_name"] == "Add particle system", new["document"]
+centre = new["viewport"]["camera"]["target"]
+assert abs(new["particles"]["systems"][2]["generators"][0][0] - centre[0]) < 1e-3, (new["particles"]["systems"][2], centre)
+written = json.load(open("%s/assets/scenes/particles/strands.json" % d))
+assert written["name"] == "strands" and written["generators"][0]["count"] == 600, written
+assert new["particles"]["last"]["ok"] and new["particles"]["last"]["strands"] > start["last"]["strands"], new["particles"]["last"]
+print("moved %.2f m by the mouse, %d %% re-grown; generator moved %.2f m; a(t) key to step %d, charge %.2f; new system: %d strands in all" % (
+    a1[0] - a0[0], 100 * last["recomputed"] // (last["recomputed"] + last["reused"]), g1[0] - g0[0], k1[0][0], k1[0][1],
+    new["particles"]["last"]["strands"]))
 PY
 )"; then
-    ok "edit meadow_strands: an attractor, a generator and an a(t) key dragged by real X input re-grow the strands and undo ($out)"
+    ok "edit meadow_strands: an attractor, a generator and an a(t) key dragged and a new system added by real X input ($out)"
   else
     bad "edit meadow_strands: attractor drag by X input: $out $(tail -3 "$xwork/session.log" 2>/dev/null)"
   fi
