@@ -127,6 +127,10 @@ private:
     void startStrands();
     void syncStrands();
     bool strandsSettled() const;  // the strands on screen are the document's systems'
+    // The Particles window's Cancel: the growth in progress stops and the edit it grows is undone, so
+    // the strands on screen are the document's again (only when Ctrl+Z would undo exactly that edit;
+    // false when it did nothing).
+    bool cancelStrands();
     json strandsJson() const;     // the last growth, for the replay's record
     // ---- session_environment.cpp ----
     // The same for the environment: the compiled scene submitted after an edit, the finished snow and

@@ -1,5 +1,6 @@
 #include "editor/live_strands.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "particles/particle_output.h"
@@ -14,6 +15,9 @@ LiveStrandsResult LiveStrands::grow(const std::vector<ParticleSystemFile>& syste
     LiveStrandsResult out;
     out.generation = generation;
     out.report.incremental = !systems.empty();
+    // A cancel that came before this growth started, for it, still counts; one for an older growth not.
+    cancel_.store(cancel_through_.load() >= generation);
+    systems_.store(uint32_t(systems.size()));
     // A system's regrower keeps its record across edits. Systems are only ever added or taken away at the
     // end (New system and its undo); another document gets another LiveStrands.
     regrowers_.resize(systems.size());
@@ -24,8 +28,16 @@ LiveStrandsResult LiveStrands::grow(const std::vector<ParticleSystemFile>& syste
         Strands strands;
         MeshInstances mesh;
         std::string why;
-        if (!regrowers_[i]->grow(system.scene, {.threads = threads_}, &strands, &why) ||
-            !meshParticleStrands(system, strands, &mesh, &why)) {
+        system_.store(uint32_t(i));
+        system_steps_.store(std::max<uint32_t>(1, system.scene.walk.steps));
+        steps_done_.store(0);
+        const GrowOptions options{.threads = threads_, .cancel = &cancel_, .steps_done = &steps_done_};
+        if (!regrowers_[i]->grow(system.scene, options, &strands, &why) && why == kGrowthCancelled) {
+            out.cancelled = true;
+            out.meshes.clear();
+            break;
+        }
+        if (!why.empty() || !meshParticleStrands(system, strands, &mesh, &why)) {
             if (out.error.empty()) out.error = "particle system '" + system.name + "': " + why;
             continue;
         }
@@ -37,8 +49,16 @@ LiveStrandsResult LiveStrands::grow(const std::vector<ParticleSystemFile>& syste
         out.meshes.push_back(std::move(mesh));
         for (MeshInstances& surface : generatorSurfaces(system)) out.meshes.push_back(std::move(surface));
     }
+    systems_.store(0);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     return out;
+}
+
+float LiveStrands::progress() const {
+    const uint32_t systems = systems_.load();
+    if (systems == 0) return 0.0f;
+    const float step = std::min(1.0f, float(steps_done_.load()) / float(system_steps_.load()));
+    return std::min(1.0f, (float(system_.load()) + step) / float(systems));
 }
 
 }  // namespace ug::editor

@@ -6,6 +6,7 @@
 // newest finished meshes: the session swaps them into the scene's static meshes.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -25,6 +26,7 @@ struct LiveStrandsResult {
     double seconds = 0.0;
     uint64_t strands = 0;
     RegrowReport report;                // summed over the systems
+    bool cancelled = false;             // stopped by cancel(): no meshes, the strands shown stay
 };
 
 class LiveStrands {
@@ -42,6 +44,15 @@ public:
     bool busy() const { return worker_.busy(); }
     // Blocks until nothing is waiting or growing (tests, scripted runs).
     void waitIdle() { worker_.waitIdle(); }
+    // Stops the growth of `generation` (or of an older one) before its next step: its result comes back
+    // cancelled. The regrowers keep the records of their last finished growths, so growing the systems
+    // from before the edit again (the edit undone) reuses every move.
+    void cancel(uint64_t generation) {
+        cancel_through_.store(generation);
+        cancel_.store(true);
+    }
+    // How far the growth in progress is, in [0, 1]: systems done and the current one's steps.
+    float progress() const;
 
 private:
     struct Submission {
@@ -52,6 +63,11 @@ private:
 
     const int threads_;
     std::vector<std::unique_ptr<StrandRegrower>> regrowers_;  // worker only: one per system index
+    std::atomic<bool> cancel_{false};          // the growth in progress stops (GrowOptions::cancel)
+    std::atomic<uint64_t> cancel_through_{0};  // generations up to this one are cancelled
+    std::atomic<uint32_t> steps_done_{0};      // progress: the current system's steps done,
+    std::atomic<uint32_t> system_steps_{1};    // of its steps,
+    std::atomic<uint32_t> system_{0}, systems_{0};  // the current system of how many
     LatestWorker<Submission, LiveStrandsResult> worker_;       // last: started once the rest is ready
 };
 

@@ -204,6 +204,9 @@ struct ParticlesPanelState {
     ParticleHandle selected_handle;  // picked in the viewport (an attractor, generator or cutter), or none
     glm::vec3 place_at{0.0f};        // where Add puts a new part: the ground under the view's centre
     bool growing = false;    // its strands are growing in the background
+    float progress = 0.0f;   // of that growth, [0, 1]
+    bool can_cancel = false;        // the growth is for an edit that Cancel would undo
+    bool cancel_requested = false;  // Cancel pressed: the session stops the growth and undoes the edit
     std::string status;      // the last growth: strands, time, share re-grown
     std::string last_error;  // the last refused edit
     // The copy the widgets edit: taken from the document whenever no widget is active, so a field being

@@ -360,8 +360,18 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
         ImGui::End();  // drawn from the new system next frame
         return;
     }
-    if (state->growing) ImGui::TextDisabled("growing...");
-    else ImGui::TextDisabled("%s", state->status.c_str());
+    if (state->growing) {
+        char label[32];
+        std::snprintf(label, sizeof label, "growing %d %%", int(100.0f * state->progress));
+        ImGui::ProgressBar(state->progress, ImVec2(state->can_cancel ? -70.0f : -1.0f, 0.0f), label);
+        if (state->can_cancel) {
+            ImGui::SameLine();
+            if (ImGui::Button("Cancel")) state->cancel_requested = true;
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("stop growing and undo the edit");
+        }
+    } else {
+        ImGui::TextDisabled("%s", state->status.c_str());
+    }
     if (!state->last_error.empty()) ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "%s", state->last_error.c_str());
 
     if (!ImGui::IsAnyItemActive() || state->editing_doc != doc || state->editing_index != state->selected) {

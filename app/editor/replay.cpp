@@ -182,6 +182,7 @@ bool parseReplayScript(const std::string& text, const std::string& path, std::ve
                 }
                 r.influence_m = a.value("influence", NAN);
                 r.charge = a.value("charge", NAN);
+                r.cancel = a.value("cancel", false);
             }
             if (r.kind == ReplayKind::EnvAdd || r.kind == ReplayKind::EnvMove || r.kind == ReplayKind::EnvHandle) {
                 const json& at = a.at(r.kind == ReplayKind::EnvAdd ? "at" : "to");

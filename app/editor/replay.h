@@ -166,6 +166,7 @@ struct ReplayAction {
     bool has_a = false;
     glm::vec3 a_m{0.0f};
     float influence_m = NAN, charge = NAN;  // NaN: keep
+    bool cancel = false;  // set_attractor: the Particles window's Cancel pressed at once (the edit undone)
     // env_add (type: `type`, turn: yaw_deg), env_move, env_remove, env_global
     size_t node = 0;        // env_remove
     glm::vec2 at_xy{0.0f};  // env_add: "at"; env_move, env_handle: "to"

@@ -249,6 +249,11 @@ bool EditorSession::runReplayAction(const ReplayAction& a) {
             if (!std::isnan(a.charge)) at.charge = {ChargeKey{0, a.charge}};
             replay.record["ok"] = doc->setParticleSystem(a.system, system, &op_error);
             if (!op_error.empty()) replay.record["error"] = op_error;
+            replay.record["undo_name"] = doc->canUndo() ? doc->undoName() : "";
+            if (a.cancel) {
+                // As the window's Cancel while the edit grows: the growth stops and the edit is undone.
+                replay.record["cancelled"] = cancelStrands();
+            }
             break;
         }
         case ReplayKind::SetSeed:

@@ -4,6 +4,7 @@
 // scene's "strands/..." static meshes at the frame boundary, so the view, the export and the replay's
 // settled state all see the same strands.
 #include <cstdio>
+#include <utility>
 
 #include "editor/editor_session.h"
 
@@ -37,12 +38,14 @@ void EditorSession::syncStrands() {
         return;
     }
     Document& d = *scene->doc;
+    if (std::exchange(particles_panel.cancel_requested, false)) cancelStrands();
     if (d.particlesGeneration() != strands_submitted) {
         strands_submitted = d.particlesGeneration();
         live_strands->submit(d.particles(), strands_submitted);
     }
     LiveStrandsResult r;
-    if (live_strands->poll(&r)) {
+    // A cancelled growth's edit was undone (cancelStrands): its strands never show.
+    if (live_strands->poll(&r) && !r.cancelled) {
         if (r.generation != strands_shown) {
             std::vector<MeshInstances>& statics = scene->static_meshes;
             std::erase_if(statics, isStrandMesh);
@@ -61,6 +64,20 @@ void EditorSession::syncStrands() {
         last_strands = std::move(r);
     }
     particles_panel.growing = live_strands->busy();
+    particles_panel.progress = live_strands->progress();
+    particles_panel.can_cancel = particles_panel.growing && strands_shown != d.particlesGeneration() &&
+                                 d.undoRevertsParticles(d.particlesGeneration());
+}
+
+bool EditorSession::cancelStrands() {
+    Document& d = *scene->doc;
+    const uint64_t generation = d.particlesGeneration();
+    if (!live_strands || strands_shown == generation || !d.undoRevertsParticles(generation)) return false;
+    const std::string name = d.undoName();
+    live_strands->cancel(generation);
+    d.undo();
+    messages.push_back("Cancelled the strands' growth: \"" + name + "\" undone");
+    return true;
 }
 
 bool EditorSession::strandsSettled() const {

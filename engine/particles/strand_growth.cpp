@@ -133,7 +133,8 @@ struct Replay {
 class Growth {
 public:
     Growth(const ParticleScene& scene, const GrowOptions& options)
-        : scene_(scene), walk_(scene.walk), threads_(options.threads),
+        : scene_(scene), walk_(scene.walk), threads_(options.threads), cancel_(options.cancel),
+          steps_done_(options.steps_done),
           cone_(glm::radians(walk_.cone_deg)), cos_cone_(std::cos(cone_)),
           reach2_(4.0f * walk_.strand_radius_m * walk_.strand_radius_m),
           // A segment is at most step_length long; two whose tubes touch have midpoints within
@@ -181,6 +182,8 @@ private:
     const ParticleScene& scene_;
     const WalkSettings& walk_;
     int threads_;
+    const std::atomic<bool>* cancel_;      // GrowOptions::cancel
+    std::atomic<uint32_t>* steps_done_;    // GrowOptions::steps_done
     float cone_, cos_cone_, reach2_, reach_;
     PointStore points_;
     StrandStore strands_;
@@ -487,6 +490,11 @@ bool Growth::run(Strands* out, std::string* error) {
     }
     charge_.resize(scene_.attractors.size());
     for (uint32_t step = 1; step <= walk_.steps; ++step) {
+        if (cancel_ && cancel_->load(std::memory_order_relaxed)) {
+            if (error) *error = kGrowthCancelled;
+            return false;
+        }
+        if (steps_done_) steps_done_->store(step - 1, std::memory_order_relaxed);
         active_.clear();
         for (uint32_t s = 0; s < strands_.size(); ++s)
             if (strands_.state[s] == StrandState::Active) active_.push_back(s);
@@ -596,6 +604,7 @@ bool Growth::run(Strands* out, std::string* error) {
     }
     emit(out);
     if (record_) keepRecord();
+    if (steps_done_) steps_done_->store(walk_.steps, std::memory_order_relaxed);
     return true;
 }
 
@@ -682,7 +691,9 @@ bool StrandRegrower::grow(const ParticleScene& scene, const GrowOptions& options
     if (record_ && regrowable(scene_, scene)) growth.replayFrom(*record_, scene_);
     growth.recordInto(next_.get());
     if (!growth.run(out, error)) {
-        reset();
+        // Cancelled: the record of the last finished growth still describes scene_, so the next growth
+        // (the edit undone, say) is incremental from it.
+        if (!(options.cancel && options.cancel->load())) reset();
         return false;
     }
     report_ = growth.report();

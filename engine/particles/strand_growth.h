@@ -15,6 +15,7 @@
 // The strands are then a pure function of the scene: bit-identical for any thread count.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -52,7 +53,15 @@ struct Strands {
 
 struct GrowOptions {
     int threads = 0;  // 0 = all hardware threads; never changes the result
+    // Set (by another thread): the growth stops before its next step and fails with "cancelled"; a
+    // StrandRegrower then keeps the record of its last finished growth. Never changes a finished result.
+    const std::atomic<bool>* cancel = nullptr;
+    // Progress for another thread: the steps finished so far (of walk.steps; a growth whose strands all end
+    // early stops short of it).
+    std::atomic<uint32_t>* steps_done = nullptr;
 };
+
+constexpr const char* kGrowthCancelled = "cancelled";
 
 // Validates the scene (validateParticleScene) and grows its strands. Returns false with *error when the
 // scene is invalid or when splits would need more than walk.max_points points (refused, not truncated).

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <system_error>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
@@ -371,10 +372,12 @@ bool Document::execute(std::unique_ptr<Command> command, std::string* error) {
         return false;
     }
     ++edit_count_;
+    const uint64_t particles_generation = effect.particles ? particles_generation_ : 0;
     if (stroke_) {
         stroke_->push(std::move(command));
+        if (particles_generation) stroke_particles_generation_ = particles_generation;
     } else {
-        undo_.push_back(Step{std::move(command), next_state_++});
+        undo_.push_back(Step{std::move(command), next_state_++, particles_generation});
         if (undo_.size() > kMaxUndoSteps) undo_.erase(undo_.begin());
     }
     redo_.clear();
@@ -491,8 +494,9 @@ void Document::beginStroke(const std::string& name) {
 void Document::endStroke() {
     if (!stroke_) return;
     std::unique_ptr<CompoundCommand> stroke = std::move(stroke_);
+    const uint64_t particles_generation = std::exchange(stroke_particles_generation_, 0);
     if (stroke->empty()) return;
-    undo_.push_back(Step{std::move(stroke), next_state_++});
+    undo_.push_back(Step{std::move(stroke), next_state_++, particles_generation});
     if (undo_.size() > kMaxUndoSteps) undo_.erase(undo_.begin());
 }
 
@@ -537,6 +541,7 @@ bool Document::redo() {
         redo_.push_back(std::move(step));
         return false;
     }
+    step.particles_generation = effect.particles ? particles_generation_ : 0;
     ++edit_count_;
     undo_.push_back(std::move(step));
     return true;

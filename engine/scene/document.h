@@ -181,6 +181,11 @@ public:
     void beginStroke(const std::string& name = "Stroke");
     void endStroke();  // an empty stroke leaves no step
     bool inStroke() const { return stroke_ != nullptr; }
+    // Whether Ctrl+Z would take back the edit (or redo) that made the particle systems' `generation`:
+    // the editor's Cancel of a slow growth undoes exactly the edit being grown, never another step.
+    bool undoRevertsParticles(uint64_t generation) const {
+        return !stroke_ && !undo_.empty() && undo_.back().particles_generation == generation;
+    }
 
     bool canUndo() const { return !undo_.empty() || (stroke_ && !stroke_->empty()); }
     bool canRedo() const { return !redo_.empty(); }
@@ -230,6 +235,7 @@ private:
     struct Step {
         std::unique_ptr<Command> command;
         uint64_t state;  // unique per executed step: tells the saved state apart from any other
+        uint64_t particles_generation = 0;  // particlesGeneration() once it was done, if it changed them
     };
 
     DocumentOptions options_;
@@ -260,6 +266,7 @@ private:
 
     std::vector<Step> undo_, redo_;
     std::unique_ptr<CompoundCommand> stroke_;
+    uint64_t stroke_particles_generation_ = 0;  // the open stroke's particle edits (Step::particles_generation)
     uint64_t next_state_ = 1;
     uint64_t saved_state_ = 0;        // ~0: never saved (recovered)
     uint64_t edit_count_ = 0;         // every apply, undo and redo

@@ -1,6 +1,6 @@
 // The editor's live strands (app/editor/live_strands.h): the worker's meshes are the ones every output
 // makes of the same systems, bit for bit; submissions that come while it grows are coalesced into the
-// newest; an attractor's move is re-grown incrementally.
+// newest; an attractor's move is re-grown incrementally; a cancelled growth shows nothing new.
 #include <gtest/gtest.h>
 
 #include <memory>
@@ -75,6 +75,37 @@ TEST(LiveStrands, GrowsWhatTheOutputsGrowAndCoalescesSubmissions) {
     // The moved attractor reaches part of one system: the rest was taken from the record.
     EXPECT_TRUE(r.report.incremental);
     EXPECT_GT(r.report.reused, r.report.recomputed);
+}
+
+TEST(LiveStrands, ACancelledGrowthShowsNothingAndTheEditUndoneReusesEveryMove) {
+    std::vector<ParticleSystemFile> before{grassSystem("a", 0.0f), grassSystem("b", 1.0f)};
+    LiveStrands live(2);
+    live.submit(std::make_shared<std::vector<ParticleSystemFile>>(before), 1);
+    live.waitIdle();
+    LiveStrandsResult r;
+    ASSERT_TRUE(live.poll(&r));
+    EXPECT_FALSE(r.cancelled);
+    EXPECT_EQ(live.progress(), 0.0f);  // idle
+    // An edit cancelled before its growth could start (the editor's Cancel comes while it grows; a
+    // cancel for it before it starts still counts): cancelled, no meshes.
+    std::vector<ParticleSystemFile> edited = before;
+    edited[0].scene.walk.steps = 40;
+    live.cancel(2);
+    live.submit(std::make_shared<std::vector<ParticleSystemFile>>(edited), 2);
+    live.waitIdle();
+    ASSERT_TRUE(live.poll(&r));
+    EXPECT_EQ(r.generation, 2u);
+    EXPECT_TRUE(r.cancelled);
+    EXPECT_TRUE(r.meshes.empty());
+    // The edit undone (a newer generation, not cancelled): every move from the records kept.
+    live.submit(std::make_shared<std::vector<ParticleSystemFile>>(before), 3);
+    live.waitIdle();
+    ASSERT_TRUE(live.poll(&r));
+    EXPECT_FALSE(r.cancelled);
+    EXPECT_EQ(r.generation, 3u);
+    EXPECT_TRUE(r.report.incremental);
+    EXPECT_EQ(r.report.recomputed, 0u);
+    expectSameMeshes(r.meshes, outputsOf(before));
 }
 
 TEST(LiveStrands, ASystemThatCannotGrowIsNamedAndTheOthersAreShown) {

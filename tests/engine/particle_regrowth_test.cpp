@@ -4,6 +4,7 @@
 // full.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cstring>
 #include <random>
 
@@ -145,6 +146,31 @@ TEST(ParticleRegrowth, AMovedAttractorReGrowsOnlyWhatItReaches) {
     scene.attractors[1].a_m.x -= 0.03f;
     ASSERT_TRUE(regrower.grow(scene, {.threads = 1}, &out, &error)) << error;
     expectIdentical(out, fullGrowth(scene), "moved back");
+}
+
+TEST(ParticleRegrowth, ACancelledGrowthKeepsTheRecordOfTheLastFinishedOne) {
+    ParticleScene scene = crowdedSplittingGrass();
+    StrandRegrower regrower;
+    Strands out;
+    std::string error;
+    std::atomic<uint32_t> steps_done{0};
+    ASSERT_TRUE(regrower.grow(scene, {.threads = 2, .steps_done = &steps_done}, &out, &error)) << error;
+    EXPECT_EQ(steps_done.load(), scene.walk.steps);
+    // An edit whose growth is cancelled (the editor's Cancel): refused as "cancelled", before a step.
+    ParticleScene edited = scene;
+    edited.attractors[1].a_m.x += 0.03f;
+    std::atomic<bool> cancel{true};
+    steps_done = 0;
+    EXPECT_FALSE(regrower.grow(edited, {.threads = 2, .cancel = &cancel, .steps_done = &steps_done}, &out, &error));
+    EXPECT_EQ(error, kGrowthCancelled);
+    EXPECT_EQ(steps_done.load(), 0u);
+    // The edit undone: grown from the record kept, nothing proposed again, the first growth's strands.
+    ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
+    EXPECT_TRUE(regrower.lastReport().incremental);
+    EXPECT_EQ(regrower.lastReport().recomputed, 0u);
+    expectIdentical(out, fullGrowth(scene), "cancelled, then undone");
+    EXPECT_FALSE(growStrands(scene, {.threads = 2, .cancel = &cancel}, &out, &error));
+    EXPECT_EQ(error, kGrowthCancelled);
 }
 
 TEST(ParticleRegrowth, OtherEditsGrowInFullAndFailuresDropTheRecord) {

@@ -647,11 +647,32 @@ TEST(Document, ANewParticleSystemIsAFileBesideTheProjectAndOneUndoStep) {
     EXPECT_EQ((*doc->particles())[1].name, "grass_2");
     EXPECT_EQ(doc->project().particles[1].file, "particles/grass_2.json");
     // Undo takes the entry away (its file stays, unreferenced); redo brings it back.
+    EXPECT_TRUE(doc->undoRevertsParticles(doc->particlesGeneration()));  // Cancel of its growth may undo it
     ASSERT_TRUE(doc->undo());
     EXPECT_EQ(doc->particles()->size(), 1u);
     EXPECT_EQ(doc->project().particles.size(), 1u);
+    EXPECT_FALSE(doc->undoRevertsParticles(doc->particlesGeneration()));  // an undo's growth: not an edit
     ASSERT_TRUE(doc->redo());
     ASSERT_EQ(doc->particles()->size(), 2u);
+    EXPECT_TRUE(doc->undoRevertsParticles(doc->particlesGeneration()));
+    // A drag is one step: while it is open nothing is undone by a Cancel; once closed, the whole drag.
+    doc->beginStroke("Move generator");
+    ParticleSystemFile moved = (*doc->particles())[1];
+    for (int k = 1; k <= 3; ++k) {
+        moved.scene.generators[0].center_m.x = 0.1f * float(k);
+        ASSERT_TRUE(doc->setParticleSystem(1, moved, &error)) << error;
+    }
+    EXPECT_FALSE(doc->undoRevertsParticles(doc->particlesGeneration()));
+    doc->endStroke();
+    EXPECT_TRUE(doc->undoRevertsParticles(doc->particlesGeneration()));
+    ASSERT_TRUE(doc->undo());
+    EXPECT_EQ((*doc->particles())[1].scene.generators[0].center_m.x, 0.0f);
+    // Another kind of edit on top: a Cancel would undo it, so it is not the particles' edit.
+    ASSERT_TRUE(doc->redo());
+    ASSERT_TRUE(doc->addPrimitive(0, makePoint({-1, 1, 0}, 0.5f), &error)) << error;
+    EXPECT_FALSE(doc->undoRevertsParticles(doc->particlesGeneration()));
+    ASSERT_TRUE(doc->undo());
+    ASSERT_TRUE(doc->undo());  // the drag again: back to the system as added
     // An invalid system is refused naming the field (a project never saved: below).
     ParticleSystemFile bad = grass;
     bad.scene.walk.trials = 0;

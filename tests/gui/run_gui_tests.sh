@@ -306,9 +306,10 @@ else
   bad "edit meadow_strands: $out $(tail -5 "$sdir/log" 2>/dev/null)"
 fi
 
-# ---- editing a particle system: the Particles window's edit re-grows the strands (incrementally), undo
-# gives the loaded strands back exactly, and Save writes the particle file so that `instantiate` grows
-# what the editor showed. On a copy of the assets, since it saves.
+# ---- editing a particle system: the Particles window's edit re-grows the strands (incrementally), a
+# third edit's growth cancelled (Cancel undoes it), undo gives the loaded strands back exactly, and Save
+# writes the particle file so that `instantiate` grows what the editor showed. On a copy of the assets,
+# since it saves.
 pdir="$tmp/particle-edit"
 mkdir -p "$pdir"
 cp -r "$root/assets" "$pdir/assets"
@@ -317,6 +318,7 @@ cat >"$pdir/script.json" <<EOF
  {"action": "view", "target": [-7.6, 8.0, 0.2], "distance": 2.4, "yaw_deg": -100, "pitch_deg": 25},
  {"action": "set_attractor", "system": 0, "attractor": 1, "a_m": [-7.8, 8.0, 0.35], "influence": 0.45, "charge": 3},
  {"action": "set_attractor", "system": 0, "attractor": 1, "a_m": [-7.6, 8.0, 0.35]},
+ {"action": "set_attractor", "system": 0, "attractor": 1, "influence": 0, "charge": -2, "cancel": true},
  {"action": "screenshot", "path": "$pdir/edited.png", "overlays": false, "ui": true},
  {"action": "export", "path": "$pdir/edited.glb"},
  {"action": "undo"},
@@ -337,7 +339,10 @@ def strands(path):
     return {m["name"]: m["extras"] for m in doc["meshes"] if m["name"].startswith("strands/")}
 stats = json.load(open(d + "/stats.json"))
 edits = [a for a in stats["actions"] if a["action"] == "set_attractor"]
-assert len(edits) == 2 and all(e["ok"] and e["particles"]["ok"] for e in edits), edits
+assert len(edits) == 3 and all(e["ok"] and e["particles"]["ok"] for e in edits), edits
+# The third edit's growth cancelled at once: the edit undone, so the export after it is the second's.
+assert edits[2]["cancelled"] is True and edits[2]["undo_name"] == "Edit particles", edits[2]
+assert not any(e.get("cancelled") for e in edits[:2]), edits
 moved = edits[1]["particles"]
 assert moved["incremental"] and moved["reused"] > moved["recomputed"], moved
 edited, undone, saved = strands(d + "/edited.glb"), strands(d + "/undone.glb"), strands(d + "/saved.glb")
@@ -347,7 +352,7 @@ assert edited == saved, "the saved particle file does not grow what the editor s
 print("%d %% of the moves re-grown after the move" % (100 * moved["recomputed"] // (moved["recomputed"] + moved["reused"])))
 PY
 )"; then
-  ok "edit meadow_strands: an attractor moved in the Particles window re-grows incrementally, undoes exactly and saves ($out)"
+  ok "edit meadow_strands: an attractor moved in the Particles window re-grows incrementally, a cancelled growth undoes its edit, undo is exact, it saves ($out)"
 else
   bad "edit meadow_strands: particle edit: $out $(tail -5 "$pdir/log" 2>/dev/null)"
 fi
