@@ -21,7 +21,7 @@ namespace ug::editor {
 
 namespace {
 
-const char* const kAttractorKinds[] = {"point", "segment", "sphere"};
+const char* const kAttractorKinds[] = {"point", "segment", "sphere", "mesh"};
 const char* const kGeneratorKinds[] = {"rectangle", "sphere", "box", "mesh"};
 const char* const kCutterKinds[] = {"plane", "sphere", "box"};
 const char* const kActionKinds[] = {"stop", "kill", "split", "countdown"};
@@ -184,7 +184,11 @@ void editCharge(std::vector<ChargeKey>* keys, uint32_t steps, PanelEdit* e) {
 
 void editAttractor(Attractor* a, uint32_t steps, PanelEdit* e) {
     int kind = int(a->kind);
-    if (ImGui::Combo("kind", &kind, kAttractorKinds, 3)) {
+    if (a->kind == AttractorKind::Mesh) {
+        // Its points come from the file's model: no other kind turns into one here.
+        ImGui::Text("%u points on %s", a->point_count, a->mesh_file.c_str());
+        dragged(ImGui::DragFloat("scale", &a->scale, 0.01f, 0.01f, 1e4f), e);
+    } else if (ImGui::Combo("kind", &kind, kAttractorKinds, 3)) {
         a->kind = AttractorKind(kind);
         if (a->kind == AttractorKind::Segment && a->b_m == a->a_m) a->b_m = a->a_m + glm::vec3(0.2f, 0.0f, 0.0f);
         e->changed = true;

@@ -8,7 +8,7 @@ AttractorEdit::AttractorEdit(const std::vector<Attractor>& before, const std::ve
     for (uint32_t a = 0; a < after.size(); ++a) {
         const Attractor& b = before[a];
         const Attractor& n = after[a];
-        const bool same_place = b.kind == n.kind && b.a_m == n.a_m && b.b_m == n.b_m && b.radius_m == n.radius_m;
+        const bool same_place = sameAttractorPlace(b, n);
         if (same_place && b.influence_m == n.influence_m) continue;  // only the charge may differ: everywhereAt
         if (b.influence_m == n.influence_m && n.influence_m > 0.0f)
             moved_.push_back(a);

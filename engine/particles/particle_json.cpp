@@ -44,7 +44,7 @@ const char* const kActionNames[] = {"stop", "kill", "split", "countdown"};
 // countdown_then takes only the first two actions (StrandActionKind's Stop and Kill, in enum order).
 const char* const kCountdownEndNames[] = {"stop", "kill"};
 const char* const kGeneratorNames[] = {"rectangle", "sphere", "box", "mesh"};
-const char* const kAttractorNames[] = {"point", "segment", "sphere"};
+const char* const kAttractorNames[] = {"point", "segment", "sphere", "mesh"};
 const char* const kCutterNames[] = {"plane", "sphere", "box"};
 const char* const kSideNames[] = {"above", "below"};
 const char* const kShapeNames[] = {"tube", "blade"};
@@ -105,8 +105,10 @@ bool readCharge(JsonReader& r, const json& obj, const std::string& p, std::vecto
 
 bool readAttractor(JsonReader& r, const json& j, const std::string& p, Attractor* a) {
     return r.expectObject(j, p) &&
-           r.onlyKeys(j, p, {"kind", "a_m", "b_m", "radius_m", "influence_m", "charge"}) &&
+           r.onlyKeys(j, p, {"kind", "a_m", "b_m", "radius_m", "influence_m", "charge", "mesh", "scale", "points"}) &&
            readKind(r, j, p, "kind", kAttractorNames, &a->kind, true) && readVec3(r, j, p, "a_m", &a->a_m) &&
+           r.string(j, p, "mesh", &a->mesh_file) && r.number(j, p, "scale", &a->scale, 1e-6, 1e4) &&
+           r.integer(j, p, "points", &a->point_count, 1, kMaxAttractorPoints) &&
            readVec3(r, j, p, "b_m", &a->b_m) && r.number(j, p, "radius_m", &a->radius_m, 0.0, kMaxCoordinate) &&
            r.number(j, p, "influence_m", &a->influence_m, 0.0, kMaxCoordinate) && readCharge(r, j, p, &a->charge);
 }
@@ -210,6 +212,26 @@ bool parseParticleSystem(const json& j, const std::string& source, ParticleSyste
         if (!loadMeshFile(file.lexically_normal().string(), mesh.get(), &why)) return r.fail(at, why);
         g.mesh = std::move(mesh);
     }
+    // Mesh attractors' models, relative to the particle file too, and their surface points.
+    for (size_t i = 0; i < s.scene.attractors.size(); ++i) {
+        Attractor& a = s.scene.attractors[i];
+        const std::string at = "/attractors/" + std::to_string(i) + "/mesh";
+        if (a.kind != AttractorKind::Mesh) {
+            if (!a.mesh_file.empty()) return r.fail(at, "only a \"mesh\" attractor takes a mesh");
+            continue;
+        }
+        if (a.mesh_file.empty()) return r.fail(at, "missing (a mesh attractor needs a model file)");
+        std::filesystem::path file(a.mesh_file);
+        if (file.is_relative()) file = std::filesystem::path(source).parent_path() / file;
+        auto mesh = std::make_shared<TriangleMesh>();
+        std::string why;
+        if (!loadMeshFile(file.lexically_normal().string(), mesh.get(), &why)) return r.fail(at, why);
+        double area = 0.0;
+        for (size_t t = 0; t + 2 < mesh->indices.size(); t += 3) area += meshTriangleArea(*mesh, t / 3);
+        if (!(area > 0.0)) return r.fail(at, "the mesh has no area to take points on");
+        a.mesh = std::move(mesh);
+        a.points = meshAttractorPoints(a.mesh, a.point_count);
+    }
     std::string why;
     if (!validateParticleScene(s.scene, &why)) return r.fail("", why);
     *out = std::move(s);
@@ -248,12 +270,18 @@ json particleSystemToJson(const ParticleSystemFile& s) {
     for (const Attractor& a : s.scene.attractors) {
         json charge = json::array();
         for (const ChargeKey& k : a.charge) charge.push_back({k.step, k.charge});
-        attractors.push_back({{"kind", kAttractorNames[size_t(a.kind)]},
-                              {"a_m", vec3Json(a.a_m)},
-                              {"b_m", vec3Json(a.b_m)},
-                              {"radius_m", a.radius_m},
-                              {"influence_m", a.influence_m},
-                              {"charge", charge}});
+        json aj = {{"kind", kAttractorNames[size_t(a.kind)]},
+                   {"a_m", vec3Json(a.a_m)},
+                   {"b_m", vec3Json(a.b_m)},
+                   {"radius_m", a.radius_m},
+                   {"influence_m", a.influence_m},
+                   {"charge", charge}};
+        if (a.kind == AttractorKind::Mesh) {
+            aj["mesh"] = a.mesh_file;
+            aj["scale"] = a.scale;
+            aj["points"] = a.point_count;
+        }
+        attractors.push_back(std::move(aj));
     }
     for (const Cutter& c : s.scene.cutters)
         cutters.push_back({{"kind", kCutterNames[size_t(c.kind)]},

@@ -6,6 +6,8 @@
 //                    "heading_cone_deg": 15}],            rectangle: axis_u_m, axis_v_m; box: half_extents_m
 //    "attractors": [{"kind": "point", "a_m": [0, 0, 0], "charge": [[0, -1.0]], "influence_m": 0}],
 //                                                          segment: a_m, b_m; sphere: a_m, radius_m;
+//                                                          mesh: "mesh" (relative to the file), "scale",
+//                                                          "points" (1..1024), placed at a_m;
 //                                                          charge: [[step, a], ...] keys or one number
 //    "cutters": [{"kind": "plane", "center_m": [0, 0, 0.3], "normal": [0, 0, 1], "threshold_m": 0,
 //                 "side": "above", "action": {"kind": "split", "split_count": 3, "split_angle_deg": 40}}],

@@ -70,6 +70,15 @@ std::vector<MeshInstances> generatorSurfaces(const ParticleSystemFile& system) {
         m.instances.push_back(InstanceTransform{g.center_m, glm::quat(1.0f, 0.0f, 0.0f, 0.0f), g.scale});
         out.push_back(std::move(m));
     }
+    for (size_t i = 0; i < system.scene.attractors.size(); ++i) {
+        const Attractor& a = system.scene.attractors[i];
+        if (a.kind != AttractorKind::Mesh || !a.mesh) continue;
+        MeshInstances m;
+        m.name = "strands/" + system.name + "/attractor_" + std::to_string(i);
+        m.mesh = a.mesh;
+        m.instances.push_back(InstanceTransform{a.a_m, glm::quat(1.0f, 0.0f, 0.0f, 0.0f), a.scale});
+        out.push_back(std::move(m));
+    }
     return out;
 }
 

@@ -25,7 +25,8 @@ bool meshParticleStrands(const ParticleSystemFile& system, const Strands& strand
 
 // The surfaces the system's mesh generators seed on, placed as they are: one static mesh
 // "strands/<name>/surface_<generator>" each (drawn with the model's own colour), so the stone or statue
-// the strands grow out of is in the picture and the export.
+// the strands grow out of is in the picture and the export; then the models of its mesh attractors, one
+// "strands/<name>/attractor_<attractor>" each (the statue the strands reach for).
 std::vector<MeshInstances> generatorSurfaces(const ParticleSystemFile& system);
 
 // What every output draws and exports of a system (grow, render --particles, a project's systems):

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "particles/particle_seeding.h"
+
 namespace ug {
 
 namespace {
@@ -64,6 +66,23 @@ double meshTriangleArea(const TriangleMesh& mesh, size_t triangle) {
     const glm::dvec3 a(mesh.positions[mesh.indices[3 * triangle]]), b(mesh.positions[mesh.indices[3 * triangle + 1]]),
         c(mesh.positions[mesh.indices[3 * triangle + 2]]);
     return 0.5 * glm::length(glm::cross(b - a, c - a));
+}
+
+bool sameAttractorPlace(const Attractor& a, const Attractor& b) {
+    return a.kind == b.kind && a.a_m == b.a_m && a.b_m == b.b_m && a.radius_m == b.radius_m &&
+           a.scale == b.scale && a.points == b.points;
+}
+
+std::shared_ptr<const std::vector<glm::vec3>> meshAttractorPoints(std::shared_ptr<const TriangleMesh> mesh,
+                                                                 uint32_t count) {
+    // The mesh generator's stratified seeding (particle_seeding.h), at the origin, unscaled.
+    ParticleGenerator g;
+    g.kind = GeneratorKind::Mesh;
+    g.mesh = std::move(mesh);
+    g.count = count;
+    ParticleSeeds seeds;
+    seedGenerator(g, 0, 0x6d657368u /* "mesh" */, &seeds);
+    return std::make_shared<const std::vector<glm::vec3>>(std::move(seeds.positions));
 }
 
 void translateParticleScene(ParticleScene* scene, glm::vec3 offset) {
@@ -138,6 +157,14 @@ bool validateParticleScene(const ParticleScene& scene, std::string* error) {
         if (!checkPosition(a.a_m, f + ".a_m", error)) return false;
         if (a.kind == AttractorKind::Segment && !checkPosition(a.b_m, f + ".b_m", error)) return false;
         if (a.kind == AttractorKind::Sphere && !checkLength(a.radius_m, f + ".radius_m", false, error)) return false;
+        if (a.kind == AttractorKind::Mesh) {
+            if (!std::isfinite(a.scale) || !(a.scale > 0.0f) || a.scale > 1e4f)
+                return fail(error, f + ".scale", "must be in (0, 10000]");
+            if (a.point_count < 1 || a.point_count > kMaxAttractorPoints)
+                return fail(error, f + ".points", "must be in [1, 1024]");
+            if (!a.mesh || !a.points || a.points->size() != a.point_count)
+                return fail(error, f + ".mesh", "no mesh loaded (or its points not taken)");
+        }
         if (!checkLength(a.influence_m, f + ".influence_m", true, error)) return false;
         if (a.charge.empty()) return fail(error, f + ".charge", "needs at least one key");
         for (size_t k = 0; k < a.charge.size(); ++k) {
@@ -192,6 +219,16 @@ float attractorDistance(const Attractor& a, glm::vec3 p) {
         case AttractorKind::Point: return glm::length(p - a.a_m);
         case AttractorKind::Segment: return segmentDistance(a.a_m, a.b_m, p);
         case AttractorKind::Sphere: return std::abs(glm::length(p - a.a_m) - a.radius_m);
+        case AttractorKind::Mesh: {
+            // Brute force over at most kMaxAttractorPoints: in the mesh's frame, then scaled back.
+            const glm::vec3 q = (p - a.a_m) / a.scale;
+            float best = INFINITY;
+            for (const glm::vec3& s : *a.points) {
+                const glm::vec3 d = q - s;
+                best = std::min(best, glm::dot(d, d));
+            }
+            return std::sqrt(best) * a.scale;
+        }
     }
     return 0.0f;
 }

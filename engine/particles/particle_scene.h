@@ -85,7 +85,13 @@ enum class AttractorKind : uint8_t {
     Point,    // a_m
     Segment,  // a_m to b_m
     Sphere,   // the surface of the sphere at a_m with radius_m
+    // Points on a mesh's surface (Fig. 10-11's attracting points on the bust): point_count of them, one per
+    // stratum of its area as a mesh generator seeds (a fixed seed), the mesh scaled by `scale` about its
+    // origin and moved to a_m; the distance is to the nearest point.
+    Mesh,
 };
+
+constexpr uint32_t kMaxAttractorPoints = 1024;
 
 struct Attractor {
     AttractorKind kind = AttractorKind::Point;
@@ -94,9 +100,19 @@ struct Attractor {
     float radius_m = 1.0f;      // Sphere, > 0
     float influence_m = 0.0f;   // 0 = everywhere; else the distance is clamped to it (see attractorTerm)
     std::vector<ChargeKey> charge{ChargeKey{}};  // at least one key
+    // Mesh: the model file as the particle file names it, its triangles once loaded, the scale, how many
+    // surface points, and the points themselves in the mesh's own frame (unscaled; meshAttractorPoints).
+    std::string mesh_file;
+    std::shared_ptr<const TriangleMesh> mesh;
+    float scale = 1.0f;
+    uint32_t point_count = 64;
+    std::shared_ptr<const std::vector<glm::vec3>> points;
 
     bool operator==(const Attractor&) const = default;
 };
+
+// Whether two attractors act at the same places (their charges and reach may differ).
+bool sameAttractorPlace(const Attractor& a, const Attractor& b);
 
 // Cutters: a signed function g(p) and a threshold; a strand triggers the cutter when its next point
 // would enter the trigger side, and its point is then placed on the threshold instead (never beyond).
@@ -170,6 +186,11 @@ float chargeAt(const std::vector<ChargeKey>& keys, uint32_t step);
 
 // Distance from p to the attractor's skeleton.
 float attractorDistance(const Attractor& a, glm::vec3 p);
+
+// A mesh attractor's surface points (mesh and point_count set): one per stratum of the mesh's area, in
+// its own frame, from a fixed seed, so the same file gives the same points.
+std::shared_ptr<const std::vector<glm::vec3>> meshAttractorPoints(std::shared_ptr<const TriangleMesh> mesh,
+                                                                 uint32_t count);
 
 // The attractor's term of the fitness, a·min(d, influence) (§5.1 with the radius of influence the paper
 // suggests). Clamping keeps f continuous: a term that dropped to 0 beyond the radius would make a

@@ -29,9 +29,12 @@ import json, struct, sys
 report = json.loads(open(sys.argv[1]).read().strip().splitlines()[-1])
 stats = json.load(open(sys.argv[2]))
 assert report["errors"] == 0, report
-# The strands, then the surface of each mesh generator (what they grow out of).
-surfaces = ["strands/%s/surface_%d" % (stats["name"], i)
-            for i, g in enumerate(json.load(open(sys.argv[4]))["generators"]) if g["kind"] == "mesh"]
+# The strands, then the surface of each mesh generator (what they grow out of) and the model of each mesh
+# attractor (what they reach for).
+system = json.load(open(sys.argv[4]))
+surfaces = ["strands/%s/surface_%d" % (stats["name"], i) for i, g in enumerate(system["generators"]) if g["kind"] == "mesh"]
+surfaces += ["strands/%s/attractor_%d" % (stats["name"], i)
+             for i, a in enumerate(system.get("attractors", [])) if a["kind"] == "mesh"]
 assert list(report["per_mesh"]) == ["strands/" + stats["name"]] + surfaces, report
 assert stats["strands"] > 0 and stats["triangles"] > 0, stats
 # The extras' polylines (when written) are the strands the statistics count.
