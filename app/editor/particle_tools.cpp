@@ -65,17 +65,21 @@ bool moveParticleHandle(ParticleScene* scene, ParticleHandle handle, glm::vec3 o
     return false;
 }
 
+ParticleGenerator groundPatch(glm::vec3 at, float half_side_m, uint32_t count, float heading_cone_deg, bool on_terrain) {
+    ParticleGenerator g;
+    g.center_m = at;
+    g.axis_u_m = {half_side_m, 0.0f, 0.0f};
+    g.axis_v_m = {0.0f, half_side_m, 0.0f};
+    g.count = count;
+    g.heading_cone_deg = heading_cone_deg;
+    g.on_terrain = on_terrain;
+    return g;
+}
+
 ParticleSystemFile newGrassSystem(glm::vec3 at, bool on_terrain) {
     ParticleSystemFile s;
     s.name = s.file_name = "strands";
-    ParticleGenerator g;
-    g.center_m = at;
-    g.axis_u_m = {0.3f, 0.0f, 0.0f};
-    g.axis_v_m = {0.0f, 0.3f, 0.0f};
-    g.count = 600;
-    g.heading_cone_deg = 12.0f;
-    g.on_terrain = on_terrain;
-    s.scene.generators.push_back(g);
+    s.scene.generators.push_back(groundPatch(at, 0.3f, 600, 12.0f, on_terrain));
     Attractor up;  // far above: the strands grow upwards, a little each way
     up.a_m = at + glm::vec3(0.0f, 0.0f, 60.0f);
     s.scene.attractors.push_back(up);

@@ -48,6 +48,10 @@ ParticleHandle pickParticleHandle(const Document& doc, size_t system, const glm:
 // no such handle.
 bool moveParticleHandle(ParticleScene* scene, ParticleHandle handle, glm::vec3 offset);
 
+// A square generator of `count` strands at `at`, horizontal, dropped onto the terrain when asked: where
+// the Particles window's new generators and systems start.
+ParticleGenerator groundPatch(glm::vec3 at, float half_side_m, uint32_t count, float heading_cone_deg, bool on_terrain);
+
 // The system the Particles window's "New system" adds: a patch of grass blades (a 0.6 m square of 600
 // strands at `at`, dropped onto the terrain when there is one) pulled up by a far attractor, with
 // collisions on; somewhere to start from.

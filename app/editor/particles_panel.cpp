@@ -258,17 +258,6 @@ void editWalk(WalkSettings* w, PanelEdit* e) {
 }
 
 // New parts start at the view's centre (`at`, on the ground), small and gentle: somewhere to drag from.
-ParticleGenerator newGenerator(glm::vec3 at, bool has_terrain) {
-    ParticleGenerator g;
-    g.center_m = at;
-    g.axis_u_m = {0.25f, 0.0f, 0.0f};
-    g.axis_v_m = {0.0f, 0.25f, 0.0f};
-    g.count = 400;
-    g.heading_cone_deg = 10.0f;
-    g.on_terrain = has_terrain;
-    return g;
-}
-
 Attractor newAttractor(glm::vec3 at) {
     Attractor a;
     a.a_m = at + glm::vec3(0.0f, 0.0f, 0.3f);
@@ -392,7 +381,7 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
                  [&](size_t i) { return partLabel("generator", i, kGeneratorKinds[size_t(scene.generators[i].kind)]); },
                  [&](ParticleGenerator* g) { editGenerator(g, &e); });
         if (ImGui::Button("Add generator")) {
-            scene.generators.push_back(newGenerator(at, scene.terrain != nullptr));
+            scene.generators.push_back(groundPatch(at, 0.25f, 400, 10.0f, scene.terrain != nullptr));
             e.changed = true;
             e.name = "Add generator";
         }

@@ -103,6 +103,24 @@ bool readCharge(JsonReader& r, const json& obj, const std::string& p, std::vecto
     return true;
 }
 
+// A mesh generator's or attractor's model (`file` as the particle file names it, relative to `source`),
+// loaded into *mesh; `at` is its JSON Pointer. Parts of other kinds must not name one.
+bool loadPartMesh(JsonReader& r, const std::string& at, const char* part, bool is_mesh, const std::string& file,
+                  const std::string& source, std::shared_ptr<const TriangleMesh>* mesh) {
+    if (!is_mesh) {
+        if (!file.empty()) return r.fail(at, std::string("only a \"mesh\" ") + part + " takes a mesh");
+        return true;
+    }
+    if (file.empty()) return r.fail(at, std::string("missing (a mesh ") + part + " needs a model file)");
+    std::filesystem::path path(file);
+    if (path.is_relative()) path = std::filesystem::path(source).parent_path() / path;
+    auto loaded = std::make_shared<TriangleMesh>();
+    std::string why;
+    if (!loadMeshFile(path.lexically_normal().string(), loaded.get(), &why)) return r.fail(at, why);
+    *mesh = std::move(loaded);
+    return true;
+}
+
 bool readAttractor(JsonReader& r, const json& j, const std::string& p, Attractor* a) {
     return r.expectObject(j, p) &&
            r.onlyKeys(j, p, {"kind", "a_m", "b_m", "radius_m", "influence_m", "charge", "mesh", "scale", "points"}) &&
@@ -196,40 +214,22 @@ bool parseParticleSystem(const json& j, const std::string& source, ParticleSyste
     }
     if (auto it = j.find("material"); it != j.end() && !readMaterial(r, *it, "/material", &s.material)) return false;
     if (s.scene.generators.empty()) return r.fail("/generators", "at least one generator is needed");
-    // Mesh generators' models, relative to the particle file.
+    // Mesh generators' and mesh attractors' models, relative to the particle file; the attractors' points.
     for (size_t i = 0; i < s.scene.generators.size(); ++i) {
         ParticleGenerator& g = s.scene.generators[i];
-        const std::string at = "/generators/" + std::to_string(i) + "/mesh";
-        if (g.kind != GeneratorKind::Mesh) {
-            if (!g.mesh_file.empty()) return r.fail(at, "only a \"mesh\" generator takes a mesh");
-            continue;
-        }
-        if (g.mesh_file.empty()) return r.fail(at, "missing (a mesh generator needs a model file)");
-        std::filesystem::path file(g.mesh_file);
-        if (file.is_relative()) file = std::filesystem::path(source).parent_path() / file;
-        auto mesh = std::make_shared<TriangleMesh>();
-        std::string why;
-        if (!loadMeshFile(file.lexically_normal().string(), mesh.get(), &why)) return r.fail(at, why);
-        g.mesh = std::move(mesh);
+        if (!loadPartMesh(r, "/generators/" + std::to_string(i) + "/mesh", "generator", g.kind == GeneratorKind::Mesh,
+                          g.mesh_file, source, &g.mesh))
+            return false;
     }
-    // Mesh attractors' models, relative to the particle file too, and their surface points.
     for (size_t i = 0; i < s.scene.attractors.size(); ++i) {
         Attractor& a = s.scene.attractors[i];
         const std::string at = "/attractors/" + std::to_string(i) + "/mesh";
-        if (a.kind != AttractorKind::Mesh) {
-            if (!a.mesh_file.empty()) return r.fail(at, "only a \"mesh\" attractor takes a mesh");
-            continue;
-        }
-        if (a.mesh_file.empty()) return r.fail(at, "missing (a mesh attractor needs a model file)");
-        std::filesystem::path file(a.mesh_file);
-        if (file.is_relative()) file = std::filesystem::path(source).parent_path() / file;
-        auto mesh = std::make_shared<TriangleMesh>();
-        std::string why;
-        if (!loadMeshFile(file.lexically_normal().string(), mesh.get(), &why)) return r.fail(at, why);
+        if (!loadPartMesh(r, at, "attractor", a.kind == AttractorKind::Mesh, a.mesh_file, source, &a.mesh))
+            return false;
+        if (!a.mesh) continue;
         double area = 0.0;
-        for (size_t t = 0; t + 2 < mesh->indices.size(); t += 3) area += meshTriangleArea(*mesh, t / 3);
+        for (size_t t = 0; t < a.mesh->triangleCount(); ++t) area += meshTriangleArea(*a.mesh, t);
         if (!(area > 0.0)) return r.fail(at, "the mesh has no area to take points on");
-        a.mesh = std::move(mesh);
         a.points = meshAttractorPoints(a.mesh, a.point_count);
     }
     std::string why;

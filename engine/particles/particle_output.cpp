@@ -61,23 +61,21 @@ bool appendParticleSystemMeshes(const ParticleSystemFile& system, int threads, S
 
 std::vector<MeshInstances> generatorSurfaces(const ParticleSystemFile& system) {
     std::vector<MeshInstances> out;
+    const auto place = [&](const std::string& part, size_t i, const std::shared_ptr<const TriangleMesh>& mesh,
+                           glm::vec3 at, float scale) {
+        MeshInstances m;
+        m.name = "strands/" + system.name + "/" + part + "_" + std::to_string(i);
+        m.mesh = mesh;
+        m.instances.push_back(InstanceTransform{at, glm::quat(1.0f, 0.0f, 0.0f, 0.0f), scale});
+        out.push_back(std::move(m));
+    };
     for (size_t i = 0; i < system.scene.generators.size(); ++i) {
         const ParticleGenerator& g = system.scene.generators[i];
-        if (g.kind != GeneratorKind::Mesh || !g.mesh) continue;
-        MeshInstances m;
-        m.name = "strands/" + system.name + "/surface_" + std::to_string(i);
-        m.mesh = g.mesh;
-        m.instances.push_back(InstanceTransform{g.center_m, glm::quat(1.0f, 0.0f, 0.0f, 0.0f), g.scale});
-        out.push_back(std::move(m));
+        if (g.kind == GeneratorKind::Mesh && g.mesh) place("surface", i, g.mesh, g.center_m, g.scale);
     }
     for (size_t i = 0; i < system.scene.attractors.size(); ++i) {
         const Attractor& a = system.scene.attractors[i];
-        if (a.kind != AttractorKind::Mesh || !a.mesh) continue;
-        MeshInstances m;
-        m.name = "strands/" + system.name + "/attractor_" + std::to_string(i);
-        m.mesh = a.mesh;
-        m.instances.push_back(InstanceTransform{a.a_m, glm::quat(1.0f, 0.0f, 0.0f, 0.0f), a.scale});
-        out.push_back(std::move(m));
+        if (a.kind == AttractorKind::Mesh && a.mesh) place("attractor", i, a.mesh, a.a_m, a.scale);
     }
     return out;
 }
