@@ -18,6 +18,7 @@
 
 #include "editor/render_data.h"
 #include "field/bounds.h"
+#include "io/mesh_instances.h"
 #include "mesh/triangle_mesh.h"
 
 namespace ug::editor {
@@ -110,7 +111,7 @@ private:
 // shades already; and it is the biggest static mesh of a winter scene, redrawn whenever an edit swaps
 // meshes (about a third of such a frame on llvmpipe). The objects' snow casts: a snowed roof's shadow is
 // the roof's and its snow's.
-inline bool castsSunShadow(std::string_view mesh_name) { return mesh_name.rfind("snow/terrain/", 0) != 0; }
+inline bool castsSunShadow(const MeshInstances& mesh) { return !mesh.ground_layer; }
 
 // The level to draw a piece at, -1 for none: with the piece's object-space errors scaled by `scale` (the
 // instances' largest), the coarsest level whose error covers less than kStaticLodErrorPx at `distance_m`;

@@ -117,6 +117,7 @@ std::vector<MeshInstances> envMeshInstances(const EnvScene& scene, const EnvEffe
         m.name = "snow/terrain/" + std::to_string(ch.ix) + "_" + std::to_string(ch.iy);
         m.mesh = ch.mesh;
         m.material = snow;
+        m.ground_layer = true;
         out.push_back(std::move(m));
     }
     return out;

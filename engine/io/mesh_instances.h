@@ -32,6 +32,9 @@ struct MeshInstances {
     std::shared_ptr<const SurfaceMaterial> material;  // null: the mesh's base_color, roughness 0.9
     std::vector<InstanceTransform> instances;  // engine (world) space; EMPTY means one copy at the identity
     std::string extras_json;  // empty, or a JSON object written as the glTF mesh's extras
+    // A layer lying on the terrain (the terrain's snow): a viewer need not draw it into a sun shadow map,
+    // as it shadows only itself at grazing sun. Not exported.
+    bool ground_layer = false;
 };
 
 }  // namespace ug

@@ -205,6 +205,14 @@ TEST(DocumentEnvironment, AHiddenObjectLeavesTheMeshListsWithItsEffects) {
         if (m.name.find("bench") != std::string::npos) ++bench_meshes;
     }
     EXPECT_GE(bench_meshes, 2u) << "the bench and its snow";
+    // Only the terrain's snow lies on the ground (the editor keeps it out of the sun's shadow map); the
+    // bench's snow does not.
+    size_t ground_layers = 0;
+    for (const MeshInstances& m : all) {
+        EXPECT_EQ(m.ground_layer, m.name.rfind("snow/terrain/", 0) == 0) << m.name;
+        ground_layers += m.ground_layer;
+    }
+    EXPECT_GT(ground_layers, 0u);
     for (const MeshInstances& m : shown) {
         EXPECT_EQ(m.name.find("bench"), std::string::npos) << m.name;
         if (m.name.rfind("icicles/", 0) == 0) icicles_shown += m.instances.size();

@@ -356,7 +356,7 @@ void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
         b.material = entry.material ? *entry.material : SurfaceMaterial{};
         b.color = entry.material ? entry.material->base_color : mesh.base_color;
         b.texture = uploadTexture(b.material.texture, &static_textures_);
-        b.casts_shadow = castsSunShadow(entry.name);
+        b.casts_shadow = castsSunShadow(entry);
         statics_.push_back(std::move(b));
     }
     const auto t2 = std::chrono::steady_clock::now();
