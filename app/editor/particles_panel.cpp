@@ -33,13 +33,15 @@ struct PartRow {
     bool open = false;
     bool remove = false;
 };
-PartRow partRow(const char* label, bool selected) {
+PartRow partRow(const char* label, bool selected, bool removable) {
     ImGuiTreeNodeFlags flags = ImGuiTreeNodeFlags_DefaultOpen;
     if (selected) flags |= ImGuiTreeNodeFlags_Selected;
     PartRow row;
     row.open = ImGui::TreeNodeEx(label, flags);
-    ImGui::SameLine();
-    row.remove = ImGui::SmallButton("remove");
+    if (removable) {
+        ImGui::SameLine();
+        row.remove = ImGui::SmallButton("remove");
+    }
     return row;
 }
 
@@ -227,7 +229,7 @@ void editCutter(Cutter* c, PanelEdit* e) {
                 c->normal = glm::normalize(n);  // the document keeps a unit normal
                 e->changed = true;
             }
-            dragged(false, e);
+            dragged(false, e);  // the drag's stroke (its change is marked above, once normalised)
             break;
         }
         case CutterKind::Sphere: dragged(ImGui::DragFloat("radius (m)", &c->radius_m, 0.005f, 0.0f, 1e4f), e); break;
@@ -273,12 +275,13 @@ Cutter newCutter(glm::vec3 at, float height_m) {
 }
 
 // The rows of one of the system's lists: each part's tree node (highlighted while its dot is the one
-// picked in the view) with its fields, and a remove button.
+// picked in the view) with its fields, and a remove button while the list has more than `keep` parts.
 template <class T, class Label, class Edit>
-void partRows(std::vector<T>* list, ParticlePart part, ParticlesPanelState* state, PanelEdit* e, Label label, Edit edit) {
+void partRows(std::vector<T>* list, size_t keep, ParticlePart part, ParticlesPanelState* state, PanelEdit* e,
+              Label label, Edit edit) {
     for (size_t i = 0; i < list->size(); ++i) {
         ImGui::PushID(int(part) * 1000 + int(i));
-        const PartRow row = partRow(label(i).c_str(), state->selected_handle == ParticleHandle{part, i});
+        const PartRow row = partRow(label(i).c_str(), state->selected_handle == ParticleHandle{part, i}, list->size() > keep);
         if (row.open) {
             edit(&(*list)[i]);
             ImGui::TreePop();
@@ -377,7 +380,8 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
     PanelEdit e;
     const glm::vec3 at = state->place_at;
     if (ImGui::CollapsingHeader("Generators")) {
-        partRows(&scene.generators, ParticlePart::Generator, state, &e,
+        // A system keeps a generator: a particle file without one does not load.
+        partRows(&scene.generators, 1, ParticlePart::Generator, state, &e,
                  [&](size_t i) { return partLabel("generator", i, kGeneratorKinds[size_t(scene.generators[i].kind)]); },
                  [&](ParticleGenerator* g) { editGenerator(g, &e); });
         if (ImGui::Button("Add generator")) {
@@ -388,7 +392,7 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("a 0.5 m square of 400 strands on the ground at the view's centre");
     }
     if (ImGui::CollapsingHeader("Attractors", ImGuiTreeNodeFlags_DefaultOpen)) {
-        partRows(&scene.attractors, ParticlePart::Attractor, state, &e,
+        partRows(&scene.attractors, 0, ParticlePart::Attractor, state, &e,
                  [&](size_t i) { return partLabel("attractor", i, kAttractorKinds[size_t(scene.attractors[i].kind)]); },
                  [&](Attractor* a) { editAttractor(a, scene.walk.steps, &e); });
         if (ImGui::Button("Add attractor")) {
@@ -399,7 +403,7 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
         if (ImGui::IsItemHovered()) ImGui::SetTooltip("a point 30 cm above the view's centre, attracting within 30 cm");
     }
     if (ImGui::CollapsingHeader("Cutters")) {
-        partRows(&scene.cutters, ParticlePart::Cutter, state, &e,
+        partRows(&scene.cutters, 0, ParticlePart::Cutter, state, &e,
                  [&](size_t i) { return partLabel("cutter", i, kCutterKinds[size_t(scene.cutters[i].kind)]); },
                  [&](Cutter* c) { editCutter(c, &e); });
         if (ImGui::Button("Add cutter")) {

@@ -429,7 +429,7 @@ bool Document::setParticleSystem(size_t index, const ParticleSystemFile& system,
         return false;
     }
     std::string why;
-    if (!validateParticleScene(system.scene, &why)) {
+    if (!validateParticleScene(system.scene, &why) || !savableParticleSystem(system, &why)) {
         *error = "particles[" + std::to_string(index) + "] (" + (*particles_)[index].name + "): " + why;
         return false;
     }
@@ -453,7 +453,7 @@ bool Document::addParticleSystem(const ParticleSystemFile& system, std::string* 
     placed.file_name = placed.name;
     placed.scene.terrain = terrain_;
     std::string why;
-    if (!validateParticleScene(placed.scene, &why)) {
+    if (!validateParticleScene(placed.scene, &why) || !savableParticleSystem(placed, &why)) {
         *error = "new particle system (" + placed.name + "): " + why;
         return false;
     }

@@ -61,6 +61,14 @@ void AddParticleSystemCommand::revert(EditTarget t, EditEffect* effect) {
     effect->particles = true;
 }
 
+bool savableParticleSystem(const ParticleSystemFile& system, std::string* why) {
+    if (system.scene.generators.empty()) {
+        *why = "generators: at least one generator is needed";
+        return false;
+    }
+    return true;
+}
+
 std::string newParticleFileName(const Project& project, const std::string& stem) {
     std::set<std::string> named;
     for (size_t i = 0; i < project.particles.size(); ++i) named.insert(entryFile(project, i));

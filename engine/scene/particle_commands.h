@@ -46,6 +46,10 @@ private:
     ParticleSystemFile system_;
 };
 
+// What a particle file needs beyond validateParticleScene to load again once saved (a generator);
+// false with *why otherwise. The document refuses edits that would save a file it could not open.
+bool savableParticleSystem(const ParticleSystemFile& system, std::string* why);
+
 // A file for a new system beside the project, as its "particles" list names it: "particles/<stem>.json",
 // or "<stem>_2.json", "_3", ... while that file exists on disk or an entry names it.
 std::string newParticleFileName(const Project& project, const std::string& stem);

@@ -580,6 +580,11 @@ TEST(Document, ParticleEditsAreUndoableSharedByTheFileAndSavedToIt) {
     EXPECT_FALSE(doc->setParticleSystem(1, bad, &error));
     EXPECT_NE(error.find("particles[1] (grass_east): attractors[0].charge[0].charge"), std::string::npos) << error;
     EXPECT_FALSE(doc->setParticleSystem(2, edited, &error));
+    // A system without a generator would save a file that does not load: refused too.
+    ParticleSystemFile bare = edited;
+    bare.scene.generators.clear();
+    EXPECT_FALSE(doc->setParticleSystem(0, bare, &error));
+    EXPECT_NE(error.find("particles[0] (grass): generators: at least one"), std::string::npos) << error;
     EXPECT_EQ((*doc->particles())[0].scene.attractors[0].a_m, glm::vec3(0.25f, 0.0f, 0.75f));
     // Nothing lost in a crash: the autosave keeps the edited systems, and a recovery shows them (dirty).
     ASSERT_TRUE(doc->autosave(&error)) << error;
