@@ -419,6 +419,19 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
         doc, e, "Edit particles",
         [&](const std::string&, std::string* error) { return doc->setParticleSystem(state->selected, system, error); },
         &state->last_error, message);
+    ImGui::Separator();
+    // Out of the project's list (its file stays on disk); one undo step, so no question asked.
+    if (ImGui::Button("Remove system")) {
+        std::string error;
+        if (doc->removeParticleSystem(state->selected, &error)) {
+            state->selected_handle = {};
+            state->last_error.clear();
+        } else {
+            state->last_error = error;
+            *message = error;
+        }
+    }
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("take this system out of the project (its file stays; Ctrl+Z brings it back)");
     ImGui::End();
 }
 

@@ -470,6 +470,10 @@ bool Document::addParticleSystem(const ParticleSystemFile& system, std::string* 
     return execute(std::make_unique<AddParticleSystemCommand>(std::move(ref), std::move(placed)), error);
 }
 
+bool Document::removeParticleSystem(size_t index, std::string* error) {
+    return execute(std::make_unique<RemoveParticleSystemCommand>(index), error);
+}
+
 std::unique_ptr<GhostTileJob> Document::startGhostTileJob(GhostTileSpec spec, std::string* error) const {
     if (!validateGhostTileSpec(spec, project_, error)) return nullptr;
     GhostTileJobContext context;

@@ -164,6 +164,9 @@ public:
     // written at once, so an autosave recovered after a crash finds it; Save writes it again with the
     // edits since. Refused for a project never saved (no folder to put the file in) or an invalid system.
     bool addParticleSystem(const ParticleSystemFile& system, std::string* error);
+    // Entry `index` and its system out of the project, one undo step (its file stays on disk; Save writes
+    // the list without it).
+    bool removeParticleSystem(size_t index, std::string* error);
     // The environmental objects' tree and fields become `environment`'s (its type library must be the
     // project's: types are not edited here), one undo step named `name` ("Move object", "Footprints").
     // Compiled at once (errors name the node or field); the scattered types and the settling follow.

@@ -61,6 +61,29 @@ void AddParticleSystemCommand::revert(EditTarget t, EditEffect* effect) {
     effect->particles = true;
 }
 
+bool RemoveParticleSystemCommand::apply(EditTarget t, EditEffect* effect, std::string* error) {
+    if (index_ >= t.project->particles.size() || index_ >= (*t.particles)->size()) {
+        *error = "no particle system " + std::to_string(index_);
+        return false;
+    }
+    ref_ = t.project->particles[index_];
+    t.project->particles.erase(t.project->particles.begin() + std::ptrdiff_t(index_));
+    auto systems = std::make_shared<std::vector<ParticleSystemFile>>(**t.particles);
+    system_ = (*systems)[index_];
+    systems->erase(systems->begin() + std::ptrdiff_t(index_));
+    *t.particles = std::move(systems);
+    effect->particles = true;
+    return true;
+}
+
+void RemoveParticleSystemCommand::revert(EditTarget t, EditEffect* effect) {
+    t.project->particles.insert(t.project->particles.begin() + std::ptrdiff_t(index_), ref_);
+    auto systems = std::make_shared<std::vector<ParticleSystemFile>>(**t.particles);
+    systems->insert(systems->begin() + std::ptrdiff_t(index_), system_);
+    *t.particles = std::move(systems);
+    effect->particles = true;
+}
+
 bool savableParticleSystem(const ParticleSystemFile& system, std::string* why) {
     if (system.scene.generators.empty()) {
         *why = "generators: at least one generator is needed";

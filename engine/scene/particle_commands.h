@@ -46,6 +46,21 @@ private:
     ParticleSystemFile system_;
 };
 
+// Entry `index` taken out of the project's "particles" list with its system (its file stays on disk), one
+// undo step; undo puts both back where they were.
+class RemoveParticleSystemCommand : public Command {
+public:
+    explicit RemoveParticleSystemCommand(size_t index) : index_(index) {}
+    std::string name() const override { return "Remove particle system"; }
+    bool apply(EditTarget target, EditEffect* effect, std::string* error) override;
+    void revert(EditTarget target, EditEffect* effect) override;
+
+private:
+    size_t index_;
+    ParticleSystemRef ref_;
+    ParticleSystemFile system_;
+};
+
 // What a particle file needs beyond validateParticleScene to load again once saved (a generator);
 // false with *why otherwise. The document refuses edits that would save a file it could not open.
 bool savableParticleSystem(const ParticleSystemFile& system, std::string* why);

@@ -615,7 +615,7 @@ TEST(Document, ParticleEditsAreUndoableSharedByTheFileAndSavedToIt) {
     EXPECT_FALSE(fs::exists(grass));
 }
 
-TEST(Document, ANewParticleSystemIsAFileBesideTheProjectAndOneUndoStep) {
+TEST(Document, ANewParticleSystemIsAFileBesideTheProjectAndOneUndoStepAndRemovingItToo) {
     // A project without systems gets one: its file written at once under particles/, the project's list
     // naming it, one undo step; a second with the same name is renamed and filed apart; Save writes the
     // list and the edits, a reopened project grows both; an autosave recovered after a crash keeps them.
@@ -701,6 +701,24 @@ TEST(Document, ANewParticleSystemIsAFileBesideTheProjectAndOneUndoStep) {
     ASSERT_EQ(reopened->particles()->size(), 2u);
     EXPECT_EQ((*reopened->particles())[1].name, "grass_2");
     EXPECT_EQ((*reopened->particles())[1].scene.generators[0].center_m, glm::vec3(0.5f, 0.0f, 0.0f));
+    // Removing the first: one undo step that puts it back in its place; saved, the project names only the
+    // second (the first's file stays on disk).
+    ASSERT_TRUE(doc->removeParticleSystem(0, &error)) << error;
+    EXPECT_EQ(doc->undoName(), "Remove particle system");
+    ASSERT_EQ(doc->particles()->size(), 1u);
+    EXPECT_EQ((*doc->particles())[0].name, "grass_2");
+    ASSERT_TRUE(doc->undo());
+    ASSERT_EQ(doc->particles()->size(), 2u);
+    EXPECT_EQ((*doc->particles())[0].name, "grass");
+    EXPECT_EQ(doc->project().particles[0].file, "particles/grass.json");
+    ASSERT_TRUE(doc->redo());
+    EXPECT_FALSE(doc->removeParticleSystem(1, &error));  // there is one left, at 0
+    ASSERT_TRUE(doc->save(&error)) << error;
+    auto pruned = openDoc(a.string(), optionsFor(dir));
+    ASSERT_TRUE(pruned);
+    ASSERT_EQ(pruned->particles()->size(), 1u);
+    EXPECT_EQ((*pruned->particles())[0].name, "grass_2");
+    EXPECT_TRUE(fs::exists(dir.path() / "particles" / "grass.json"));
 }
 
 TEST(Document, AFailedSaveKeepsTheDocumentDirtyAndTheFileUntouched) {

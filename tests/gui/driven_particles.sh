@@ -2,9 +2,10 @@
 # The particle tool driven by real X input (xdotool): with the Particles window open (the start script's
 # set_attractor opens it and puts the wind attractor in the left patch, in the middle of the view), a
 # left-drag from the attractor's dot moves it and the strands re-grow; Ctrl+Z puts it back. Then the
-# generator's dot is dragged, the attractor's a(t) key on the window's plot, and New system clicked. F12 writes the statistics
-# after each step (WORKDIR/dragged.json, undone.json, generator.json, curve.json, curve_undone.json, new_system.json;
-# the start script's in
+# generator's dot is dragged, the attractor's a(t) key on the window's plot, and New system clicked, then
+# Remove system. F12 writes the statistics
+# after each step (WORKDIR/dragged.json, undone.json, generator.json, curve.json, curve_undone.json, new_system.json,
+# removed.json; the start script's in
 # start.stats.json). Runs inside an X server (run_gui_tests.sh starts it with xvfb-run at 1600x900); exits
 # non-zero only when a step cannot be driven, the checks are the caller's.
 # usage: driven_particles.sh UNDERGROWTH_BIN PROJECT.json WORKDIR CACHE
@@ -44,5 +45,8 @@ dump curve_undone "$settled"
 # New system, right of the window's system combo: a grass patch at the view's centre, in a new file.
 click 655 66
 dump new_system '"name": "strands"'
+# Remove system, under the new system's lists (one attractor open, the other headers closed).
+click 407 427
+dump removed "$settled"
 quit_editor
 exit 0

@@ -593,7 +593,8 @@ else
 fi
 
 # The particle tool by real X input: an attractor dragged in the view with the mouse, then Ctrl+Z; the
-# generator's dot dragged; a key of a(t) dragged on the Particles window's plot, then Ctrl+Z; New system.
+# generator's dot dragged; a key of a(t) dragged on the Particles window's plot, then Ctrl+Z; New system,
+# then Remove system.
 if command -v xdotool >/dev/null 2>&1; then
   xwork="$tmp/driven-particles"
   mkdir -p "$xwork"
@@ -603,7 +604,7 @@ if command -v xdotool >/dev/null 2>&1; then
      out="$(python3 - "$xwork" <<'PY' 2>&1
 import json, sys
 d = sys.argv[1]
-stats = {n: json.load(open("%s/%s.json" % (d, n))) for n in ("start.stats", "dragged", "undone", "generator", "curve", "curve_undone", "new_system")}
+stats = {n: json.load(open("%s/%s.json" % (d, n))) for n in ("start.stats", "dragged", "undone", "generator", "curve", "curve_undone", "new_system", "removed")}
 start, dragged, undone = (stats[n]["particles"] for n in ("start.stats", "dragged", "undone"))
 a0, a1, a2 = (p["systems"][0]["attractors"][1] for p in (start, dragged, undone))
 assert dragged["selected_attractor"] == 1, dragged
@@ -634,12 +635,20 @@ assert abs(new["particles"]["systems"][2]["generators"][0][0] - centre[0]) < 1e-
 written = json.load(open("%s/assets/scenes/particles/strands.json" % d))
 assert written["name"] == "strands" and written["generators"][0]["count"] == 600, written
 assert new["particles"]["last"]["ok"] and new["particles"]["last"]["strands"] > start["last"]["strands"], new["particles"]["last"]
+# Remove system: back to the two loaded systems, one undo step; the new file stays on disk.
+removed = stats["removed"]
+assert [s["name"] for s in removed["particles"]["systems"]] == names[:2], removed["particles"]["systems"]
+assert removed["document"]["undo_name"] == "Remove particle system", removed["document"]
+# The two systems as before New system, their strands taken whole from their records.
+before_new = stats["curve_undone"]["particles"]["last"]
+assert removed["particles"]["last"]["strands"] == before_new["strands"], (removed["particles"]["last"], before_new)
+assert removed["particles"]["last"]["recomputed"] == 0, removed["particles"]["last"]
 print("moved %.2f m by the mouse, %d %% re-grown; generator moved %.2f m; a(t) key to step %d, charge %.2f; new system: %d strands in all" % (
     a1[0] - a0[0], 100 * last["recomputed"] // (last["recomputed"] + last["reused"]), g1[0] - g0[0], k1[0][0], k1[0][1],
     new["particles"]["last"]["strands"]))
 PY
 )"; then
-    ok "edit meadow_strands: an attractor, a generator and an a(t) key dragged and a new system added by real X input ($out)"
+    ok "edit meadow_strands: an attractor, a generator and an a(t) key dragged, a system added and removed by real X input ($out)"
   else
     bad "edit meadow_strands: attractor drag by X input: $out $(tail -3 "$xwork/session.log" 2>/dev/null)"
   fi
