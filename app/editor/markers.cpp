@@ -211,7 +211,10 @@ void addParticleMarkers(const ParticleSystemFile& system, ParticleHandle selecte
         if (a.kind == AttractorKind::Sphere) addGreatCircles(a.a_m, a.radius_m, color, out);
         if (a.kind == AttractorKind::Mesh && a.points)
             for (const glm::vec3& p : *a.points) out->points.push_back({a.a_m + a.scale * p, color * 0.8f});
-        if (a.influence_m > 0.0f) addGreatCircles(a.a_m, a.influence_m, color * 0.7f, out);
+        if (a.kind == AttractorKind::Objects && a.points)
+            for (const glm::vec3& p : *a.points) out->points.push_back({p, color * 0.8f});
+        if (a.influence_m > 0.0f && a.kind != AttractorKind::Objects)
+            addGreatCircles(a.a_m, a.influence_m, color * 0.7f, out);
     }
     for (const ParticleGenerator& g : scene.generators) {
         switch (g.kind) {

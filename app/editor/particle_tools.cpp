@@ -16,8 +16,10 @@ const char* particlePartName(ParticlePart part) {
 
 std::vector<ParticleHandlePoint> particleHandlePoints(const ParticleScene& scene) {
     std::vector<ParticleHandlePoint> points;
+    // An "objects" attractor is where its objects are: it moves with them, not by a handle of its own.
     for (size_t i = 0; i < scene.attractors.size(); ++i)
-        points.push_back({{ParticlePart::Attractor, i}, scene.attractors[i].a_m});
+        if (scene.attractors[i].kind != AttractorKind::Objects)
+            points.push_back({{ParticlePart::Attractor, i}, scene.attractors[i].a_m});
     for (size_t i = 0; i < scene.generators.size(); ++i) {
         const ParticleGenerator& g = scene.generators[i];
         glm::vec3 p = g.center_m;

@@ -21,7 +21,7 @@ namespace ug::editor {
 
 namespace {
 
-const char* const kAttractorKinds[] = {"point", "segment", "sphere", "mesh"};
+const char* const kAttractorKinds[] = {"point", "segment", "sphere", "mesh", "objects"};
 const char* const kGeneratorKinds[] = {"rectangle", "sphere", "box", "mesh"};
 const char* const kCutterKinds[] = {"plane", "sphere", "box"};
 const char* const kActionKinds[] = {"stop", "kill", "split", "countdown"};
@@ -186,6 +186,14 @@ void editCharge(std::vector<ChargeKey>* keys, uint32_t steps, PanelEdit* e) {
 
 void editAttractor(Attractor* a, uint32_t steps, PanelEdit* e) {
     int kind = int(a->kind);
+    if (a->kind == AttractorKind::Objects) {
+        // Its points follow the project's objects (placed when the scene or the system changes).
+        ImGui::Text("%zu points on the '%s' objects within reach", a->points ? a->points->size() : size_t(0),
+                    a->object_type.c_str());
+        dragged(ImGui::DragFloat("reach (m)", &a->influence_m, 0.005f, 0.0f, 1e4f), e);
+        editCharge(&a->charge, steps, e);
+        return;
+    }
     if (a->kind == AttractorKind::Mesh) {
         // Its points come from the file's model: no other kind turns into one here.
         ImGui::Text("%u points on %s", a->point_count, a->mesh_file.c_str());

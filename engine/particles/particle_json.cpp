@@ -44,7 +44,7 @@ const char* const kActionNames[] = {"stop", "kill", "split", "countdown"};
 // countdown_then takes only the first two actions (StrandActionKind's Stop and Kill, in enum order).
 const char* const kCountdownEndNames[] = {"stop", "kill"};
 const char* const kGeneratorNames[] = {"rectangle", "sphere", "box", "mesh"};
-const char* const kAttractorNames[] = {"point", "segment", "sphere", "mesh"};
+const char* const kAttractorNames[] = {"point", "segment", "sphere", "mesh", "objects"};
 const char* const kCutterNames[] = {"plane", "sphere", "box"};
 const char* const kSideNames[] = {"above", "below"};
 const char* const kShapeNames[] = {"tube", "blade"};
@@ -123,8 +123,10 @@ bool loadPartMesh(JsonReader& r, const std::string& at, const char* part, bool i
 
 bool readAttractor(JsonReader& r, const json& j, const std::string& p, Attractor* a) {
     return r.expectObject(j, p) &&
-           r.onlyKeys(j, p, {"kind", "a_m", "b_m", "radius_m", "influence_m", "charge", "mesh", "scale", "points"}) &&
+           r.onlyKeys(j, p, {"kind", "a_m", "b_m", "radius_m", "influence_m", "charge", "mesh", "scale", "points",
+                             "object_type"}) &&
            readKind(r, j, p, "kind", kAttractorNames, &a->kind, true) && readVec3(r, j, p, "a_m", &a->a_m) &&
+           r.string(j, p, "object_type", &a->object_type) &&
            r.string(j, p, "mesh", &a->mesh_file) && r.number(j, p, "scale", &a->scale, 1e-6, 1e4) &&
            r.integer(j, p, "points", &a->point_count, 1, kMaxAttractorPoints) &&
            readVec3(r, j, p, "b_m", &a->b_m) && r.number(j, p, "radius_m", &a->radius_m, 0.0, kMaxCoordinate) &&
@@ -226,6 +228,8 @@ bool parseParticleSystem(const json& j, const std::string& source, ParticleSyste
         const std::string at = "/attractors/" + std::to_string(i) + "/mesh";
         if (!loadPartMesh(r, at, "attractor", a.kind == AttractorKind::Mesh, a.mesh_file, source, &a.mesh))
             return false;
+        if (a.kind != AttractorKind::Objects && !a.object_type.empty())
+            return r.fail("/attractors/" + std::to_string(i) + "/object_type", "only an \"objects\" attractor takes one");
         if (!a.mesh) continue;
         double area = 0.0;
         for (size_t t = 0; t < a.mesh->triangleCount(); ++t) area += meshTriangleArea(*a.mesh, t);
@@ -279,6 +283,10 @@ json particleSystemToJson(const ParticleSystemFile& s) {
         if (a.kind == AttractorKind::Mesh) {
             aj["mesh"] = a.mesh_file;
             aj["scale"] = a.scale;
+            aj["points"] = a.point_count;
+        }
+        if (a.kind == AttractorKind::Objects) {
+            aj["object_type"] = a.object_type;
             aj["points"] = a.point_count;
         }
         attractors.push_back(std::move(aj));

@@ -8,6 +8,8 @@
 //                                                          segment: a_m, b_m; sphere: a_m, radius_m;
 //                                                          mesh: "mesh" (relative to the file), "scale",
 //                                                          "points" (1..1024), placed at a_m;
+//                                                          objects: "object_type" (the project's
+//                                                          environmental-object type), "points" per object;
 //                                                          charge: [[step, a], ...] keys or one number
 //    "cutters": [{"kind": "plane", "center_m": [0, 0, 0.3], "normal": [0, 0, 1], "threshold_m": 0,
 //                 "side": "above", "action": {"kind": "split", "split_count": 3, "split_angle_deg": 40}}],

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "particles/particle_seeding.h"
 
@@ -60,6 +61,16 @@ float segmentDistance(glm::vec3 a, glm::vec3 b, glm::vec3 p) {
     return glm::length(p - (a + s * ab));
 }
 
+// Brute force: at most kMaxObjectAttractorPoints, and the points stay in cache.
+float nearestSquared(const std::vector<glm::vec3>& points, glm::vec3 q) {
+    float best = INFINITY;
+    for (const glm::vec3& s : points) {
+        const glm::vec3 d = q - s;
+        best = std::min(best, glm::dot(d, d));
+    }
+    return best;
+}
+
 }  // namespace
 
 double meshTriangleArea(const TriangleMesh& mesh, size_t triangle) {
@@ -69,8 +80,50 @@ double meshTriangleArea(const TriangleMesh& mesh, size_t triangle) {
 }
 
 bool sameAttractorPlace(const Attractor& a, const Attractor& b) {
+    const bool same_points = a.points == b.points || (a.points && b.points && *a.points == *b.points);
     return a.kind == b.kind && a.a_m == b.a_m && a.b_m == b.b_m && a.radius_m == b.radius_m &&
-           a.scale == b.scale && a.points == b.points;
+           a.scale == b.scale && same_points;
+}
+
+glm::vec3 ParticleObstacle::toWorld(glm::vec3 local) const {
+    const glm::vec3 q = local * scale;
+    return translation + glm::vec3(cos_yaw * q.x - sin_yaw * q.y, sin_yaw * q.x + cos_yaw * q.y, q.z);
+}
+
+glm::vec3 ParticleObstacle::toLocal(glm::vec3 world) const { return directionToLocal(world - translation) / scale; }
+
+glm::vec3 ParticleObstacle::directionToLocal(glm::vec3 d) const {
+    return glm::vec3(cos_yaw * d.x + sin_yaw * d.y, -sin_yaw * d.x + cos_yaw * d.y, d.z);
+}
+
+Bounds particleReach(const ParticleScene& scene) {
+    Bounds b;
+    for (const ParticleGenerator& g : scene.generators) {
+        glm::vec3 half(0.0f);
+        glm::vec3 center = g.center_m;
+        switch (g.kind) {
+            case GeneratorKind::Rectangle: half = glm::abs(g.axis_u_m) + glm::abs(g.axis_v_m); break;
+            case GeneratorKind::Sphere: half = glm::vec3(g.radius_m); break;
+            case GeneratorKind::Box: half = g.half_extents_m; break;
+            case GeneratorKind::Mesh:
+                if (g.mesh && !g.mesh->positions.empty()) {
+                    Bounds m;
+                    for (const glm::vec3& p : g.mesh->positions) m = unite(m, Bounds{p, p});
+                    center += 0.5f * (m.lo + m.hi) * g.scale;
+                    half = 0.5f * (m.hi - m.lo) * g.scale;
+                }
+                break;
+        }
+        Bounds gb = Bounds::fromCenterHalf(center, half);
+        if (g.on_terrain) {
+            gb.lo.z = -std::numeric_limits<float>::infinity();
+            gb.hi.z = std::numeric_limits<float>::infinity();
+        }
+        b = unite(b, gb);
+    }
+    if (b.empty()) return b;
+    const float walk = float(scene.walk.steps) * scene.walk.step_length_m + scene.walk.strand_radius_m;
+    return Bounds{b.lo - glm::vec3(walk), b.hi + glm::vec3(walk)};
 }
 
 std::shared_ptr<const std::vector<glm::vec3>> meshAttractorPoints(std::shared_ptr<const TriangleMesh> mesh,
@@ -157,6 +210,17 @@ bool validateParticleScene(const ParticleScene& scene, std::string* error) {
         if (!checkPosition(a.a_m, f + ".a_m", error)) return false;
         if (a.kind == AttractorKind::Segment && !checkPosition(a.b_m, f + ".b_m", error)) return false;
         if (a.kind == AttractorKind::Sphere && !checkLength(a.radius_m, f + ".radius_m", false, error)) return false;
+        if (a.kind == AttractorKind::Objects) {
+            if (a.object_type.empty()) return fail(error, f + ".object_type", "names no environmental-object type");
+            if (a.point_count < 1 || a.point_count > kMaxAttractorPoints)
+                return fail(error, f + ".points", "must be in [1, 1024]");
+            if (a.points && a.points->size() > kMaxObjectAttractorPoints)
+                return fail(error, f + ".points",
+                            "the objects within reach times their points exceed 16384 (take fewer points)");
+            if (a.points)
+                for (const glm::vec3& q : *a.points)
+                    if (!checkPosition(q, f + ".points", error)) return false;
+        }
         if (a.kind == AttractorKind::Mesh) {
             if (!std::isfinite(a.scale) || !(a.scale > 0.0f) || a.scale > 1e4f)
                 return fail(error, f + ".scale", "must be in (0, 10000]");
@@ -174,6 +238,14 @@ bool validateParticleScene(const ParticleScene& scene, std::string* error) {
             if (k > 0 && a.charge[k].step <= a.charge[k - 1].step)
                 return fail(error, fk + ".step", "steps must increase strictly");
         }
+    }
+
+    for (size_t i = 0; i < scene.obstacles.size(); ++i) {
+        const ParticleObstacle& o = scene.obstacles[i];
+        const std::string f = "obstacles[" + std::to_string(i) + "]";
+        if (!o.mesh) return fail(error, f + ".mesh", "no mesh loaded");
+        if (!std::isfinite(o.scale) || !(o.scale > 0.0f)) return fail(error, f + ".scale", "must be > 0");
+        if (!checkPosition(o.translation, f + ".translation", error)) return false;
     }
 
     if (scene.cutters.size() > kMaxCutters) return fail(error, "cutters", "at most 32");
@@ -219,16 +291,13 @@ float attractorDistance(const Attractor& a, glm::vec3 p) {
         case AttractorKind::Point: return glm::length(p - a.a_m);
         case AttractorKind::Segment: return segmentDistance(a.a_m, a.b_m, p);
         case AttractorKind::Sphere: return std::abs(glm::length(p - a.a_m) - a.radius_m);
-        case AttractorKind::Mesh: {
+        case AttractorKind::Mesh:
             // Brute force over at most kMaxAttractorPoints: in the mesh's frame, then scaled back.
-            const glm::vec3 q = (p - a.a_m) / a.scale;
-            float best = INFINITY;
-            for (const glm::vec3& s : *a.points) {
-                const glm::vec3 d = q - s;
-                best = std::min(best, glm::dot(d, d));
-            }
-            return std::sqrt(best) * a.scale;
-        }
+            return std::sqrt(nearestSquared(*a.points, (p - a.a_m) / a.scale)) * a.scale;
+        case AttractorKind::Objects:
+            // Nowhere to pull to: a constant term, which no trial prefers.
+            if (!a.points || a.points->empty()) return 0.0f;
+            return std::sqrt(nearestSquared(*a.points, p));
     }
     return 0.0f;
 }

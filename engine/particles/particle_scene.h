@@ -14,6 +14,7 @@
 
 #include <glm/glm.hpp>
 
+#include "field/bounds.h"
 #include "field/height_field.h"
 #include "mesh/triangle_mesh.h"
 
@@ -89,9 +90,16 @@ enum class AttractorKind : uint8_t {
     // stratum of its area as a mesh generator seeds (a fixed seed), the mesh scaled by `scale` about its
     // origin and moved to a_m; the distance is to the nearest point.
     Mesh,
+    // Points on the surfaces of the project's environmental objects of one type (`object_type`): point_count
+    // per object, taken as a mesh attractor takes them and placed with each object. The project that places
+    // the system fills `points` in world coordinates (scene/scene_particles.h; a_m and scale are unused);
+    // without them (a system grown alone, or no such object within reach) the attractor pulls nowhere.
+    Objects,
 };
 
 constexpr uint32_t kMaxAttractorPoints = 1024;
+// An Objects attractor's points over all its objects: the distance is brute force over them.
+constexpr size_t kMaxObjectAttractorPoints = 16384;
 
 struct Attractor {
     AttractorKind kind = AttractorKind::Point;
@@ -107,6 +115,8 @@ struct Attractor {
     float scale = 1.0f;
     uint32_t point_count = 64;
     std::shared_ptr<const std::vector<glm::vec3>> points;
+    std::string object_type;  // Objects: the environmental-object type's name
+
 
     bool operator==(const Attractor&) const = default;
 };
@@ -161,6 +171,21 @@ struct WalkSettings {
     bool operator==(const WalkSettings&) const = default;
 };
 
+// A solid the project places around a system (scene/scene_particles.h: an environmental object's base
+// geometry): its mesh in its own frame, scaled, turned about z by the yaw and moved. walk.solids refuses a
+// move that crosses its surface, as it refuses one into a mesh generator's.
+struct ParticleObstacle {
+    std::shared_ptr<const TriangleMesh> mesh;
+    glm::vec3 translation{0.0f};
+    float cos_yaw = 1.0f, sin_yaw = 0.0f;
+    float scale = 1.0f;  // > 0
+
+    glm::vec3 toWorld(glm::vec3 local) const;
+    glm::vec3 toLocal(glm::vec3 world) const;
+    glm::vec3 directionToLocal(glm::vec3 d) const;  // the rotation only (lengths keep the world's)
+    bool operator==(const ParticleObstacle&) const = default;
+};
+
 struct ParticleScene {
     std::vector<ParticleGenerator> generators;
     // The ground on_terrain generators seed on: set by the project that places the system
@@ -169,6 +194,8 @@ struct ParticleScene {
     std::vector<Attractor> attractors;
     std::vector<Cutter> cutters;  // at most kMaxCutters (a strand remembers which it has triggered)
     WalkSettings walk;
+    // The solids around the system, set by the project that places it (empty for a system grown alone).
+    std::vector<ParticleObstacle> obstacles;
 };
 
 constexpr uint64_t kMaxParticles = 10'000'000;
@@ -210,6 +237,10 @@ const char* strandActionName(StrandActionKind kind);
 
 // Area of a mesh's triangle (unscaled), in double: the mesh generator's strata are built from these.
 double meshTriangleArea(const TriangleMesh& mesh, size_t triangle);
+
+// Where the system's strands can be: its generators' bounds grown by the longest walk (steps × step length)
+// and the strand radius. A terrain-dropped rectangle's bounds are unbounded in z.
+Bounds particleReach(const ParticleScene& scene);
 
 // Moves every generator, attractor and cutter by `offset` (metres): the same system placed elsewhere.
 void translateParticleScene(ParticleScene* scene, glm::vec3 offset);

@@ -142,9 +142,11 @@ public:
           reach_(walk_.step_length_m * 1.001f + 2.0f * walk_.strand_radius_m * 1.001f),
           grid_(reach_),
           step_grid_(reach_) {
-        if (walk_.solids)
-            for (const ParticleGenerator& g : scene_.generators)
-                if (g.kind == GeneratorKind::Mesh && g.mesh) solid_meshes_.push_back({&g, TriangleBvh(*g.mesh, threads_)});
+        if (!walk_.solids) return;
+        for (const ParticleGenerator& g : scene_.generators)
+            if (g.kind == GeneratorKind::Mesh && g.mesh)
+                addSolid(ParticleObstacle{.mesh = g.mesh, .translation = g.center_m, .scale = g.scale});
+        for (const ParticleObstacle& o : scene_.obstacles) addSolid(o);
     }
 
     // Grow again from `record`, a growth of `before` (regrowable(before, scene_)).
@@ -193,11 +195,15 @@ private:
     std::vector<float> charge_;  // a_i(t) of this step
     Moves moves_;
     StrandStats stats_;
+    void addSolid(const ParticleObstacle& placement);
     struct SolidMesh {
-        const ParticleGenerator* generator;  // placed at its center_m, scaled by its scale
-        TriangleBvh bvh;                     // in the model's own space
+        ParticleObstacle placement;  // a mesh generator's (at its center_m, its scale) or an obstacle's
+        const TriangleBvh* bvh;      // in the model's own space
+        Bounds bounds;               // world, padded: moves that stay clear of it skip the ray
     };
     std::vector<SolidMesh> solid_meshes_;
+    // One BVH per distinct mesh: a street's benches share theirs.
+    std::vector<std::pair<const TriangleMesh*, std::unique_ptr<TriangleBvh>>> bvhs_;
     std::optional<Replay> replay_;
     GrowthRecord* record_ = nullptr;
     uint64_t proposals_ = 0;  // moves proposed, over all steps
@@ -281,7 +287,7 @@ bool Growth::entersSolid(size_t k) const {
     const uint32_t s = active_[k];
     const glm::vec3 a = points_.pos[strands_.last[s]], b = moves_.pos[k];
     // Seeds lie on the terrain and on the meshes: a move that starts on a surface and leaves it must not
-    // hit it at its start, so the tests allow a hair (a thousandth of a step).
+    // hit it at its start, so the tests allow a hair (a thousandth of a step) there.
     const float hair = 1e-3f * walk_.step_length_m;
     if (scene_.terrain && b.z < scene_.terrain->sample(b.x, b.y) - hair) return true;
     const float length = glm::length(b - a);
@@ -290,12 +296,41 @@ bool Growth::entersSolid(size_t k) const {
     // A first move from a seed on a mesh starts on its surface, where the ray below cannot tell in from
     // out: the surface's normal does.
     if (strands_.npoints[s] == 1 && glm::dot(strands_.solid_normal[s], d) < 0.0f) return true;
+    // A move must end at least a hair in front of a surface, never on it or just past it, so the next move
+    // starts outside even when it grazed the surface. Only a seed on a mesh starts on the surface: its ray
+    // begins a hair along (its normal has already sent it outward).
+    const float skip = strands_.npoints[s] == 1 && strands_.solid_normal[s] != glm::vec3(0.0f) ? hair : 0.0f;
+    const Bounds move{glm::min(a, b), glm::max(a, b)};
     for (const SolidMesh& m : solid_meshes_) {
-        const float inv = 1.0f / m.generator->scale;
-        const glm::vec3 o = (a + d * hair - m.generator->center_m) * inv;
-        if (m.bvh.rayHit(o, d) < (length - hair) * inv) return true;
+        if (!overlaps(move, m.bounds)) continue;
+        const glm::vec3 o = m.placement.toLocal(a + d * skip);
+        if (m.bvh->rayHit(o, m.placement.directionToLocal(d)) < (length - skip + hair) / m.placement.scale)
+            return true;
     }
     return false;
+}
+
+void Growth::addSolid(const ParticleObstacle& placement) {
+    const TriangleBvh* bvh = nullptr;
+    for (const auto& [mesh, built] : bvhs_)
+        if (mesh == placement.mesh.get()) bvh = built.get();
+    if (!bvh) {
+        bvhs_.emplace_back(placement.mesh.get(), std::make_unique<TriangleBvh>(*placement.mesh, threads_));
+        bvh = bvhs_.back().second.get();
+    }
+    Bounds local;
+    for (const glm::vec3& p : placement.mesh->positions) local = unite(local, Bounds{p, p});
+    Bounds world;
+    for (int c = 0; c < 8; ++c) {
+        const glm::vec3 corner((c & 1) ? local.hi.x : local.lo.x, (c & 2) ? local.hi.y : local.lo.y,
+                               (c & 4) ? local.hi.z : local.lo.z);
+        const glm::vec3 w = placement.toWorld(corner);
+        world = unite(world, Bounds{w, w});
+    }
+    if (world.empty()) return;  // no triangles: nothing to cross
+    // Padded by a step: the ray starts a hair along the move and rounding must not cull a touching one.
+    const glm::vec3 pad(walk_.step_length_m + 1e-4f * glm::length(world.hi - world.lo));
+    solid_meshes_.push_back({placement, bvh, Bounds{world.lo - pad, world.hi + pad}});
 }
 
 bool Growth::hitsEarlierSegment(size_t k) const {

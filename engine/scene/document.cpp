@@ -12,6 +12,7 @@
 #include "core/atomic_file.h"
 #include "core/hash.h"
 #include "env/env_effects.h"
+#include "scene/scene_particles.h"
 
 namespace ug {
 
@@ -226,6 +227,7 @@ bool Document::recoverParticles(const std::string& file, std::string* error) {
             return fail("/systems/" + std::to_string(i) + ": " + why);
         s.file_name = (*particles_)[i].file_name;
         s.scene.terrain = terrain_;
+        if (!placeAmongObjects(environment_.get(), &s.scene, &why)) return fail("/systems/" + std::to_string(i) + ": " + why);
         systems.push_back(std::move(s));
     }
     particles_ = std::make_shared<const std::vector<ParticleSystemFile>>(std::move(systems));
@@ -306,7 +308,7 @@ bool Document::findPrimitive(uint64_t id, size_t* type, Primitive* out) const {
     return false;
 }
 
-bool Document::commit(const EditEffect& effect, std::string* error) {
+bool Document::commit(EditEffect& effect, std::string* error) {
     CompiledScene next;
     next.terrain = compiled_.terrain;
     next.environment = compiled_.environment;
@@ -315,6 +317,10 @@ bool Document::commit(const EditEffect& effect, std::string* error) {
     std::shared_ptr<const EnvScene> env = environment_;
     if (effect.environment && !compileEditedEnvironment(&env, &all, error)) return false;
     next.environment = env;
+    // The particle systems grow among the objects: an edit of either places them again.
+    std::shared_ptr<const std::vector<ParticleSystemFile>> placed;
+    if ((effect.environment || effect.particles) && !placeParticles(*env, &placed, error)) return false;
+    if (placed) effect.particles = true;
     for (size_t t : all.types)
         if (!compileDetailType(project_, t, terrain_, &next.types[t], error, next.environment)) return false;
     if (!documentExtent(project_, next, path_.empty() ? project_.name : path_, &next.extent, error)) return false;
@@ -329,6 +335,7 @@ bool Document::commit(const EditEffect& effect, std::string* error) {
         live_assets_ = assets_;
         ++tile_generation_;
     }
+    if (placed) particles_ = std::move(placed);
     if (effect.particles) ++particles_generation_;
     bool support_moved = false;
     if (effect.environment) {
@@ -346,6 +353,25 @@ bool Document::commit(const EditEffect& effect, std::string* error) {
     } else if (!all.types.empty()) {
         live_->submit(compiled_.types, all.dirty);
     }
+    return true;
+}
+
+bool Document::placeParticles(const EnvScene& environment,
+                              std::shared_ptr<const std::vector<ParticleSystemFile>>* placed, std::string* error) const {
+    std::vector<ParticleSystemFile> systems = *particles_;
+    bool changed = false;
+    for (size_t i = 0; i < systems.size(); ++i) {
+        ParticleScene& scene = systems[i].scene;
+        const ParticleScene& before = (*particles_)[i].scene;
+        if (!placeAmongObjects(&environment, &scene, error)) {
+            *error = "particles[" + std::to_string(i) + "] (" + systems[i].name + "): " + *error;
+            return false;
+        }
+        changed = changed || scene.obstacles != before.obstacles;
+        for (size_t a = 0; a < scene.attractors.size(); ++a)
+            changed = changed || scene.attractors[a].points != before.attractors[a].points;
+    }
+    if (changed) *placed = std::make_shared<const std::vector<ParticleSystemFile>>(std::move(systems));
     return true;
 }
 
@@ -453,7 +479,8 @@ bool Document::addParticleSystem(const ParticleSystemFile& system, std::string* 
     placed.file_name = placed.name;
     placed.scene.terrain = terrain_;
     std::string why;
-    if (!validateParticleScene(placed.scene, &why) || !savableParticleSystem(placed, &why)) {
+    if (!placeAmongObjects(environment_.get(), &placed.scene, &why) || !validateParticleScene(placed.scene, &why) ||
+        !savableParticleSystem(placed, &why)) {
         *error = "new particle system (" + placed.name + "): " + why;
         return false;
     }

@@ -228,8 +228,13 @@ private:
     bool recoverParticles(const std::string& file, std::string* error);
     EditTarget target() { return EditTarget{&project_, &densities_, &assets_, &particles_}; }
     // Recompiles what `effect` touched and feeds the live instancer; false (nothing changed) when the new
-    // settings do not compile.
-    bool commit(const EditEffect& effect, std::string* error);
+    // settings do not compile. It sets effect.particles when the systems had to be placed again among
+    // moved objects (placeParticles).
+    bool commit(EditEffect& effect, std::string* error);
+    // The systems placed among `environment`'s objects (scene/scene_particles.h placeAmongObjects); *placed
+    // stays null when nothing changed.
+    bool placeParticles(const EnvScene& environment, std::shared_ptr<const std::vector<ParticleSystemFile>>* placed,
+                        std::string* error) const;
     // project().environment compiled (reusing environment()'s meshes) into *env; the scattered types and
     // the region the objects and fields changed in join *effect.
     bool compileEditedEnvironment(std::shared_ptr<const EnvScene>* env, EditEffect* effect, std::string* error);

@@ -44,9 +44,14 @@ bool loadScene(const Project& project, const SceneLoadOptions& options, LoadedSc
         return false;
     }
     scene.models_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    // Before the Ghost Tile: a bad particle file fails at once, not after the tile's build.
+    // The environment before the densities (scattered types read theirs from it) and before the particle
+    // systems (they grow around its objects). Both before the Ghost Tile: a bad file fails at once, not
+    // after the tile's build.
+    auto env = std::make_shared<EnvScene>();
+    if (!compileEnvScene(project.environment, project.base_dir, name, scene.terrain, env.get(), error)) return false;
+    scene.environment = std::move(env);
     auto particles = std::make_shared<std::vector<ParticleSystemFile>>();
-    if (!loadSceneParticles(project, scene.terrain, particles.get(), error)) return false;
+    if (!loadSceneParticles(project, scene.terrain, scene.environment.get(), particles.get(), error)) return false;
     scene.particles = std::move(particles);
     const GhostTileInput input = ghostTileInput(project, *scene.models);
     scene.tile = std::make_shared<GhostTile>();
@@ -56,10 +61,6 @@ bool loadScene(const Project& project, const SceneLoadOptions& options, LoadedSc
         *error = name + ": " + *error;
         return false;
     }
-    // The environment before the densities: scattered types read theirs from it.
-    auto env = std::make_shared<EnvScene>();
-    if (!compileEnvScene(project.environment, project.base_dir, name, scene.terrain, env.get(), error)) return false;
-    scene.environment = std::move(env);
     if (!compileScene(project, scene.terrain, &scene.compiled, error, scene.environment)) {
         std::string first = *error;
         if (!options.allow_empty_extent ||

@@ -7,8 +7,57 @@
 
 namespace ug {
 
+bool placeAmongObjects(const EnvScene* environment, ParticleScene* scene, std::string* error) {
+    const Bounds reach = particleReach(*scene);
+    std::vector<uint32_t> near;  // the objects within reach, in the scene's order
+    if (environment)
+        for (size_t o = 0; o < environment->objects().size(); ++o)
+            if (overlaps(environment->objects()[o].bounds, reach)) near.push_back(uint32_t(o));
+    const auto placementOf = [&](uint32_t o) {
+        const EnvPlacement& pl = environment->objects()[o].placement;
+        return ParticleObstacle{.mesh = environment->types()[environment->objects()[o].type].mesh,
+                                .translation = pl.t, .cos_yaw = pl.c, .sin_yaw = pl.s, .scale = pl.scale};
+    };
+    std::vector<ParticleObstacle> obstacles;
+    for (uint32_t o : near)
+        if (environment->types()[environment->objects()[o].type].mesh) obstacles.push_back(placementOf(o));
+    scene->obstacles = std::move(obstacles);
+
+    for (size_t i = 0; i < scene->attractors.size(); ++i) {
+        Attractor& a = scene->attractors[i];
+        if (a.kind != AttractorKind::Objects) continue;
+        int64_t type = -1;
+        if (environment)
+            for (size_t t = 0; t < environment->types().size(); ++t)
+                if (environment->types()[t].desc.name == a.object_type) type = int64_t(t);
+        if (type < 0) {
+            *error = "attractors[" + std::to_string(i) + "].object_type: the project has no environmental-object type '" +
+                     a.object_type + "'";
+            return false;
+        }
+        const std::shared_ptr<const TriangleMesh>& mesh = environment->types()[size_t(type)].mesh;
+        std::vector<glm::vec3> points;
+        if (mesh && mesh->triangleCount() > 0) {
+            const auto local = meshAttractorPoints(mesh, a.point_count);
+            for (uint32_t o : near) {
+                if (environment->objects()[o].type != uint32_t(type)) continue;
+                if (points.size() + local->size() > kMaxObjectAttractorPoints) {
+                    *error = "attractors[" + std::to_string(i) + "].points: the '" + a.object_type +
+                             "' objects within reach times " + std::to_string(a.point_count) +
+                             " points exceed " + std::to_string(kMaxObjectAttractorPoints) + " (take fewer points)";
+                    return false;
+                }
+                const ParticleObstacle placement = placementOf(o);
+                for (const glm::vec3& q : *local) points.push_back(placement.toWorld(q));
+            }
+        }
+        if (!a.points || *a.points != points) a.points = std::make_shared<const std::vector<glm::vec3>>(std::move(points));
+    }
+    return true;
+}
+
 bool loadSceneParticles(const Project& project, const std::shared_ptr<const HeightField>& terrain,
-                        std::vector<ParticleSystemFile>* out, std::string* error) {
+                        const EnvScene* environment, std::vector<ParticleSystemFile>* out, std::string* error) {
     std::vector<ParticleSystemFile> systems;
     std::set<std::string> names;
     for (size_t i = 0; i < project.particles.size(); ++i) {
@@ -28,6 +77,10 @@ bool loadSceneParticles(const Project& project, const std::shared_ptr<const Heig
         }
         translateParticleScene(&system.scene, ref.offset_m);
         system.scene.terrain = terrain;
+        if (!placeAmongObjects(environment, &system.scene, error)) {
+            *error = at + ": " + *error;
+            return false;
+        }
         // Moved past the coordinate limit the file's own positions were checked against.
         if (!validateParticleScene(system.scene, error)) {
             *error = at + "/offset_m: " + *error;

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "env/env_scene.h"
 #include "field/bounds.h"
 #include "io/mesh_instances.h"
 #include "particles/particle_json.h"
@@ -21,8 +22,16 @@ namespace ug {
 // Pointer and the particle file's own message: "park.json: /particles/1/file: grass.json: /walk/trials:
 // 0 is out of range [1, 256]". Two systems with one name are refused (their glTF meshes are named by it).
 // `terrain` (may be null) is the ground of the systems' on_terrain generators.
+// `environment` (may be null) places the systems among the project's objects (placeAmongObjects).
 bool loadSceneParticles(const Project& project, const std::shared_ptr<const HeightField>& terrain,
-                        std::vector<ParticleSystemFile>* out, std::string* error);
+                        const EnvScene* environment, std::vector<ParticleSystemFile>* out, std::string* error);
+
+// What a system takes from the environmental objects within its reach (particleReach): their base
+// geometry as obstacles (solids its strands go around), and the surface points of its "objects"
+// attractors, in world coordinates, per object in the scene's order. An attractor naming a type the
+// project does not have is an error ("attractors[1].object_type: ..."). Points equal to the ones the
+// scene already holds are kept (same pointer), so a re-placement that changes nothing changes nothing.
+bool placeAmongObjects(const EnvScene* environment, ParticleScene* scene, std::string* error);
 
 struct SceneStrandStats {
     size_t systems = 0;  // grown and kept (in a region: those it holds)

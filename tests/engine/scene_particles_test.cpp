@@ -97,7 +97,7 @@ TEST(SceneParticles, FilesAreReadRenamedAndMoved) {
         {"file": "grass.json", "name": "grass_east", "offset_m": [3, 0, 0.5]}])");
     std::vector<ParticleSystemFile> systems;
     std::string error;
-    ASSERT_TRUE(loadSceneParticles(p, nullptr, &systems, &error)) << error;
+    ASSERT_TRUE(loadSceneParticles(p, nullptr, nullptr, &systems, &error)) << error;
     ASSERT_EQ(systems.size(), 2u);
     EXPECT_EQ(systems[0].name, "grass");
     EXPECT_EQ(systems[1].name, "grass_east");
@@ -151,7 +151,7 @@ TEST(SceneParticles, LoadErrorsNameTheProjectTheEntryAndTheFile) {
         SCOPED_TRACE(json);
         std::vector<ParticleSystemFile> systems;
         std::string error;
-        EXPECT_FALSE(loadSceneParticles(projectIn(dir, json), nullptr, &systems, &error));
+        EXPECT_FALSE(loadSceneParticles(projectIn(dir, json), nullptr, nullptr, &systems, &error));
         for (const std::string& piece : pieces) EXPECT_NE(error.find(piece), std::string::npos) << error;
     }
 }

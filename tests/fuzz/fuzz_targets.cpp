@@ -74,7 +74,7 @@ Outcome runScene(const std::string& path) {
     std::shared_ptr<const HeightField> terrain;
     if (!loadTerrain(project, &terrain, &error)) return rejected(error);
     std::vector<ParticleSystemFile> particles;
-    if (!loadSceneParticles(project, terrain, &particles, &error)) return rejected(error);
+    if (!loadSceneParticles(project, terrain, nullptr, &particles, &error)) return rejected(error);
     CompiledScene compiled;
     if (!compileScene(project, terrain, &compiled, &error)) return rejected(error);
     o.accepted = true;
