@@ -241,6 +241,7 @@ void addParticleMarkers(const ParticleSystemFile& system, ParticleHandle selecte
                 addBoxEdges(g.center_m - g.half_extents_m, g.center_m + g.half_extents_m, kGeneratorColor, out);
                 break;
             case GeneratorKind::Mesh:
+            case GeneratorKind::Objects:  // its gathered surfaces: world coordinates, center 0, scale 1
                 if (g.mesh && !g.mesh->positions.empty()) {
                     glm::vec3 lo = g.mesh->positions[0], hi = lo;
                     for (const glm::vec3& p : g.mesh->positions) {

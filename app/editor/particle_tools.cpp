@@ -22,6 +22,7 @@ std::vector<ParticleHandlePoint> particleHandlePoints(const ParticleScene& scene
             points.push_back({{ParticlePart::Attractor, i}, scene.attractors[i].a_m});
     for (size_t i = 0; i < scene.generators.size(); ++i) {
         const ParticleGenerator& g = scene.generators[i];
+        if (g.kind == GeneratorKind::Objects) continue;  // it moves with its objects
         glm::vec3 p = g.center_m;
         if (g.on_terrain && scene.terrain) p.z = scene.terrain->sample(p.x, p.y) + 0.01f;
         points.push_back({{ParticlePart::Generator, i}, p});

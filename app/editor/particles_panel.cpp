@@ -22,7 +22,7 @@ namespace ug::editor {
 namespace {
 
 const char* const kAttractorKinds[] = {"point", "segment", "sphere", "mesh", "objects"};
-const char* const kGeneratorKinds[] = {"rectangle", "sphere", "box", "mesh"};
+const char* const kGeneratorKinds[] = {"rectangle", "sphere", "box", "mesh", "objects"};
 const char* const kCutterKinds[] = {"plane", "sphere", "box"};
 const char* const kActionKinds[] = {"stop", "kill", "split", "countdown"};
 const char* const kCutterSides[] = {"above the threshold", "below the threshold"};
@@ -46,7 +46,8 @@ PartRow partRow(const char* label, bool selected, bool removable) {
 }
 
 void editGenerator(ParticleGenerator* g, PanelEdit* e) {
-    dragged(ImGui::DragFloat3("centre (m)", &g->center_m.x, 0.01f), e);
+    // An objects generator is where its objects are: no centre of its own.
+    if (g->kind != GeneratorKind::Objects) dragged(ImGui::DragFloat3("centre (m)", &g->center_m.x, 0.01f), e);
     switch (g->kind) {
         case GeneratorKind::Rectangle:
             dragged(ImGui::DragFloat3("half side u (m)", &g->axis_u_m.x, 0.005f), e);
@@ -62,6 +63,12 @@ void editGenerator(ParticleGenerator* g, PanelEdit* e) {
         case GeneratorKind::Mesh:
             ImGui::TextDisabled("%s", g->mesh_file.c_str());
             dragged(ImGui::DragFloat("scale", &g->scale, 0.01f, 0.01f, 1e4f), e);
+            break;
+        case GeneratorKind::Objects:
+            ImGui::TextDisabled("the '%s' objects' surfaces", g->object_type.c_str());
+            dragged(ImGui::DragFloat("below (m)", &g->max_height_m, 0.01f, 0.0f, 1e3f), e);
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("seeds only below this height in each object; 0: the whole object");
+            e->changed |= ImGui::Checkbox("sides only", &g->sides_only);
             break;
     }
     ImGui::InputScalar("count", ImGuiDataType_U32, &g->count);

@@ -43,7 +43,7 @@ bool readKind(JsonReader& r, const json& obj, const std::string& p, const char* 
 const char* const kActionNames[] = {"stop", "kill", "split", "countdown"};
 // countdown_then takes only the first two actions (StrandActionKind's Stop and Kill, in enum order).
 const char* const kCountdownEndNames[] = {"stop", "kill"};
-const char* const kGeneratorNames[] = {"rectangle", "sphere", "box", "mesh"};
+const char* const kGeneratorNames[] = {"rectangle", "sphere", "box", "mesh", "objects"};
 const char* const kAttractorNames[] = {"point", "segment", "sphere", "mesh", "objects"};
 const char* const kCutterNames[] = {"plane", "sphere", "box"};
 const char* const kSideNames[] = {"above", "below"};
@@ -65,8 +65,11 @@ bool readAction(JsonReader& r, const json& obj, const std::string& p, const char
 bool readGenerator(JsonReader& r, const json& j, const std::string& p, ParticleGenerator* g) {
     return r.expectObject(j, p) &&
            r.onlyKeys(j, p, {"kind", "center_m", "axis_u_m", "axis_v_m", "radius_m", "half_extents_m", "count",
-                             "heading_cone_deg", "on_terrain", "mesh", "scale"}) &&
+                             "heading_cone_deg", "on_terrain", "mesh", "scale", "object_type", "max_height_m",
+                             "sides_only"}) &&
            r.boolean(j, p, "on_terrain", &g->on_terrain) && r.string(j, p, "mesh", &g->mesh_file) &&
+           r.string(j, p, "object_type", &g->object_type) && r.boolean(j, p, "sides_only", &g->sides_only) &&
+           r.number(j, p, "max_height_m", &g->max_height_m, 0.0, kMaxCoordinate) &&
            r.number(j, p, "scale", &g->scale, 1e-6, 1e4) &&
            readKind(r, j, p, "kind", kGeneratorNames, &g->kind, true) && readVec3(r, j, p, "center_m", &g->center_m) &&
            readVec3(r, j, p, "axis_u_m", &g->axis_u_m) && readVec3(r, j, p, "axis_v_m", &g->axis_v_m) &&
@@ -222,6 +225,8 @@ bool parseParticleSystem(const json& j, const std::string& source, ParticleSyste
         if (!loadPartMesh(r, "/generators/" + std::to_string(i) + "/mesh", "generator", g.kind == GeneratorKind::Mesh,
                           g.mesh_file, source, &g.mesh))
             return false;
+        if (g.kind != GeneratorKind::Objects && !g.object_type.empty())
+            return r.fail("/generators/" + std::to_string(i) + "/object_type", "only an \"objects\" generator takes one");
     }
     for (size_t i = 0; i < s.scene.attractors.size(); ++i) {
         Attractor& a = s.scene.attractors[i];
@@ -268,6 +273,11 @@ json particleSystemToJson(const ParticleSystemFile& s) {
         if (g.kind == GeneratorKind::Mesh) {
             gj["mesh"] = g.mesh_file;
             gj["scale"] = g.scale;
+        }
+        if (g.kind == GeneratorKind::Objects) {
+            gj["object_type"] = g.object_type;
+            gj["max_height_m"] = g.max_height_m;
+            gj["sides_only"] = g.sides_only;
         }
         generators.push_back(std::move(gj));
     }

@@ -3,7 +3,9 @@
 //
 //   {"format": "undergrowth-particles", "format_version": 1, "name": "fur_ball",
 //    "generators": [{"kind": "sphere", "center_m": [0, 0, 0], "radius_m": 0.05, "count": 20000,
-//                    "heading_cone_deg": 15}],            rectangle: axis_u_m, axis_v_m; box: half_extents_m
+//                    "heading_cone_deg": 15}],            rectangle: axis_u_m, axis_v_m; box: half_extents_m;
+//                                                          objects: "object_type", "max_height_m",
+//                                                          "sides_only" (the project's objects' surfaces)
 //    "attractors": [{"kind": "point", "a_m": [0, 0, 0], "charge": [[0, -1.0]], "influence_m": 0}],
 //                                                          segment: a_m, b_m; sphere: a_m, radius_m;
 //                                                          mesh: "mesh" (relative to the file), "scale",

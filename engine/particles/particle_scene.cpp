@@ -106,6 +106,7 @@ Bounds particleReach(const ParticleScene& scene) {
             case GeneratorKind::Sphere: half = glm::vec3(g.radius_m); break;
             case GeneratorKind::Box: half = g.half_extents_m; break;
             case GeneratorKind::Mesh:
+            case GeneratorKind::Objects:
                 if (g.mesh && !g.mesh->positions.empty()) {
                     Bounds m;
                     for (const glm::vec3& p : g.mesh->positions) m = unite(m, Bounds{p, p});
@@ -186,6 +187,10 @@ bool validateParticleScene(const ParticleScene& scene, std::string* error) {
                 return fail(error, f + ".on_terrain", "needs horizontal axes (axis_u_m and axis_v_m with z = 0)");
         } else if (g.on_terrain) {
             return fail(error, f + ".on_terrain", "only a rectangle can be dropped onto the terrain");
+        } else if (g.kind == GeneratorKind::Objects) {
+            if (g.object_type.empty()) return fail(error, f + ".object_type", "names no environmental-object type");
+            if (!std::isfinite(g.max_height_m) || g.max_height_m < 0.0f || g.max_height_m > kMaxParticleCoordinate_m)
+                return fail(error, f + ".max_height_m", "must be in [0, 1e5] m");
         } else if (g.kind == GeneratorKind::Mesh) {
             if (!std::isfinite(g.scale) || !(g.scale > 0.0f) || g.scale > 1e4f)
                 return fail(error, f + ".scale", "must be in (0, 10000]");

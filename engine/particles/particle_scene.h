@@ -49,6 +49,12 @@ enum class GeneratorKind : uint8_t {
     // A triangle mesh (a model file), scaled by `scale` about its origin and moved to center_m; normals by
     // its winding. Strata are equal slices of the cumulative area over the triangles in file order.
     Mesh,
+    // The surfaces of the project's environmental objects of one type (`object_type`), optionally only
+    // below max_height_m in each object's frame and only its sides (faces within 60° of vertical): vines
+    // from a shelter's foot. The project that places the system gathers them into `mesh` in world
+    // coordinates (scene/scene_particles.h; center_m 0, scale 1), seeded as a mesh is, `count` over all
+    // the objects; without a project (or with no such object) it seeds nothing.
+    Objects,
 };
 
 struct ParticleGenerator {
@@ -69,9 +75,18 @@ struct ParticleGenerator {
     std::string mesh_file;
     std::shared_ptr<const TriangleMesh> mesh;
     float scale = 1.0f;
+    // Objects: the type's name, the height band (0: the whole object) and whether only the sides seed.
+    std::string object_type;
+    float max_height_m = 0.0f;
+    bool sides_only = false;
 
     bool operator==(const ParticleGenerator&) const = default;
 };
+
+// Whether the generator seeds on a triangle mesh (a model's, or the project's objects' gathered).
+inline bool seedsOnMesh(const ParticleGenerator& g) {
+    return g.kind == GeneratorKind::Mesh || g.kind == GeneratorKind::Objects;
+}
 
 // Attractor charge keyframes: a(t) is piecewise linear in the step index t between keys (strictly
 // increasing steps), constant before the first and after the last.

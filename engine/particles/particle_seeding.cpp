@@ -174,9 +174,11 @@ void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint6
     const glm::quat identity(1.0f, 0.0f, 0.0f, 0.0f);
     // A mesh's strata are slices of its cumulative area: one face of `count` strata in one row, whose s
     // is the area fraction and t the place across the slice's triangle.
-    const MeshAreas areas = gen.kind == GeneratorKind::Mesh ? meshAreas(gen) : MeshAreas{};
+    // An objects generator without its objects (grown alone) has nothing to seed on.
+    if (gen.kind == GeneratorKind::Objects && (!gen.mesh || gen.mesh->triangleCount() == 0)) return;
+    const MeshAreas areas = seedsOnMesh(gen) ? meshAreas(gen) : MeshAreas{};
     std::vector<Face> faces;
-    if (gen.kind == GeneratorKind::Mesh)
+    if (seedsOnMesh(gen))
         faces.push_back(Face{{}, {}, {}, {}, 0, gen.count, 1});
     else
         faces = facesOf(gen);
@@ -192,7 +194,7 @@ void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint6
             glm::dvec3 p, n;
             if (gen.kind == GeneratorKind::Sphere) {
                 spherePoint(gen, s, t, &p, &n);
-            } else if (gen.kind == GeneratorKind::Mesh) {
+            } else if (seedsOnMesh(gen)) {
                 meshPoint(gen, areas, s, t, &p, &n);
             } else {
                 p = f.origin + s * f.u + t * f.v;
@@ -218,7 +220,7 @@ void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint6
 
 uint32_t locateStratum(const ParticleGenerator& gen, glm::vec3 p_f) {
     const glm::dvec3 p(p_f), c(gen.center_m);
-    if (gen.kind == GeneratorKind::Mesh) {
+    if (seedsOnMesh(gen)) {
         // The triangle p lies in (the nearest by its barycentric coordinates' excess), then its area fraction.
         const MeshAreas m = meshAreas(gen);
         size_t best = 0;

@@ -143,10 +143,11 @@ public:
           grid_(reach_),
           step_grid_(reach_) {
         if (!walk_.solids) return;
+        // An objects generator's surfaces are among the obstacles already.
         for (const ParticleGenerator& g : scene_.generators)
             if (g.kind == GeneratorKind::Mesh && g.mesh)
-                addSolid(ParticleObstacle{.mesh = g.mesh, .translation = g.center_m, .scale = g.scale});
-        for (const ParticleObstacle& o : scene_.obstacles) addSolid(o);
+                addSolid(ParticleObstacle{.mesh = g.mesh, .translation = g.center_m, .scale = g.scale}, false);
+        for (const ParticleObstacle& o : scene_.obstacles) addSolid(o, true);
     }
 
     // Grow again from `record`, a growth of `before` (regrowable(before, scene_)).
@@ -195,11 +196,13 @@ private:
     std::vector<float> charge_;  // a_i(t) of this step
     Moves moves_;
     StrandStats stats_;
-    void addSolid(const ParticleObstacle& placement);
+    void addSolid(const ParticleObstacle& placement, bool obstacle);
+    bool insideObstacle(glm::vec3 p) const;
     struct SolidMesh {
         ParticleObstacle placement;  // a mesh generator's (at its center_m, its scale) or an obstacle's
         const TriangleBvh* bvh;      // in the model's own space
         Bounds bounds;               // world, padded: moves that stay clear of it skip the ray
+        bool obstacle;               // one of scene_.obstacles (closed meshes: the inside test holds)
     };
     std::vector<SolidMesh> solid_meshes_;
     // One BVH per distinct mesh: a street's benches share theirs.
@@ -215,7 +218,7 @@ void Growth::seed() {
     for (size_t g = 0; g < scene_.generators.size(); ++g) {
         seedGenerator(scene_.generators[g], uint32_t(g), walk_.seed, &seeds, scene_.terrain.get());
         on_solid.resize(seeds.positions.size(),
-                        walk_.solids && scene_.generators[g].kind == GeneratorKind::Mesh ? 1 : 0);
+                        walk_.solids && seedsOnMesh(scene_.generators[g]) ? 1 : 0);
     }
     const size_t expected = std::min<uint64_t>(walk_.max_points, seeds.positions.size() * (uint64_t(walk_.steps) + 1));
     points_.pos.reserve(expected);
@@ -228,6 +231,10 @@ void Growth::seed() {
         // The generators are the record's, so are the seeds: every root starts identical to its record.
         strands_.add(i, uint32_t(i), seeds.frames[i], -1, 0, 0, replay_ ? uint32_t(i) : kNone);
         if (on_solid[i]) strands_.solid_normal.back() = seeds.normals[i];
+        // A seed inside an environmental object (on a face one of its parts reaches into, or on the ground
+        // under it) never grows: it is dropped like a strand that never moved.
+        if (walk_.solids && insideObstacle(seeds.positions[i] + seeds.normals[i] * (1e-3f * walk_.step_length_m)))
+            strands_.state.back() = StrandState::Stopped;
     }
     stats_.seeded = seeds.positions.size();
     if (walk_.collisions) {
@@ -310,7 +317,40 @@ bool Growth::entersSolid(size_t k) const {
     return false;
 }
 
-void Growth::addSolid(const ParticleObstacle& placement) {
+// Parity of the crossings of a ray going up (tilted off the axes, so it misses the edges of axis-aligned
+// boxes) through each obstacle's every triangle: odd is inside. Environmental objects are closed meshes
+// (env_models.h); parts that reach into each other (a shelter's glass into its posts) count per part,
+// faces that coincide included, which is right for a point inside one part only. Brute force: only seeds
+// within an obstacle's bounds ask, once per growth.
+bool Growth::insideObstacle(glm::vec3 p) const {
+    const glm::dvec3 up = glm::normalize(glm::dvec3(0.0123, 0.0271, 1.0));
+    for (const SolidMesh& m : solid_meshes_) {
+        if (!m.obstacle || !contains(m.bounds, p)) continue;
+        const glm::dvec3 o(m.placement.toLocal(p));
+        const glm::dvec3 d(m.placement.directionToLocal(glm::vec3(up)));
+        const TriangleMesh& mesh = *m.placement.mesh;
+        int crossings = 0;
+        for (size_t t = 0; t < mesh.triangleCount(); ++t) {
+            const glm::dvec3 a(mesh.positions[mesh.indices[3 * t]]);
+            const glm::dvec3 e1 = glm::dvec3(mesh.positions[mesh.indices[3 * t + 1]]) - a;
+            const glm::dvec3 e2 = glm::dvec3(mesh.positions[mesh.indices[3 * t + 2]]) - a;
+            const glm::dvec3 h = glm::cross(d, e2);
+            const double det = glm::dot(e1, h);
+            if (det == 0.0) continue;
+            const glm::dvec3 s = o - a;
+            const double u = glm::dot(s, h) / det;
+            if (u < 0.0 || u > 1.0) continue;
+            const glm::dvec3 q = glm::cross(s, e1);
+            const double v = glm::dot(d, q) / det;
+            if (v < 0.0 || u + v > 1.0) continue;
+            crossings += glm::dot(e2, q) / det > 0.0;
+        }
+        if (crossings % 2 == 1) return true;
+    }
+    return false;
+}
+
+void Growth::addSolid(const ParticleObstacle& placement, bool obstacle) {
     const TriangleBvh* bvh = nullptr;
     for (const auto& [mesh, built] : bvhs_)
         if (mesh == placement.mesh.get()) bvh = built.get();
@@ -330,7 +370,7 @@ void Growth::addSolid(const ParticleObstacle& placement) {
     if (world.empty()) return;  // no triangles: nothing to cross
     // Padded by a step: the ray starts a hair along the move and rounding must not cull a touching one.
     const glm::vec3 pad(walk_.step_length_m + 1e-4f * glm::length(world.hi - world.lo));
-    solid_meshes_.push_back({placement, bvh, Bounds{world.lo - pad, world.hi + pad}});
+    solid_meshes_.push_back({placement, bvh, Bounds{world.lo - pad, world.hi + pad}, obstacle});
 }
 
 bool Growth::hitsEarlierSegment(size_t k) const {

@@ -368,6 +368,8 @@ bool Document::placeParticles(const EnvScene& environment,
             return false;
         }
         changed = changed || scene.obstacles != before.obstacles;
+        for (size_t g = 0; g < scene.generators.size(); ++g)
+            changed = changed || scene.generators[g].mesh != before.generators[g].mesh;
         for (size_t a = 0; a < scene.attractors.size(); ++a)
             changed = changed || scene.attractors[a].points != before.attractors[a].points;
     }

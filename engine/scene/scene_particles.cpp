@@ -7,29 +7,106 @@
 
 namespace ug {
 
+namespace {
+
+ParticleObstacle obstacleOf(const EnvScene& environment, uint32_t object) {
+    const EnvObject& o = environment.objects()[object];
+    return ParticleObstacle{.mesh = environment.types()[o.type].mesh,
+                            .translation = o.placement.t,
+                            .cos_yaw = o.placement.c,
+                            .sin_yaw = o.placement.s,
+                            .scale = o.placement.scale};
+}
+
+int64_t envTypeNamed(const EnvScene* environment, const std::string& name) {
+    if (environment)
+        for (size_t t = 0; t < environment->types().size(); ++t)
+            if (environment->types()[t].desc.name == name) return int64_t(t);
+    return -1;
+}
+
+// Appends the part of triangle abc (object space) at or below height h, as 0, 1 or 2 triangles.
+void clipBelow(glm::vec3 a, glm::vec3 b, glm::vec3 c, float h, std::vector<glm::vec3>* out) {
+    const glm::vec3 in[3] = {a, b, c};
+    glm::vec3 poly[4];
+    int n = 0;
+    for (int i = 0; i < 3; ++i) {
+        const glm::vec3 p = in[i], q = in[(i + 1) % 3];
+        const bool p_in = p.z <= h, q_in = q.z <= h;
+        if (p_in) poly[n++] = p;
+        if (p_in != q_in) poly[n++] = p + (q - p) * ((h - p.z) / (q.z - p.z));
+    }
+    for (int i = 1; i + 1 < n; ++i) out->insert(out->end(), {poly[0], poly[i], poly[i + 1]});
+}
+
+// An objects generator's surfaces: every object of its type, in the scene's order, the triangles that
+// face sideways (when asked) clipped to the height band, in world coordinates; null when none is left.
+std::shared_ptr<const TriangleMesh> objectSurfaces(const EnvScene& environment, uint32_t type,
+                                                   const ParticleGenerator& g) {
+    const TriangleMesh& m = *environment.types()[type].mesh;
+    std::vector<glm::vec3> local;  // the kept pieces of one object, three corners each
+    for (size_t t = 0; t < m.triangleCount(); ++t) {
+        const glm::vec3 a = m.positions[m.indices[3 * t]], b = m.positions[m.indices[3 * t + 1]],
+                        c = m.positions[m.indices[3 * t + 2]];
+        const glm::vec3 n = glm::cross(b - a, c - a);
+        const float len = glm::length(n);
+        if (!(len > 0.0f)) continue;
+        // A turn about z keeps a normal's height: sideways in the model is sideways in the world.
+        if (g.sides_only && std::abs(n.z / len) > 0.5f) continue;
+        if (g.max_height_m > 0.0f) clipBelow(a, b, c, g.max_height_m, &local);
+        else local.insert(local.end(), {a, b, c});
+    }
+    if (local.empty()) return nullptr;
+    auto out = std::make_shared<TriangleMesh>();
+    for (size_t o = 0; o < environment.objects().size(); ++o) {
+        if (environment.objects()[o].type != type) continue;
+        const ParticleObstacle placement = obstacleOf(environment, uint32_t(o));
+        for (const glm::vec3& p : local) {
+            out->indices.push_back(uint32_t(out->positions.size()));
+            out->positions.push_back(placement.toWorld(p));
+        }
+    }
+    if (out->positions.empty()) return nullptr;
+    return out;
+}
+
+bool sameMesh(const std::shared_ptr<const TriangleMesh>& a, const std::shared_ptr<const TriangleMesh>& b) {
+    return a == b || (a && b && a->positions == b->positions && a->indices == b->indices);
+}
+
+}  // namespace
+
 bool placeAmongObjects(const EnvScene* environment, ParticleScene* scene, std::string* error) {
+    // The objects generators first: the reach below grows from what they seed on.
+    for (size_t i = 0; i < scene->generators.size(); ++i) {
+        ParticleGenerator& g = scene->generators[i];
+        if (g.kind != GeneratorKind::Objects) continue;
+        const int64_t type = envTypeNamed(environment, g.object_type);
+        if (type < 0) {
+            *error = "generators[" + std::to_string(i) + "].object_type: the project has no environmental-object type '" +
+                     g.object_type + "'";
+            return false;
+        }
+        g.center_m = glm::vec3(0.0f);
+        g.scale = 1.0f;
+        std::shared_ptr<const TriangleMesh> surfaces;
+        if (environment->types()[size_t(type)].mesh) surfaces = objectSurfaces(*environment, uint32_t(type), g);
+        if (!sameMesh(g.mesh, surfaces)) g.mesh = std::move(surfaces);
+    }
     const Bounds reach = particleReach(*scene);
     std::vector<uint32_t> near;  // the objects within reach, in the scene's order
     if (environment)
         for (size_t o = 0; o < environment->objects().size(); ++o)
             if (overlaps(environment->objects()[o].bounds, reach)) near.push_back(uint32_t(o));
-    const auto placementOf = [&](uint32_t o) {
-        const EnvPlacement& pl = environment->objects()[o].placement;
-        return ParticleObstacle{.mesh = environment->types()[environment->objects()[o].type].mesh,
-                                .translation = pl.t, .cos_yaw = pl.c, .sin_yaw = pl.s, .scale = pl.scale};
-    };
     std::vector<ParticleObstacle> obstacles;
     for (uint32_t o : near)
-        if (environment->types()[environment->objects()[o].type].mesh) obstacles.push_back(placementOf(o));
+        if (environment->types()[environment->objects()[o].type].mesh) obstacles.push_back(obstacleOf(*environment, o));
     scene->obstacles = std::move(obstacles);
 
     for (size_t i = 0; i < scene->attractors.size(); ++i) {
         Attractor& a = scene->attractors[i];
         if (a.kind != AttractorKind::Objects) continue;
-        int64_t type = -1;
-        if (environment)
-            for (size_t t = 0; t < environment->types().size(); ++t)
-                if (environment->types()[t].desc.name == a.object_type) type = int64_t(t);
+        const int64_t type = envTypeNamed(environment, a.object_type);
         if (type < 0) {
             *error = "attractors[" + std::to_string(i) + "].object_type: the project has no environmental-object type '" +
                      a.object_type + "'";
@@ -47,7 +124,7 @@ bool placeAmongObjects(const EnvScene* environment, ParticleScene* scene, std::s
                              " points exceed " + std::to_string(kMaxObjectAttractorPoints) + " (take fewer points)";
                     return false;
                 }
-                const ParticleObstacle placement = placementOf(o);
+                const ParticleObstacle placement = obstacleOf(*environment, o);
                 for (const glm::vec3& q : *local) points.push_back(placement.toWorld(q));
             }
         }

@@ -26,11 +26,13 @@ namespace ug {
 bool loadSceneParticles(const Project& project, const std::shared_ptr<const HeightField>& terrain,
                         const EnvScene* environment, std::vector<ParticleSystemFile>* out, std::string* error);
 
-// What a system takes from the environmental objects within its reach (particleReach): their base
-// geometry as obstacles (solids its strands go around), and the surface points of its "objects"
-// attractors, in world coordinates, per object in the scene's order. An attractor naming a type the
-// project does not have is an error ("attractors[1].object_type: ..."). Points equal to the ones the
-// scene already holds are kept (same pointer), so a re-placement that changes nothing changes nothing.
+// What a system takes from the environmental objects: its "objects" generators' surfaces (every object
+// of the type), then, from those within its reach (particleReach), their base geometry as obstacles
+// (solids its strands go around) and the surface points of its "objects" attractors, in world
+// coordinates, per object in the scene's order. An attractor naming a type the
+// project does not have is an error ("attractors[1].object_type: ..."). Surfaces and points equal to the
+// ones the scene already holds are kept (same pointer), so a re-placement that changes nothing changes
+// nothing.
 bool placeAmongObjects(const EnvScene* environment, ParticleScene* scene, std::string* error);
 
 struct SceneStrandStats {

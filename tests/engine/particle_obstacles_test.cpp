@@ -1,8 +1,8 @@
 // Strands among the project's environmental objects (scene/scene_particles.h placeAmongObjects): the
 // objects' base geometry is a solid the strands never cross, moved and turned as the object is; an
-// "objects" attractor pulls to points on every object of its type within reach; the vines of the
-// bus-stop sample climb the shelter without entering it; moving the shelter in the document places the
-// system again, and undo puts it back.
+// "objects" generator seeds on their sides below a height, an "objects" attractor pulls to points on
+// every object of its type within reach; the vines of the bus-stop sample climb the shelter without
+// entering it; moving the shelter in the document places the system again, and undo puts it back.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -33,8 +33,9 @@ std::shared_ptr<const TriangleMesh> boxMesh(glm::vec3 lo, glm::vec3 hi) {
     return m;
 }
 
-// Whether segment pq crosses triangle abc (Möller-Trumbore, independent of the engine's BVH).
-bool segmentHitsTriangle(glm::vec3 p, glm::vec3 q, glm::vec3 a, glm::vec3 b, glm::vec3 c) {
+// Whether segment pq crosses triangle abc (Möller-Trumbore, independent of the engine's BVH) after
+// `from` of its length (a seed on a face starts on it: rounding may put that face a hair ahead).
+bool segmentHitsTriangle(glm::vec3 p, glm::vec3 q, glm::vec3 a, glm::vec3 b, glm::vec3 c, double from = 0.0) {
     const glm::dvec3 d = glm::dvec3(q) - glm::dvec3(p);
     const glm::dvec3 e1 = glm::dvec3(b) - glm::dvec3(a), e2 = glm::dvec3(c) - glm::dvec3(a);
     const glm::dvec3 h = glm::cross(d, e2);
@@ -47,7 +48,7 @@ bool segmentHitsTriangle(glm::vec3 p, glm::vec3 q, glm::vec3 a, glm::vec3 b, glm
     const double v = glm::dot(d, qv) / det;
     if (v < 0.0 || u + v > 1.0) return false;
     const double t = glm::dot(e2, qv) / det;
-    return t > 0.0 && t < 1.0;
+    return t > from && t < 1.0;
 }
 
 // Strands from a square facing +x, pulled towards +x through where the wall stands.
@@ -131,6 +132,22 @@ TEST(ParticleObstacles, TheBusStopVinesTakeTheShelterAsASolidAndItsSurfaceAsThei
     Strands vines;
     ASSERT_TRUE(growStrands(scene, {.threads = 2}, &vines, &error)) << error;
     EXPECT_GT(vines.stats.solid_hits, 0u);
+    // They start on the shelter's sides, in its lowest 30 cm (the "objects" generator's band); a seed on a
+    // face inside another part (the glass's end in a post) is dropped.
+    ASSERT_EQ(scene.generators[0].kind, GeneratorKind::Objects);
+    EXPECT_EQ(vines.stats.seeded, 120u);
+    size_t roots = 0;
+    for (size_t s = 0; s + 1 < vines.offsets.size(); ++s) {
+        if (vines.parent[s] >= 0) continue;
+        ++roots;
+        const glm::vec3 seed = vines.points[vines.offsets[s]];
+        EXPECT_LE(seed.z, 0.3f + 1e-4f);
+        for (int a = 0; a < 2; ++a) {
+            EXPECT_GE(seed[a], shelter.bounds.lo[a] - 1e-4f);
+            EXPECT_LE(seed[a], shelter.bounds.hi[a] + 1e-4f);
+        }
+    }
+    EXPECT_GT(roots, 80u);
     // They climb: some reach the roof's underside region, and none passes through the shelter (every
     // segment against every triangle of the model, which stands in the world as it is in its file).
     float top = 0.0f;
@@ -138,11 +155,14 @@ TEST(ParticleObstacles, TheBusStopVinesTakeTheShelterAsASolidAndItsSurfaceAsThei
     EXPECT_GT(top, 1.5f);
     const TriangleMesh& m = *env.types()[shelter.type].mesh;
     for (size_t s = 0; s + 1 < vines.offsets.size(); ++s)
-        for (uint32_t i = vines.offsets[s]; i + 1 < vines.offsets[s + 1]; ++i)
+        for (uint32_t i = vines.offsets[s]; i + 1 < vines.offsets[s + 1]; ++i) {
+            const bool from_seed = vines.parent[s] < 0 && i == vines.offsets[s];
             for (size_t t = 0; t < m.triangleCount(); ++t)
                 ASSERT_FALSE(segmentHitsTriangle(vines.points[i], vines.points[i + 1], m.positions[m.indices[3 * t]],
-                                                 m.positions[m.indices[3 * t + 1]], m.positions[m.indices[3 * t + 2]]))
+                                                 m.positions[m.indices[3 * t + 1]], m.positions[m.indices[3 * t + 2]],
+                                                 from_seed ? 1e-3 : 0.0))
                     << "strand " << s << " segment " << i << " crosses triangle " << t;
+        }
 
     // A type the project does not have is named.
     ParticleScene wrong = scene;
@@ -176,6 +196,11 @@ TEST(ParticleObstacles, MovingTheShelterPlacesTheVinesAgainAndUndoPutsThemBack) 
     const ParticleScene after = (*doc->particles())[0].scene;
     EXPECT_GT(doc->particlesGeneration(), generation);
     EXPECT_EQ(after.obstacles[0].translation, before.obstacles[0].translation + glm::vec3(0.5f, 0.0f, 0.0f));
+    // The vines' seeding surfaces went with it.
+    ASSERT_TRUE(after.generators[0].mesh && before.generators[0].mesh);
+    ASSERT_EQ(after.generators[0].mesh->positions.size(), before.generators[0].mesh->positions.size());
+    for (size_t i = 0; i < after.generators[0].mesh->positions.size(); ++i)
+        ASSERT_NEAR(after.generators[0].mesh->positions[i].x, before.generators[0].mesh->positions[i].x + 0.5f, 1e-5f);
     ASSERT_EQ(after.attractors[0].points->size(), before.attractors[0].points->size());
     for (size_t i = 0; i < after.attractors[0].points->size(); ++i)
         ASSERT_NEAR((*after.attractors[0].points)[i].x, (*before.attractors[0].points)[i].x + 0.5f, 1e-5f);
@@ -183,6 +208,7 @@ TEST(ParticleObstacles, MovingTheShelterPlacesTheVinesAgainAndUndoPutsThemBack) 
     ASSERT_TRUE(doc->undo());
     const ParticleScene undone = (*doc->particles())[0].scene;
     EXPECT_EQ(undone.obstacles, before.obstacles);
+    EXPECT_EQ(undone.generators[0].mesh->positions, before.generators[0].mesh->positions);
     EXPECT_EQ(*undone.attractors[0].points, *before.attractors[0].points);
     doc.reset();
     std::error_code ec;
