@@ -132,7 +132,6 @@ struct Attractor {
     std::shared_ptr<const std::vector<glm::vec3>> points;
     std::string object_type;  // Objects: the environmental-object type's name
 
-
     bool operator==(const Attractor&) const = default;
 };
 

@@ -728,22 +728,30 @@ void Growth::emit(Strands* out) const {
 namespace {
 
 // Checks what validateParticleScene cannot: a file is read (and checked) before a project gives it its
-// terrain.
-bool hasItsTerrain(const ParticleScene& scene, std::string* error) {
-    for (size_t i = 0; i < scene.generators.size(); ++i)
-        if (scene.generators[i].on_terrain && (!scene.terrain || scene.terrain->empty())) {
+// terrain and its objects.
+bool placedInAProject(const ParticleScene& scene, std::string* error) {
+    for (size_t i = 0; i < scene.generators.size(); ++i) {
+        const ParticleGenerator& g = scene.generators[i];
+        if (g.on_terrain && (!scene.terrain || scene.terrain->empty())) {
             if (error)
                 *error = "generators[" + std::to_string(i) +
                          "].on_terrain: needs a terrain: grow the system from a project that has one (its \"particles\")";
             return false;
         }
+        if (g.kind == GeneratorKind::Objects && (!g.mesh || g.mesh->triangleCount() == 0)) {
+            if (error)
+                *error = "generators[" + std::to_string(i) + "].object_type: no '" + g.object_type +
+                         "' object to seed on: grow the system from a project that has them (its \"particles\")";
+            return false;
+        }
+    }
     return true;
 }
 
 }  // namespace
 
 bool growStrands(const ParticleScene& scene, const GrowOptions& options, Strands* out, std::string* error) {
-    if (!validateParticleScene(scene, error) || !hasItsTerrain(scene, error)) return false;
+    if (!validateParticleScene(scene, error) || !placedInAProject(scene, error)) return false;
     Growth growth(scene, options);
     return growth.run(out, error);
 }
@@ -757,7 +765,7 @@ void StrandRegrower::reset() {
 }
 
 bool StrandRegrower::grow(const ParticleScene& scene, const GrowOptions& options, Strands* out, std::string* error) {
-    if (!validateParticleScene(scene, error) || !hasItsTerrain(scene, error)) {
+    if (!validateParticleScene(scene, error) || !placedInAProject(scene, error)) {
         reset();
         return false;
     }

@@ -18,6 +18,13 @@ for f in "$root"/assets/particles/*.json; do
       ok "grow $name alone: refused, it needs a project's terrain"; else bad "grow $name alone (exit $rc): $out"; fi
     continue
   fi
+  if grep -q '"kind": "objects", "object_type"' "$f"; then
+    # Seeds on a project's environmental objects: grown from its scene (the GUI and engine tests), refused alone.
+    out=$("$bin" grow "$f" -o "$tmp/$name.glb" 2>&1); rc=$?
+    if [ $rc -eq 1 ] && grep -qF "object to seed on" <<<"$out" && [ ! -e "$tmp/$name.glb" ]; then
+      ok "grow $name alone: refused, it needs a project's objects"; else bad "grow $name alone (exit $rc): $out"; fi
+    continue
+  fi
   if ! "$bin" grow "$f" -o "$tmp/$name.1.glb" --threads 1 --stats "$tmp/$name.json" >"$tmp/$name.out" 2>&1 ||
      ! "$bin" grow "$f" -o "$tmp/$name.2.glb" --threads 2 >>"$tmp/$name.out" 2>&1; then
     bad "grow $name: $(tail -3 "$tmp/$name.out")"; continue; fi

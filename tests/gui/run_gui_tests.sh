@@ -359,7 +359,8 @@ fi
 
 # ---- strands among the objects: the bus stop's vines grow on and around the shelter; dragging the shelter
 # takes them with it (their seeds, pull and solids are its), the export equals `instantiate` on the saved
-# file, and undo gives the loaded vines back exactly. On a copy of the assets, since it saves.
+# file (valid for the Khronos validator, read back by glTF-Transform), and undo gives the loaded vines back
+# exactly. On a copy of the assets, since it saves.
 vdir="$tmp/vines"
 mkdir -p "$vdir"
 cp -r "$root/assets" "$vdir/assets"
@@ -377,9 +378,13 @@ cat >"$vdir/script.json" <<EOF
  {"action": "wait_idle"}]
 EOF
 if edit_and_instantiate "$vdir" bus_stop_vines.json 640x360 &&
+   bash "$root/tests/gltf/setup.sh" >"$vdir/npm.txt" 2>&1 &&
+   node "$root/tests/gltf/check_gltf.mjs" "$vdir/saved.glb" >"$vdir/check.txt" 2>&1 &&
    out="$(python3 - "$vdir" <<'PY' 2>&1
 import json, struct, sys
 d = sys.argv[1]
+report = json.loads(open(d + "/check.txt").read().strip().splitlines()[-1])
+assert report["errors"] == 0 and "strands/vines" in report["per_mesh"], report
 def vines(path):
     b = open(path, "rb").read()
     doc = json.loads(b[20:20 + struct.unpack("<I", b[12:16])[0]])
