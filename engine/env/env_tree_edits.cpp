@@ -27,7 +27,9 @@ EnvTransform composed(const EnvTransform& parent, const EnvTransform& child) {
 EnvTransform relativeTo(const EnvTransform& parent, const EnvTransform& world) {
     EnvTransform out;
     out.translation = rotateZ(world.translation - parent.translation, -parent.yaw_deg) / parent.scale;
-    out.yaw_deg = world.yaw_deg - parent.yaw_deg;
+    // Kept in [-180, 180]: a handle turned round and round must not walk the saved yaw towards the
+    // loader's bound (the same placement, and a file that stays readable).
+    out.yaw_deg = std::remainder(world.yaw_deg - parent.yaw_deg, 360.0f);
     out.scale = world.scale / parent.scale;
     return out;
 }

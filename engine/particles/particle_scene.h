@@ -237,7 +237,8 @@ std::shared_ptr<const std::vector<glm::vec3>> meshAttractorPoints(std::shared_pt
 // suggests). Clamping keeps f continuous: a term that dropped to 0 beyond the radius would make a
 // positive attractor's border a cliff that pushes particles out.
 inline float attractorTerm(const Attractor& a, float charge, glm::vec3 p) {
-    const float d = attractorDistance(a, p);
+    // The point, the commonest kind, inline: this runs for every trial of every move.
+    const float d = a.kind == AttractorKind::Point ? glm::length(p - a.a_m) : attractorDistance(a, p);
     return charge * (a.influence_m > 0.0f && d > a.influence_m ? a.influence_m : d);
 }
 

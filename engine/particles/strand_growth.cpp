@@ -297,6 +297,7 @@ bool Growth::entersSolid(size_t k) const {
     // hit it at its start, so the tests allow a hair (a thousandth of a step) there.
     const float hair = 1e-3f * walk_.step_length_m;
     if (scene_.terrain && b.z < scene_.terrain->sample(b.x, b.y) - hair) return true;
+    if (solid_meshes_.empty()) return false;  // seeds on a solid come from a mesh, which is one
     const float length = glm::length(b - a);
     if (!(length > 0.0f)) return false;
     const glm::vec3 d = (b - a) / length;

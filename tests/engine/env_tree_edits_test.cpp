@@ -175,5 +175,18 @@ TEST(EnvTreeEdits, AWorldTransformPlacesANestedNode) {
     EXPECT_NEAR(std::atan2(x.y, x.x) * 180.0f / 3.14159265f, 70.0f, 1e-3f);
 }
 
+// Turned round and round, a node keeps a yaw in [-180, 180] for the same placement.
+TEST(EnvTreeEdits, AWorldYawIsWrappedIntoOneTurn) {
+    EnvironmentDesc env = street();
+    const EnvTransform top = envWorldTransform(env, {0});
+    ASSERT_TRUE(setEnvWorldTransform(&env, {0}, EnvTransform{top.translation, 725.0f, top.scale}));
+    EXPECT_NEAR(envNodeAt(&env, {0})->transform.yaw_deg, 5.0f, 1e-3f);
+    ASSERT_TRUE(setEnvWorldTransform(&env, {0}, EnvTransform{top.translation, -1e5f - 90.0f, top.scale}));
+    const float yaw = envNodeAt(&env, {0})->transform.yaw_deg;
+    EXPECT_GE(yaw, -180.0f);
+    EXPECT_LE(yaw, 180.0f);
+    EXPECT_NEAR(std::remainder(yaw - (-1e5f - 90.0f), 360.0f), 0.0f, 0.05f);
+}
+
 }  // namespace
 }  // namespace ug
