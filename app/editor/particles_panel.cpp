@@ -65,7 +65,9 @@ void editGenerator(ParticleGenerator* g, PanelEdit* e) {
             dragged(ImGui::DragFloat("scale", &g->scale, 0.01f, 0.01f, 1e4f), e);
             break;
         case GeneratorKind::Objects:
-            ImGui::TextDisabled("the '%s' objects' surfaces", g->object_type.c_str());
+            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+            ImGui::TextWrapped("the '%s' objects' surfaces", g->object_type.c_str());
+            ImGui::PopStyleColor();
             dragged(ImGui::DragFloat("below (m)", &g->max_height_m, 0.01f, 0.0f, 1e3f), e);
             if (ImGui::IsItemHovered()) ImGui::SetTooltip("seeds only below this height in each object; 0: the whole object");
             e->changed |= ImGui::Checkbox("sides only", &g->sides_only);
@@ -195,8 +197,8 @@ void editAttractor(Attractor* a, uint32_t steps, PanelEdit* e) {
     int kind = int(a->kind);
     if (a->kind == AttractorKind::Objects) {
         // Its points follow the project's objects (placed when the scene or the system changes).
-        ImGui::Text("%zu points on the '%s' objects within reach", a->points ? a->points->size() : size_t(0),
-                    a->object_type.c_str());
+        ImGui::TextWrapped("%zu points on the '%s' objects within reach", a->points ? a->points->size() : size_t(0),
+                           a->object_type.c_str());
         dragged(ImGui::DragFloat("reach (m)", &a->influence_m, 0.005f, 0.0f, 1e4f), e);
         editCharge(&a->charge, steps, e);
         return;
