@@ -26,6 +26,9 @@ shot road_winter road_winter --camera 0,6,1,14,-120,22
 shot meadow_strands meadow_strands --camera -7.2,8.2,0.3,2.6,-100,20
 shot bus_stop_vines bus_stop_vines --camera 0,-0.5,1.2,5.5,-120,15
 shot bus_stop_vines_side bus_stop_vines --camera -1.3,-0.6,1.6,2.4,-170,25
+# The same vines file on the autumn street's shelter (turned round): its seeds and pull are the objects'.
+shot particles_vines_street_autumn street_autumn --particles assets/particles/vines_bus_shelter.json \
+  --camera 2.4,7.6,1.2,5.5,60,15
 # Particle systems (assets/particles/) grown into the default scene, after the paper's figures.
 strands() {  # sample camera
   shot "particles_$1" default --particles "assets/particles/$1.json" --camera "$2"

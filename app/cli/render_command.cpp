@@ -17,6 +17,9 @@
 #include "editor/offscreen_render.h"
 #include "editor/screenshot.h"
 #include "particles/particle_output.h"
+#include "scene/project.h"
+#include "scene/scene_compile.h"
+#include "scene/scene_particles.h"
 
 namespace ug::cli {
 
@@ -78,6 +81,19 @@ double medianMs(std::vector<double> v) {
     return v[v.size() / 2];
 }
 
+// The scene's environment compiled (a scene without one places nothing) and `system` placed among its
+// objects (scene/scene_particles.h).
+bool placeAmongSceneObjects(const std::string& scene_path, ParticleScene* system, std::string* error) {
+    Project project;
+    if (!loadProject(scene_path, &project, error)) return false;
+    if (project.environment.empty()) return placeAmongObjects(nullptr, system, error);
+    std::shared_ptr<const HeightField> terrain;
+    if (!loadTerrain(project, &terrain, error)) return false;
+    EnvScene env;
+    if (!compileEnvScene(project.environment, project.base_dir, scene_path, terrain, &env, error)) return false;
+    return placeAmongObjects(&env, system, error);
+}
+
 }  // namespace
 
 int runRenderCommand(int argc, char** argv) {
@@ -128,6 +144,9 @@ int runRenderCommand(int argc, char** argv) {
         ParticleSystemFile system;
         Strands strands;
         if (!loadParticleSystem(path, &system, &error)) return fail(error);
+        // Among the scene's environmental objects, as the scene's own systems grow (its terrain stays out:
+        // the figures' samples grow over it, not on it).
+        if (!placeAmongSceneObjects(options.scene_path, &system.scene, &error)) return fail(path + ": " + error);
         if (!appendParticleSystemMeshes(system, options.threads, &strands, &options.extra_static_meshes, &error))
             return fail(path + ": " + error);
     }
