@@ -39,10 +39,14 @@ void clipBelow(glm::vec3 a, glm::vec3 b, glm::vec3 c, float h, std::vector<glm::
     for (int i = 1; i + 1 < n; ++i) out->insert(out->end(), {poly[0], poly[i], poly[i + 1]});
 }
 
+// Gathered surfaces beyond this are refused before they are built (a street of facades, unbanded).
+constexpr size_t kMaxGatheredTriangles = 4'000'000;
+
 // An objects generator's surfaces: every object of its type, in the scene's order, the triangles that
 // face sideways (when asked) clipped to the height band, in world coordinates; null when none is left.
-std::shared_ptr<const TriangleMesh> objectSurfaces(const EnvScene& environment, uint32_t type,
-                                                   const ParticleGenerator& g) {
+bool objectSurfaces(const EnvScene& environment, uint32_t type, const ParticleGenerator& g,
+                    std::shared_ptr<const TriangleMesh>* out_mesh, std::string* error) {
+    out_mesh->reset();
     const TriangleMesh& m = *environment.types()[type].mesh;
     std::vector<glm::vec3> local;  // the kept pieces of one object, three corners each
     for (size_t t = 0; t < m.triangleCount(); ++t) {
@@ -56,7 +60,15 @@ std::shared_ptr<const TriangleMesh> objectSurfaces(const EnvScene& environment, 
         if (g.max_height_m > 0.0f) clipBelow(a, b, c, g.max_height_m, &local);
         else local.insert(local.end(), {a, b, c});
     }
-    if (local.empty()) return nullptr;
+    if (local.empty()) return true;
+    size_t objects = 0;
+    for (const EnvObject& o : environment.objects()) objects += o.type == type;
+    if (objects * (local.size() / 3) > kMaxGatheredTriangles) {
+        *error = "the " + std::to_string(objects) + " '" + environment.types()[type].desc.name + "' objects give " +
+                 std::to_string(objects * (local.size() / 3)) + " triangles to seed on, more than " +
+                 std::to_string(kMaxGatheredTriangles) + " (a max_height_m or sides_only takes fewer)";
+        return false;
+    }
     auto out = std::make_shared<TriangleMesh>();
     for (size_t o = 0; o < environment.objects().size(); ++o) {
         if (environment.objects()[o].type != type) continue;
@@ -66,8 +78,8 @@ std::shared_ptr<const TriangleMesh> objectSurfaces(const EnvScene& environment, 
             out->positions.push_back(placement.toWorld(p));
         }
     }
-    if (out->positions.empty()) return nullptr;
-    return out;
+    if (!out->positions.empty()) *out_mesh = std::move(out);
+    return true;
 }
 
 bool sameMesh(const std::shared_ptr<const TriangleMesh>& a, const std::shared_ptr<const TriangleMesh>& b) {
@@ -90,7 +102,11 @@ bool placeAmongObjects(const EnvScene* environment, ParticleScene* scene, std::s
         g.center_m = glm::vec3(0.0f);
         g.scale = 1.0f;
         std::shared_ptr<const TriangleMesh> surfaces;
-        if (environment->types()[size_t(type)].mesh) surfaces = objectSurfaces(*environment, uint32_t(type), g);
+        if (environment->types()[size_t(type)].mesh &&
+            !objectSurfaces(*environment, uint32_t(type), g, &surfaces, error)) {
+            *error = "generators[" + std::to_string(i) + "].object_type: " + *error;
+            return false;
+        }
         if (!sameMesh(g.mesh, surfaces)) g.mesh = std::move(surfaces);
     }
     const Bounds reach = particleReach(*scene);
