@@ -26,6 +26,8 @@ shot road_winter road_winter --camera 0,6,1,14,-120,22
 shot meadow_strands meadow_strands --camera -7.2,8.2,0.3,2.6,-100,20
 shot bus_stop_vines bus_stop_vines --camera 0,-0.5,1.2,5.5,-120,15
 shot bus_stop_vines_side bus_stop_vines --camera -1.3,-0.6,1.6,2.4,-170,25
+shot rock_pile_moss rock_pile_moss --camera 0.3,-0.2,0.25,1.1,-60,40
+shot rock_pile_moss_side rock_pile_moss --camera 0.6,-0.5,0.2,1.3,-100,8
 # The same vines file on the autumn street's shelter (turned round): its seeds and pull are the objects'.
 shot particles_vines_street_autumn street_autumn --particles assets/particles/vines_bus_shelter.json \
   --camera 2.4,7.6,1.2,5.5,60,15

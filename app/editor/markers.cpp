@@ -240,6 +240,9 @@ void addParticleMarkers(const ParticleSystemFile& system, ParticleHandle selecte
             case GeneratorKind::Box:
                 addBoxEdges(g.center_m - g.half_extents_m, g.center_m + g.half_extents_m, kGeneratorColor, out);
                 break;
+            case GeneratorKind::Details:  // the box its instances' origins lie in
+                addBoxEdges(g.center_m - g.half_extents_m, g.center_m + g.half_extents_m, kGeneratorColor, out);
+                [[fallthrough]];
             case GeneratorKind::Mesh:
             case GeneratorKind::Objects:  // its gathered surfaces: world coordinates, center 0, scale 1
                 if (g.mesh && !g.mesh->positions.empty()) {

@@ -72,6 +72,14 @@ void editGenerator(ParticleGenerator* g, PanelEdit* e) {
             if (ImGui::IsItemHovered()) ImGui::SetTooltip("seeds only below this height in each object; 0: the whole object");
             e->changed |= ImGui::Checkbox("sides only", &g->sides_only);
             break;
+        case GeneratorKind::Details:
+            ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+            ImGui::TextWrapped("the '%s' instances in the box", g->detail_type.c_str());
+            ImGui::PopStyleColor();
+            dragged(ImGui::DragFloat3("half extents (m)", &g->half_extents_m.x, 0.005f, 0.001f, 1e4f), e);
+            dragged(ImGui::DragFloat("lowest normal z", &g->min_normal_z, 0.01f, -1.0f, 1.0f), e);
+            if (ImGui::IsItemHovered()) ImGui::SetTooltip("faces steeper than this do not seed; -1: every face");
+            break;
     }
     ImGui::InputScalar("count", ImGuiDataType_U32, &g->count);
     finished(e);

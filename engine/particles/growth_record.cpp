@@ -37,6 +37,7 @@ bool AttractorEdit::reaches(glm::vec3 p0) const {
 bool regrowable(const ParticleScene& before, const ParticleScene& after) {
     return before.generators == after.generators && before.terrain == after.terrain &&
            before.cutters == after.cutters && before.walk == after.walk && before.obstacles == after.obstacles &&
+           before.detail_obstacles == after.detail_obstacles &&
            before.attractors.size() == after.attractors.size();
 }
 

@@ -43,7 +43,7 @@ bool readKind(JsonReader& r, const json& obj, const std::string& p, const char* 
 const char* const kActionNames[] = {"stop", "kill", "split", "countdown"};
 // countdown_then takes only the first two actions (StrandActionKind's Stop and Kill, in enum order).
 const char* const kCountdownEndNames[] = {"stop", "kill"};
-const char* const kGeneratorNames[] = {"rectangle", "sphere", "box", "mesh", "objects"};
+const char* const kGeneratorNames[] = {"rectangle", "sphere", "box", "mesh", "objects", "details"};
 const char* const kAttractorNames[] = {"point", "segment", "sphere", "mesh", "objects"};
 const char* const kCutterNames[] = {"plane", "sphere", "box"};
 const char* const kSideNames[] = {"above", "below"};
@@ -66,7 +66,8 @@ bool readGenerator(JsonReader& r, const json& j, const std::string& p, ParticleG
     return r.expectObject(j, p) &&
            r.onlyKeys(j, p, {"kind", "center_m", "axis_u_m", "axis_v_m", "radius_m", "half_extents_m", "count",
                              "heading_cone_deg", "on_terrain", "mesh", "scale", "object_type", "max_height_m",
-                             "sides_only"}) &&
+                             "sides_only", "detail_type", "min_normal_z"}) &&
+           r.string(j, p, "detail_type", &g->detail_type) && r.number(j, p, "min_normal_z", &g->min_normal_z, -1.0, 1.0) &&
            r.boolean(j, p, "on_terrain", &g->on_terrain) && r.string(j, p, "mesh", &g->mesh_file) &&
            r.string(j, p, "object_type", &g->object_type) && r.boolean(j, p, "sides_only", &g->sides_only) &&
            r.number(j, p, "max_height_m", &g->max_height_m, 0.0, kMaxCoordinate) &&
@@ -227,6 +228,8 @@ bool parseParticleSystem(const json& j, const std::string& source, ParticleSyste
             return false;
         if (g.kind != GeneratorKind::Objects && !g.object_type.empty())
             return r.fail("/generators/" + std::to_string(i) + "/object_type", "only an \"objects\" generator takes one");
+        if (g.kind != GeneratorKind::Details && !g.detail_type.empty())
+            return r.fail("/generators/" + std::to_string(i) + "/detail_type", "only a \"details\" generator takes one");
     }
     for (size_t i = 0; i < s.scene.attractors.size(); ++i) {
         Attractor& a = s.scene.attractors[i];
@@ -278,6 +281,10 @@ json particleSystemToJson(const ParticleSystemFile& s) {
             gj["object_type"] = g.object_type;
             gj["max_height_m"] = g.max_height_m;
             gj["sides_only"] = g.sides_only;
+        }
+        if (g.kind == GeneratorKind::Details) {
+            gj["detail_type"] = g.detail_type;
+            gj["min_normal_z"] = g.min_normal_z;
         }
         generators.push_back(std::move(gj));
     }

@@ -6,6 +6,10 @@
 //                    "heading_cone_deg": 15}],            rectangle: axis_u_m, axis_v_m; box: half_extents_m;
 //                                                          objects: "object_type", "max_height_m",
 //                                                          "sides_only" (the project's objects' surfaces)
+//                                                          details: "detail_type", center_m,
+//                                                          half_extents_m (the box the instances' origins
+//                                                          lie in), "min_normal_z" (the project's
+//                                                          instances of that type, as instantiated)
 //    "attractors": [{"kind": "point", "a_m": [0, 0, 0], "charge": [[0, -1.0]], "influence_m": 0}],
 //                                                          segment: a_m, b_m; sphere: a_m, radius_m;
 //                                                          mesh: "mesh" (relative to the file), "scale",

@@ -86,14 +86,15 @@ bool sameAttractorPlace(const Attractor& a, const Attractor& b) {
 }
 
 glm::vec3 ParticleObstacle::toWorld(glm::vec3 local) const {
-    const glm::vec3 q = local * scale;
+    const glm::vec3 q = rotation * (local * scale);
     return translation + glm::vec3(cos_yaw * q.x - sin_yaw * q.y, sin_yaw * q.x + cos_yaw * q.y, q.z);
 }
 
 glm::vec3 ParticleObstacle::toLocal(glm::vec3 world) const { return directionToLocal(world - translation) / scale; }
 
 glm::vec3 ParticleObstacle::directionToLocal(glm::vec3 d) const {
-    return glm::vec3(cos_yaw * d.x + sin_yaw * d.y, -sin_yaw * d.x + cos_yaw * d.y, d.z);
+    const glm::vec3 unturned(cos_yaw * d.x + sin_yaw * d.y, -sin_yaw * d.x + cos_yaw * d.y, d.z);
+    return glm::conjugate(rotation) * unturned;
 }
 
 Bounds particleReach(const ParticleScene& scene) {
@@ -107,6 +108,7 @@ Bounds particleReach(const ParticleScene& scene) {
             case GeneratorKind::Box: half = g.half_extents_m; break;
             case GeneratorKind::Mesh:
             case GeneratorKind::Objects:
+            case GeneratorKind::Details:
                 if (g.mesh && !g.mesh->positions.empty()) {
                     Bounds m;
                     for (const glm::vec3& p : g.mesh->positions) m = unite(m, Bounds{p, p});
@@ -191,6 +193,12 @@ bool validateParticleScene(const ParticleScene& scene, std::string* error) {
             if (g.object_type.empty()) return fail(error, f + ".object_type", "names no environmental-object type");
             if (!std::isfinite(g.max_height_m) || g.max_height_m < 0.0f || g.max_height_m > kMaxParticleCoordinate_m)
                 return fail(error, f + ".max_height_m", "must be in [0, 1e5] m");
+        } else if (g.kind == GeneratorKind::Details) {
+            if (g.detail_type.empty()) return fail(error, f + ".detail_type", "names no detail type");
+            for (int a = 0; a < 3; ++a)
+                if (!checkLength(g.half_extents_m[a], f + ".half_extents_m", false, error)) return false;
+            if (!(g.min_normal_z >= -1.0f && g.min_normal_z <= 1.0f))
+                return fail(error, f + ".min_normal_z", "must be in [-1, 1]");
         } else if (g.kind == GeneratorKind::Mesh) {
             if (!std::isfinite(g.scale) || !(g.scale > 0.0f) || g.scale > 1e4f)
                 return fail(error, f + ".scale", "must be in (0, 10000]");
@@ -245,13 +253,14 @@ bool validateParticleScene(const ParticleScene& scene, std::string* error) {
         }
     }
 
-    for (size_t i = 0; i < scene.obstacles.size(); ++i) {
-        const ParticleObstacle& o = scene.obstacles[i];
-        const std::string f = "obstacles[" + std::to_string(i) + "]";
-        if (!o.mesh) return fail(error, f + ".mesh", "no mesh loaded");
-        if (!std::isfinite(o.scale) || !(o.scale > 0.0f)) return fail(error, f + ".scale", "must be > 0");
-        if (!checkPosition(o.translation, f + ".translation", error)) return false;
-    }
+    for (const auto& [list, name] : {std::pair{&scene.obstacles, "obstacles"}, {&scene.detail_obstacles, "detail_obstacles"}})
+        for (size_t i = 0; i < list->size(); ++i) {
+            const ParticleObstacle& o = (*list)[i];
+            const std::string f = std::string(name) + "[" + std::to_string(i) + "]";
+            if (!o.mesh) return fail(error, f + ".mesh", "no mesh loaded");
+            if (!std::isfinite(o.scale) || !(o.scale > 0.0f)) return fail(error, f + ".scale", "must be > 0");
+            if (!checkPosition(o.translation, f + ".translation", error)) return false;
+        }
 
     if (scene.cutters.size() > kMaxCutters) return fail(error, "cutters", "at most 32");
     for (size_t i = 0; i < scene.cutters.size(); ++i) {

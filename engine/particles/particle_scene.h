@@ -13,6 +13,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/quaternion.hpp>
 
 #include "field/bounds.h"
 #include "field/height_field.h"
@@ -55,6 +56,13 @@ enum class GeneratorKind : uint8_t {
     // coordinates (scene/scene_particles.h; center_m 0, scale 1), seeded as a mesh is, `count` over all
     // the objects; without a project (or with no such object) it seeds nothing.
     Objects,
+    // The instances of one detail type (`detail_type`) whose origins lie in the box center_m ±
+    // half_extents_m, as the project instantiates and settles them (moss on a rock pile's rocks): their
+    // faces whose world normal has z >= min_normal_z, gathered by the project that places the system
+    // (scene/scene_particles.h placeOnDetails) into `mesh` relative to center_m (scale 1), seeded as a mesh
+    // is, `count` over them all; the instances themselves become solids (ParticleScene::detail_obstacles).
+    // Without a project (or with no such instance in the box) it seeds nothing.
+    Details,
 };
 
 struct ParticleGenerator {
@@ -79,13 +87,25 @@ struct ParticleGenerator {
     std::string object_type;
     float max_height_m = 0.0f;
     bool sides_only = false;
+    // Details: the detail type's name and the lowest normal z of the faces that seed (-1: every face; 0.3:
+    // faces within about 70 degrees of up, the tops and upper flanks of rocks).
+    std::string detail_type;
+    float min_normal_z = -1.0f;
 
     bool operator==(const ParticleGenerator&) const = default;
 };
 
-// Whether the generator seeds on a triangle mesh (a model's, or the project's objects' gathered).
-inline bool seedsOnMesh(const ParticleGenerator& g) {
-    return g.kind == GeneratorKind::Mesh || g.kind == GeneratorKind::Objects;
+// Whether the generator seeds on surfaces the project gathers for it (objects' or detail instances').
+inline bool seedsOnPlacedSurfaces(const ParticleGenerator& g) {
+    return g.kind == GeneratorKind::Objects || g.kind == GeneratorKind::Details;
+}
+
+// Whether the generator seeds on a triangle mesh (a model's, or surfaces the project gathered).
+inline bool seedsOnMesh(const ParticleGenerator& g) { return g.kind == GeneratorKind::Mesh || seedsOnPlacedSurfaces(g); }
+
+// A generator on gathered surfaces that found none (grown alone, or nothing of its kind in reach).
+inline bool hasNoPlacedSurface(const ParticleGenerator& g) {
+    return seedsOnPlacedSurfaces(g) && (!g.mesh || g.mesh->triangleCount() == 0);
 }
 
 // Attractor charge keyframes: a(t) is piecewise linear in the step index t between keys (strictly
@@ -186,13 +206,15 @@ struct WalkSettings {
 };
 
 // A solid the project places around a system (scene/scene_particles.h: an environmental object's base
-// geometry): its mesh in its own frame, scaled, turned about z by the yaw and moved. walk.solids refuses a
-// move that crosses its surface, as it refuses one into a mesh generator's.
+// geometry, a detail instance's model): its mesh in its own frame, scaled, turned by `rotation` (a detail
+// instance's frame; identity for objects), then about z by the yaw, and moved. walk.solids refuses a move
+// that crosses its surface, as it refuses one into a mesh generator's.
 struct ParticleObstacle {
     std::shared_ptr<const TriangleMesh> mesh;
     glm::vec3 translation{0.0f};
     float cos_yaw = 1.0f, sin_yaw = 0.0f;
     float scale = 1.0f;  // > 0
+    glm::quat rotation{1.0f, 0.0f, 0.0f, 0.0f};  // unit
 
     glm::vec3 toWorld(glm::vec3 local) const;
     glm::vec3 toLocal(glm::vec3 world) const;
@@ -208,8 +230,11 @@ struct ParticleScene {
     std::vector<Attractor> attractors;
     std::vector<Cutter> cutters;  // at most kMaxCutters (a strand remembers which it has triggered)
     WalkSettings walk;
-    // The solids around the system, set by the project that places it (empty for a system grown alone).
+    // The solids around the system, set by the project that places it (empty for a system grown alone):
+    // the environmental objects within reach (placeAmongObjects) and the instances its details generators
+    // seed on (placeOnDetails), kept apart so that placing one kind again keeps the other.
     std::vector<ParticleObstacle> obstacles;
+    std::vector<ParticleObstacle> detail_obstacles;
 };
 
 constexpr uint64_t kMaxParticles = 10'000'000;

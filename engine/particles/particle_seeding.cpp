@@ -172,8 +172,8 @@ void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint6
                    const HeightField* terrain) {
     const float cone = glm::radians(gen.heading_cone_deg);
     const glm::quat identity(1.0f, 0.0f, 0.0f, 0.0f);
-    // An objects generator without its objects (grown alone) has nothing to seed on.
-    if (gen.kind == GeneratorKind::Objects && (!gen.mesh || gen.mesh->triangleCount() == 0)) return;
+    // A generator on gathered surfaces without them (grown alone) has nothing to seed on.
+    if (hasNoPlacedSurface(gen)) return;
     // A mesh's strata are slices of its cumulative area: one face of `count` strata in one row, whose s
     // is the area fraction and t the place across the slice's triangle.
     const MeshAreas areas = seedsOnMesh(gen) ? meshAreas(gen) : MeshAreas{};
@@ -220,7 +220,7 @@ void seedGenerator(const ParticleGenerator& gen, uint32_t generator_index, uint6
 
 uint32_t locateStratum(const ParticleGenerator& gen, glm::vec3 p_f) {
     const glm::dvec3 p(p_f), c(gen.center_m);
-    if (gen.kind == GeneratorKind::Objects && (!gen.mesh || gen.mesh->triangleCount() == 0)) return 0;
+    if (hasNoPlacedSurface(gen)) return 0;
     if (seedsOnMesh(gen)) {
         // The triangle p lies in (the nearest by its barycentric coordinates' excess), then its area fraction.
         const MeshAreas m = meshAreas(gen);

@@ -143,11 +143,12 @@ public:
           grid_(reach_),
           step_grid_(reach_) {
         if (!walk_.solids) return;
-        // An objects generator's surfaces are among the obstacles already.
+        // The surfaces objects and details generators gather are among the obstacles already.
         for (const ParticleGenerator& g : scene_.generators)
             if (g.kind == GeneratorKind::Mesh && g.mesh)
                 addSolid(ParticleObstacle{.mesh = g.mesh, .translation = g.center_m, .scale = g.scale}, false);
         for (const ParticleObstacle& o : scene_.obstacles) addSolid(o, true);
+        for (const ParticleObstacle& o : scene_.detail_obstacles) addSolid(o, true);
     }
 
     // Grow again from `record`, a growth of `before` (regrowable(before, scene_)).
@@ -743,6 +744,13 @@ bool placedInAProject(const ParticleScene& scene, std::string* error) {
             if (error)
                 *error = "generators[" + std::to_string(i) + "].object_type: no '" + g.object_type +
                          "' object to seed on: grow the system from a project that has them (its \"particles\")";
+            return false;
+        }
+        if (g.kind == GeneratorKind::Details && (!g.mesh || g.mesh->triangleCount() == 0)) {
+            if (error)
+                *error = "generators[" + std::to_string(i) + "].detail_type: no '" + g.detail_type +
+                         "' instance to seed on in its box: grow the system from a project that instantiates them (its "
+                         "\"particles\")";
             return false;
         }
     }

@@ -227,7 +227,8 @@ bool Document::recoverParticles(const std::string& file, std::string* error) {
             return fail("/systems/" + std::to_string(i) + ": " + why);
         s.file_name = (*particles_)[i].file_name;
         s.scene.terrain = terrain_;
-        if (!placeAmongObjects(environment_.get(), &s.scene, &why)) return fail("/systems/" + std::to_string(i) + ": " + why);
+        if (!placeSystem(*environment_, compiled_, true, &s.scene, &why))
+            return fail("/systems/" + std::to_string(i) + ": " + why);
         systems.push_back(std::move(s));
     }
     particles_ = std::make_shared<const std::vector<ParticleSystemFile>>(std::move(systems));
@@ -317,13 +318,18 @@ bool Document::commit(EditEffect& effect, std::string* error) {
     std::shared_ptr<const EnvScene> env = environment_;
     if (effect.environment && !compileEditedEnvironment(&env, &all, error)) return false;
     next.environment = env;
-    // The particle systems grow among the objects: an edit of either places them again.
+    // The particle systems grow among the objects: an edit of either places them again. Systems that grow
+    // on detail instances are placed again after any edit of what is instantiated: the instances in their
+    // boxes may depend on candidates far away (a chain of conflicts), so no dirty region is trusted here.
+    const bool details = anySystemOnDetails() &&
+                         (effect.environment || effect.particles || effect.tile || all.full || !all.types.empty());
     std::shared_ptr<const std::vector<ParticleSystemFile>> placed;
-    if ((effect.environment || effect.particles) && !placeParticles(*env, &placed, error)) return false;
-    if (placed) effect.particles = true;
     for (size_t t : all.types)
         if (!compileDetailType(project_, t, terrain_, &next.types[t], error, next.environment)) return false;
     if (!documentExtent(project_, next, path_.empty() ? project_.name : path_, &next.extent, error)) return false;
+    if ((effect.environment || effect.particles || details) && !placeParticles(*env, next, details, &placed, error))
+        return false;
+    if (placed) effect.particles = true;
     const bool extent_changed = !sameBounds(next.extent, compiled_.extent);
     compiled_ = std::move(next);
     if (!live_->pending()) {
@@ -356,18 +362,38 @@ bool Document::commit(EditEffect& effect, std::string* error) {
     return true;
 }
 
-bool Document::placeParticles(const EnvScene& environment,
+bool Document::anySystemOnDetails() const {
+    for (const ParticleSystemFile& s : *particles_)
+        if (growsOnDetails(s.scene)) return true;
+    return false;
+}
+
+bool Document::placeSystem(const EnvScene& environment, const CompiledScene& compiled, bool on_details,
+                           ParticleScene* scene, std::string* error) const {
+    if (!placeAmongObjects(&environment, scene, error)) return false;
+    if (!on_details || !growsOnDetails(*scene)) return true;
+    InstancerInput instancer = instancerInput();
+    instancer.types = compiled.types;
+    instancer.extent = compiled.extent;
+    const SettleInput settle = settleInput(project_, terrain_, *assets_.tile, *assets_.models, &environment);
+    if (settle.settings.enabled && !validateSettleInput(settle, error)) return false;
+    const DetailPlacement placement{
+        .instancer = &instancer, .settle = &settle, .models = assets_.models, .threads = options_.threads};
+    return placeOnDetails(placement, scene, error);
+}
+
+bool Document::placeParticles(const EnvScene& environment, const CompiledScene& compiled, bool on_details,
                               std::shared_ptr<const std::vector<ParticleSystemFile>>* placed, std::string* error) const {
     std::vector<ParticleSystemFile> systems = *particles_;
     bool changed = false;
     for (size_t i = 0; i < systems.size(); ++i) {
         ParticleScene& scene = systems[i].scene;
         const ParticleScene& before = (*particles_)[i].scene;
-        if (!placeAmongObjects(&environment, &scene, error)) {
+        if (!placeSystem(environment, compiled, on_details, &scene, error)) {
             *error = "particles[" + std::to_string(i) + "] (" + systems[i].name + "): " + *error;
             return false;
         }
-        changed = changed || scene.obstacles != before.obstacles;
+        changed = changed || scene.obstacles != before.obstacles || scene.detail_obstacles != before.detail_obstacles;
         for (size_t g = 0; g < scene.generators.size(); ++g)
             changed = changed || scene.generators[g].mesh != before.generators[g].mesh;
         for (size_t a = 0; a < scene.attractors.size(); ++a)
@@ -481,7 +507,7 @@ bool Document::addParticleSystem(const ParticleSystemFile& system, std::string* 
     placed.file_name = placed.name;
     placed.scene.terrain = terrain_;
     std::string why;
-    if (!placeAmongObjects(environment_.get(), &placed.scene, &why) || !validateParticleScene(placed.scene, &why) ||
+    if (!placeSystem(*environment_, compiled_, true, &placed.scene, &why) || !validateParticleScene(placed.scene, &why) ||
         !savableParticleSystem(placed, &why)) {
         *error = "new particle system (" + placed.name + "): " + why;
         return false;

@@ -231,10 +231,15 @@ private:
     // settings do not compile. It sets effect.particles when the systems had to be placed again among
     // moved objects (placeParticles).
     bool commit(EditEffect& effect, std::string* error);
-    // The systems placed among `environment`'s objects (scene/scene_particles.h placeAmongObjects); *placed
-    // stays null when nothing changed.
-    bool placeParticles(const EnvScene& environment, std::shared_ptr<const std::vector<ParticleSystemFile>>* placed,
-                        std::string* error) const;
+    // The systems placed among `environment`'s objects and, with `on_details`, on the instances `compiled`
+    // makes (scene/scene_particles.h placeAmongObjects, placeOnDetails); *placed stays null when nothing
+    // changed.
+    bool placeParticles(const EnvScene& environment, const CompiledScene& compiled, bool on_details,
+                        std::shared_ptr<const std::vector<ParticleSystemFile>>* placed, std::string* error) const;
+    // One system placed as placeParticles places them (on_details: when it grows on detail instances).
+    bool placeSystem(const EnvScene& environment, const CompiledScene& compiled, bool on_details, ParticleScene* scene,
+                     std::string* error) const;
+    bool anySystemOnDetails() const;
     // project().environment compiled (reusing environment()'s meshes) into *env; the scattered types and
     // the region the objects and fields changed in join *effect.
     bool compileEditedEnvironment(std::shared_ptr<const EnvScene>* env, EditEffect* effect, std::string* error);

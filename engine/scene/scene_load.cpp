@@ -31,6 +31,32 @@ bool emptyExtentScene(const Project& project, const std::shared_ptr<const Height
     return true;
 }
 
+// The systems' "details" generators seed on the instances the project makes, so they are placed once
+// the Ghost Tile and the densities are known (scene_particles.h placeOnDetails).
+bool placeParticlesOnDetails(const Project& project, int threads, LoadedScene* scene, std::string* error) {
+    bool any = false;
+    for (const ParticleSystemFile& s : *scene->particles) any = any || growsOnDetails(s.scene);
+    if (!any) return true;
+    InstancerInput instancer;
+    instancer.tile = scene->tile.get();
+    for (const DetailModel& m : *scene->models) instancer.models.push_back(&m);
+    instancer.types = scene->compiled.types;
+    instancer.extent = scene->compiled.extent;
+    instancer.seed = project.instantiation_seed;
+    const SettleInput settle =
+        settleInput(project, scene->terrain, *scene->tile, *scene->models, scene->environment.get());
+    if (settle.settings.enabled && !validateSettleInput(settle, error)) return false;
+    const DetailPlacement placement{.instancer = &instancer, .settle = &settle, .models = scene->models, .threads = threads};
+    auto systems = std::make_shared<std::vector<ParticleSystemFile>>(*scene->particles);
+    for (size_t i = 0; i < systems->size(); ++i)
+        if (growsOnDetails((*systems)[i].scene) && !placeOnDetails(placement, &(*systems)[i].scene, error)) {
+            *error = "/particles/" + std::to_string(i) + ": " + *error;
+            return false;
+        }
+    scene->particles = std::move(systems);
+    return true;
+}
+
 }  // namespace
 
 bool loadScene(const Project& project, const SceneLoadOptions& options, LoadedScene* out, std::string* error) {
@@ -68,6 +94,10 @@ bool loadScene(const Project& project, const SceneLoadOptions& options, LoadedSc
             *error = first;
             return false;
         }
+    }
+    if (!placeParticlesOnDetails(project, options.threads, &scene, error)) {
+        *error = name + ": " + *error;
+        return false;
     }
     scene.variant_models = std::make_shared<std::vector<std::vector<DetailModel>>>();
     if (!loadScatterVariantModels(project, scene.variant_models.get(), error)) {

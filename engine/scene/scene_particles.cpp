@@ -3,6 +3,7 @@
 #include <chrono>
 #include <set>
 
+#include "analysis/placed_instances.h"
 #include "particles/particle_output.h"
 
 namespace ug {
@@ -146,6 +147,95 @@ bool placeAmongObjects(const EnvScene* environment, ParticleScene* scene, std::s
         }
         if (!a.points || *a.points != points) a.points = std::make_shared<const std::vector<glm::vec3>>(std::move(points));
     }
+    return true;
+}
+
+namespace {
+
+// The instances of `type` whose origin lies in `box`, settled as the project settles them.
+bool instancesInBox(const DetailPlacement& in, uint32_t type, const Bounds& box, std::vector<PlacedInstance>* out,
+                    std::string* error) {
+    out->clear();
+    if (!overlaps(box, in.instancer->extent)) return true;
+    const bool settled = in.settle && in.settle->settings.enabled;
+    // Settled drops depend on the selection a little beyond the box (settling.h, "Locality").
+    const float halo = settled ? settleHaloMetres(*in.settle) : 0.0f;
+    InstanceStore store;
+    InstanceStats stats;
+    const InstanceOptions options{.threads = in.threads};
+    if (!instantiateRegion(*in.instancer, Bounds{box.lo - halo, box.hi + halo}, options, &store, &stats, error))
+        return false;
+    SettledDrops drops;
+    if (settled) {
+        settleAll(*in.settle, store, in.threads, &drops);
+        InstanceStore own;
+        SettledDrops own_drops;
+        cropToRegion(store, drops, *in.instancer->tile, box, &own, &own_drops);
+        store = std::move(own);
+        drops = std::move(own_drops);
+    }
+    for (const PlacedInstance& p : placeInstances(store, *in.instancer->tile, settled ? &drops : nullptr))
+        if (p.type == type) out->push_back(p);
+    return true;
+}
+
+}  // namespace
+
+bool growsOnDetails(const ParticleScene& scene) {
+    for (const ParticleGenerator& g : scene.generators)
+        if (g.kind == GeneratorKind::Details) return true;
+    return false;
+}
+
+bool placeOnDetails(const DetailPlacement& in, ParticleScene* scene, std::string* error) {
+    std::vector<ParticleObstacle> obstacles;
+    for (size_t i = 0; i < scene->generators.size(); ++i) {
+        ParticleGenerator& g = scene->generators[i];
+        if (g.kind != GeneratorKind::Details) continue;
+        const std::string at = "generators[" + std::to_string(i) + "].detail_type";
+        int64_t type = -1;
+        for (size_t t = 0; in.models && t < in.models->size(); ++t)
+            if ((*in.models)[t].name == g.detail_type) type = int64_t(t);
+        if (type < 0 || !in.instancer) {
+            *error = at + ": the project has no detail type '" + g.detail_type + "'";
+            return false;
+        }
+        g.scale = 1.0f;
+        std::vector<PlacedInstance> instances;
+        if (!instancesInBox(in, uint32_t(type), Bounds::fromCenterHalf(g.center_m, g.half_extents_m), &instances, error)) {
+            *error = at + ": " + *error;
+            return false;
+        }
+        // The instances share their type's mesh; the models outlive the obstacles through this alias.
+        const std::shared_ptr<const TriangleMesh> mesh(in.models, &(*in.models)[size_t(type)].mesh);
+        if (instances.size() * mesh->triangleCount() > kMaxGatheredTriangles) {
+            *error = at + ": the " + std::to_string(instances.size()) + " '" + g.detail_type + "' instances in the box give " +
+                     std::to_string(instances.size() * mesh->triangleCount()) + " triangles to seed on, more than " +
+                     std::to_string(kMaxGatheredTriangles) + " (a smaller box takes fewer)";
+            return false;
+        }
+        auto surfaces = std::make_shared<TriangleMesh>();
+        for (const PlacedInstance& p : instances) {
+            const ParticleObstacle placed{.mesh = mesh, .translation = p.position, .scale = p.scale, .rotation = p.rotation};
+            obstacles.push_back(placed);
+            for (size_t t = 0; t < mesh->triangleCount(); ++t) {
+                const glm::vec3 a = placed.toWorld(mesh->positions[mesh->indices[3 * t]]),
+                                b = placed.toWorld(mesh->positions[mesh->indices[3 * t + 1]]),
+                                c = placed.toWorld(mesh->positions[mesh->indices[3 * t + 2]]);
+                const glm::vec3 n = glm::cross(b - a, c - a);
+                const float len = glm::length(n);
+                if (!(len > 0.0f) || n.z < g.min_normal_z * len) continue;
+                for (const glm::vec3& q : {a, b, c}) {
+                    surfaces->indices.push_back(uint32_t(surfaces->positions.size()));
+                    surfaces->positions.push_back(q - g.center_m);
+                }
+            }
+        }
+        std::shared_ptr<const TriangleMesh> kept;
+        if (!surfaces->positions.empty()) kept = std::move(surfaces);
+        if (!sameMesh(g.mesh, kept)) g.mesh = std::move(kept);
+    }
+    scene->detail_obstacles = std::move(obstacles);
     return true;
 }
 

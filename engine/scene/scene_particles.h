@@ -12,6 +12,8 @@
 
 #include "env/env_scene.h"
 #include "field/bounds.h"
+#include "instancer/instantiator.h"
+#include "instancer/settling.h"
 #include "io/mesh_instances.h"
 #include "particles/particle_json.h"
 #include "scene/project.h"
@@ -34,6 +36,26 @@ bool loadSceneParticles(const Project& project, const std::shared_ptr<const Heig
 // ones the scene already holds are kept (same pointer), so a re-placement that changes nothing changes
 // nothing.
 bool placeAmongObjects(const EnvScene* environment, ParticleScene* scene, std::string* error);
+
+// What a system's "details" generators take from the project's instantiation (GeneratorKind::Details).
+struct DetailPlacement {
+    const InstancerInput* instancer = nullptr;  // the project's tile, models, compiled types and extent
+    const SettleInput* settle = nullptr;        // null or disabled: the candidates' own heights
+    std::shared_ptr<const std::vector<DetailModel>> models;  // the Ghost Tile's types' (their meshes)
+    int threads = 0;
+};
+
+// Whether the system has a "details" generator (placeOnDetails has work to do).
+bool growsOnDetails(const ParticleScene& scene);
+
+// Fills every "details" generator's surfaces from the instances of its type whose origin lies in its box,
+// instantiated and settled as the whole project would be (instantiateRegion: a pure function, so the box
+// alone gives the whole scene's instances there, and the same in a region job), and puts those instances
+// as solids into scene->detail_obstacles. A type the project does not have is an error
+// ("generators[0].detail_type: the project has no detail type 'moss_rock'"); more than 4,000,000 gathered
+// triangles are refused before they are built. Surfaces equal to the ones the scene holds keep their
+// pointer, as placeAmongObjects does.
+bool placeOnDetails(const DetailPlacement& placement, ParticleScene* scene, std::string* error);
 
 struct SceneStrandStats {
     size_t systems = 0;  // grown and kept (in a region: those it holds)

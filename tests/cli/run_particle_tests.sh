@@ -18,6 +18,13 @@ for f in "$root"/assets/particles/*.json; do
       ok "grow $name alone: refused, it needs a project's terrain"; else bad "grow $name alone (exit $rc): $out"; fi
     continue
   fi
+  if grep -q '"kind": "details", "detail_type"' "$f"; then
+    # Seeds on a project's detail instances: grown from its scene (below), refused alone.
+    out=$("$bin" grow "$f" -o "$tmp/$name.glb" 2>&1); rc=$?
+    if [ $rc -eq 1 ] && grep -qF "instance to seed on in its box" <<<"$out" && [ ! -e "$tmp/$name.glb" ]; then
+      ok "grow $name alone: refused, it needs a project's instances"; else bad "grow $name alone (exit $rc): $out"; fi
+    continue
+  fi
   if grep -q '"kind": "objects", "object_type"' "$f"; then
     # Seeds on a project's environmental objects: grown from its scene (the GUI and engine tests), refused alone.
     out=$("$bin" grow "$f" -o "$tmp/$name.glb" 2>&1); rc=$?
@@ -113,6 +120,42 @@ assert json.load(open(t + "/west.json"))["particles"]["systems"] == 1
 PY
 then ok "instantiate meadow_strands: two strand meshes beside the instances, valid, read back; regions hold one each"
 else bad "instantiate meadow_strands: $(tail -5 "$tmp/ms.out") $(tail -c 600 "$tmp/ms.check" 2>/dev/null)"; fi
+# Moss on the rock pile's settled rocks (a "details" generator): the whole export is valid and carries the
+# moss; a region job grows it from the rocks its own instantiation of the moss's box gives: the same tubes.
+moss="$root/assets/scenes/rock_pile_moss.json"
+if "$bin" instantiate "$moss" -o "$tmp/moss.glb" --stats "$tmp/moss.json" --cache "$tmp/cache" >"$tmp/moss.out" 2>&1 &&
+   "$bin" instantiate "$moss" -o "$tmp/moss_w.glb" --cache "$tmp/cache" --region=-5,-5,-1,0,5,3 >>"$tmp/moss.out" 2>&1 &&
+   "$bin" instantiate "$moss" -o "$tmp/moss_e.glb" --cache "$tmp/cache" --region=0,-5,-1,5,5,3 >>"$tmp/moss.out" 2>&1 &&
+   node "$check" "$tmp/moss.glb" >"$tmp/moss.check" 2>&1 &&
+   python3 - "$tmp" <<'PY'
+import json, struct, sys
+t = sys.argv[1]
+def positions(path, name):
+    """The named mesh's POSITION bytes, or None when the file has no such mesh."""
+    b = open(path, "rb").read()
+    n = struct.unpack("<I", b[12:16])[0]
+    doc = json.loads(b[20:20 + n])
+    binary = b[20 + n + 8:]
+    for m in doc["meshes"]:
+        if m["name"] == name:
+            acc = doc["accessors"][m["primitives"][0]["attributes"]["POSITION"]]
+            view = doc["bufferViews"][acc["bufferView"]]
+            start = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
+            return binary[start:start + 12 * acc["count"]]
+    return None
+report = json.loads(open(t + "/moss.check").read().strip().splitlines()[-1])
+assert report["errors"] == 0, report
+assert "strands/moss" in report["per_mesh"], report["per_mesh"]
+stats = json.load(open(t + "/moss.json"))
+assert stats["particles"]["systems"] == 1 and stats["particles"]["strands"] > 50000, stats["particles"]
+whole = positions(t + "/moss.glb", "strands/moss")
+assert whole and len(whole) > 1000000, "no moss tubes"
+held = [p for p in (positions(t + "/moss_w.glb", "strands/moss"), positions(t + "/moss_e.glb", "strands/moss")) if p]
+assert len(held) == 1, "the moss must be in exactly one region"
+assert held[0] == whole, "a region grew other moss than the whole scene"
+PY
+then ok "instantiate rock_pile_moss: moss on the settled rocks, valid, read back; a region grows the same tubes"
+else bad "instantiate rock_pile_moss: $(tail -5 "$tmp/moss.out") $(tail -c 600 "$tmp/moss.check" 2>/dev/null)"; fi
 # A bad entry names the scene, the entry and the particle file's own place; nothing is written.
 sed -e 's|"../particles/meadow_grass_strands.json", "name"|"nowhere.json", "name"|' \
     -e "s|\"\\.\\./|\"$root/assets/|g" "$scene" >"$tmp/bad_strands.json"

@@ -459,7 +459,7 @@ TEST(SceneCompile, EveryBundledSceneLoadsAndCompiles) {
     }
     std::sort(seen.begin(), seen.end());
     EXPECT_EQ(seen, (std::vector<std::string>{"beaver_dam", "bus_stop_vines", "default", "haystack_field", "meadow", "meadow_strands", "montmartre_winter",
-                                              "park_autumn", "road_autumn", "road_winter", "rock_pile", "stone_hut",
+                                              "park_autumn", "road_autumn", "road_winter", "rock_pile", "rock_pile_moss", "stone_hut",
                                               "street_autumn", "street_winter", "street_winter_start", "world_1km",
                                               "world_250m"}));
 }
