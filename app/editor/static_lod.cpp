@@ -279,6 +279,25 @@ uint64_t buildStaticDraws(const StaticEntryLods& entry, const glm::mat4& view_pr
     return triangles;
 }
 
+StaticLodMesh authoredStaticLod(const TriangleMesh& mesh, const std::vector<MeshLodLevel>& levels) {
+    StaticLodMesh out;
+    StaticLodPiece piece;
+    for (const glm::vec3& p : mesh.positions) piece.bounds = unite(piece.bounds, Bounds{p, p});
+    out.indices = mesh.indices;
+    piece.first[0] = 0;
+    piece.count[0] = uint32_t(mesh.indices.size());
+    for (size_t k = 0; k < levels.size() && k + 1 < size_t(kStaticLodLevels); ++k) {
+        const uint32_t level = piece.level_count++;
+        piece.first[level] = uint32_t(out.indices.size());
+        piece.count[level] = uint32_t(levels[k].indices.size());
+        piece.error_m[level] = std::max(levels[k].error_m, piece.error_m[level - 1]);
+        out.indices.insert(out.indices.end(), levels[k].indices.begin(), levels[k].indices.end());
+    }
+    out.bounds = piece.bounds;
+    out.pieces.push_back(piece);
+    return out;
+}
+
 std::vector<StaticLodMesh> StaticLodCache::levels(const std::vector<std::shared_ptr<const TriangleMesh>>& meshes,
                                                   const std::vector<bool>& split, int threads, size_t* built) {
     assert(split.size() == meshes.size());

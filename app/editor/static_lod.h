@@ -87,6 +87,11 @@ inline bool splitsStaticEntry(size_t instance_count, size_t triangles) {
 std::vector<StaticLodMesh> buildStaticLodMeshes(const std::vector<const TriangleMesh*>& meshes,
                                                 const std::vector<bool>& split, int threads);
 
+// The levels an entry brings along (MeshInstances::lod_levels: strands through fewer of their points) as
+// one piece over the whole mesh: level 0 the mesh, then as many of them as fit, each error at least the
+// previous one's. Never split: the levels join every strand end to end, which cells would cut.
+StaticLodMesh authoredStaticLod(const TriangleMesh& mesh, const std::vector<MeshLodLevel>& levels);
+
 // The levels kept from one set of static meshes to the next, by mesh object: an environment edit swaps in
 // the meshes it reached (a class's new snow) and keeps the others' objects (engine/env: updateEnvEffects
 // reuses them), so only the new ones are simplified again. Results equal buildStaticLodMeshes's.

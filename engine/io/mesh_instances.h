@@ -24,6 +24,14 @@ struct InstanceTransform {
     float scale = 1.0f;                          // finite, > 0
 };
 
+// A coarser version of a mesh over the same vertices, made by whoever made the mesh (strands: their tubes
+// through every 2nd, 4th, 8th point, strand_mesh.h): its triangles, and the farthest (object-space metres)
+// any point of the mesh's surface lies from it.
+struct MeshLodLevel {
+    std::vector<uint32_t> indices;
+    float error_m = 0.0f;
+};
+
 struct MeshInstances {
     // Unique in a scene (the glTF mesh and node names come from it): "terrain", "env/bench",
     // "snow/bench/3", "icicles/shape_2".
@@ -35,6 +43,9 @@ struct MeshInstances {
     // A layer lying on the terrain (the terrain's snow): a viewer need not draw it into a sun shadow map,
     // as it shadows only itself at grazing sun. Not exported.
     bool ground_layer = false;
+    // Optional coarser levels, finest first: a viewer may draw one instead of the mesh where its error covers
+    // less than a pixel (rather than simplifying the mesh itself). Not exported.
+    std::shared_ptr<const std::vector<MeshLodLevel>> lod_levels;
 };
 
 }  // namespace ug

@@ -47,6 +47,9 @@ bool meshParticleStrands(const ParticleSystemFile& system, const Strands& strand
     out->mesh = mesh;
     out->material = std::make_shared<SurfaceMaterial>(resolveMaterial(system.material, glm::vec3(0.45f, 0.36f, 0.25f)));
     out->extras_json = strandsExtras(strands);
+    auto levels = std::make_shared<std::vector<MeshLodLevel>>();
+    strandMeshLevels(strands, system.mesh, levels.get());
+    if (!levels->empty()) out->lod_levels = std::move(levels);
     return true;
 }
 

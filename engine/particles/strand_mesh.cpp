@@ -175,4 +175,65 @@ bool strandMesh(const Strands& strands, const StrandMeshSettings& settings, Tria
                                                 : strandTubeMesh(strands, settings, out, error);
 }
 
+namespace {
+
+float distanceToSegment(glm::vec3 p, glm::vec3 a, glm::vec3 b) {
+    const glm::vec3 ab = b - a;
+    const float len2 = glm::dot(ab, ab);
+    const float t = len2 > 0.0f ? glm::clamp(glm::dot(p - a, ab) / len2, 0.0f, 1.0f) : 0.0f;
+    return glm::distance(p, a + t * ab);
+}
+
+// The points a level keeps of a strand of n points: every stride-th and the last.
+uint32_t nextKept(uint32_t i, uint32_t stride, uint32_t n) { return std::min(i + stride, n - 1); }
+
+}  // namespace
+
+void strandMeshLevels(const Strands& strands, const StrandMeshSettings& settings, std::vector<MeshLodLevel>* out) {
+    out->clear();
+    const bool blades = settings.shape == StrandShape::Blade;
+    const uint32_t k = settings.sides;
+    size_t previous = 0;  // the previous level's indices (level 0's: the mesh's)
+    for (size_t s = 0; s < strands.size(); ++s) {
+        const uint32_t n = strands.offsets[s + 1] - strands.offsets[s];
+        if (n >= 2) previous += 3 * (blades ? 4ull * (n - 1) : 2ull * k * (n - 1) + 2ull * (k - 2));
+    }
+    for (uint32_t stride : {2u, 4u, 8u}) {
+        MeshLodLevel level;
+        uint32_t base = 0;  // the strand's first vertex, as strandMesh lays them out
+        for (size_t s = 0; s < strands.size(); ++s) {
+            const uint32_t first = strands.offsets[s], n = strands.offsets[s + 1] - first;
+            if (n < 2) continue;
+            const glm::vec3* p = strands.points.data() + first;
+            for (uint32_t i = 0; i + 1 < n; i = nextKept(i, stride, n)) {
+                const uint32_t j = nextKept(i, stride, n);
+                for (uint32_t m = i + 1; m < j; ++m) level.error_m = std::max(level.error_m, distanceToSegment(p[m], p[i], p[j]));
+                if (blades) {
+                    const uint32_t a = base + 4 * i, c = base + 4 * j;
+                    level.indices.insert(level.indices.end(), {a, a + 1, c + 1, a, c + 1, c});
+                    level.indices.insert(level.indices.end(), {a + 2, c + 3, a + 3, a + 2, c + 2, c + 3});
+                } else {
+                    for (uint32_t r = 0; r < k; ++r) {
+                        const uint32_t a = base + i * k + r, b = base + i * k + (r + 1) % k;
+                        const uint32_t c = base + j * k + r, d = base + j * k + (r + 1) % k;
+                        level.indices.insert(level.indices.end(), {a, b, d, a, d, c});
+                    }
+                }
+            }
+            if (!blades) {
+                const uint32_t last = base + (n - 1) * k;
+                for (uint32_t r = 1; r + 1 < k; ++r) {
+                    level.indices.insert(level.indices.end(), {base, base + r + 1, base + r});
+                    level.indices.insert(level.indices.end(), {last, last + r, last + r + 1});
+                }
+            }
+            base += n * (blades ? 4 : k);
+        }
+        if (10 * level.indices.size() > 9 * previous) break;
+        if (!out->empty()) level.error_m = std::max(level.error_m, out->back().error_m);
+        previous = level.indices.size();
+        out->push_back(std::move(level));
+    }
+}
+
 }  // namespace ug

@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <string>
 
+#include "io/mesh_instances.h"
 #include "mesh/triangle_mesh.h"
 #include "particles/particle_json.h"
 #include "particles/strand_growth.h"
@@ -30,6 +31,12 @@ bool strandTubeMesh(const Strands& strands, const StrandMeshSettings& settings, 
 uint64_t strandBladeTriangles(const Strands& strands);
 bool strandBladeMesh(const Strands& strands, const StrandMeshSettings& settings, TriangleMesh* out,
                      std::string* error);
+
+// Coarser levels of strandMesh's mesh over its own vertices: the tubes or blades through every 2nd, 4th and
+// 8th point of each strand (and its last), each with the farthest a dropped point lies from the chord that
+// replaces it (the radius and the ends are kept). Levels that would not save a tenth of the previous one's
+// triangles are left out (short strands), so `out` may hold fewer than three.
+void strandMeshLevels(const Strands& strands, const StrandMeshSettings& settings, std::vector<MeshLodLevel>* out);
 
 // The settings' shape: strandTubeMesh or strandBladeMesh.
 bool strandMesh(const Strands& strands, const StrandMeshSettings& settings, TriangleMesh* out, std::string* error);

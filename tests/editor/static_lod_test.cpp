@@ -111,6 +111,31 @@ TEST(StaticLod, SkipsMeshesBelowHalfAPixel) {
     EXPECT_EQ(chooseStaticLevel(single, 1.0f, 0.05f, 101.0f, 1000.0f), -1);
 }
 
+TEST(StaticLod, LevelsAMeshBringsAreOnePieceWithErrorsThatNeverShrink) {
+    const TriangleMesh mesh = gridMesh(4, 0.5f, 0.0f, 0.0f);
+    std::vector<MeshLodLevel> brought(4);
+    for (size_t k = 0; k < brought.size(); ++k) {
+        brought[k].indices.assign(mesh.indices.begin(), mesh.indices.begin() + 3 * (8 >> k));
+        brought[k].error_m = k == 1 ? 0.001f : 0.01f * float(k + 1);  // level 2 claims less than level 1
+    }
+    const StaticLodMesh lods = authoredStaticLod(mesh, brought);
+    ASSERT_EQ(lods.pieces.size(), 1u);
+    EXPECT_FALSE(lods.split);
+    const StaticLodPiece& p = lods.pieces[0];
+    ASSERT_EQ(p.level_count, uint32_t(kStaticLodLevels));  // the mesh and the first three brought
+    EXPECT_EQ(p.count[0], mesh.indices.size());
+    for (int k = 1; k < kStaticLodLevels; ++k) {
+        EXPECT_EQ(p.count[size_t(k)], brought[size_t(k - 1)].indices.size());
+        EXPECT_TRUE(std::equal(brought[size_t(k - 1)].indices.begin(), brought[size_t(k - 1)].indices.end(),
+                               lods.indices.begin() + p.first[size_t(k)]));
+    }
+    EXPECT_EQ(p.error_m[1], 0.01f);
+    EXPECT_EQ(p.error_m[2], 0.01f);  // raised to level 1's
+    EXPECT_EQ(p.error_m[3], 0.03f);
+    EXPECT_EQ(p.bounds.lo.x, 0.0f);
+    EXPECT_EQ(p.bounds.hi.x, 2.0f);
+}
+
 TEST(StaticLod, DistanceToBox) {
     const Bounds box{{0, 0, 0}, {1, 2, 3}};
     EXPECT_FLOAT_EQ(distanceToBox({0.5f, 1.0f, 1.0f}, box), 0.0f);

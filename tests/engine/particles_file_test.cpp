@@ -245,6 +245,82 @@ TEST(StrandTubes, AreClosedOutwardAtTheRadiusWithTheCountedTriangles) {
     EXPECT_NEAR(volume, hexagon * 3.0, 1e-5);
 }
 
+// A zigzag of 17 points in the xz plane: x = i, z = 0.1 at odd i (0 at even), radius 0.02.
+Strands zigzag() {
+    Strands s;
+    for (int i = 0; i < 17; ++i) {
+        s.points.push_back({float(i), 0.0f, (i % 2) ? 0.1f : 0.0f});
+        s.radii.push_back(0.02f);
+    }
+    s.offsets = {0, 17};
+    s.parent = {-1};
+    s.particle = {0};
+    return s;
+}
+
+TEST(StrandLevels, TubesThroughEverySecondFourthAndEighthPointStayClosedWithTheirChordError) {
+    const Strands s = zigzag();
+    const uint32_t sides = 4;
+    TriangleMesh m;
+    std::string error;
+    ASSERT_TRUE(strandTubeMesh(s, {.sides = sides}, &m, &error)) << error;
+    std::vector<MeshLodLevel> levels;
+    strandMeshLevels(s, {.sides = sides}, &levels);
+    ASSERT_EQ(levels.size(), 3u);
+    // Level k keeps points 0, 2^k, 2·2^k, ..., 16: 16 / 2^k segments of 2·sides triangles, the two end fans.
+    for (size_t k = 0; k < 3; ++k) {
+        const uint32_t segments = 16u >> (k + 1);
+        EXPECT_EQ(levels[k].indices.size(), 3u * (2 * sides * segments + 2 * (sides - 2))) << "level " << k + 1;
+        // Only the kept points' rings are used.
+        for (uint32_t v : levels[k].indices) EXPECT_EQ((v / sides) % (2u << k), 0u) << "level " << k + 1 << " vertex " << v;
+        // Closed: every edge used once in each direction.
+        std::map<std::pair<uint32_t, uint32_t>, int> directed;
+        for (size_t t = 0; t < levels[k].indices.size(); t += 3)
+            for (int e = 0; e < 3; ++e) ++directed[{levels[k].indices[t + e], levels[k].indices[t + (e + 1) % 3]}];
+        for (const auto& [edge, n] : directed) {
+            EXPECT_EQ(n, 1);
+            EXPECT_EQ(directed.count({edge.second, edge.first}), 1u);
+        }
+    }
+    // Level 1 drops the odd points, 0.1 off the chord z = 0; level 2's chords (0 to 4, ...) lie on z = 0
+    // too, as do level 3's: every level departs by exactly the zigzag's height.
+    EXPECT_FLOAT_EQ(levels[0].error_m, 0.1f);
+    EXPECT_FLOAT_EQ(levels[1].error_m, 0.1f);
+    EXPECT_FLOAT_EQ(levels[2].error_m, 0.1f);
+    // A straight strand loses nothing; a strand of two points has no coarser level to give.
+    Strands straight = zigzag();
+    for (glm::vec3& p : straight.points) p.z = 0.0f;
+    strandMeshLevels(straight, {.sides = sides}, &levels);
+    ASSERT_EQ(levels.size(), 3u);
+    for (const MeshLodLevel& l : levels) EXPECT_EQ(l.error_m, 0.0f);
+    Strands two;
+    two.points = {{0, 0, 0}, {0, 0, 1}};
+    two.radii = {0.1f, 0.1f};
+    two.offsets = {0, 2};
+    two.parent = {-1};
+    strandMeshLevels(two, {.sides = sides}, &levels);
+    EXPECT_TRUE(levels.empty());
+}
+
+TEST(StrandLevels, BladesKeepTheirTwoFacesThroughTheKeptPoints) {
+    const Strands s = zigzag();
+    const StrandMeshSettings settings{.shape = StrandShape::Blade, .blade_width_m = 0.04f};
+    TriangleMesh m;
+    std::string error;
+    ASSERT_TRUE(strandMesh(s, settings, &m, &error)) << error;
+    std::vector<MeshLodLevel> levels;
+    strandMeshLevels(s, settings, &levels);
+    ASSERT_EQ(levels.size(), 3u);
+    EXPECT_EQ(levels[0].indices.size(), 3u * 4u * 8u);
+    EXPECT_FLOAT_EQ(levels[0].error_m, 0.1f);
+    // Each triangle still winds counter-clockwise around its vertices' normal (front and back faces).
+    for (size_t t = 0; t < levels[0].indices.size(); t += 3) {
+        const uint32_t* i = &levels[0].indices[t];
+        const glm::vec3 a = m.positions[i[0]], b = m.positions[i[1]], c = m.positions[i[2]];
+        EXPECT_GT(glm::dot(glm::cross(b - a, c - a), m.normals[i[0]]), 0.0f) << "triangle " << t / 3;
+    }
+}
+
 TEST(StrandTubes, TooManyTrianglesAreRefusedBeforeMeshing) {
     const Strands s = twoStrands();
     TriangleMesh m;

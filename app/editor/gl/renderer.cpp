@@ -314,14 +314,21 @@ void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
     std::vector<const MeshInstances*> entries;
     std::vector<std::shared_ptr<const TriangleMesh>> lod_meshes;
     std::vector<bool> split;
+    std::vector<size_t> simplified;  // entries whose levels meshoptimizer makes (the others bring their own)
     for (const MeshInstances& entry : *meshes) {
         if (!entry.mesh || entry.mesh->indices.empty()) continue;
         entries.push_back(&entry);
+        if (entry.lod_levels) continue;
+        simplified.push_back(entries.size() - 1);
         lod_meshes.push_back(entry.mesh);
         split.push_back(splitsStaticEntry(entry.instances.size(), entry.mesh->indices.size() / 3));
     }
     // Meshes kept from the previous set (an edit's unchanged snow, the objects' bases) keep their levels.
-    std::vector<StaticLodMesh> lods = static_lod_cache_.levels(lod_meshes, split, 0);
+    std::vector<StaticLodMesh> built = static_lod_cache_.levels(lod_meshes, split, 0);
+    std::vector<StaticLodMesh> lods(entries.size());
+    for (size_t i = 0; i < simplified.size(); ++i) lods[simplified[i]] = std::move(built[i]);
+    for (size_t e = 0; e < entries.size(); ++e)
+        if (entries[e]->lod_levels) lods[e] = authoredStaticLod(*entries[e]->mesh, *entries[e]->lod_levels);
     const auto t1 = std::chrono::steady_clock::now();
     for (size_t e = 0; e < entries.size(); ++e) {
         const MeshInstances& entry = *entries[e];
