@@ -46,3 +46,4 @@ strands fig9_four_attractors_no_collision 0,0,0.5,3.2,-60,20
 strands fig10_stone_statue 0,0,0.5,3.0,-60,22
 strands fig11_sphere_to_statue 0,0,0.4,2.8,-60,35
 strands moss_stone 0,0,0.3,1.6,-60,25
+strands turning_tendrils 0,0,0.2,0.8,-80,12

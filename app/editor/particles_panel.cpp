@@ -24,7 +24,7 @@ namespace {
 const char* const kAttractorKinds[] = {"point", "segment", "sphere", "mesh", "objects"};
 const char* const kGeneratorKinds[] = {"rectangle", "sphere", "box", "mesh", "objects"};
 const char* const kCutterKinds[] = {"plane", "sphere", "box"};
-const char* const kActionKinds[] = {"stop", "kill", "split", "countdown"};
+const char* const kActionKinds[] = {"stop", "kill", "split", "countdown", "turn"};
 const char* const kCutterSides[] = {"above the threshold", "below the threshold"};
 
 // A list entry of the system (a generator, an attractor or a cutter): a tree node, highlighted while its
@@ -229,8 +229,15 @@ void editAttractor(Attractor* a, uint32_t steps, PanelEdit* e) {
 }
 
 void editAction(StrandAction* action, PanelEdit* e) {
+    if (!action->table.empty()) {
+        // Tables are written in the particle file; the window shows what the state does.
+        ImGui::TextDisabled("action: one of %zu, by %s", action->table.size(),
+                            action->choice == ActionChoice::Random ? "weighted chance" : "priority");
+        for (const StrandAction& a : action->table) ImGui::BulletText("%s", strandActionName(a.kind));
+        return;
+    }
     int kind = int(action->kind);
-    if (ImGui::Combo("action", &kind, kActionKinds, 4)) {
+    if (ImGui::Combo("action", &kind, kActionKinds, IM_ARRAYSIZE(kActionKinds))) {
         action->kind = StrandActionKind(kind);
         e->changed = true;
     }
@@ -243,6 +250,8 @@ void editAction(StrandAction* action, PanelEdit* e) {
         ImGui::InputScalar("countdown steps", ImGuiDataType_U32, &action->countdown_steps);
         finished(e);
     }
+    if (action->kind == StrandActionKind::Turn)
+        dragged(ImGui::DragFloat("turn (deg)", &action->turn_angle_deg, 0.5f, 0.1f, 180.0f), e);
 }
 
 void editCutter(Cutter* c, PanelEdit* e) {

@@ -3,6 +3,8 @@
 #include <cmath>
 #include <filesystem>
 #include <memory>
+#include <set>
+#include <string>
 
 #include "core/atomic_file.h"
 #include "mesh/mesh_loader.h"
@@ -40,7 +42,8 @@ bool readKind(JsonReader& r, const json& obj, const std::string& p, const char* 
     return r.fail(p + "/" + key, "'" + s + "' is not one of " + all);
 }
 
-const char* const kActionNames[] = {"stop", "kill", "split", "countdown"};
+const char* const kActionNames[] = {"stop", "kill", "split", "countdown", "turn"};
+const char* const kChoiceNames[] = {"priority", "random"};
 // countdown_then takes only the first two actions (StrandActionKind's Stop and Kill, in enum order).
 const char* const kCountdownEndNames[] = {"stop", "kill"};
 const char* const kGeneratorNames[] = {"rectangle", "sphere", "box", "mesh", "objects", "details"};
@@ -49,17 +52,40 @@ const char* const kCutterNames[] = {"plane", "sphere", "box"};
 const char* const kSideNames[] = {"above", "below"};
 const char* const kShapeNames[] = {"tube", "blade"};
 
+const std::set<std::string> kActionKeys = {"kind", "split_count", "split_angle_deg", "countdown_steps",
+                                           "countdown_then", "turn_angle_deg"};
+const std::set<std::string> kTableActionKeys = {"kind", "split_count", "split_angle_deg", "countdown_steps",
+                                                "countdown_then", "turn_angle_deg", "weight"};
+
+// One action's own fields (and its weight, in a table).
+bool readActionFields(JsonReader& r, const json& j, const std::string& at, bool in_table, StrandAction* out) {
+    return r.expectObject(j, at) &&
+           r.onlyKeys(j, at, in_table ? kTableActionKeys : kActionKeys) &&
+           readKind(r, j, at, "kind", kActionNames, &out->kind, true) &&
+           r.integer(j, at, "split_count", &out->split_count, 1, 16) &&
+           r.number(j, at, "split_angle_deg", &out->split_angle_deg, 0.0, 179.9) &&
+           r.integer(j, at, "countdown_steps", &out->countdown_steps, 1, kMaxParticleSteps) &&
+           readKind(r, j, at, "countdown_then", kCountdownEndNames, &out->countdown_then, false) &&
+           r.number(j, at, "turn_angle_deg", &out->turn_angle_deg, 1e-3, 180.0) &&
+           r.number(j, at, "weight", &out->weight, 1e-6, 1e6);
+}
+
+// An action: {"kind": ..., fields} or a table {"choice": "priority" | "random", "table": [actions]}.
 bool readAction(JsonReader& r, const json& obj, const std::string& p, const char* key, StrandAction* out) {
     auto it = obj.find(key);
     if (it == obj.end()) return true;
     const std::string at = p + "/" + key;
-    return r.expectObject(*it, at) &&
-           r.onlyKeys(*it, at, {"kind", "split_count", "split_angle_deg", "countdown_steps", "countdown_then"}) &&
-           readKind(r, *it, at, "kind", kActionNames, &out->kind, true) &&
-           r.integer(*it, at, "split_count", &out->split_count, 1, 16) &&
-           r.number(*it, at, "split_angle_deg", &out->split_angle_deg, 0.0, 179.9) &&
-           r.integer(*it, at, "countdown_steps", &out->countdown_steps, 1, kMaxParticleSteps) &&
-           readKind(r, *it, at, "countdown_then", kCountdownEndNames, &out->countdown_then, false) ;
+    if (!r.expectObject(*it, at)) return false;
+    auto table = it->find("table");
+    if (table == it->end()) return readActionFields(r, *it, at, false, out);
+    if (!r.onlyKeys(*it, at, {"choice", "table"}) || !readKind(r, *it, at, "choice", kChoiceNames, &out->choice, false))
+        return false;
+    if (!table->is_array() || table->empty() || table->size() > kMaxActionTable)
+        return r.fail(at + "/table", "expected 1 to 16 actions");
+    out->table.assign(table->size(), StrandAction{});
+    for (size_t i = 0; i < table->size(); ++i)
+        if (!readActionFields(r, (*table)[i], at + "/table/" + std::to_string(i), true, &out->table[i])) return false;
+    return true;
 }
 
 bool readGenerator(JsonReader& r, const json& j, const std::string& p, ParticleGenerator* g) {
@@ -181,12 +207,20 @@ bool readList(JsonReader& r, const json& obj, const char* key, size_t max, std::
 
 json vec3Json(glm::vec3 v) { return {v.x, v.y, v.z}; }
 
-json actionJson(const StrandAction& a) {
-    return {{"kind", kActionNames[size_t(a.kind)]},
-            {"split_count", a.split_count},
-            {"split_angle_deg", a.split_angle_deg},
-            {"countdown_steps", a.countdown_steps},
-            {"countdown_then", kActionNames[size_t(a.countdown_then)]}};
+json actionJson(const StrandAction& a, bool in_table = false) {
+    if (!a.table.empty()) {
+        json table = json::array();
+        for (const StrandAction& t : a.table) table.push_back(actionJson(t, true));
+        return {{"choice", kChoiceNames[size_t(a.choice)]}, {"table", table}};
+    }
+    json j = {{"kind", kActionNames[size_t(a.kind)]},
+              {"split_count", a.split_count},
+              {"split_angle_deg", a.split_angle_deg},
+              {"countdown_steps", a.countdown_steps},
+              {"countdown_then", kActionNames[size_t(a.countdown_then)]},
+              {"turn_angle_deg", a.turn_angle_deg}};
+    if (in_table) j["weight"] = a.weight;
+    return j;
 }
 
 }  // namespace

@@ -40,7 +40,20 @@ bool checkCone(float deg, const std::string& field, bool allow_zero, std::string
     return true;
 }
 
-bool checkAction(const StrandAction& a, const std::string& field, std::string* error) {
+bool checkAction(const StrandAction& a, const std::string& field, std::string* error, bool in_table = false) {
+    if (!a.table.empty()) {
+        if (in_table) return fail(error, field + ".table", "an action in a table has no table of its own");
+        if (a.table.size() > kMaxActionTable) return fail(error, field + ".table", "at most 16 actions");
+        for (size_t i = 0; i < a.table.size(); ++i) {
+            const std::string f = field + ".table[" + std::to_string(i) + "]";
+            if (!checkAction(a.table[i], f, error, true)) return false;
+            if (!std::isfinite(a.table[i].weight) || !(a.table[i].weight > 0.0f) || a.table[i].weight > 1e6f)
+                return fail(error, f + ".weight", "must be in (0, 1e6]");
+        }
+        return true;
+    }
+    if (a.kind == StrandActionKind::Turn && !(a.turn_angle_deg > 0.0f && a.turn_angle_deg <= 180.0f))
+        return fail(error, field + ".turn_angle_deg", "must be in (0, 180] degrees");
     if (a.kind == StrandActionKind::Split) {
         if (a.split_count < 1 || a.split_count > 16) return fail(error, field + ".split_count", "must be in [1, 16]");
         if (!checkCone(a.split_angle_deg, field + ".split_angle_deg", true, error)) return false;
@@ -156,6 +169,7 @@ const char* strandActionName(StrandActionKind kind) {
         case StrandActionKind::Kill: return "kill";
         case StrandActionKind::Split: return "split";
         case StrandActionKind::Countdown: return "countdown";
+        case StrandActionKind::Turn: return "turn";
     }
     return "?";
 }

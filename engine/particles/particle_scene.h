@@ -27,6 +27,16 @@ enum class StrandActionKind : uint8_t {
     Kill,       // the strand is removed from the output
     Split,      // the strand ends and split_count children continue from its last point
     Countdown,  // the strand goes on for countdown_steps more steps, then countdown_then (kill or stop)
+    // The strand goes on with its heading turned by turn_angle_deg about a hashed axis across it (§5.2's
+    // "changing the direction of the motion"), and its age starts again (an age turn meanders).
+    Turn,
+};
+
+// How a state's table of actions (StrandAction::table) picks one when the state occurs.
+enum class ActionChoice : uint8_t {
+    Priority,  // the first that can act (a split needs a moved strand under the depth limit, a countdown a
+               // strand not counting yet); the last when none can
+    Random,    // one drawn in proportion to the weights by a hashed number (seed, strand, step, state)
 };
 
 struct StrandAction {
@@ -37,9 +47,17 @@ struct StrandAction {
     // Countdown: what ends the strand when the count runs out, Kill (removed) or Stop (its points stay:
     // the paper's "eliminated" in Fig. 8, where the strands reaching the outer sphere remain visible).
     StrandActionKind countdown_then = StrandActionKind::Kill;
+    float turn_angle_deg = 45.0f;    // Turn: in (0, 180]
+    // A table (§5.2: "the action can be either taken randomly or according to user defined priority"):
+    // when not empty, the state acts by one of these (their own tables empty, at most 16) chosen by
+    // `choice`, and this entry's kind and fields are unused. `weight` (> 0) counts in a Random table.
+    std::vector<StrandAction> table;
+    ActionChoice choice = ActionChoice::Priority;
+    float weight = 1.0f;
 
     bool operator==(const StrandAction&) const = default;
 };
+constexpr size_t kMaxActionTable = 16;
 
 // Surfaces particles are seeded on. Each has an area-preserving parameterisation, so equal strata in
 // parameter space are equal areas on the surface (§3: "equal areas ... arc length parameterisation").

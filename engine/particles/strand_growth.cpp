@@ -20,6 +20,8 @@ constexpr uint32_t kNone = 0xffffffffu;
 constexpr uint64_t kTrialTag = 0x7419'a1c0'0000'0000ull;
 constexpr uint64_t kSplitTag = 0x5b11'7c0f'0000'0000ull;
 constexpr uint64_t kChildTag = 0x3c41'd0e9'0000'0000ull;
+constexpr uint64_t kTurnTag = 0x7e4d'35a1'0000'0000ull;
+constexpr uint64_t kActionTag = 0xac71'0b1e'0000'0000ull;
 constexpr int kCutBisections = 40;
 
 enum class StrandState : uint8_t { Active, Stopped, Killed };
@@ -176,7 +178,11 @@ private:
     bool hitsEarlierSegment(size_t k) const;
     bool hitsLowerMove(size_t k) const;
     bool entersSolid(size_t k) const;
-    void apply(const StrandAction& action, uint32_t strand);
+    // `state` tells the states apart in a random table's draw (0 collision, 1 age, 2 + c cutter c).
+    void apply(const StrandAction& action, uint32_t strand, uint32_t step, uint32_t state);
+    const StrandAction& chosen(const StrandAction& action, uint32_t strand, uint32_t step, uint32_t state) const;
+    bool canAct(const StrandAction& action, uint32_t strand) const;
+    void turn(const StrandAction& action, uint32_t strand, uint32_t step);
     void split(const StrandAction& action, uint32_t strand);
     void emit(Strands* out) const;
     void keepRecord();
@@ -424,7 +430,44 @@ void Growth::split(const StrandAction& action, uint32_t s) {
     }
 }
 
-void Growth::apply(const StrandAction& action, uint32_t s) {
+bool Growth::canAct(const StrandAction& action, uint32_t s) const {
+    switch (action.kind) {
+        case StrandActionKind::Split: return strands_.npoints[s] >= 2 && strands_.depth[s] < walk_.max_split_depth;
+        case StrandActionKind::Countdown: return strands_.countdown[s] < 0;
+        default: return true;
+    }
+}
+
+const StrandAction& Growth::chosen(const StrandAction& action, uint32_t s, uint32_t step, uint32_t state) const {
+    if (action.table.empty()) return action;
+    if (action.choice == ActionChoice::Priority) {
+        for (const StrandAction& a : action.table)
+            if (canAct(a, s)) return a;
+        return action.table.back();
+    }
+    double total = 0.0;
+    for (const StrandAction& a : action.table) total += a.weight;
+    const double u = unitDouble(hashWords(walk_.seed, kActionTag + strands_.key[s], step, state)) * total;
+    double below = 0.0;
+    for (const StrandAction& a : action.table) {
+        below += a.weight;
+        if (u < below) return a;
+    }
+    return action.table.back();
+}
+
+void Growth::turn(const StrandAction& action, uint32_t s, uint32_t step) {
+    // About an axis across the heading (the frame's own z), at a hashed angle around it.
+    const uint64_t h = hashWords(walk_.seed, kTurnTag + strands_.key[s], step);
+    const float around = 2.0f * float(M_PI) * unitFloat(h);
+    const glm::quat frame = strands_.frame[s];
+    const glm::vec3 axis = frame * glm::vec3(std::cos(around), std::sin(around), 0.0f);
+    strands_.frame[s] = glm::normalize(glm::angleAxis(glm::radians(action.turn_angle_deg), axis) * frame);
+    strands_.age[s] = 0;
+}
+
+void Growth::apply(const StrandAction& table, uint32_t s, uint32_t step, uint32_t state) {
+    const StrandAction& action = chosen(table, s, step, state);
     switch (action.kind) {
         case StrandActionKind::Stop: strands_.state[s] = StrandState::Stopped; break;
         case StrandActionKind::Kill:
@@ -434,11 +477,12 @@ void Growth::apply(const StrandAction& action, uint32_t s) {
         case StrandActionKind::Split:
             // A strand that has not moved would split into copies of its parent's split; one beyond the
             // depth limit would split forever: both stop instead.
-            if (strands_.npoints[s] < 2 || strands_.depth[s] >= walk_.max_split_depth)
+            if (!canAct(action, s))
                 strands_.state[s] = StrandState::Stopped;
             else
                 split(action, s);
             break;
+        case StrandActionKind::Turn: turn(action, s, step); break;
         case StrandActionKind::Countdown:
             if (strands_.countdown[s] < 0) {
                 strands_.countdown[s] = int32_t(action.countdown_steps);
@@ -639,7 +683,7 @@ bool Growth::run(Strands* out, std::string* error) {
             const bool counting = strands_.countdown[s] >= 0;
             if (moves_.blocked[k]) {
                 ++(moves_.blocked[k] == 3 ? stats_.solid_hits : stats_.collisions);
-                apply(walk_.on_collision, s);
+                apply(walk_.on_collision, s, step, 0);
             } else {
                 if (!moves_.still[k]) {
                     const uint32_t id = uint32_t(points_.pos.size());
@@ -662,9 +706,9 @@ bool Growth::run(Strands* out, std::string* error) {
                 if (moves_.cutter[k] >= 0) {
                     ++stats_.cutter_hits;
                     strands_.cut_mask[s] |= 1u << moves_.cutter[k];
-                    apply(scene_.cutters[size_t(moves_.cutter[k])].action, s);
+                    apply(scene_.cutters[size_t(moves_.cutter[k])].action, s, step, 2 + uint32_t(moves_.cutter[k]));
                 } else if (walk_.max_age_steps > 0 && strands_.age[s] >= walk_.max_age_steps) {
-                    apply(walk_.on_age, s);
+                    apply(walk_.on_age, s, step, 1);
                 }
             }
             // A countdown started in an earlier step runs out here, whatever happened in this one.

@@ -127,6 +127,42 @@ TEST(ParticleRegrowth, IncrementalEqualsFullAfterRandomEdits) {
     EXPECT_GT(reused, 0u);
 }
 
+// The same edits with turns and action tables (the turn's hashed axis and the table's hashed draw are a
+// strand's own state, so a replayed strand turns and draws as its record did).
+TEST(ParticleRegrowth, IncrementalEqualsFullWithTurnsAndActionTables) {
+    ParticleScene scene = crowdedSplittingGrass();
+    scene.generators[0].count = 800;
+    StrandAction split = scene.walk.on_collision, turn;
+    turn.kind = StrandActionKind::Turn;
+    turn.turn_angle_deg = 60.0f;
+    turn.weight = 2.0f;
+    scene.walk.on_collision = StrandAction{};
+    scene.walk.on_collision.choice = ActionChoice::Random;
+    scene.walk.on_collision.table = {split, turn};
+    scene.walk.max_age_steps = 8;
+    scene.walk.on_age.kind = StrandActionKind::Turn;
+    scene.walk.on_age.turn_angle_deg = 30.0f;
+    StrandAction cut = scene.cutters[0].action;
+    scene.cutters[0].action = StrandAction{};
+    scene.cutters[0].action.table = {cut, turn};  // by priority: a split where it can, else a turn
+    StrandRegrower regrower;
+    std::mt19937 rng(41);
+    Strands out;
+    std::string error;
+    ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
+    expectIdentical(out, fullGrowth(scene), "first growth");
+    ASSERT_GT(out.stats.splits, 50u);
+    uint64_t reused = 0;
+    for (int e = 0; e < 8; ++e) {
+        const std::string what = editAttractor(&scene, &rng);
+        ASSERT_TRUE(regrower.grow(scene, {.threads = e % 2 ? 8 : 1}, &out, &error)) << error;
+        EXPECT_TRUE(regrower.lastReport().incremental) << what;
+        reused += regrower.lastReport().reused;
+        expectIdentical(out, fullGrowth(scene), "edit " + std::to_string(e) + ": " + what);
+    }
+    EXPECT_GT(reused, 0u);
+}
+
 TEST(ParticleRegrowth, AMovedAttractorReGrowsOnlyWhatItReaches) {
     ParticleScene scene = crowdedSplittingGrass();
     StrandRegrower regrower;
