@@ -127,22 +127,11 @@ if "$bin" instantiate "$moss" -o "$tmp/moss.glb" --stats "$tmp/moss.json" --cach
    "$bin" instantiate "$moss" -o "$tmp/moss_w.glb" --cache "$tmp/cache" --region=-5,-5,-1,0,5,3 >>"$tmp/moss.out" 2>&1 &&
    "$bin" instantiate "$moss" -o "$tmp/moss_e.glb" --cache "$tmp/cache" --region=0,-5,-1,5,5,3 >>"$tmp/moss.out" 2>&1 &&
    node "$check" "$tmp/moss.glb" >"$tmp/moss.check" 2>&1 &&
-   python3 - "$tmp" <<'PY'
-import json, struct, sys
+   python3 - "$tmp" "$root/tests/gltf" <<'PY'
+import json, sys
 t = sys.argv[1]
-def positions(path, name):
-    """The named mesh's POSITION bytes, or None when the file has no such mesh."""
-    b = open(path, "rb").read()
-    n = struct.unpack("<I", b[12:16])[0]
-    doc = json.loads(b[20:20 + n])
-    binary = b[20 + n + 8:]
-    for m in doc["meshes"]:
-        if m["name"] == name:
-            acc = doc["accessors"][m["primitives"][0]["attributes"]["POSITION"]]
-            view = doc["bufferViews"][acc["bufferView"]]
-            start = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
-            return binary[start:start + 12 * acc["count"]]
-    return None
+sys.path.insert(0, sys.argv[2])
+from glb_mesh import mesh_positions as positions
 report = json.loads(open(t + "/moss.check").read().strip().splitlines()[-1])
 assert report["errors"] == 0, report
 assert "strands/moss" in report["per_mesh"], report["per_mesh"]

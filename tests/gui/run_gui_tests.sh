@@ -418,20 +418,11 @@ EOF
 if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$root/assets/scenes/rock_pile_moss.json" --frames 3 --size 640x360 \
      --cache "$cache" --config "$mdir/config" --replay "$mdir/script.json" --stats "$mdir/stats.json" >"$mdir/log" 2>&1 &&
    "$bin" instantiate "$root/assets/scenes/rock_pile_moss.json" -o "$mdir/cli.glb" --cache "$cache" >/dev/null 2>&1 &&
-   out="$(python3 - "$mdir" <<'PY' 2>&1
-import json, struct, sys
+   out="$(python3 - "$mdir" "$root/tests/gltf" <<'PY' 2>&1
+import sys
 d = sys.argv[1]
-def positions(path, name):
-    b = open(path, "rb").read()
-    n = struct.unpack("<I", b[12:16])[0]
-    doc = json.loads(b[20:20 + n])
-    binary = b[20 + n + 8:]
-    for m in doc["meshes"]:
-        if m["name"] == name:
-            acc = doc["accessors"][m["primitives"][0]["attributes"]["POSITION"]]
-            view = doc["bufferViews"][acc["bufferView"]]
-            start = view.get("byteOffset", 0) + acc.get("byteOffset", 0)
-            return binary[start:start + 12 * acc["count"]]
+sys.path.insert(0, sys.argv[2])
+from glb_mesh import mesh_positions as positions
 editor, cli = positions(d + "/editor.glb", "strands/moss"), positions(d + "/cli.glb", "strands/moss")
 assert editor and len(editor) > 1000000, "the editor exported no moss"
 assert editor == cli, "the editor's moss differs from instantiate's"
