@@ -212,6 +212,7 @@ struct ParticlesPanelState {
     // The copy the widgets edit: taken from the document whenever no widget is active, so a field being
     // typed keeps its text and a drag its value between frames.
     ParticleSystemFile editing;
+    ParticleSystemRef editing_entry;  // its entry in the project's list: name and offset
     const Document* editing_doc = nullptr;
     size_t editing_index = SIZE_MAX;
 };

@@ -358,6 +358,27 @@ bool newSystemButton(Document* doc, ParticlesPanelState* state, std::string* mes
     return false;
 }
 
+// The selected entry of the project's list: its name (empty: the file's own) and offset, which move every
+// part of the system at once (its file is unchanged). A rename is one undo step, a drag of the offset one.
+void editEntry(Document* doc, ParticlesPanelState* state, std::string* message) {
+    ParticleSystemRef& entry = state->editing_entry;
+    PanelEdit e;
+    char name[256];
+    std::snprintf(name, sizeof(name), "%s", entry.name.c_str());
+    if (ImGui::InputTextWithHint("name", state->editing.file_name.c_str(), name, sizeof(name))) entry.name = name;
+    finished(&e);
+    named(&e, "Rename particle system");
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("%s", ("the system's name in this project (its file: " + entry.file + ")").c_str());
+    dragged(ImGui::DragFloat3("offset (m)", &entry.offset_m.x, 0.01f), &e);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("moves every generator, attractor and cutter of this entry");
+    commitPanelEdit(
+        doc, e, "Move particle system",
+        [&](const std::string&, std::string* error) {
+            return doc->setParticleEntry(state->selected, entry.name, entry.offset_m, error);
+        },
+        &state->last_error, message);
+}
+
 }  // namespace
 
 void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* message, bool* open) {
@@ -406,6 +427,7 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
 
     if (!ImGui::IsAnyItemActive() || state->editing_doc != doc || state->editing_index != state->selected) {
         state->editing = systems[state->selected];
+        state->editing_entry = doc->project().particles[state->selected];
         state->editing_doc = doc;
         state->editing_index = state->selected;
     }
@@ -466,6 +488,8 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
         }
     }
     if (ImGui::IsItemHovered()) ImGui::SetTooltip("take this system out of the project (its file stays; Ctrl+Z brings it back)");
+    // Last, so that opening it moves nothing above.
+    if (ImGui::CollapsingHeader("Name and offset")) editEntry(doc, state, message);
     ImGui::End();
 }
 

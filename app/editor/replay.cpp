@@ -75,6 +75,8 @@ const char* replayKindName(ReplayKind kind) {
             return "env_tree";
         case ReplayKind::EnvHandle:
             return "env_handle";
+        case ReplayKind::ParticleEntry:
+            return "particle_entry";
     }
     return "?";
 }
@@ -173,6 +175,13 @@ bool parseReplayScript(const std::string& text, const std::string& path, std::ve
                 }
             }
             if (r.kind == ReplayKind::SetSeed) r.seed = a.at("seed").get<uint64_t>();
+            if (r.kind == ReplayKind::ParticleEntry) {
+                r.system = a.value("system", size_t(0));
+                if (a.contains("name")) r.entry_name = a["name"].get<std::string>();
+                if (a.contains("offset_m"))
+                    r.entry_offset = glm::vec3(a["offset_m"].at(0).get<float>(), a["offset_m"].at(1).get<float>(),
+                                               a["offset_m"].at(2).get<float>());
+            }
             if (r.kind == ReplayKind::SetAttractor) {
                 r.system = a.value("system", size_t(0));
                 r.attractor = a.value("attractor", size_t(0));

@@ -80,6 +80,7 @@
 #include <cmath>
 #include <glm/glm.hpp>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -119,9 +120,10 @@ enum class ReplayKind {
     ShowWindow,
     EnvView,
     EnvTree,
-    EnvHandle
+    EnvHandle,
+    ParticleEntry
 };
-constexpr int kReplayKindCount = int(ReplayKind::EnvHandle) + 1;
+constexpr int kReplayKindCount = int(ReplayKind::ParticleEntry) + 1;
 const char* replayKindName(ReplayKind kind);  // the "action" string
 // The actions that edit the environment (env_add, env_move, env_handle, env_remove, env_global, env_tree,
 // footprints, weather_stroke): they end when the effects computed for them are on screen.
@@ -167,6 +169,9 @@ struct ReplayAction {
     glm::vec3 a_m{0.0f};
     float influence_m = NAN, charge = NAN;  // NaN: keep
     bool cancel = false;  // set_attractor: the Particles window's Cancel pressed at once (the edit undone)
+    // particle_entry ("system" as above): the entry's name ("name", absent: kept) and offset ("offset_m")
+    std::optional<std::string> entry_name;
+    std::optional<glm::vec3> entry_offset;
     // env_add (type: `type`, turn: yaw_deg), env_move, env_remove, env_global
     size_t node = 0;        // env_remove
     glm::vec2 at_xy{0.0f};  // env_add: "at"; env_move, env_handle: "to"

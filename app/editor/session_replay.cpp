@@ -256,6 +256,19 @@ bool EditorSession::runReplayAction(const ReplayAction& a) {
             }
             break;
         }
+        case ReplayKind::ParticleEntry: {
+            windows.particles = true;
+            if (a.system >= doc->project().particles.size()) {
+                *error = "particle_entry: no particle system " + std::to_string(a.system);
+                return false;
+            }
+            const ParticleSystemRef& entry = doc->project().particles[a.system];
+            replay.record["ok"] = doc->setParticleEntry(a.system, a.entry_name.value_or(entry.name),
+                                                        a.entry_offset.value_or(entry.offset_m), &op_error);
+            if (!op_error.empty()) replay.record["error"] = op_error;
+            replay.record["undo_name"] = doc->canUndo() ? doc->undoName() : "";
+            break;
+        }
         case ReplayKind::SetSeed:
             replay.record["seed"] = a.seed;
             replay.record["ok"] = doc->setSeed(a.seed, &op_error);

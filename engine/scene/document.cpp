@@ -525,6 +525,47 @@ bool Document::addParticleSystem(const ParticleSystemFile& system, std::string* 
     return execute(std::make_unique<AddParticleSystemCommand>(std::move(ref), std::move(placed)), error);
 }
 
+bool Document::setParticleEntry(size_t index, const std::string& name, glm::vec3 offset_m, std::string* error) {
+    if (index >= particles_->size() || index >= project_.particles.size()) {
+        *error = "no particle system " + std::to_string(index);
+        return false;
+    }
+    const ParticleSystemFile& system = (*particles_)[index];
+    const std::string shown = name.empty() ? system.file_name : name;
+    for (char c : shown)
+        if (c == '/' || (unsigned char)(c) < 0x20) {
+            *error = "particles[" + std::to_string(index) + "].name: '" + shown +
+                     "' has a '/' or a control character (it names the glTF mesh strands/<name>)";
+            return false;
+        }
+    for (size_t i = 0; i < particles_->size(); ++i)
+        if (i != index && (*particles_)[i].name == shown) {
+            *error = "particles[" + std::to_string(index) + "].name: another system is named '" + shown + "'";
+            return false;
+        }
+    for (int a = 0; a < 3; ++a)
+        if (!std::isfinite(offset_m[a]) || std::abs(offset_m[a]) > kMaxParticleCoordinate_m) {
+            *error = "particles[" + std::to_string(index) + "].offset_m: not finite or beyond 1e5 m";
+            return false;
+        }
+    ParticleSystemRef after = project_.particles[index];
+    after.name = name;
+    after.offset_m = offset_m;
+    if (after == project_.particles[index]) return true;
+    const bool renamed = after.name != project_.particles[index].name;
+    // Moved past the limit by the offset, a part would be refused by the commit; say where first.
+    ParticleScene moved = system.scene;
+    translateParticleScene(&moved, offset_m - project_.particles[index].offset_m);
+    std::string why;
+    if (!validateParticleScene(moved, &why)) {
+        *error = "particles[" + std::to_string(index) + "].offset_m: " + why;
+        return false;
+    }
+    return execute(std::make_unique<SetParticleEntryCommand>(index, std::move(after),
+                                                             renamed ? "Rename particle system" : "Move particle system"),
+                   error);
+}
+
 bool Document::removeParticleSystem(size_t index, std::string* error) {
     return execute(std::make_unique<RemoveParticleSystemCommand>(index), error);
 }

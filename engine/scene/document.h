@@ -167,6 +167,11 @@ public:
     // Entry `index` and its system out of the project, one undo step (its file stays on disk; Save writes
     // the list without it).
     bool removeParticleSystem(size_t index, std::string* error);
+    // Entry `index` of the project's "particles" list under another name ("" : the file's own) and at
+    // another offset, its strands moved with it; one undo step, or one stamp of an open stroke (a drag).
+    // Refused: a name another system has, or with '/' or control characters; an offset beyond the particle
+    // coordinates' limit.
+    bool setParticleEntry(size_t index, const std::string& name, glm::vec3 offset_m, std::string* error);
     // The environmental objects' tree and fields become `environment`'s (its type library must be the
     // project's: types are not edited here), one undo step named `name` ("Move object", "Footprints").
     // Compiled at once (errors name the node or field); the scattered types and the settling follow.

@@ -61,6 +61,29 @@ void AddParticleSystemCommand::revert(EditTarget t, EditEffect* effect) {
     effect->particles = true;
 }
 
+bool SetParticleEntryCommand::apply(EditTarget t, EditEffect* effect, std::string* error) {
+    if (index_ >= t.project->particles.size() || index_ >= (*t.particles)->size()) {
+        *error = "no particle system " + std::to_string(index_);
+        return false;
+    }
+    before_ = t.project->particles[index_];
+    systems_before_ = *t.particles;
+    auto systems = std::make_shared<std::vector<ParticleSystemFile>>(**t.particles);
+    ParticleSystemFile& s = (*systems)[index_];
+    translateParticleScene(&s.scene, after_.offset_m - before_.offset_m);
+    s.name = after_.name.empty() ? s.file_name : after_.name;
+    t.project->particles[index_] = after_;
+    *t.particles = std::move(systems);
+    effect->particles = true;
+    return true;
+}
+
+void SetParticleEntryCommand::revert(EditTarget t, EditEffect* effect) {
+    t.project->particles[index_] = before_;
+    *t.particles = systems_before_;
+    effect->particles = true;
+}
+
 bool RemoveParticleSystemCommand::apply(EditTarget t, EditEffect* effect, std::string* error) {
     if (index_ >= t.project->particles.size() || index_ >= (*t.particles)->size()) {
         *error = "no particle system " + std::to_string(index_);

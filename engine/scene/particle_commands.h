@@ -61,6 +61,24 @@ private:
     ParticleSystemFile system_;
 };
 
+// Entry `index` of the project's "particles" list renamed and moved (`after`: its name and offset; the file
+// stays), its placed system with it: moved by the difference of the offsets, under the new name (the
+// file's own when empty). One undo step; undo gives both back.
+class SetParticleEntryCommand : public Command {
+public:
+    SetParticleEntryCommand(size_t index, ParticleSystemRef after, std::string name)
+        : index_(index), after_(std::move(after)), name_(std::move(name)) {}
+    std::string name() const override { return name_; }
+    bool apply(EditTarget target, EditEffect* effect, std::string* error) override;
+    void revert(EditTarget target, EditEffect* effect) override;
+
+private:
+    size_t index_;
+    ParticleSystemRef after_, before_;
+    ParticleSystems systems_before_;
+    std::string name_;
+};
+
 // What a particle file needs beyond validateParticleScene to load again once saved (a generator);
 // false with *why otherwise. The document refuses edits that would save a file it could not open.
 bool savableParticleSystem(const ParticleSystemFile& system, std::string* why);

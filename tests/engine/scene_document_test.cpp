@@ -721,6 +721,72 @@ TEST(Document, ANewParticleSystemIsAFileBesideTheProjectAndOneUndoStepAndRemovin
     EXPECT_TRUE(fs::exists(dir.path() / "particles" / "grass.json"));
 }
 
+TEST(Document, AParticleEntryIsRenamedAndMovedAsOneUndoStepAndSavedWithItsFileUnchanged) {
+    TempDir dir;
+    const fs::path a = dir.path() / "scene.json";
+    auto doc = openDoc(writeProject(a, projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    ParticleSystemFile grass;
+    grass.name = "grass";
+    ParticleGenerator g;
+    g.axis_u_m = {0.3f, 0.0f, 0.0f};
+    g.axis_v_m = {0.0f, 0.3f, 0.0f};
+    g.count = 30;
+    grass.scene.generators.push_back(g);
+    Attractor up;
+    up.a_m = {0.0f, 0.0f, 1.0f};
+    grass.scene.attractors.push_back(up);
+    grass.scene.walk.steps = 4;
+    std::string error;
+    ASSERT_TRUE(doc->addParticleSystem(grass, &error)) << error;
+    ASSERT_TRUE(doc->addParticleSystem(grass, &error)) << error;  // "grass_2"
+    const std::string file = (dir.path() / "particles" / "grass.json").string();
+    std::string file_before;
+    ASSERT_TRUE(readTextFile(file, &file_before, &error)) << error;
+    const ParticleSystemFile before = (*doc->particles())[0];
+    // Renamed: the system's name and the entry's, one step.
+    ASSERT_TRUE(doc->setParticleEntry(0, "meadow_grass", glm::vec3(0.0f), &error)) << error;
+    EXPECT_EQ(doc->undoName(), "Rename particle system");
+    EXPECT_EQ((*doc->particles())[0].name, "meadow_grass");
+    EXPECT_EQ(doc->project().particles[0].name, "meadow_grass");
+    // Moved by a drag: three stamps, one step; every part moved by the offset.
+    doc->beginStroke("Move particle system");
+    for (int k = 1; k <= 3; ++k)
+        ASSERT_TRUE(doc->setParticleEntry(0, "meadow_grass", glm::vec3(0.5f * float(k), 0.0f, 0.25f), &error)) << error;
+    doc->endStroke();
+    const ParticleScene& moved = (*doc->particles())[0].scene;
+    EXPECT_EQ(moved.generators[0].center_m, before.scene.generators[0].center_m + glm::vec3(1.5f, 0.0f, 0.25f));
+    EXPECT_EQ(moved.attractors[0].a_m, before.scene.attractors[0].a_m + glm::vec3(1.5f, 0.0f, 0.25f));
+    EXPECT_EQ(doc->project().particles[0].offset_m, glm::vec3(1.5f, 0.0f, 0.25f));
+    // Refused: another system's name, a slash, an offset beyond the limit; nothing changes.
+    EXPECT_FALSE(doc->setParticleEntry(0, "grass_2", glm::vec3(0.0f), &error));
+    EXPECT_NE(error.find("another system is named 'grass_2'"), std::string::npos) << error;
+    EXPECT_FALSE(doc->setParticleEntry(0, "a/b", glm::vec3(0.0f), &error));
+    EXPECT_NE(error.find("'/'"), std::string::npos) << error;
+    EXPECT_FALSE(doc->setParticleEntry(0, "x", glm::vec3(2e5f, 0.0f, 0.0f), &error));
+    EXPECT_NE(error.find("offset_m"), std::string::npos) << error;
+    EXPECT_EQ((*doc->particles())[0].name, "meadow_grass");
+    // Saved: the project names the entry with its name and offset; the particle file is as it was.
+    ASSERT_TRUE(doc->save(&error)) << error;
+    std::string file_after;
+    ASSERT_TRUE(readTextFile(file, &file_after, &error)) << error;
+    EXPECT_EQ(file_after, file_before);
+    auto reopened = openDoc(a.string(), optionsFor(dir));
+    ASSERT_TRUE(reopened);
+    EXPECT_EQ((*reopened->particles())[0].name, "meadow_grass");
+    EXPECT_EQ((*reopened->particles())[0].scene.generators[0].center_m, moved.generators[0].center_m);
+    // Undo: the drag, then the rename; an empty name is the file's own.
+    ASSERT_TRUE(doc->undo());
+    EXPECT_EQ((*doc->particles())[0].scene.generators, before.scene.generators);
+    ASSERT_TRUE(doc->undo());
+    EXPECT_EQ((*doc->particles())[0].name, "grass");
+    EXPECT_EQ(doc->project().particles[0].offset_m, glm::vec3(0.0f));
+    EXPECT_NE(doc->project().particles[0].name, "meadow_grass");
+    ASSERT_TRUE(doc->setParticleEntry(1, "", glm::vec3(0.0f), &error)) << error;
+    EXPECT_EQ((*doc->particles())[1].name, "grass_2");
+}
+
+
 TEST(Document, AFailedSaveKeepsTheDocumentDirtyAndTheFileUntouched) {
     TempDir dir;
     const std::string path = writeProject(dir.path() / "scene.json", projectJson(modelsDir()));

@@ -326,6 +326,9 @@ cat >"$pdir/script.json" <<EOF
  {"action": "export", "path": "$pdir/undone.glb"},
  {"action": "redo"},
  {"action": "redo"},
+ {"action": "particle_entry", "system": 1, "name": "east_patch", "offset_m": [-5.7, 8.6, 0]},
+ {"action": "wait_idle"},
+ {"action": "export", "path": "$pdir/entry.glb"},
  {"action": "save"},
  {"action": "wait_idle"}]
 EOF
@@ -348,11 +351,24 @@ assert moved["incremental"] and moved["reused"] > moved["recomputed"], moved
 edited, undone, saved = strands(d + "/edited.glb"), strands(d + "/undone.glb"), strands(d + "/saved.glb")
 assert undone == strands(original), "undo did not give the loaded strands back"
 assert edited != undone, "the edit changed no strand"
-assert edited == saved, "the saved particle file does not grow what the editor showed"
+# The second entry renamed and moved 0.5 m east (the Particles window's "Name and offset"): its strands
+# follow, the first entry's stay; the saved project grows what the editor showed.
+entry_edit = [a for a in stats["actions"] if a["action"] == "particle_entry"]
+assert len(entry_edit) == 1 and entry_edit[0]["ok"] and entry_edit[0]["undo_name"] == "Rename particle system", entry_edit
+entry = strands(d + "/entry.glb")
+assert sorted(entry) == ["strands/east_patch", "strands/meadow_grass_strands"], sorted(entry)
+assert entry["strands/meadow_grass_strands"] == edited["strands/meadow_grass_strands"]
+def mean_x(e):
+    return sum(p[0] for p in e["strands"]["points"]) / len(e["strands"]["points"])
+shift = mean_x(entry["strands/east_patch"]) - mean_x(edited["strands/meadow_grass_strands_2"])
+assert 0.45 < shift < 0.55, "the renamed entry's strands did not move 0.5 m east: %.3f" % shift
+assert entry == saved, "the saved project does not grow what the editor showed"
+project = json.load(open(d + "/assets/scenes/meadow_strands.json"))
+assert project["particles"][1]["name"] == "east_patch" and project["particles"][1]["offset_m"][0] == -5.7, project["particles"]
 print("%d %% of the moves re-grown after the move" % (100 * moved["recomputed"] // (moved["recomputed"] + moved["reused"])))
 PY
 )"; then
-  ok "edit meadow_strands: an attractor moved in the Particles window re-grows incrementally, a cancelled growth undoes its edit, undo is exact, it saves ($out)"
+  ok "edit meadow_strands: an attractor moved in the Particles window re-grows incrementally, a cancelled growth undoes its edit, undo is exact, an entry renamed and moved, it saves ($out)"
 else
   bad "edit meadow_strands: particle edit: $out $(tail -5 "$pdir/log" 2>/dev/null)"
 fi
