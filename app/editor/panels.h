@@ -168,8 +168,10 @@ bool beginDocumentPanel(const char* title, bool* open, bool has_document);
 // Delete, Ctrl+D, and the tool keys Q / B / S / E), ignored while ImGui has the keyboard.
 void drawMainMenu(const MenuView& view, UiRequests* requests, ToolState* tools, WindowToggles* windows);
 void drawStatisticsPanel(const StatisticsView& view, bool* open);
-// Tool bar and brush settings; type names index the brush's per-type mix.
-void drawToolsPanel(const std::vector<std::string>& type_names, ToolState* state, bool* open);
+// Tool bar and brush settings; type names index the brush's per-type mix. With the Sculpt tool, the pile
+// type's angle of repose is the document's (one undo step a drag); refusals go to *message.
+void drawToolsPanel(Document* doc, const std::vector<std::string>& type_names, ToolState* state,
+                    std::string* message, bool* open);
 // The selected primitive's centre, radius and weight; every finished edit is one SetPrimitive (one undo
 // step). Errors go to *message.
 void drawInspector(Document* doc, const std::vector<std::string>& type_names, ToolState* state,

@@ -68,7 +68,11 @@ void EditorSession::drawUi() {
     drawMainMenu(menu, &requests, &tools, &windows);
     drawStatisticsPanel(view, &windows.statistics);
     drawRenderPanel(view, &render_settings, &windows.render);
-    drawToolsPanel(view.type_names, &tools, &windows.tools);
+    {
+        std::string tools_message;
+        drawToolsPanel(doc, view.type_names, &tools, &tools_message, &windows.tools);
+        if (!tools_message.empty()) messages.push_back(tools_message);
+    }
     std::string inspector_message;
     drawInspector(doc, view.type_names, &tools, &requests, &inspector_message, &windows.inspector);
     if (!inspector_message.empty()) messages.push_back(inspector_message);

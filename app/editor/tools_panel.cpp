@@ -1,10 +1,29 @@
 #include <imgui.h>
 
+#include "editor/panel_edit.h"
 #include "editor/panels.h"
 
 namespace ug::editor {
 
-void drawToolsPanel(const std::vector<std::string>& type_names, ToolState* s, bool* open) {
+namespace {
+
+// The sculpted piles' slope for the pile type, the document's setting (saved with the project).
+void angleOfRepose(Document* doc, size_t type, std::string* message) {
+    if (!doc || type >= doc->project().detail_types.size()) return;
+    float deg = doc->project().detail_types[type].angle_of_repose_deg;
+    PanelEdit e;
+    dragged(ImGui::SliderFloat("angle of repose (deg)", &deg, 5.0f, 80.0f, "%.0f"), &e);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("the slope a held sculpt grows this type's piles to (gravel ~35)");
+    std::string last_error;
+    commitPanelEdit(
+        doc, e, "Angle of repose", [&](const std::string&, std::string* error) { return doc->setAngleOfRepose(type, deg, error); },
+        &last_error, message);
+}
+
+}  // namespace
+
+void drawToolsPanel(Document* doc, const std::vector<std::string>& type_names, ToolState* s, std::string* message,
+                    bool* open) {
     if (!*open) return;
     ImGui::SetNextWindowPos(ImVec2(10, 420), ImGuiCond_FirstUseEver);
     ImGui::SetNextWindowSize(ImVec2(330, 0), ImGuiCond_FirstUseEver);
@@ -35,6 +54,7 @@ void drawToolsPanel(const std::vector<std::string>& type_names, ToolState* s, bo
                 if (ImGui::Selectable(type_names[i].c_str(), i == b.sculpt_type)) b.sculpt_type = i;
             ImGui::EndCombo();
         }
+        angleOfRepose(doc, b.sculpt_type, message);
     } else if (s->tool == ToolKind::Paint || s->tool == ToolKind::Erase) {
         ImGui::TextUnformatted("types and mix weights");
         b.type_mix.resize(type_names.size(), 0.0f);

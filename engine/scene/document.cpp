@@ -467,6 +467,10 @@ bool Document::setInstancing(size_t type, const InstancingDesc& desc, std::strin
     return execute(std::make_unique<SetInstancingCommand>(type, desc), error);
 }
 
+bool Document::setAngleOfRepose(size_t type, float deg, std::string* error) {
+    return execute(std::make_unique<SetAngleOfReposeCommand>(type, deg), error);
+}
+
 bool Document::setSeed(uint64_t seed, std::string* error) {
     return execute(std::make_unique<SetSeedCommand>(seed), error);
 }

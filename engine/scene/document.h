@@ -155,6 +155,9 @@ public:
     uint64_t duplicatePrimitive(uint64_t id, glm::vec3 offset_m, std::string* error);
     bool setInstancing(size_t type, const InstancingDesc& desc, std::string* error);
     bool setSeed(uint64_t seed, std::string* error);
+    // The slope the sculpt brush keeps for `type`'s piles, in (0, 89] degrees; one undo step (or a stamp of
+    // an open stroke: a slider's drag).
+    bool setAngleOfRepose(size_t type, float deg, std::string* error);
     // Entry `index`'s particle system becomes `system` (placed, as particles() holds it); entries naming
     // the same file take it too (particle_commands.h). Refused with the entry and field named when the
     // system is invalid (validateParticleScene). Saving writes the changed particle files.

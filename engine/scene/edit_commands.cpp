@@ -239,6 +239,19 @@ void RemovePrimitiveCommand::revert(EditTarget t, EditEffect* effect) {
     effect->dirty.push_back(editBounds(old_));
 }
 
+bool SetAngleOfReposeCommand::apply(EditTarget t, EditEffect*, std::string* error) {
+    if (!checkType(t, type_, error)) return false;
+    if (!(new_ > 0.0f && new_ <= 89.0f)) {
+        *error = "angle_of_repose_deg: " + std::to_string(new_) + " is out of range (0, 89]";
+        return false;
+    }
+    old_ = t.project->detail_types[type_].angle_of_repose_deg;
+    t.project->detail_types[type_].angle_of_repose_deg = new_;
+    return true;
+}
+
+void SetAngleOfReposeCommand::revert(EditTarget t, EditEffect*) { t.project->detail_types[type_].angle_of_repose_deg = old_; }
+
 bool SetInstancingCommand::apply(EditTarget t, EditEffect* effect, std::string* error) {
     if (!checkType(t, type_, error)) return false;
     InstancingDesc& desc = t.project->detail_types[type_].instancing;

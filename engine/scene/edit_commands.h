@@ -157,6 +157,20 @@ private:
 };
 
 // A type's instancing settings (strategy, layer, orientation and size constraints): instantiates all again.
+// The slope a sculpted pile of `type` keeps (DetailTypeDesc::angle_of_repose_deg): only the sculpt brush
+// reads it, so nothing is instantiated again.
+class SetAngleOfReposeCommand : public Command {
+public:
+    SetAngleOfReposeCommand(size_t type, float deg) : type_(type), new_(deg) {}
+    std::string name() const override { return "Angle of repose"; }
+    bool apply(EditTarget target, EditEffect* effect, std::string* error) override;
+    void revert(EditTarget target, EditEffect* effect) override;
+
+private:
+    size_t type_;
+    float new_, old_ = 0.0f;
+};
+
 class SetInstancingCommand : public Command {
 public:
     SetInstancingCommand(size_t type, InstancingDesc desc) : type_(type), new_(std::move(desc)) {}

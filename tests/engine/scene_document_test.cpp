@@ -966,5 +966,29 @@ TEST(Document, ANewProjectWithNoDensityOpensEmptyAndFillsAsYouPaint) {
     EXPECT_TRUE(doc->compiled().extent.empty());
 }
 
+TEST(Document, TheAngleOfReposeIsTheTypesSettingOneUndoStepSavedAndInstantiatesNothing) {
+    TempDir dir;
+    const fs::path a = dir.path() / "scene.json";
+    auto doc = openDoc(writeProject(a, projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    const float before = doc->project().detail_types[0].angle_of_repose_deg;
+    const uint64_t live = doc->live().generation();
+    std::string error;
+    ASSERT_TRUE(doc->setAngleOfRepose(0, 28.0f, &error)) << error;
+    EXPECT_EQ(doc->project().detail_types[0].angle_of_repose_deg, 28.0f);
+    EXPECT_EQ(doc->undoName(), "Angle of repose");
+    EXPECT_EQ(doc->live().generation(), live);  // only the sculpt brush reads it
+    EXPECT_TRUE(doc->isDirty());
+    EXPECT_FALSE(doc->setAngleOfRepose(0, 95.0f, &error));
+    EXPECT_NE(error.find("angle_of_repose_deg"), std::string::npos) << error;
+    EXPECT_FALSE(doc->setAngleOfRepose(7, 30.0f, &error));
+    ASSERT_TRUE(doc->save(&error)) << error;
+    auto reopened = openDoc(a.string(), optionsFor(dir));
+    ASSERT_TRUE(reopened);
+    EXPECT_EQ(reopened->project().detail_types[0].angle_of_repose_deg, 28.0f);
+    ASSERT_TRUE(doc->undo());
+    EXPECT_EQ(doc->project().detail_types[0].angle_of_repose_deg, before);
+}
+
 }  // namespace
 }  // namespace ug
