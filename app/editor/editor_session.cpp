@@ -201,14 +201,14 @@ void EditorSession::fillDocumentResult() {
             const glm::mat4 camera_view_proj = camera.viewProjection();  // the camera now, after a replayed view
             for (const ParticleHandlePoint& h : particleHandlePoints((*d.particles())[particles_panel.selected].scene)) {
                 const glm::vec2 px = projectToPixel(camera_view_proj, float(last_fb_w), float(last_fb_h), h.position_m);
-                handles_px.push_back({{"part", particlePartName(h.handle.part)}, {"index", h.handle.index}, {"px", {px.x, px.y}}});
+                handles_px.push_back({{"part", particlePartName(h.handle.part)}, {"index", h.handle.index}, {"tilt", h.handle.tilt}, {"px", {px.x, px.y}}});
             }
         }
         const ParticleHandle picked = particles_panel.selected_handle;
         result->particles = {{"systems", std::move(systems)},
                              {"selected_attractor",
                               picked.part == ParticlePart::Attractor ? json(picked.index) : json(nullptr)},
-                             {"selected_handle", picked ? json{{"part", particlePartName(picked.part)},
+                             {"selected_handle", picked ? json{{"part", particlePartName(picked.part)}, {"tilt", picked.tilt},
                                                                {"index", picked.index}}
                                                         : json(nullptr)},
                              {"handles_px", std::move(handles_px)},

@@ -4,6 +4,11 @@
 
 namespace ug::editor {
 
+namespace {
+constexpr float kCutterTiltM = 0.1f;  // a plane cutter's tilt dot: this far along its normal (markers' line)
+constexpr float kTiltPreferencePx = 2.0f;  // a tilt dot is picked over a place only this much nearer
+}  // namespace
+
 const char* particlePartName(ParticlePart part) {
     switch (part) {
         case ParticlePart::Attractor: return "attractor";
@@ -32,6 +37,18 @@ std::vector<ParticleHandlePoint> particleHandlePoints(const ParticleScene& scene
         const glm::vec3 p = c.kind == CutterKind::Plane ? c.center_m + c.normal * c.threshold_m : c.center_m;
         points.push_back({{ParticlePart::Cutter, i}, p});
     }
+    for (size_t i = 0; i < scene.generators.size(); ++i) {
+        const ParticleGenerator& g = scene.generators[i];
+        if (g.kind != GeneratorKind::Rectangle || g.on_terrain) continue;
+        const glm::vec3 n = glm::normalize(glm::cross(g.axis_u_m, g.axis_v_m));
+        points.push_back({{ParticlePart::Generator, i, true},
+                          g.center_m + n * std::max(glm::length(g.axis_u_m), glm::length(g.axis_v_m))});
+    }
+    for (size_t i = 0; i < scene.cutters.size(); ++i) {
+        const Cutter& c = scene.cutters[i];
+        if (c.kind == CutterKind::Plane)
+            points.push_back({{ParticlePart::Cutter, i, true}, c.center_m + c.normal * (c.threshold_m + kCutterTiltM)});
+    }
     return points;
 }
 
@@ -39,11 +56,24 @@ ParticleHandle pickParticleHandle(const Document& doc, size_t system, const glm:
                                   float height, glm::vec2 cursor, float max_px) {
     if (system >= doc.particles()->size()) return {};
     const std::vector<ParticleHandlePoint> handles = particleHandlePoints((*doc.particles())[system].scene);
-    std::vector<glm::vec3> dots;
-    for (const ParticleHandlePoint& h : handles) dots.push_back(h.position_m);
-    // Ties go to the first: an attractor sitting on a generator's centre is the one picked.
-    const size_t nearest = nearestOnScreen(dots, view_proj, width, height, cursor, max_px);
-    return nearest < handles.size() ? handles[nearest].handle : ParticleHandle{};
+    std::vector<glm::vec3> places, tilts;
+    std::vector<ParticleHandle> place_handles, tilt_handles;
+    for (const ParticleHandlePoint& h : handles) {
+        (h.handle.tilt ? tilts : places).push_back(h.position_m);
+        (h.handle.tilt ? tilt_handles : place_handles).push_back(h.handle);
+    }
+    // Among places, ties go to the later dot (a generator's centre under an attractor straight above it).
+    const size_t place = nearestOnScreen(places, view_proj, width, height, cursor, max_px);
+    const size_t tilt = nearestOnScreen(tilts, view_proj, width, height, cursor, max_px);
+    if (tilt == SIZE_MAX) return place == SIZE_MAX ? ParticleHandle{} : place_handles[place];
+    if (place == SIZE_MAX) return tilt_handles[tilt];
+    // A tilt dot seen along its normal covers its place: it is taken only when clearly nearer.
+    const auto px = [&](glm::vec3 p) {
+        const glm::vec4 c = view_proj * glm::vec4(p, 1.0f);
+        return glm::vec2((c.x / c.w * 0.5f + 0.5f) * width, (0.5f - c.y / c.w * 0.5f) * height);
+    };
+    const float to_tilt = glm::distance(px(tilts[tilt]), cursor), to_place = glm::distance(px(places[place]), cursor);
+    return to_tilt + kTiltPreferencePx < to_place ? tilt_handles[tilt] : place_handles[place];
 }
 
 bool moveParticleHandle(ParticleScene* scene, ParticleHandle handle, glm::vec3 offset) {
@@ -64,6 +94,28 @@ bool moveParticleHandle(ParticleScene* scene, ParticleHandle handle, glm::vec3 o
             scene->cutters[handle.index].center_m += offset;
             return true;
         case ParticlePart::None: break;
+    }
+    return false;
+}
+
+bool tiltParticleHandle(ParticleScene* scene, ParticleHandle handle, glm::vec3 normal) {
+    if (!handle.tilt) return false;
+    if (handle.part == ParticlePart::Generator && handle.index < scene->generators.size()) {
+        ParticleGenerator& g = scene->generators[handle.index];
+        if (g.kind != GeneratorKind::Rectangle || g.on_terrain) return false;
+        const glm::vec3 from = glm::normalize(glm::cross(g.axis_u_m, g.axis_v_m));
+        const glm::quat turn(from, normal);  // the shortest arc
+        g.axis_u_m = turn * g.axis_u_m;
+        g.axis_v_m = turn * g.axis_v_m;
+        return true;
+    }
+    if (handle.part == ParticlePart::Cutter && handle.index < scene->cutters.size()) {
+        Cutter& c = scene->cutters[handle.index];
+        if (c.kind != CutterKind::Plane) return false;
+        const glm::vec3 cut = c.center_m + c.normal * c.threshold_m;
+        c.normal = normal;
+        c.center_m = cut - normal * c.threshold_m;
+        return true;
     }
     return false;
 }
@@ -116,12 +168,62 @@ bool ParticleHandleDrag::begin(Document* doc, size_t system, ParticleHandle hand
     grab_m_ = dragGrab(ray, it->position_m);
     applied_offset_m_ = glm::vec3(0.0f);
     moves_ = 0;
-    doc_->beginStroke(std::string("Move ") + particlePartName(handle.part));
+    if (handle.tilt) {
+        // The pivot is the place dot of the same part (listed before the tilt dots).
+        const auto place = std::find_if(handles.begin(), handles.end(), [&](const ParticleHandlePoint& h) {
+            return h.handle == ParticleHandle{handle.part, handle.index, false};
+        });
+        pivot_m_ = handle.part == ParticlePart::Generator ? scene.generators[handle.index].center_m : place->position_m;
+        tilt_radius_m_ = glm::distance(it->position_m, pivot_m_);
+        applied_normal_ = glm::normalize(it->position_m - pivot_m_);
+    }
+    doc_->beginStroke(std::string(handle.tilt ? "Tilt " : "Move ") + particlePartName(handle.part));
+    return true;
+}
+
+namespace {
+
+// Where the ray meets the sphere (centre c, radius r), of its two points the one nearer `previous` (so a
+// dot dragged over the sphere's far side stays there); where it misses, the sphere's point nearest the ray.
+glm::vec3 pointOnSphere(const Ray& ray, glm::vec3 c, float r, glm::vec3 previous) {
+    const glm::vec3 d = glm::normalize(ray.direction);
+    const float along = glm::dot(c - ray.origin_m, d);
+    const glm::vec3 closest = ray.origin_m + d * along;
+    const float miss2 = glm::dot(closest - c, closest - c);
+    if (miss2 > r * r) return c + glm::normalize(closest - c) * r;
+    const float half = std::sqrt(r * r - miss2);
+    const glm::vec3 front = closest - d * half, back = closest + d * half;
+    return glm::distance(front, previous) <= glm::distance(back, previous) ? front : back;
+}
+
+}  // namespace
+
+bool ParticleHandleDrag::tilt(const Ray& ray, std::string* error) {
+    const glm::vec3 towards =
+        pointOnSphere(ray, pivot_m_, tilt_radius_m_, pivot_m_ + applied_normal_ * tilt_radius_m_) - pivot_m_;
+    if (!(glm::length(towards) > 1e-6f)) return true;
+    const glm::vec3 normal = glm::normalize(towards);
+    // Below a fifth of a degree the strands would not visibly change.
+    if (glm::dot(normal, applied_normal_) > std::cos(glm::radians(0.2f))) return true;
+    if (system_ >= doc_->particles()->size()) return true;
+    ParticleSystemFile system = (*doc_->particles())[system_];
+    ParticleScene turned = start_;
+    if (!tiltParticleHandle(&turned, handle_, normal)) return true;
+    if (handle_.part == ParticlePart::Generator && handle_.index < system.scene.generators.size())
+        system.scene.generators[handle_.index] = turned.generators[handle_.index];
+    else if (handle_.part == ParticlePart::Cutter && handle_.index < system.scene.cutters.size())
+        system.scene.cutters[handle_.index] = turned.cutters[handle_.index];
+    else
+        return true;
+    if (!doc_->setParticleSystem(system_, system, error)) return false;
+    applied_normal_ = normal;
+    ++moves_;
     return true;
 }
 
 bool ParticleHandleDrag::drag(const Ray& ray, bool vertical, std::string* error) {
     if (!active()) return true;
+    if (handle_.tilt) return tilt(ray, error);
     glm::vec3 offset;
     if (!dragOffset(ray, grab_m_, applied_offset_m_, vertical, &offset)) return true;
     // Below a millimetre the strands would not visibly change: a still mouse does not re-grow them.

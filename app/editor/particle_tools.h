@@ -19,10 +19,12 @@ namespace ug::editor {
 
 enum class ParticlePart : uint8_t { None, Attractor, Generator, Cutter };
 
-// One draggable part of a particle system: which list and where in it.
+// One draggable part of a particle system: which list and where in it, and whether it is the part's tilt
+// dot (a flat generator's or a plane cutter's normal, drawn at the normal's tip) rather than its place.
 struct ParticleHandle {
     ParticlePart part = ParticlePart::None;
     size_t index = 0;
+    bool tilt = false;
 
     bool operator==(const ParticleHandle&) const = default;
     explicit operator bool() const { return part != ParticlePart::None; }
@@ -31,7 +33,11 @@ struct ParticleHandle {
 const char* particlePartName(ParticlePart part);  // "attractor", "generator", "cutter" ("" for None)
 
 // Where each handle's dot is drawn and picked: attractors first, then generators (a seed-on-terrain
-// rectangle's dot on the ground under its centre), then cutters (a plane's dot where it cuts).
+// rectangle's dot on the ground under its centre), then cutters (a plane's dot where it cuts), then the
+// tilt dots: a rectangle generator's (not on the terrain, which keeps it level) at its centre + the normal
+// times its larger half side, a plane cutter's at its cut point + 0.1 m along the normal (the tip of the
+// normal the markers draw). Where a tilt dot covers its place's dot on screen (seen along the normal),
+// the place is picked (the first of equals).
 struct ParticleHandlePoint {
     ParticleHandle handle;
     glm::vec3 position_m{0.0f};
@@ -48,6 +54,11 @@ ParticleHandle pickParticleHandle(const Document& doc, size_t system, const glm:
 // no such handle.
 bool moveParticleHandle(ParticleScene* scene, ParticleHandle handle, glm::vec3 offset);
 
+// The same scene with the tilt handle's part turned so that its normal is `normal` (unit): a rectangle
+// generator's axes turned by the shortest arc from its normal (about its centre), a plane cutter's normal
+// set with its cut point kept (the centre moves along the new normal); false for other parts.
+bool tiltParticleHandle(ParticleScene* scene, ParticleHandle handle, glm::vec3 normal);
+
 // A square generator of `count` strands at `at`, horizontal, dropped onto the terrain when asked: where
 // the Particles window's new generators and systems start.
 ParticleGenerator groundPatch(glm::vec3 at, float half_side_m, uint32_t count, float heading_cone_deg, bool on_terrain);
@@ -62,20 +73,27 @@ class ParticleHandleDrag {
     bool active() const { return doc_ != nullptr; }
     size_t system() const { return system_; }
     ParticleHandle handle() const { return handle_; }
-    // Opens the stroke "Move attractor" (generator, cutter); false when there is no such handle.
+    // Opens the stroke "Move attractor" (generator, cutter), or for a tilt dot "Tilt generator" (cutter);
+    // false when there is no such handle.
     bool begin(Document* doc, size_t system, ParticleHandle handle, const Ray& ray);
-    // False with *error when the document refuses the move (the drag stays open; end() closes it).
+    // False with *error when the document refuses the move (the drag stays open; end() closes it). A tilt
+    // dot follows the ray on the sphere around its pivot through where it was grabbed (the point nearest
+    // the sphere where the ray misses it): the normal points there.
     bool drag(const Ray& ray, bool vertical, std::string* error);
     void end();
     int moves() const { return moves_; }
 
   private:
+    bool tilt(const Ray& ray, std::string* error);
     Document* doc_ = nullptr;
     size_t system_ = 0;
     ParticleHandle handle_;
     ParticleScene start_;  // the system's scene when the drag began: each step moves it by the whole offset
     glm::vec3 grab_m_{0.0f};
     glm::vec3 applied_offset_m_{0.0f};
+    glm::vec3 pivot_m_{0.0f};       // a tilt: the part's centre (cut point), and the dot's distance from it
+    float tilt_radius_m_ = 0.0f;
+    glm::vec3 applied_normal_{0.0f};
     int moves_ = 0;
 };
 

@@ -315,7 +315,7 @@ void partRows(std::vector<T>* list, size_t keep, ParticlePart part, ParticlesPan
               Label label, Edit edit) {
     for (size_t i = 0; i < list->size(); ++i) {
         ImGui::PushID(int(part) * 1000 + int(i));
-        const PartRow row = partRow(label(i).c_str(), state->selected_handle == ParticleHandle{part, i}, list->size() > keep);
+        const PartRow row = partRow(label(i).c_str(), state->selected_handle.part == part && state->selected_handle.index == i, list->size() > keep);
         if (row.open) {
             edit(&(*list)[i]);
             ImGui::TreePop();

@@ -48,8 +48,12 @@ TEST(ParticleMarkers, AttractorsGeneratorsAndCuttersAreDrawnWhereTheyAct) {
     EXPECT_EQ(outline, 8u);
     EXPECT_EQ(cutter, 10u);  // the square and the normal's tick
     // Every handle's dot where the Select tool picks it: the generator's centre in blue, the cutter's
-    // point on its plane in the selection's colour (it is the one selected).
-    ASSERT_EQ(m.points.size(), 3u);
+    // point on its plane in the selection's colour (it is the one selected), then their tilt dots at the
+    // tips of their normals.
+    ASSERT_EQ(m.points.size(), 5u);
+    EXPECT_EQ(m.points[3].color, kGeneratorColor);
+    EXPECT_EQ(m.points[4].position, glm::vec3(0.0f, 0.0f, 0.4f));
+    EXPECT_EQ(m.points[4].color, kCutterColor);
     EXPECT_EQ(m.points[1].position, g.center_m);
     EXPECT_EQ(m.points[1].color, kGeneratorColor);
     EXPECT_EQ(m.points[2].position, glm::vec3(0.0f, 0.0f, 0.3f));

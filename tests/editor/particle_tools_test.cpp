@@ -76,10 +76,78 @@ TEST_F(ParticleTool, PicksTheHandleUnderTheCursor) {
     EXPECT_EQ(pickParticleHandle(*doc_, 0, view_proj, 800, 600, pixel(glm::vec3(0.0f)) + glm::vec2(3, 3), 20.0f),
               (ParticleHandle{ParticlePart::Generator, 0}));
     const std::vector<ParticleHandlePoint> dots = particleHandlePoints(scene());
-    ASSERT_EQ(dots.size(), 4u);
+    ASSERT_EQ(dots.size(), 6u);
     EXPECT_EQ(dots[3].handle, (ParticleHandle{ParticlePart::Cutter, 0}));
     EXPECT_EQ(dots[3].position_m, glm::vec3(-0.5f, 0.5f, 0.2f));
     EXPECT_EQ(pickParticleHandle(*doc_, 0, view_proj, 800, 600, pixel(dots[3].position_m), 20.0f), dots[3].handle);
+    // The tilt dots last: the generator's at its normal's tip (its larger half side up), the plane's 0.1 m
+    // along its normal from the cut point. Seen from above each covers its place (within 2 px): the place
+    // is picked. Seen from the side, 2 m away, the plane's is 0.1 m above its cut point: picked on it.
+    EXPECT_EQ(dots[4].handle, (ParticleHandle{ParticlePart::Generator, 0, true}));
+    EXPECT_EQ(dots[4].position_m, glm::vec3(0.0f, 0.0f, 0.3f));
+    EXPECT_EQ(dots[5].handle, (ParticleHandle{ParticlePart::Cutter, 0, true}));
+    EXPECT_EQ(dots[5].position_m, glm::vec3(-0.5f, 0.5f, 0.3f));
+    EXPECT_EQ(pickParticleHandle(*doc_, 0, view_proj, 800, 600, pixel(dots[5].position_m), 20.0f), dots[3].handle);
+    const glm::mat4 side = glm::perspective(glm::radians(60.0f), 800.0f / 600.0f, 0.1f, 100.0f) *
+                           glm::lookAt(glm::vec3(-0.5f, -1.5f, 0.25f), glm::vec3(-0.5f, 0.5f, 0.25f), glm::vec3(0, 0, 1));
+    const auto side_px = [&](glm::vec3 p) {
+        const glm::vec4 c = side * glm::vec4(p, 1.0f);
+        return glm::vec2((c.x / c.w * 0.5f + 0.5f) * 800.0f, (0.5f - c.y / c.w * 0.5f) * 600.0f);
+    };
+    ASSERT_GT(glm::distance(side_px(dots[3].position_m), side_px(dots[5].position_m)), 20.0f);
+    EXPECT_EQ(pickParticleHandle(*doc_, 0, side, 800, 600, side_px(dots[5].position_m), 20.0f), dots[5].handle);
+    EXPECT_EQ(pickParticleHandle(*doc_, 0, side, 800, 600, side_px(dots[3].position_m), 20.0f), dots[3].handle);
+}
+
+TEST_F(ParticleTool, TiltDotsTurnAFlatGeneratorAndAPlaneCutterOneUndoStepEach) {
+    const ParticleScene before = scene();
+    ParticleHandleDrag drag;
+    std::string error;
+    // The generator's dot (0, 0, 0.3) pulled towards +x, seen from the side (-y): rays through the points
+    // of the sphere of 0.3 around the centre at 30 and 60 degrees from up, in the xz plane.
+    const glm::vec3 eye(0.0f, -4.0f, 0.3f);
+    const auto through = [&](glm::vec3 p) { return Ray{eye, glm::normalize(p - eye)}; };
+    ASSERT_TRUE(drag.begin(doc_.get(), 0, {ParticlePart::Generator, 0, true}, through({0.0f, 0.0f, 0.3f})));
+    for (float deg : {30.0f, 60.0f}) {
+        const float a = glm::radians(deg);
+        ASSERT_TRUE(drag.drag(through(0.3f * glm::vec3(std::sin(a), 0.0f, std::cos(a))), false, &error)) << error;
+    }
+    drag.end();
+    EXPECT_EQ(doc_->undoName(), "Tilt generator");
+    const ParticleGenerator& g = scene().generators[0];
+    const glm::vec3 n = glm::normalize(glm::cross(g.axis_u_m, g.axis_v_m));
+    // The ray meets the sphere at its front (y < 0): the normal leans 60 degrees to +x, a little towards -y.
+    EXPECT_NEAR(glm::degrees(std::acos(n.z)), 60.0f, 3.0f);
+    EXPECT_GT(n.x, 0.8f);
+    EXPECT_NEAR(glm::length(g.axis_u_m), 0.3f, 1e-5f);  // turned, not stretched, still at right angles
+    EXPECT_NEAR(glm::dot(g.axis_u_m, g.axis_v_m), 0.0f, 1e-5f);
+    EXPECT_EQ(g.center_m, before.generators[0].center_m);
+    // The plane cutter's dot pulled sideways: the normal follows, the cut point stays under it.
+    const glm::vec3 cut(-0.5f, 0.5f, 0.2f);
+    const glm::vec3 side_eye = cut + glm::vec3(0.0f, -4.0f, 0.0f);
+    ASSERT_TRUE(drag.begin(doc_.get(), 0, {ParticlePart::Cutter, 0, true},
+                           Ray{side_eye, glm::normalize(cut + glm::vec3(0, 0, 0.1f) - side_eye)}));
+    ASSERT_TRUE(drag.drag(Ray{side_eye, glm::normalize(cut + glm::vec3(0.1f, 0, 0) - side_eye)}, false, &error)) << error;
+    drag.end();
+    EXPECT_EQ(doc_->undoName(), "Tilt cutter");
+    const Cutter& c = scene().cutters[0];
+    EXPECT_NEAR(c.normal.x, 1.0f, 0.02f);
+    EXPECT_NEAR(glm::length(c.normal), 1.0f, 1e-5f);
+    const glm::vec3 cut_after = c.center_m + c.normal * c.threshold_m;
+    EXPECT_NEAR(glm::distance(cut_after, cut), 0.0f, 1e-5f);
+    EXPECT_EQ(c.threshold_m, before.cutters[0].threshold_m);
+    // One undo step each.
+    ASSERT_TRUE(doc_->undo());
+    EXPECT_EQ(scene().cutters, before.cutters);
+    ASSERT_TRUE(doc_->undo());
+    EXPECT_EQ(scene().generators, before.generators);
+    EXPECT_FALSE(doc_->canUndo());
+    // No tilt for a generator on the terrain or a sphere cutter.
+    ParticleScene s = before;
+    s.generators[0].on_terrain = true;
+    EXPECT_FALSE(tiltParticleHandle(&s, {ParticlePart::Generator, 0, true}, glm::vec3(1, 0, 0)));
+    s.cutters[0].kind = CutterKind::Sphere;
+    EXPECT_FALSE(tiltParticleHandle(&s, {ParticlePart::Cutter, 0, true}, glm::vec3(1, 0, 0)));
 }
 
 TEST_F(ParticleTool, ADragMovesTheAttractorAndIsOneUndoStep) {
