@@ -708,7 +708,7 @@ assert a2 == a0, ("Ctrl+Z did not put the attractor back", a0, a2)
 assert dragged["systems"][1]["attractors"][1][0] - start["systems"][1]["attractors"][1][0] > 0.15, "the shared file's other entry did not follow"
 # The generator's dot dragged 100 px right: its centre moves along x, one undo step, the strands re-grown.
 g0, g1 = (stats[n]["particles"]["systems"][0]["generators"][0] for n in ("undone", "generator"))
-assert stats["generator"]["particles"]["selected_handle"] == {"part": "generator", "index": 0}, stats["generator"]["particles"]
+assert stats["generator"]["particles"]["selected_handle"] == {"part": "generator", "index": 0, "tilt": False}, stats["generator"]["particles"]
 assert g1[0] - g0[0] > 0.15 and abs(g1[1] - g0[1]) < 0.05 and g1[2] == g0[2], (g0, g1)
 assert stats["generator"]["document"]["undo_name"] == "Move generator", stats["generator"]["document"]
 assert stats["generator"]["particles"]["last"]["ok"], stats["generator"]["particles"]["last"]
