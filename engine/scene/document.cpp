@@ -274,12 +274,14 @@ bool Document::load(Project project, const std::string& path, const DocumentOpti
 
 Document::~Document() = default;
 
-InstancerInput Document::instancerInput() const {
+InstancerInput Document::instancerInput() const { return instancerInputFor(compiled_); }
+
+InstancerInput Document::instancerInputFor(const CompiledScene& compiled) const {
     InstancerInput in;
     in.tile = assets_.tile.get();
     for (const DetailModel& m : *assets_.models) in.models.push_back(&m);
-    in.types = compiled_.types;
-    in.extent = compiled_.extent;
+    in.types = compiled.types;
+    in.extent = compiled.extent;
     in.seed = project_.instantiation_seed;
     return in;
 }
@@ -372,9 +374,7 @@ bool Document::placeSystem(const EnvScene& environment, const CompiledScene& com
                            ParticleScene* scene, std::string* error) const {
     if (!placeAmongObjects(&environment, scene, error)) return false;
     if (!on_details || !growsOnDetails(*scene)) return true;
-    InstancerInput instancer = instancerInput();
-    instancer.types = compiled.types;
-    instancer.extent = compiled.extent;
+    const InstancerInput instancer = instancerInputFor(compiled);
     const SettleInput settle = settleInput(project_, terrain_, *assets_.tile, *assets_.models, &environment);
     if (settle.settings.enabled && !validateSettleInput(settle, error)) return false;
     const DetailPlacement placement{

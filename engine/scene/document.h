@@ -137,6 +137,8 @@ public:
     uint64_t tileLiveGeneration() const { return tile_live_generation_; }
     // What the instantiator runs on now (points into this document).
     InstancerInput instancerInput() const;
+    // The same for `compiled` (an edit's fields before they become the document's).
+    InstancerInput instancerInputFor(const CompiledScene& compiled) const;
     // The settling pass's input for the current project and assets (settling off when the project says so).
     SettleInput settleInputOf() const;
 

@@ -615,6 +615,20 @@ TEST(Document, ParticleEditsAreUndoableSharedByTheFileAndSavedToIt) {
     EXPECT_FALSE(fs::exists(grass));
 }
 
+// A 0.6 m patch of 30 strands of 4 steps, named "grass", on the project's terrain when asked.
+ParticleSystemFile smallGrass(bool on_terrain) {
+    ParticleSystemFile grass;
+    grass.name = "grass";
+    ParticleGenerator g;
+    g.axis_u_m = {0.3f, 0.0f, 0.0f};
+    g.axis_v_m = {0.0f, 0.3f, 0.0f};
+    g.count = 30;
+    g.on_terrain = on_terrain;
+    grass.scene.generators.push_back(g);
+    grass.scene.walk.steps = 4;
+    return grass;
+}
+
 TEST(Document, ANewParticleSystemIsAFileBesideTheProjectAndOneUndoStepAndRemovingItToo) {
     // A project without systems gets one: its file written at once under particles/, the project's list
     // naming it, one undo step; a second with the same name is renamed and filed apart; Save writes the
@@ -624,15 +638,7 @@ TEST(Document, ANewParticleSystemIsAFileBesideTheProjectAndOneUndoStepAndRemovin
     auto doc = openDoc(writeProject(a, projectJson(modelsDir())), optionsFor(dir));
     ASSERT_TRUE(doc);
     ASSERT_TRUE(doc->particles()->empty());
-    ParticleSystemFile grass;
-    grass.name = "grass";
-    ParticleGenerator g;
-    g.axis_u_m = {0.3f, 0.0f, 0.0f};
-    g.axis_v_m = {0.0f, 0.3f, 0.0f};
-    g.count = 30;
-    g.on_terrain = true;
-    grass.scene.generators.push_back(g);
-    grass.scene.walk.steps = 4;
+    const ParticleSystemFile grass = smallGrass(true);
     const uint64_t generation = doc->particlesGeneration();
     std::string error;
     ASSERT_TRUE(doc->addParticleSystem(grass, &error)) << error;
@@ -726,17 +732,10 @@ TEST(Document, AParticleEntryIsRenamedAndMovedAsOneUndoStepAndSavedWithItsFileUn
     const fs::path a = dir.path() / "scene.json";
     auto doc = openDoc(writeProject(a, projectJson(modelsDir())), optionsFor(dir));
     ASSERT_TRUE(doc);
-    ParticleSystemFile grass;
-    grass.name = "grass";
-    ParticleGenerator g;
-    g.axis_u_m = {0.3f, 0.0f, 0.0f};
-    g.axis_v_m = {0.0f, 0.3f, 0.0f};
-    g.count = 30;
-    grass.scene.generators.push_back(g);
+    ParticleSystemFile grass = smallGrass(false);
     Attractor up;
     up.a_m = {0.0f, 0.0f, 1.0f};
     grass.scene.attractors.push_back(up);
-    grass.scene.walk.steps = 4;
     std::string error;
     ASSERT_TRUE(doc->addParticleSystem(grass, &error)) << error;
     ASSERT_TRUE(doc->addParticleSystem(grass, &error)) << error;  // "grass_2"
