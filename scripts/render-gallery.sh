@@ -43,6 +43,7 @@ strands fig7_sphere_stop 0,0,0.5,2.2,-60,18
 strands fig8_sphere_to_sphere 0,0,0.6,2.0,-60,20
 strands fig9_grass_cutter 0,0,0.15,1.8,-60,15
 strands fig9_four_attractors_no_collision 0,0,0.5,3.2,-60,20
+strands fig9_four_attractors_keep_distance 0,0,0.5,3.2,-60,20
 strands fig10_stone_statue 0,0,0.5,3.0,-60,22
 strands fig11_sphere_to_statue 0,0,0.4,2.8,-60,35
 strands moss_stone 0,0,0.3,1.6,-60,25

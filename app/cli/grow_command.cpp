@@ -67,6 +67,7 @@ int runGrowCommand(int argc, char** argv) {
                                    {"killed", st.killed},
                                    {"dropped", st.dropped},
                                    {"solid_hits", st.solid_hits},
+                                   {"crowded", st.crowded},
                                    {"triangles", mesh.triangleCount()}};
     scene.scene_extras_json = nlohmann::json{{"particles", counts}}.dump();
     if (!writeSceneGltf(out, scene, &error)) return fail(error);

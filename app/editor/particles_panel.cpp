@@ -280,6 +280,13 @@ void editCutter(Cutter* c, PanelEdit* e) {
     editAction(&c->action, e);
 }
 
+// A critical state's action, folded under the state's name (each with its own ids: the rows repeat).
+void stateActionRow(const char* state, StrandAction* action, PanelEdit* e) {
+    if (!ImGui::TreeNode(state)) return;
+    editAction(action, e);
+    ImGui::TreePop();
+}
+
 void editWalk(WalkSettings* w, PanelEdit* e) {
     ImGui::InputScalar("seed", ImGuiDataType_U64, &w->seed);
     finished(e);
@@ -291,6 +298,16 @@ void editWalk(WalkSettings* w, PanelEdit* e) {
     dragged(ImGui::DragFloat("step (m)", &w->step_length_m, 0.0005f, 1e-5f, 10.0f, "%.4f"), e);
     dragged(ImGui::DragFloat("radius (m)", &w->strand_radius_m, 0.0001f, 1e-6f, 1.0f, "%.4f"), e);
     e->changed |= ImGui::Checkbox("collisions", &w->collisions);
+    stateActionRow("on collision", &w->on_collision, e);
+    ImGui::InputScalar("age limit (steps)", ImGuiDataType_U32, &w->max_age_steps);
+    finished(e);
+    if (w->max_age_steps > 0) stateActionRow("at the age limit", &w->on_age, e);
+    // Beyond 100 steps the file is refused (validateParticleScene): the slider stops there.
+    dragged(ImGui::DragFloat("keep distance (m)", &w->keep_distance_m, 0.0005f, 0.0f, 100.0f * w->step_length_m, "%.4f"),
+            e);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Strands keep this far from other strands' earlier segments (0: off)");
+    if (w->keep_distance_m > 0.0f) stateActionRow("when crowded", &w->on_distance, e);
 }
 
 // New parts start at the view's centre (`at`, on the ground), small and gentle: somewhere to drag from.

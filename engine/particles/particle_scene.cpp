@@ -181,8 +181,13 @@ bool validateParticleScene(const ParticleScene& scene, std::string* error) {
     if (!checkCone(w.cone_deg, "walk.cone_deg", false, error)) return false;
     if (!checkLength(w.step_length_m, "walk.step_length_m", false, error)) return false;
     if (!checkLength(w.strand_radius_m, "walk.strand_radius_m", false, error)) return false;
-    if (!checkAction(w.on_collision, "walk.on_collision", error) || !checkAction(w.on_age, "walk.on_age", error))
+    if (!checkAction(w.on_collision, "walk.on_collision", error) || !checkAction(w.on_age, "walk.on_age", error) ||
+        !checkAction(w.on_distance, "walk.on_distance", error))
         return false;
+    // The segment grids' cells grow with the distance looked for: a keep far beyond the step would make
+    // every query visit most of the system.
+    if (!(w.keep_distance_m >= 0.0f) || !(w.keep_distance_m <= 100.0f * w.step_length_m))
+        return fail(error, "walk.keep_distance_m", "must be in [0, 100 x step_length_m]");
     if (w.max_points > kMaxStrandPoints) return fail(error, "walk.max_points", "must be <= 50000000");
     if (w.max_split_depth > 64) return fail(error, "walk.max_split_depth", "must be <= 64");
 

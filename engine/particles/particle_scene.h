@@ -219,6 +219,13 @@ struct WalkSettings {
     // grown in a project with one) or cross a mesh generator's surface is refused like a collision
     // (on_collision), counted apart (StrandStats::solid_hits).
     bool solids = true;
+    // Distance keeping (§5.2's "keeping distance from another particles"): > 0 makes a strand prefer, of
+    // its trials, the fittest whose end stays keep_distance_m clear of every other family's earlier
+    // segments (a strand's family is its root and every strand split from it: a split's children start
+    // together). When no trial can, the strand is crowded: it does not move and acts on_distance (stop by
+    // default; a turn steers it away, a countdown lets it try again). 0 = off.
+    float keep_distance_m = 0.0f;
+    StrandAction on_distance;
 
     bool operator==(const WalkSettings&) const = default;
 };

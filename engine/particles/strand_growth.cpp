@@ -1,6 +1,7 @@
 #include "particles/strand_growth.h"
 
 #include <algorithm>
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <optional>
@@ -23,6 +24,8 @@ constexpr uint64_t kChildTag = 0x3c41'd0e9'0000'0000ull;
 constexpr uint64_t kTurnTag = 0x7e4d'35a1'0000'0000ull;
 constexpr uint64_t kActionTag = 0xac71'0b1e'0000'0000ull;
 constexpr int kCutBisections = 40;
+// The distance-keeping state's number in a random table's draw (0 collision, 1 age, 2 + c cutter c).
+constexpr uint32_t kDistanceState = 0x10000;
 
 enum class StrandState : uint8_t { Active, Stopped, Killed };
 
@@ -48,6 +51,7 @@ struct StrandStore {
     std::vector<uint32_t> first, last, npoints;
     std::vector<glm::quat> frame;
     std::vector<int32_t> parent;
+    std::vector<uint32_t> root;  // the family: the seed this strand split from (itself for a seed)
     std::vector<uint8_t> depth;
     std::vector<StrandState> state;
     std::vector<uint32_t> age;
@@ -67,6 +71,7 @@ struct StrandStore {
         last.push_back(point);
         npoints.push_back(1);
         frame.push_back(q);
+        root.push_back(parent_id < 0 ? uint32_t(root.size()) : root[size_t(parent_id)]);
         parent.push_back(parent_id);
         depth.push_back(d);
         state.push_back(StrandState::Active);
@@ -82,7 +87,9 @@ struct StrandStore {
 struct Moves {
     std::vector<glm::vec3> pos, dir;
     std::vector<int32_t> cutter;     // the cutter that clipped it, or -1
-    std::vector<uint8_t> blocked;    // 1: refused by an earlier segment, 2: by a move of a lower id, 3: a solid
+    // 1: refused by an earlier segment, 2: by a move of a lower id, 3: a solid, 4: crowded (no trial kept
+    // walk.keep_distance_m)
+    std::vector<uint8_t> blocked;
     std::vector<uint8_t> still;      // the clipped move did not leave its point
     void resize(size_t n) {
         pos.resize(n);
@@ -139,9 +146,15 @@ public:
           steps_done_(options.steps_done),
           cone_(glm::radians(walk_.cone_deg)), cos_cone_(std::cos(cone_)),
           reach2_(4.0f * walk_.strand_radius_m * walk_.strand_radius_m),
+          keep2_(walk_.keep_distance_m * walk_.keep_distance_m),
+          files_segments_(walk_.collisions || walk_.keep_distance_m > 0.0f),
           // A segment is at most step_length long; two whose tubes touch have midpoints within
-          // step_length + 2r (padded against rounding), the reach of the grids' queries.
-          reach_(walk_.step_length_m * 1.001f + 2.0f * walk_.strand_radius_m * 1.001f),
+          // step_length + 2r (padded against rounding), the reach of the grids' queries. Keeping distance,
+          // a trial's end (a step from the strand's point) within keep of a segment is within
+          // keep + step / 2 of its midpoint, and a re-growth asks from the strand's point: 2 steps + keep.
+          reach_(walk_.keep_distance_m > 0.0f
+                     ? 1.001f * (2.0f * walk_.step_length_m + std::max(walk_.keep_distance_m, 2.0f * walk_.strand_radius_m))
+                     : walk_.step_length_m * 1.001f + 2.0f * walk_.strand_radius_m * 1.001f),
           grid_(reach_),
           step_grid_(reach_) {
         if (!walk_.solids) return;
@@ -176,6 +189,7 @@ private:
     void partFromRecord(uint32_t step);
     bool isAncestor(uint32_t strand, uint32_t s) const;
     bool hitsEarlierSegment(size_t k) const;
+    bool crowded(uint32_t strand, glm::vec3 p) const;
     bool hitsLowerMove(size_t k) const;
     bool entersSolid(size_t k) const;
     // `state` tells the states apart in a random table's draw (0 collision, 1 age, 2 + c cutter c).
@@ -194,7 +208,9 @@ private:
     int threads_;
     const std::atomic<bool>* cancel_;      // GrowOptions::cancel
     std::atomic<uint32_t>* steps_done_;    // GrowOptions::steps_done
-    float cone_, cos_cone_, reach2_, reach_;
+    float cone_, cos_cone_, reach2_, keep2_;
+    bool files_segments_;  // earlier segments are filed in grid_ (collisions or distance keeping)
+    float reach_;
     PointStore points_;
     StrandStore strands_;
     SegmentGrid grid_;       // segments of earlier steps, by their end point's id
@@ -244,10 +260,8 @@ void Growth::seed() {
             strands_.state.back() = StrandState::Stopped;
     }
     stats_.seeded = seeds.positions.size();
-    if (walk_.collisions) {
-        grid_.reserve(expected);
-        step_grid_.reserve(seeds.positions.size());
-    }
+    if (files_segments_) grid_.reserve(expected);
+    if (walk_.collisions) step_grid_.reserve(seeds.positions.size());
 }
 
 void Growth::propose(size_t k, uint32_t step) {
@@ -257,17 +271,51 @@ void Growth::propose(size_t k, uint32_t step) {
     const glm::mat3 frame = glm::mat3_cast(strands_.frame[s]);
     glm::vec3 best_pos = p0, best_dir(0.0f, 0.0f, 1.0f);
     float best_f = 0.0f;
+    uint32_t best_t = 0;
+    const bool keeping = keep2_ > 0.0f;
+    // Keeping distance, every trial is kept, to take the fittest that is not crowded.
+    std::array<float, 256> trial_f;
+    std::array<glm::vec3, 256> trial_dir;
     for (uint32_t t = 0; t < walk_.trials; ++t) {
         const uint64_t h = hashWords(walk_.seed, kTrialTag + strands_.key[s], step, t);
         const glm::vec3 dir = frame * coneDirectionCos(cos_cone_, unitFloat(h), unitFloat(mix64(h)));
         const glm::vec3 p = p0 + dir * walk_.step_length_m;
         float f = 0.0f;
         for (size_t a = 0; a < scene_.attractors.size(); ++a) f += attractorTerm(scene_.attractors[a], charge_[a], p);
+        if (keeping) {
+            trial_f[t] = f;
+            trial_dir[t] = dir;
+        }
         if (t == 0 || f < best_f) {  // ties keep the lower trial
             best_f = f;
             best_pos = p;
             best_dir = dir;
+            best_t = t;
         }
+    }
+    bool is_crowded = keeping && crowded(s, best_pos);
+    if (is_crowded) {
+        // The other trials, fittest first (ties: the lower trial), until one keeps the distance.
+        std::array<uint8_t, 256> tried{};
+        tried[best_t] = 1;
+        for (uint32_t n = 1; n < walk_.trials && is_crowded; ++n) {
+            uint32_t next = walk_.trials;
+            for (uint32_t t = 0; t < walk_.trials; ++t)
+                if (!tried[t] && (next == walk_.trials || trial_f[t] < trial_f[next])) next = t;
+            tried[next] = 1;
+            best_dir = trial_dir[next];
+            best_pos = p0 + best_dir * walk_.step_length_m;
+            is_crowded = crowded(s, best_pos);
+        }
+    }
+    if (is_crowded) {
+        // The strand stays where it is and acts on_distance.
+        moves_.pos[k] = p0;
+        moves_.dir[k] = best_dir;
+        moves_.cutter[k] = -1;
+        moves_.still[k] = 0;
+        moves_.blocked[k] = 4;
+        return;
     }
     // The first cutter along the move (lowest parameter, then lowest index) clips it.
     int32_t cutter = -1;
@@ -399,6 +447,17 @@ bool Growth::hitsEarlierSegment(size_t k) const {
     });
 }
 
+// Whether p lies within keep_distance_m of an earlier segment of another family (the grid holds the
+// segments of earlier steps only, so the verdict reads nothing this step changes).
+bool Growth::crowded(uint32_t s, glm::vec3 p) const {
+    const uint32_t family = strands_.root[s];
+    return grid_.anyNear(p, [&](uint32_t end, uint32_t strand) {
+        if (strands_.root[strand] == family) return false;
+        const glm::vec3 q = points_.pos[end];
+        return segmentSegmentDistance2(p, p, points_.pos[points_.prev[end]], q) < keep2_;
+    });
+}
+
 bool Growth::hitsLowerMove(size_t k) const {
     const uint32_t from = strands_.last[active_[k]];
     const glm::vec3 a = points_.pos[from], b = moves_.pos[k];
@@ -494,6 +553,7 @@ void Growth::apply(const StrandAction& table, uint32_t s, uint32_t step, uint32_
 
 void Growth::proposeAndTest(size_t k, uint32_t step) {
     propose(k, step);
+    if (moves_.blocked[k]) return;  // crowded
     if (walk_.solids && !moves_.still[k] && entersSolid(k)) moves_.blocked[k] = 3;
     else if (walk_.collisions && !moves_.still[k] && hitsEarlierSegment(k)) moves_.blocked[k] = 1;
 }
@@ -508,7 +568,9 @@ void Growth::replayMove(size_t k, uint32_t step, bool everywhere) {
     const GrowthRecord& r = rp.record;
     const uint32_t j = rp.entry[k];
     const glm::vec3 p0 = points_.pos[strands_.last[active_[k]]];
-    rp.proposed[k] = j == kNone || everywhere || rp.edit.reaches(p0);
+    // Keeping distance, a proposal also reads the earlier segments near its trials.
+    rp.proposed[k] = j == kNone || everywhere || rp.edit.reaches(p0) ||
+                     (keep2_ > 0.0f && rp.changed_segments.anyNear(p0, [](uint32_t, uint32_t) { return true; }));
     if (rp.proposed[k]) {
         proposeAndTest(k, step);
         rp.same[k] = j != kNone && moves_.pos[k] == r.move_pos[j] && moves_.dir[k] == r.move_dir[j] &&
@@ -522,7 +584,7 @@ void Growth::replayMove(size_t k, uint32_t step, bool everywhere) {
     moves_.cutter[k] = r.move_cutter[j];
     moves_.still[k] = r.move_still[j];
     uint8_t blocked = firstVerdict(r, j);
-    if (blocked != 3 && walk_.collisions && !moves_.still[k] &&
+    if ((blocked == 0 || blocked == 1) && walk_.collisions && !moves_.still[k] &&
         rp.changed_segments.anyNear(moveMidpoint(k), [](uint32_t, uint32_t) { return true; }))
         blocked = hitsEarlierSegment(k) ? 1 : 0;
     moves_.blocked[k] = blocked;
@@ -595,7 +657,7 @@ void Growth::partFromRecord(uint32_t step) {
     const GrowthRecord& r = rp.record;
     for (uint32_t o = r.stepBegin(r.step_strands, step); o < r.stepEnd(r.step_strands, step); ++o)
         if (r.strand_parent[o] >= 0 && rp.parted[size_t(r.strand_parent[o])]) rp.parted[o] = 1;
-    if (!walk_.collisions) return;
+    if (!files_segments_) return;
     for (uint32_t p = r.stepBegin(r.step_points, step); p < r.stepEnd(r.step_points, step); ++p)
         if (rp.parted[r.point_strand[p]])
             rp.changed_segments.insert(rp.changed_ids++, 0.5f * (r.point_pos[r.point_prev[p]] + r.point_pos[p]), 0);
@@ -681,7 +743,10 @@ bool Growth::run(Strands* out, std::string* error) {
                 }
             }
             const bool counting = strands_.countdown[s] >= 0;
-            if (moves_.blocked[k]) {
+            if (moves_.blocked[k] == 4) {
+                ++stats_.crowded;
+                apply(walk_.on_distance, s, step, kDistanceState);
+            } else if (moves_.blocked[k]) {
                 ++(moves_.blocked[k] == 3 ? stats_.solid_hits : stats_.collisions);
                 apply(walk_.on_collision, s, step, 0);
             } else {
@@ -692,7 +757,7 @@ bool Growth::run(Strands* out, std::string* error) {
                     points_.pos.push_back(moves_.pos[k]);
                     points_.prev.push_back(from);
                     points_.strand.push_back(s);
-                    if (walk_.collisions) {
+                    if (files_segments_) {
                         grid_.insert(id, mid, s);
                         if (replay_ && strands_.recorded[s] == kNone)
                             replay_->changed_segments.insert(replay_->changed_ids++, mid, 0);

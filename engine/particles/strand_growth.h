@@ -37,6 +37,7 @@ struct StrandStats {
     uint64_t killed = 0;        // strands removed (kill, countdown)
     uint64_t dropped = 0;       // strands that never moved (no segment), left out of the output
     uint64_t solid_hits = 0;    // moves refused because they would enter a solid (walk.solids)
+    uint64_t crowded = 0;       // moves refused because no trial kept walk.keep_distance_m
 };
 
 // The output: polylines of at least one segment, in strand id order.

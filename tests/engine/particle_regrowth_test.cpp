@@ -79,6 +79,7 @@ void expectIdentical(const Strands& a, const Strands& b, const std::string& cont
     EXPECT_EQ(a.stats.killed, b.stats.killed) << context;
     EXPECT_EQ(a.stats.dropped, b.stats.dropped) << context;
     EXPECT_EQ(a.stats.solid_hits, b.stats.solid_hits) << context;
+    EXPECT_EQ(a.stats.crowded, b.stats.crowded) << context;
 }
 
 // One random edit of the attractors: a move (small or across the patch), a new shape, new charge keys.
@@ -161,6 +162,36 @@ TEST(ParticleRegrowth, IncrementalEqualsFullWithTurnsAndActionTables) {
         expectIdentical(out, fullGrowth(scene), "edit " + std::to_string(e) + ": " + what);
     }
     EXPECT_GT(reused, 0u);
+}
+
+// Keeping distance, a proposal reads the earlier segments near its trials: a strand whose neighbours
+// changed proposes again, one whose neighbourhood is the record's takes its recorded move.
+TEST(ParticleRegrowth, IncrementalEqualsFullWithDistanceKeeping) {
+    ParticleScene scene = crowdedSplittingGrass();
+    scene.generators[0].count = 700;
+    scene.walk.keep_distance_m = 0.012f;
+    scene.walk.on_distance.kind = StrandActionKind::Turn;
+    scene.walk.on_distance.turn_angle_deg = 50.0f;
+    for (const bool collisions : {true, false}) {
+        scene.walk.collisions = collisions;
+        StrandRegrower regrower;
+        std::mt19937 rng(collisions ? 5 : 6);
+        Strands out;
+        std::string error;
+        ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
+        expectIdentical(out, fullGrowth(scene), "first growth");
+        ASSERT_GT(out.stats.crowded, 50u);
+        uint64_t reused = 0;
+        for (int e = 0; e < 8; ++e) {
+            const std::string what = editAttractor(&scene, &rng);
+            ASSERT_TRUE(regrower.grow(scene, {.threads = e % 2 ? 8 : 1}, &out, &error)) << error;
+            EXPECT_TRUE(regrower.lastReport().incremental) << what;
+            reused += regrower.lastReport().reused;
+            expectIdentical(out, fullGrowth(scene), std::string(collisions ? "collisions, " : "") + "edit " +
+                                                        std::to_string(e) + ": " + what);
+        }
+        EXPECT_GT(reused, 0u);
+    }
 }
 
 TEST(ParticleRegrowth, AMovedAttractorReGrowsOnlyWhatItReaches) {
