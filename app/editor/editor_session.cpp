@@ -206,6 +206,7 @@ void EditorSession::fillDocumentResult() {
         }
         const ParticleHandle picked = particles_panel.selected_handle;
         result->particles = {{"systems", std::move(systems)},
+                             {"selected_system", particles_panel.selected},
                              {"selected_attractor",
                               picked.part == ParticlePart::Attractor ? json(picked.index) : json(nullptr)},
                              {"selected_handle", picked ? json{{"part", particlePartName(picked.part)}, {"tilt", picked.tilt},

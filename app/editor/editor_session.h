@@ -138,6 +138,7 @@ private:
     void startEnvironment();
     void syncEnvironment();
     void placeFromPalette(const Ray& ray, bool mouse_free);  // the palette armed: a click places its type
+    void placeParticlePart(const Ray& ray, bool mouse_free);  // the Particles window's click to place
     // The scene's static meshes to the renderer, less the objects the Outliner hides (drawn_static_meshes).
     void showStaticMeshes();
     bool environmentSettled() const;  // the effects on screen are the document's environment's

@@ -131,6 +131,42 @@ ParticleGenerator groundPatch(glm::vec3 at, float half_side_m, uint32_t count, f
     return g;
 }
 
+ParticleHandle addParticlePart(ParticleScene* scene, ParticlePart part, glm::vec3 at, glm::vec3 normal, bool on_terrain) {
+    switch (part) {
+        case ParticlePart::Generator: {
+            if (on_terrain || normal == glm::vec3(0.0f, 0.0f, 1.0f)) {
+                scene->generators.push_back(groundPatch(at, 0.25f, 400, 10.0f, on_terrain));
+            } else {
+                // Axes across the normal, u x v = normal (the rectangle's normal: its strands' heading).
+                const glm::vec3 ref = std::abs(normal.z) < 0.9f ? glm::vec3(0.0f, 0.0f, 1.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+                const glm::vec3 u = glm::normalize(glm::cross(ref, normal));
+                ParticleGenerator g = groundPatch(at, 0.1f, 64, 10.0f, false);
+                g.axis_u_m = u * 0.1f;
+                g.axis_v_m = glm::cross(normal, u) * 0.1f;
+                scene->generators.push_back(g);
+            }
+            return {ParticlePart::Generator, scene->generators.size() - 1, false};
+        }
+        case ParticlePart::Attractor: {
+            Attractor a;
+            a.a_m = at + normal * 0.3f;
+            a.influence_m = 0.3f;
+            a.charge = {ChargeKey{0, 1.0f}};
+            scene->attractors.push_back(a);
+            return {ParticlePart::Attractor, scene->attractors.size() - 1, false};
+        }
+        case ParticlePart::Cutter: {
+            Cutter c;  // its action is a stop
+            c.center_m = at + normal * 0.2f;
+            c.normal = normal;
+            scene->cutters.push_back(c);
+            return {ParticlePart::Cutter, scene->cutters.size() - 1, false};
+        }
+        case ParticlePart::None: break;
+    }
+    return {};
+}
+
 ParticleSystemFile newGrassSystem(glm::vec3 at, bool on_terrain) {
     ParticleSystemFile s;
     s.name = s.file_name = "strands";

@@ -63,6 +63,16 @@ bool tiltParticleHandle(ParticleScene* scene, ParticleHandle handle, glm::vec3 n
 // the Particles window's new generators and systems start.
 ParticleGenerator groundPatch(glm::vec3 at, float half_side_m, uint32_t count, float heading_cone_deg, bool on_terrain);
 
+// A new part of the system at `at` on a surface with unit normal `normal` (the Particles window's Add at
+// the view's centre, normal up, and its click to place, on what the click meets: surface_pick.h):
+//   generator  a square of strands lying on the surface: on the terrain (on_terrain) a 0.5 m square of
+//              400 dropped onto it; elsewhere a 0.2 m square of 64 across the normal (an object's top or
+//              side: smaller, so that it stays on the face)
+//   attractor  a point 30 cm out along the normal, attracting within 30 cm
+//   cutter     a plane 20 cm out along the normal, across it, that stops the strands
+// Returns the new part's handle.
+ParticleHandle addParticlePart(ParticleScene* scene, ParticlePart part, glm::vec3 at, glm::vec3 normal, bool on_terrain);
+
 // The system the Particles window's "New system" adds: a patch of grass blades (a 0.6 m square of 600
 // strands at `at`, dropped onto the terrain when there is one) pulled up by a far attractor, with
 // collisions on; somewhere to start from.

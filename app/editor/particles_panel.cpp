@@ -310,19 +310,20 @@ void editWalk(WalkSettings* w, PanelEdit* e) {
     if (w->keep_distance_m > 0.0f) stateActionRow("when crowded", &w->on_distance, e);
 }
 
-// New parts start at the view's centre (`at`, on the ground), small and gentle: somewhere to drag from.
-Attractor newAttractor(glm::vec3 at) {
-    Attractor a;
-    a.a_m = at + glm::vec3(0.0f, 0.0f, 0.3f);
-    a.influence_m = 0.3f;
-    a.charge = {ChargeKey{0, 1.0f}};
-    return a;
-}
-
-Cutter newCutter(glm::vec3 at, float height_m) {
-    Cutter c;  // a horizontal plane that stops the strands at `height_m` above `at`
-    c.center_m = at + glm::vec3(0.0f, 0.0f, height_m);
-    return c;
+// "Click to place": the next left click in the view puts a new part on what it meets (surface_pick.h;
+// session_input.cpp places it); the armed button is framed, pressing it again disarms.
+void placeButtons(ParticlesPanelState* state) {
+    ImGui::TextUnformatted("Click to place:");
+    for (const ParticlePart part : {ParticlePart::Generator, ParticlePart::Attractor, ParticlePart::Cutter}) {
+        ImGui::SameLine();
+        const bool armed = state->placing == part;
+        if (armed) ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(1.0f, 0.75f, 0.1f, 0.8f));
+        if (ImGui::SmallButton(particlePartName(part))) state->placing = armed ? ParticlePart::None : part;
+        if (armed) ImGui::PopStyleColor();
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("then click the ground or an object in the view to put a new %s there (Shift: several; Esc: stop)",
+                              particlePartName(part));
+    }
 }
 
 // The rows of one of the system's lists: each part's tree node (highlighted while its dot is the one
@@ -451,14 +452,15 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
     ParticleSystemFile& system = state->editing;
     ParticleScene& scene = system.scene;
     PanelEdit e;
-    const glm::vec3 at = state->place_at;
+    const glm::vec3 at = state->place_at, kUp(0.0f, 0.0f, 1.0f);
+    placeButtons(state);
     if (ImGui::CollapsingHeader("Generators")) {
         // A system keeps a generator: a particle file without one does not load.
         partRows(&scene.generators, 1, ParticlePart::Generator, state, &e,
                  [&](size_t i) { return partLabel("generator", i, kGeneratorKinds[size_t(scene.generators[i].kind)]); },
                  [&](ParticleGenerator* g) { editGenerator(g, &e); });
         if (ImGui::Button("Add generator")) {
-            scene.generators.push_back(groundPatch(at, 0.25f, 400, 10.0f, scene.terrain != nullptr));
+            addParticlePart(&scene, ParticlePart::Generator, at, kUp, scene.terrain != nullptr);
             e.changed = true;
             e.name = "Add generator";
         }
@@ -469,7 +471,7 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
                  [&](size_t i) { return partLabel("attractor", i, kAttractorKinds[size_t(scene.attractors[i].kind)]); },
                  [&](Attractor* a) { editAttractor(a, scene.walk.steps, &e); });
         if (ImGui::Button("Add attractor")) {
-            scene.attractors.push_back(newAttractor(at));
+            addParticlePart(&scene, ParticlePart::Attractor, at, kUp, false);
             e.changed = true;
             e.name = "Add attractor";
         }
@@ -480,7 +482,7 @@ void drawParticlesPanel(Document* doc, ParticlesPanelState* state, std::string* 
                  [&](size_t i) { return partLabel("cutter", i, kCutterKinds[size_t(scene.cutters[i].kind)]); },
                  [&](Cutter* c) { editCutter(c, &e); });
         if (ImGui::Button("Add cutter")) {
-            scene.cutters.push_back(newCutter(at, 0.2f));
+            addParticlePart(&scene, ParticlePart::Cutter, at, kUp, false);
             e.changed = true;
             e.name = "Add cutter";
         }

@@ -15,6 +15,7 @@
 #include "editor/background_jobs.h"
 #include "editor/navigation.h"
 #include "editor/session_stats.h"
+#include "editor/surface_pick.h"
 #include "editor/window_title.h"
 #include "instancer/instance_query.h"
 #include "instancer/tile_coord.h"
@@ -136,7 +137,9 @@ void EditorSession::mouseTools() {
                                io.MousePos.y * io.DisplayFramebufferScale.y);
         const Ray ray = rayThroughPixel(view_proj, float(fb_w), float(fb_h), cursor);
         const bool mouse_free = !io.WantCaptureMouse && !io.KeyAlt;
-        if (windows.environment && environment_panel.placing) {
+        if (windows.particles && particles_panel.placing != ParticlePart::None) {
+            placeParticlePart(ray, mouse_free);
+        } else if (windows.environment && environment_panel.placing) {
             placeFromPalette(ray, mouse_free);
         } else if (windows.environment && environment_panel.brush_on) {
             // A weather brush takes the left button from the tool while it is on; its ring shows where.
@@ -278,6 +281,40 @@ void EditorSession::placeFromPalette(const Ray& ray, bool mouse_free) {
         messages.push_back(place_error);
     }
     p.placing = ImGui::GetIO().KeyShift;
+}
+
+void EditorSession::placeParticlePart(const Ray& ray, bool mouse_free) {
+    // A ring where the part would go and its normal; a click adds it to the shown system (one undo step)
+    // and disarms, unless Shift is held (place more).
+    ParticlesPanelState& p = particles_panel;
+    const std::vector<ParticleSystemFile>& systems = *doc->particles();
+    if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE, false) || p.selected >= systems.size()) {
+        p.placing = ParticlePart::None;
+        return;
+    }
+    const ScenePick pick = pickSceneSurface(*doc, ray);
+    if (!mouse_free || !pick.hit.hit) return;
+    addBrushMarker(*doc, pick.hit.point_m, 0.1f, false, &markers);
+    const glm::vec3 orange(1.0f, 0.75f, 0.1f);  // the armed button's colour
+    markers.lines.push_back({pick.hit.point_m, orange});
+    markers.lines.push_back({pick.hit.point_m + pick.hit.normal * 0.3f, orange});
+    if (!ImGui::IsMouseClicked(ImGuiMouseButton_Left)) return;
+    ParticleSystemFile system = systems[p.selected];
+    // On the ground of a project with a terrain, a generator is dropped onto it as the terrain's are.
+    const bool on_terrain = pick.object < 0 && system.scene.terrain != nullptr;
+    const ParticleHandle added = addParticlePart(&system.scene, p.placing, pick.hit.point_m, pick.hit.normal, on_terrain);
+    std::string place_error;
+    doc->beginStroke(std::string("Place ") + particlePartName(p.placing));
+    const bool ok = doc->setParticleSystem(p.selected, system, &place_error);
+    doc->endStroke();
+    if (ok) {
+        p.selected_handle = added;
+        p.last_error.clear();
+    } else {
+        p.last_error = place_error;
+        messages.push_back(place_error);
+    }
+    if (!ImGui::GetIO().KeyShift) p.placing = ParticlePart::None;
 }
 
 float EditorSession::groundZ(glm::vec2 xy) const { return scene ? groundHeightAt(*scene->doc, xy) : -1.0e30f; }

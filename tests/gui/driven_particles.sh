@@ -3,9 +3,9 @@
 # set_attractor opens it and puts the wind attractor in the left patch, in the middle of the view), a
 # left-drag from the attractor's dot moves it and the strands re-grow; Ctrl+Z puts it back. Then the
 # generator's dot is dragged, the attractor's a(t) key on the window's plot, and New system clicked, then
-# Remove system. F12 writes the statistics
+# Remove system; last a generator is placed by a click on the ground ("Click to place") and undone. F12 writes the statistics
 # after each step (WORKDIR/dragged.json, undone.json, generator.json, curve.json, curve_undone.json, new_system.json,
-# removed.json; the start script's in
+# removed.json, placed.json, place_undone.json; the start script's in
 # start.stats.json). Runs inside an X server (run_gui_tests.sh starts it with xvfb-run at 1600x900); exits
 # non-zero only when a step cannot be driven, the checks are the caller's.
 # usage: driven_particles.sh UNDERGROWTH_BIN PROJECT.json WORKDIR CACHE
@@ -38,7 +38,7 @@ drag "$gx" "$gy" $((gx + 100)) "$gy"
 dump generator "$settled"
 # The wind attractor's a(t) plot in the Particles window (at 350, 30: its single key, charge 3, at the
 # plot's left edge, 7 px below its top): the key dragged right and down.
-drag 387 443 547 488
+drag 387 460 547 505
 dump curve "$settled"
 undo
 dump curve_undone "$settled"
@@ -46,7 +46,14 @@ dump curve_undone "$settled"
 click 655 66
 dump new_system '"name": "strands"'
 # Remove system, under the new system's lists (one attractor open, the other headers closed).
-click 407 427
+click 407 444
 dump removed "$settled"
+# Click to place: the window's "generator" button (right of "Click to place:" under the status line),
+# then a click on the ground in the view: a new generator there, one undo step; Ctrl+Z takes it away.
+click 504 103
+click 1000 600
+dump placed "$settled"
+undo
+dump place_undone "$settled"
 quit_editor
 exit 0

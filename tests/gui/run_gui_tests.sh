@@ -697,7 +697,7 @@ if command -v xdotool >/dev/null 2>&1; then
      out="$(python3 - "$xwork" <<'PY' 2>&1
 import json, sys
 d = sys.argv[1]
-stats = {n: json.load(open("%s/%s.json" % (d, n))) for n in ("start.stats", "dragged", "undone", "generator", "curve", "curve_undone", "new_system", "removed")}
+stats = {n: json.load(open("%s/%s.json" % (d, n))) for n in ("start.stats", "dragged", "undone", "generator", "curve", "curve_undone", "new_system", "removed", "placed", "place_undone")}
 start, dragged, undone = (stats[n]["particles"] for n in ("start.stats", "dragged", "undone"))
 a0, a1, a2 = (p["systems"][0]["attractors"][1] for p in (start, dragged, undone))
 assert dragged["selected_attractor"] == 1, dragged
@@ -736,9 +736,22 @@ assert removed["document"]["undo_name"] == "Remove particle system", removed["do
 before_new = stats["curve_undone"]["particles"]["last"]
 assert removed["particles"]["last"]["strands"] == before_new["strands"], (removed["particles"]["last"], before_new)
 assert removed["particles"]["last"]["recomputed"] == 0, removed["particles"]["last"]
-print("moved %.2f m by the mouse, %d %% re-grown; generator moved %.2f m; a(t) key to step %d, charge %.2f; new system: %d strands in all" % (
+# Click to place: one more generator in the shown system, its dot (on the ground under its centre: it
+# lies on the terrain) where the view was clicked, one undo step "Place generator"; Ctrl+Z takes it away.
+placed, place_undone = stats["placed"]["particles"], stats["place_undone"]["particles"]
+shown = placed["selected_system"]
+gens_before = removed["particles"]["systems"][shown]["generators"]
+gens = placed["systems"][shown]["generators"]
+assert len(gens) == len(gens_before) + 1 and gens[:-1] == gens_before, (gens_before, gens)
+assert placed["selected_handle"] == {"part": "generator", "index": len(gens) - 1, "tilt": False}, placed["selected_handle"]
+dot = [h["px"] for h in placed["handles_px"] if h["part"] == "generator" and h["index"] == len(gens) - 1 and not h["tilt"]]
+assert dot and abs(dot[0][0] - 1000) < 4 and abs(dot[0][1] - 600) < 4, (dot, "not where the view was clicked")
+assert stats["placed"]["document"]["undo_name"] == "Place generator", stats["placed"]["document"]
+assert placed["last"]["ok"] and placed["last"]["strands"] > removed["particles"]["last"]["strands"], placed["last"]
+assert place_undone["systems"][shown]["generators"] == gens_before, place_undone["systems"][shown]
+print("moved %.2f m by the mouse, %d %% re-grown; generator moved %.2f m; a(t) key to step %d, charge %.2f; new system: %d strands in all; a generator placed at (%.2f, %.2f)" % (
     a1[0] - a0[0], 100 * last["recomputed"] // (last["recomputed"] + last["reused"]), g1[0] - g0[0], k1[0][0], k1[0][1],
-    new["particles"]["last"]["strands"]))
+    new["particles"]["last"]["strands"], gens[-1][0], gens[-1][1]))
 PY
 )"; then
     ok "edit meadow_strands: an attractor, a generator and an a(t) key dragged, a system added and removed by real X input ($out)"
