@@ -167,6 +167,30 @@ ParticleHandle addParticlePart(ParticleScene* scene, ParticlePart part, glm::vec
     return {};
 }
 
+ActionMode actionMode(const StrandAction& action) {
+    if (action.table.empty()) return ActionMode::Single;
+    return action.choice == ActionChoice::Random ? ActionMode::Random : ActionMode::Priority;
+}
+
+void setActionMode(StrandAction* action, ActionMode mode) {
+    if (mode == actionMode(*action)) return;
+    if (mode == ActionMode::Single) {
+        StrandAction first = action->table.front();
+        first.weight = 1.0f;
+        *action = first;
+        return;
+    }
+    if (action->table.empty()) {
+        StrandAction only = *action;
+        only.weight = 1.0f;
+        action->table = {only};
+    }
+    action->choice = mode == ActionMode::Random ? ActionChoice::Random : ActionChoice::Priority;
+    // A priority table ignores weights; the file keeps 1 so that switching back draws evenly.
+    if (mode == ActionMode::Priority)
+        for (StrandAction& a : action->table) a.weight = 1.0f;
+}
+
 ParticleSystemFile newGrassSystem(glm::vec3 at, bool on_terrain) {
     ParticleSystemFile s;
     s.name = s.file_name = "strands";

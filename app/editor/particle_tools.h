@@ -73,6 +73,13 @@ ParticleGenerator groundPatch(glm::vec3 at, float half_side_m, uint32_t count, f
 // Returns the new part's handle.
 ParticleHandle addParticlePart(ParticleScene* scene, ParticlePart part, glm::vec3 at, glm::vec3 normal, bool on_terrain);
 
+// How a critical state acts (the Particles window's "acts by"): by one action, or by a table (§5.2) taken
+// by priority or at random (StrandAction::table). Changing it keeps what the state did: one action
+// becomes a table of one, a table becomes its first action; weights go back to 1 outside a random table.
+enum class ActionMode : uint8_t { Single, Priority, Random };
+ActionMode actionMode(const StrandAction& action);
+void setActionMode(StrandAction* action, ActionMode mode);
+
 // The system the Particles window's "New system" adds: a patch of grass blades (a 0.6 m square of 600
 // strands at `at`, dropped onto the terrain when there is one) pulled up by a far attractor, with
 // collisions on; somewhere to start from.

@@ -25,6 +25,7 @@ const char* const kAttractorKinds[] = {"point", "segment", "sphere", "mesh", "ob
 const char* const kGeneratorKinds[] = {"rectangle", "sphere", "box", "mesh", "objects"};
 const char* const kCutterKinds[] = {"plane", "sphere", "box"};
 const char* const kActionKinds[] = {"stop", "kill", "split", "countdown", "turn"};
+const char* const kActionModes[] = {"one action", "a table, by priority", "a table, at random"};
 const char* const kCutterSides[] = {"above the threshold", "below the threshold"};
 
 // A list entry of the system (a generator, an attractor or a cutter): a tree node, highlighted while its
@@ -228,12 +229,42 @@ void editAttractor(Attractor* a, uint32_t steps, PanelEdit* e) {
     editCharge(&a->charge, steps, e);
 }
 
-void editAction(StrandAction* action, PanelEdit* e) {
+// One action's fields; a state's action (not one in a table) also says how the state acts: by it alone
+// or by a table of actions taken by priority or at random, whose rows are edited here.
+void editAction(StrandAction* action, PanelEdit* e, bool in_table = false) {
+    if (!in_table) {
+        int mode = int(actionMode(*action));
+        if (ImGui::Combo("acts by", &mode, kActionModes, IM_ARRAYSIZE(kActionModes))) {
+            setActionMode(action, ActionMode(mode));
+            e->changed = true;
+        }
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("a table: the first action that can act (priority) or one drawn by weight (random)");
+    }
     if (!action->table.empty()) {
-        // Tables are written in the particle file; the window shows what the state does.
-        ImGui::TextDisabled("action: one of %zu, by %s", action->table.size(),
-                            action->choice == ActionChoice::Random ? "weighted chance" : "priority");
-        for (const StrandAction& a : action->table) ImGui::BulletText("%s", strandActionName(a.kind));
+        std::vector<StrandAction>& table = action->table;
+        for (size_t i = 0; i < table.size(); ++i) {
+            ImGui::PushID(int(i));
+            ImGui::Separator();
+            ImGui::TextDisabled("%zu.", i + 1);
+            if (table.size() > 1) {
+                ImGui::SameLine();
+                if (ImGui::SmallButton("remove")) {
+                    table.erase(table.begin() + std::ptrdiff_t(i));
+                    e->changed = true;
+                    ImGui::PopID();
+                    break;
+                }
+            }
+            editAction(&table[i], e, true);
+            if (action->choice == ActionChoice::Random)
+                dragged(ImGui::DragFloat("weight", &table[i].weight, 0.05f, 0.01f, 1e6f, "%.2f"), e);
+            ImGui::PopID();
+        }
+        if (table.size() < kMaxActionTable && ImGui::SmallButton("+ action")) {
+            table.push_back(StrandAction{});
+            e->changed = true;
+        }
         return;
     }
     int kind = int(action->kind);
@@ -247,8 +278,14 @@ void editAction(StrandAction* action, PanelEdit* e) {
         dragged(ImGui::DragFloat("split cone (deg)", &action->split_angle_deg, 0.5f, 0.0f, 179.0f), e);
     }
     if (action->kind == StrandActionKind::Countdown) {
-        ImGui::InputScalar("countdown steps", ImGuiDataType_U32, &action->countdown_steps);
+        ImGui::InputScalar("steps##countdown", ImGuiDataType_U32, &action->countdown_steps);
         finished(e);
+        // countdown_then is Stop or Kill, the enum's first two.
+        int then = int(action->countdown_then);
+        if (ImGui::Combo("then", &then, kActionKinds, 2)) {
+            action->countdown_then = StrandActionKind(then);
+            e->changed = true;
+        }
     }
     if (action->kind == StrandActionKind::Turn)
         dragged(ImGui::DragFloat("turn (deg)", &action->turn_angle_deg, 0.5f, 0.1f, 180.0f), e);
@@ -299,11 +336,12 @@ void editWalk(WalkSettings* w, PanelEdit* e) {
     dragged(ImGui::DragFloat("radius (m)", &w->strand_radius_m, 0.0001f, 1e-6f, 1.0f, "%.4f"), e);
     e->changed |= ImGui::Checkbox("collisions", &w->collisions);
     stateActionRow("on collision", &w->on_collision, e);
-    ImGui::InputScalar("age limit (steps)", ImGuiDataType_U32, &w->max_age_steps);
+    ImGui::InputScalar("age limit", ImGuiDataType_U32, &w->max_age_steps);
     finished(e);
+    if (ImGui::IsItemHovered()) ImGui::SetTooltip("a strand acts after this many steps (0: no limit)");
     if (w->max_age_steps > 0) stateActionRow("at the age limit", &w->on_age, e);
     // Beyond 100 steps the file is refused (validateParticleScene): the slider stops there.
-    dragged(ImGui::DragFloat("keep distance (m)", &w->keep_distance_m, 0.0005f, 0.0f, 100.0f * w->step_length_m, "%.4f"),
+    dragged(ImGui::DragFloat("keep (m)", &w->keep_distance_m, 0.0005f, 0.0f, 100.0f * w->step_length_m, "%.4f"),
             e);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Strands keep this far from other strands' earlier segments (0: off)");

@@ -238,3 +238,41 @@ TEST(ParticleHandles, MoveOnlyTheirOwnPart) {
 
 }  // namespace
 }  // namespace ug::editor
+
+namespace ug::editor {
+namespace {
+
+// The window's "acts by": one action becomes a table of one and back, what the state does kept; weights
+// go back to 1 outside a random table; the result always validates.
+TEST(ParticleActionModes, ATableOfOneAndBackKeepsTheAction) {
+    StrandAction split;
+    split.kind = StrandActionKind::Split;
+    split.split_count = 3;
+    split.split_angle_deg = 25.0f;
+    StrandAction a = split;
+    EXPECT_EQ(actionMode(a), ActionMode::Single);
+    setActionMode(&a, ActionMode::Random);
+    EXPECT_EQ(actionMode(a), ActionMode::Random);
+    ASSERT_EQ(a.table.size(), 1u);
+    EXPECT_EQ(a.table[0], split);
+    StrandAction turn;
+    turn.kind = StrandActionKind::Turn;
+    turn.weight = 3.0f;
+    a.table.push_back(turn);
+    ParticleScene scene;
+    scene.generators.push_back(groundPatch(glm::vec3(0.0f), 0.1f, 4, 5.0f, false));
+    scene.walk.on_collision = a;
+    std::string error;
+    EXPECT_TRUE(validateParticleScene(scene, &error)) << error;
+    setActionMode(&a, ActionMode::Priority);
+    EXPECT_EQ(a.choice, ActionChoice::Priority);
+    ASSERT_EQ(a.table.size(), 2u);
+    EXPECT_EQ(a.table[1].weight, 1.0f) << "a priority table keeps no weights";
+    setActionMode(&a, ActionMode::Single);
+    EXPECT_EQ(a, split) << "the table's first action, alone again";
+    scene.walk.on_collision = a;
+    EXPECT_TRUE(validateParticleScene(scene, &error)) << error;
+}
+
+}  // namespace
+}  // namespace ug::editor
