@@ -68,13 +68,7 @@ void useLooks(const SceneLooks& looks, const std::vector<uint32_t>& instance_loo
 }
 
 InstancerInput instancerInput(const SceneJob& job, uint64_t seed) {
-    InstancerInput in;
-    in.tile = &job.tile;
-    for (const DetailModel& m : job.models) in.models.push_back(&m);
-    in.types = job.compiled.types;
-    in.extent = job.compiled.extent;
-    in.seed = seed;
-    return in;
+    return instancerInputOf(job.tile, job.models, job.compiled, seed);
 }
 
 }  // namespace ug::cli

@@ -277,13 +277,7 @@ Document::~Document() = default;
 InstancerInput Document::instancerInput() const { return instancerInputFor(compiled_); }
 
 InstancerInput Document::instancerInputFor(const CompiledScene& compiled) const {
-    InstancerInput in;
-    in.tile = assets_.tile.get();
-    for (const DetailModel& m : *assets_.models) in.models.push_back(&m);
-    in.types = compiled.types;
-    in.extent = compiled.extent;
-    in.seed = project_.instantiation_seed;
-    return in;
+    return instancerInputOf(*assets_.tile, *assets_.models, compiled, project_.instantiation_seed);
 }
 
 SettleInput Document::settleInputOf() const {

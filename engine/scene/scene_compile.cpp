@@ -304,4 +304,15 @@ SceneMaterials compileSceneMaterials(const Project& project, const std::vector<D
     return out;
 }
 
+InstancerInput instancerInputOf(const GhostTile& tile, const std::vector<DetailModel>& models,
+                                const CompiledScene& compiled, uint64_t seed) {
+    InstancerInput in;
+    in.tile = &tile;
+    for (const DetailModel& m : models) in.models.push_back(&m);
+    in.types = compiled.types;
+    in.extent = compiled.extent;
+    in.seed = seed;
+    return in;
+}
+
 }  // namespace ug

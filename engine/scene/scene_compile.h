@@ -26,6 +26,7 @@
 #include "field/height_field.h"
 #include "ghosttile/ghost_tile.h"
 #include "instancer/instancing_settings.h"
+#include "instancer/instantiator.h"
 #include "instancer/settling.h"
 #include "material/material.h"
 #include "env/env_scene.h"
@@ -44,6 +45,12 @@ struct CompiledScene {
     std::vector<InstanceTypeSettings> types;     // one per detail type, same order
     Bounds extent;                               // finite, lo < hi on every axis
 };
+
+// What the instantiator runs on for a compiled scene: the tile and its models (pointers into them: they
+// must outlive the input), the compiled types and extent, the seed. The one builder the document, the
+// loader and the CLI share.
+InstancerInput instancerInputOf(const GhostTile& tile, const std::vector<DetailModel>& models,
+                                const CompiledScene& compiled, uint64_t seed);
 
 // Builds the project's terrain: null for TerrainKind::None, the procedural fBm, or the PNG (its path
 // resolved against the project's folder).

@@ -37,12 +37,7 @@ bool placeParticlesOnDetails(const Project& project, int threads, LoadedScene* s
     bool any = false;
     for (const ParticleSystemFile& s : *scene->particles) any = any || growsOnDetails(s.scene);
     if (!any) return true;
-    InstancerInput instancer;
-    instancer.tile = scene->tile.get();
-    for (const DetailModel& m : *scene->models) instancer.models.push_back(&m);
-    instancer.types = scene->compiled.types;
-    instancer.extent = scene->compiled.extent;
-    instancer.seed = project.instantiation_seed;
+    const InstancerInput instancer = instancerInputOf(*scene->tile, *scene->models, scene->compiled, project.instantiation_seed);
     const SettleInput settle =
         settleInput(project, scene->terrain, *scene->tile, *scene->models, scene->environment.get());
     if (settle.settings.enabled && !validateSettleInput(settle, error)) return false;
