@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "particle_test_util.h"
 #include "particles/particle_json.h"
 #include "particles/strand_growth.h"
 
@@ -161,13 +162,7 @@ TEST(ParticleActions, TablesRoundTripAndBadOnesAreRefusedNamingThePlace) {
     ASSERT_TRUE(parseParticleSystem(particleSystemToJson(file), "tables.json", &back, &error)) << error;
     EXPECT_EQ(back.scene.walk, file.scene.walk);
 
-    const auto refused = [&](const std::string& walk, const std::string& where) {
-        const std::string text = R"({"format": "undergrowth-particles", "format_version": 1,
-            "generators": [{"kind": "rectangle", "count": 4}], "walk": )" + walk + "}";
-        ParticleSystemFile s;
-        EXPECT_FALSE(parseParticleSystem(nlohmann::json::parse(text), "bad.json", &s, &error)) << walk;
-        EXPECT_NE(error.find(where), std::string::npos) << error;
-    };
+    const auto refused = test::expectWalkRefused;
     refused(R"({"on_age": {"kind": "turn", "turn_angle_deg": 0}})", "/walk/on_age/turn_angle_deg");
     refused(R"({"on_age": {"table": []}})", "/walk/on_age/table");
     refused(R"({"on_age": {"choice": "random", "table": [{"kind": "stop", "weight": 0}]}})", "/walk/on_age/table/0/weight");

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <limits>
 
+#include "particle_test_util.h"
 #include "particles/particle_json.h"
 #include "particles/strand_growth.h"
 
@@ -154,13 +155,7 @@ TEST(ParticleDistance, TheDistanceRoundTripsAndBadOnesAreRefusedNamingThePlace) 
     ASSERT_TRUE(parseParticleSystem(particleSystemToJson(file), "keep.json", &back, &error)) << error;
     EXPECT_EQ(back.scene.walk, file.scene.walk);
 
-    const auto refused = [&](const std::string& walk, const std::string& where) {
-        const std::string text = R"({"format": "undergrowth-particles", "format_version": 1,
-            "generators": [{"kind": "rectangle", "count": 4}], "walk": )" + walk + "}";
-        ParticleSystemFile s;
-        EXPECT_FALSE(parseParticleSystem(nlohmann::json::parse(text), "bad.json", &s, &error)) << walk;
-        EXPECT_NE(error.find(where), std::string::npos) << error;
-    };
+    const auto refused = test::expectWalkRefused;
     refused(R"({"keep_distance_m": -0.01})", "/walk/keep_distance_m");
     refused(R"({"keep_distance_m": "far"})", "/walk/keep_distance_m");
     refused(R"({"on_distance": {"kind": "wander"}})", "/walk/on_distance/kind");

@@ -103,6 +103,30 @@ std::string editAttractor(ParticleScene* scene, std::mt19937* rng) {
     }
 }
 
+// `edits` random attractor edits (editAttractor), each re-grown from the record on 1 or 8 threads in turn
+// and compared with a full growth; returns the moves taken from the records. `first` checks the first
+// growth (what the scene must show for the test to test anything).
+template <typename CheckFirst>
+uint64_t regrowAfterRandomEdits(ParticleScene scene, uint32_t rng_seed, int edits, const std::string& context,
+                                CheckFirst&& first) {
+    StrandRegrower regrower;
+    std::mt19937 rng(rng_seed);
+    Strands out;
+    std::string error;
+    EXPECT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
+    expectIdentical(out, fullGrowth(scene), context + "first growth");
+    first(out);
+    uint64_t reused = 0;
+    for (int e = 0; e < edits; ++e) {
+        const std::string what = editAttractor(&scene, &rng);
+        EXPECT_TRUE(regrower.grow(scene, {.threads = e % 2 ? 8 : 1}, &out, &error)) << error;
+        EXPECT_TRUE(regrower.lastReport().incremental) << what;
+        reused += regrower.lastReport().reused;
+        expectIdentical(out, fullGrowth(scene), context + "edit " + std::to_string(e) + ": " + what);
+    }
+    return reused;
+}
+
 TEST(ParticleRegrowth, IncrementalEqualsFullAfterRandomEdits) {
     ParticleScene scene = crowdedSplittingGrass();
     StrandRegrower regrower;
@@ -146,21 +170,8 @@ TEST(ParticleRegrowth, IncrementalEqualsFullWithTurnsAndActionTables) {
     StrandAction cut = scene.cutters[0].action;
     scene.cutters[0].action = StrandAction{};
     scene.cutters[0].action.table = {cut, turn};  // by priority: a split where it can, else a turn
-    StrandRegrower regrower;
-    std::mt19937 rng(41);
-    Strands out;
-    std::string error;
-    ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
-    expectIdentical(out, fullGrowth(scene), "first growth");
-    ASSERT_GT(out.stats.splits, 50u);
-    uint64_t reused = 0;
-    for (int e = 0; e < 8; ++e) {
-        const std::string what = editAttractor(&scene, &rng);
-        ASSERT_TRUE(regrower.grow(scene, {.threads = e % 2 ? 8 : 1}, &out, &error)) << error;
-        EXPECT_TRUE(regrower.lastReport().incremental) << what;
-        reused += regrower.lastReport().reused;
-        expectIdentical(out, fullGrowth(scene), "edit " + std::to_string(e) + ": " + what);
-    }
+    const uint64_t reused =
+        regrowAfterRandomEdits(scene, 41, 8, "", [](const Strands& out) { EXPECT_GT(out.stats.splits, 50u); });
     EXPECT_GT(reused, 0u);
 }
 
@@ -174,22 +185,8 @@ TEST(ParticleRegrowth, IncrementalEqualsFullWithDistanceKeeping) {
     scene.walk.on_distance.turn_angle_deg = 50.0f;
     for (const bool collisions : {true, false}) {
         scene.walk.collisions = collisions;
-        StrandRegrower regrower;
-        std::mt19937 rng(collisions ? 5 : 6);
-        Strands out;
-        std::string error;
-        ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
-        expectIdentical(out, fullGrowth(scene), "first growth");
-        ASSERT_GT(out.stats.crowded, 50u);
-        uint64_t reused = 0;
-        for (int e = 0; e < 8; ++e) {
-            const std::string what = editAttractor(&scene, &rng);
-            ASSERT_TRUE(regrower.grow(scene, {.threads = e % 2 ? 8 : 1}, &out, &error)) << error;
-            EXPECT_TRUE(regrower.lastReport().incremental) << what;
-            reused += regrower.lastReport().reused;
-            expectIdentical(out, fullGrowth(scene), std::string(collisions ? "collisions, " : "") + "edit " +
-                                                        std::to_string(e) + ": " + what);
-        }
+        const uint64_t reused = regrowAfterRandomEdits(scene, collisions ? 5 : 6, 8, collisions ? "collisions, " : "",
+                                                       [](const Strands& out) { EXPECT_GT(out.stats.crowded, 50u); });
         EXPECT_GT(reused, 0u);
     }
 }
