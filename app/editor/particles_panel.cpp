@@ -335,6 +335,10 @@ void editWalk(WalkSettings* w, PanelEdit* e) {
     dragged(ImGui::DragFloat("step (m)", &w->step_length_m, 0.0005f, 1e-5f, 10.0f, "%.4f"), e);
     dragged(ImGui::DragFloat("radius (m)", &w->strand_radius_m, 0.0001f, 1e-6f, 1.0f, "%.4f"), e);
     e->changed |= ImGui::Checkbox("collisions", &w->collisions);
+    ImGui::SameLine();
+    e->changed |= ImGui::Checkbox("retry", &w->retry_refused);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("a refused move gives way to the next-fittest trial (a vine slides along a wall)");
     stateActionRow("on collision", &w->on_collision, e);
     ImGui::InputScalar("age limit", ImGuiDataType_U32, &w->max_age_steps);
     finished(e);

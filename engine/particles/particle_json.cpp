@@ -182,7 +182,7 @@ bool readWalk(JsonReader& r, const json& obj, const std::string& pointer, WalkSe
     return r.expectObject(j, p) &&
            r.onlyKeys(j, p, {"seed", "steps", "trials", "cone_deg", "step_length_m", "strand_radius_m", "collisions",
                              "on_collision", "max_age_steps", "on_age", "max_split_depth", "max_points", "solids",
-                             "keep_distance_m", "on_distance"}) &&
+                             "keep_distance_m", "on_distance", "retry_refused"}) &&
            r.integer(j, p, "seed", &w->seed, 0, UINT64_MAX) && r.integer(j, p, "steps", &w->steps, 1, kMaxParticleSteps) &&
            r.integer(j, p, "trials", &w->trials, 1, 256) && r.number(j, p, "cone_deg", &w->cone_deg, 0.001, 179.9) &&
            r.number(j, p, "step_length_m", &w->step_length_m, 1e-6, 1e3) &&
@@ -192,7 +192,7 @@ bool readWalk(JsonReader& r, const json& obj, const std::string& pointer, WalkSe
            readAction(r, j, p, "on_age", &w->on_age) && r.integer(j, p, "max_split_depth", &w->max_split_depth, 0, 64) &&
            r.integer(j, p, "max_points", &w->max_points, 1, kMaxStrandPoints) && r.boolean(j, p, "solids", &w->solids) &&
            r.number(j, p, "keep_distance_m", &w->keep_distance_m, 0.0, 1e5) &&
-           readAction(r, j, p, "on_distance", &w->on_distance);
+           readAction(r, j, p, "on_distance", &w->on_distance) && r.boolean(j, p, "retry_refused", &w->retry_refused);
 }
 
 template <typename T, typename F>
@@ -376,7 +376,8 @@ json particleSystemToJson(const ParticleSystemFile& s) {
               {"max_points", w.max_points},
               {"solids", w.solids},
               {"keep_distance_m", w.keep_distance_m},
-              {"on_distance", actionJson(w.on_distance)}}},
+              {"on_distance", actionJson(w.on_distance)},
+              {"retry_refused", w.retry_refused}}},
             {"mesh", {{"shape", kShapeNames[size_t(s.mesh.shape)]},
                       {"sides", s.mesh.sides},
                       {"max_triangles", s.mesh.max_triangles},

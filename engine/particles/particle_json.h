@@ -22,7 +22,7 @@
 //    "walk": {"seed": 1, "steps": 32, "trials": 8, "cone_deg": 30, "step_length_m": 0.01,
 //             "strand_radius_m": 0.001, "collisions": true, "on_collision": {"kind": "stop"},
 //             "max_age_steps": 0, "on_age": {"kind": "stop"}, "max_split_depth": 4, "max_points": 50000000,
-//             "solids": true, "keep_distance_m": 0, "on_distance": {"kind": "stop"}},
+//             "solids": true, "keep_distance_m": 0, "on_distance": {"kind": "stop"}, "retry_refused": false},
 //    "mesh": {"shape": "tube", "sides": 6, "max_triangles": 20000000},
 //                                                          blade: "blade_width_m": 0.004, "blade_tip": 0.2
 //    "material": MATERIAL}                                 scene/material_json.h

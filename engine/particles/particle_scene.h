@@ -226,6 +226,12 @@ struct WalkSettings {
     // default; a turn steers it away, a countdown lets it try again). 0 = off.
     float keep_distance_m = 0.0f;
     StrandAction on_distance;
+    // The paper keeps "the best [trial] according to the conditions": with retry_refused a move that a
+    // solid or an earlier segment would refuse gives way to the next-fittest trial that neither refuses
+    // (a vine pressed against a wall slides along it). Only when every trial is refused does the state
+    // act (on_collision, with the fittest's verdict). Off: the fittest alone is tried (a countdown keeps
+    // it trying at later steps).
+    bool retry_refused = false;
 
     bool operator==(const WalkSettings&) const = default;
 };

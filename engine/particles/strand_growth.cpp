@@ -148,11 +148,13 @@ public:
           reach2_(4.0f * walk_.strand_radius_m * walk_.strand_radius_m),
           keep2_(walk_.keep_distance_m * walk_.keep_distance_m),
           files_segments_(walk_.collisions || walk_.keep_distance_m > 0.0f),
+          proposal_reads_segments_(walk_.keep_distance_m > 0.0f || (walk_.retry_refused && walk_.collisions)),
           // A segment is at most step_length long; two whose tubes touch have midpoints within
-          // step_length + 2r (padded against rounding), the reach of the grids' queries. Keeping distance,
-          // a trial's end (a step from the strand's point) within keep of a segment is within
-          // keep + step / 2 of its midpoint, and a re-growth asks from the strand's point: 2 steps + keep.
-          reach_(walk_.keep_distance_m > 0.0f
+          // step_length + 2r (padded against rounding), the reach of the grids' queries. When a proposal
+          // reads the segments (keeping distance, retrying), a trial's move (a step from the strand's
+          // point) within keep or 2r of a segment is within that + step / 2 of its midpoint, and a
+          // re-growth asks from the strand's point: 2 steps + max(keep, 2r).
+          reach_(proposal_reads_segments_
                      ? 1.001f * (2.0f * walk_.step_length_m + std::max(walk_.keep_distance_m, 2.0f * walk_.strand_radius_m))
                      : walk_.step_length_m * 1.001f + 2.0f * walk_.strand_radius_m * 1.001f),
           grid_(reach_),
@@ -181,6 +183,8 @@ public:
 private:
     void seed();
     void propose(size_t k, uint32_t step);
+    void place(size_t k, glm::vec3 p0, glm::vec3 dir);
+    uint8_t refusal(size_t k) const;
     void proposeAndTest(size_t k, uint32_t step);
     void replayMove(size_t k, uint32_t step, bool everywhere);
     void matchRecordedMoves(uint32_t step);
@@ -210,6 +214,8 @@ private:
     std::atomic<uint32_t>* steps_done_;    // GrowOptions::steps_done
     float cone_, cos_cone_, reach2_, keep2_;
     bool files_segments_;  // earlier segments are filed in grid_ (collisions or distance keeping)
+    // A proposal depends on the earlier segments near it (distance keeping, or retrying with collisions).
+    bool proposal_reads_segments_;
     float reach_;
     PointStore points_;
     StrandStore strands_;
@@ -269,11 +275,11 @@ void Growth::propose(size_t k, uint32_t step) {
     const glm::vec3 p0 = points_.pos[strands_.last[s]];
     // The frame as a matrix once per move: a trial is then 9 multiply-adds, not a quaternion product.
     const glm::mat3 frame = glm::mat3_cast(strands_.frame[s]);
-    glm::vec3 best_pos = p0, best_dir(0.0f, 0.0f, 1.0f);
+    glm::vec3 best_dir(0.0f, 0.0f, 1.0f);
     float best_f = 0.0f;
     uint32_t best_t = 0;
-    const bool keeping = keep2_ > 0.0f;
-    // Keeping distance, every trial is kept, to take the fittest that is not crowded.
+    // Keeping distance or retrying, every trial is kept, to take the fittest that is not refused.
+    const bool choosy = keep2_ > 0.0f || walk_.retry_refused;
     std::array<float, 256> trial_f;
     std::array<glm::vec3, 256> trial_dir;
     for (uint32_t t = 0; t < walk_.trials; ++t) {
@@ -282,61 +288,76 @@ void Growth::propose(size_t k, uint32_t step) {
         const glm::vec3 p = p0 + dir * walk_.step_length_m;
         float f = 0.0f;
         for (size_t a = 0; a < scene_.attractors.size(); ++a) f += attractorTerm(scene_.attractors[a], charge_[a], p);
-        if (keeping) {
+        if (choosy) {
             trial_f[t] = f;
             trial_dir[t] = dir;
         }
         if (t == 0 || f < best_f) {  // ties keep the lower trial
             best_f = f;
-            best_pos = p;
             best_dir = dir;
             best_t = t;
         }
     }
-    bool is_crowded = keeping && crowded(s, best_pos);
-    if (is_crowded) {
-        // The other trials, fittest first (ties: the lower trial), until one keeps the distance.
-        std::array<uint8_t, 256> tried{};
-        tried[best_t] = 1;
-        for (uint32_t n = 1; n < walk_.trials && is_crowded; ++n) {
-            uint32_t next = walk_.trials;
-            for (uint32_t t = 0; t < walk_.trials; ++t)
-                if (!tried[t] && (next == walk_.trials || trial_f[t] < trial_f[next])) next = t;
-            tried[next] = 1;
-            best_dir = trial_dir[next];
-            best_pos = p0 + best_dir * walk_.step_length_m;
-            is_crowded = crowded(s, best_pos);
-        }
+    place(k, p0, best_dir);
+    if (!choosy) return;
+    const uint8_t fittest_verdict = refusal(k);
+    if (fittest_verdict == 0) return;
+    // The other trials, fittest first (ties: the lower trial), until one is not refused.
+    std::array<uint8_t, 256> tried{};
+    tried[best_t] = 1;
+    for (uint32_t n = 1; n < walk_.trials; ++n) {
+        uint32_t next = walk_.trials;
+        for (uint32_t t = 0; t < walk_.trials; ++t)
+            if (!tried[t] && (next == walk_.trials || trial_f[t] < trial_f[next])) next = t;
+        tried[next] = 1;
+        place(k, p0, trial_dir[next]);
+        if (refusal(k) == 0) return;
     }
-    if (is_crowded) {
-        // The strand stays where it is and acts on_distance.
+    // Every trial refused: the fittest's verdict. A crowded strand stays where it is (on_distance).
+    place(k, p0, best_dir);
+    moves_.blocked[k] = fittest_verdict;
+    if (fittest_verdict == 4) {
         moves_.pos[k] = p0;
-        moves_.dir[k] = best_dir;
         moves_.cutter[k] = -1;
         moves_.still[k] = 0;
-        moves_.blocked[k] = 4;
-        return;
     }
+}
+
+void Growth::place(size_t k, glm::vec3 p0, glm::vec3 dir) {
+    const uint32_t s = active_[k];
+    const glm::vec3 end = p0 + dir * walk_.step_length_m;
     // The first cutter along the move (lowest parameter, then lowest index) clips it.
     int32_t cutter = -1;
     float cut_at = 2.0f;
     for (size_t c = 0; c < scene_.cutters.size(); ++c) {
         const Cutter& cut = scene_.cutters[c];
         if ((strands_.cut_mask[s] >> c) & 1u) continue;
-        if (!cutterTriggered(cut, cutterValue(cut, best_pos)) || cutterTriggered(cut, cutterValue(cut, p0))) continue;
-        const float u = cutParameter(cut, p0, best_pos);
+        if (!cutterTriggered(cut, cutterValue(cut, end)) || cutterTriggered(cut, cutterValue(cut, p0))) continue;
+        const float u = cutParameter(cut, p0, end);
         if (u < cut_at) {
             cut_at = u;
             cutter = int32_t(c);
         }
     }
-    glm::vec3 pos = best_pos;
-    if (cutter >= 0) pos = p0 + (best_pos - p0) * cut_at;
+    glm::vec3 pos = end;
+    if (cutter >= 0) pos = p0 + (end - p0) * cut_at;
     moves_.pos[k] = pos;
-    moves_.dir[k] = best_dir;
+    moves_.dir[k] = dir;
     moves_.cutter[k] = cutter;
     moves_.still[k] = pos == p0;
     moves_.blocked[k] = 0;
+}
+
+// Why the placed move k is refused while choosing among the trials: 4 crowded (keeping distance), and
+// with walk.retry_refused 3 a solid, 1 an earlier segment; 0 when it is not (a move that does not leave
+// its point never is).
+uint8_t Growth::refusal(size_t k) const {
+    if (moves_.still[k]) return 0;
+    if (keep2_ > 0.0f && crowded(active_[k], moves_.pos[k])) return 4;
+    if (!walk_.retry_refused) return 0;
+    if (walk_.solids && entersSolid(k)) return 3;
+    if (walk_.collisions && hitsEarlierSegment(k)) return 1;
+    return 0;
 }
 
 bool Growth::isAncestor(uint32_t strand, uint32_t s) const {
@@ -553,7 +574,8 @@ void Growth::apply(const StrandAction& table, uint32_t s, uint32_t step, uint32_
 
 void Growth::proposeAndTest(size_t k, uint32_t step) {
     propose(k, step);
-    if (moves_.blocked[k]) return;  // crowded
+    // Refused while choosing, or (retrying) already tested.
+    if (moves_.blocked[k] || walk_.retry_refused) return;
     if (walk_.solids && !moves_.still[k] && entersSolid(k)) moves_.blocked[k] = 3;
     else if (walk_.collisions && !moves_.still[k] && hitsEarlierSegment(k)) moves_.blocked[k] = 1;
 }
@@ -568,9 +590,9 @@ void Growth::replayMove(size_t k, uint32_t step, bool everywhere) {
     const GrowthRecord& r = rp.record;
     const uint32_t j = rp.entry[k];
     const glm::vec3 p0 = points_.pos[strands_.last[active_[k]]];
-    // Keeping distance, a proposal also reads the earlier segments near its trials.
+    // Keeping distance or retrying, a proposal also reads the earlier segments near its trials.
     rp.proposed[k] = j == kNone || everywhere || rp.edit.reaches(p0) ||
-                     (keep2_ > 0.0f && rp.changed_segments.anyNear(p0, [](uint32_t, uint32_t) { return true; }));
+                     (proposal_reads_segments_ && rp.changed_segments.anyNear(p0, [](uint32_t, uint32_t) { return true; }));
     if (rp.proposed[k]) {
         proposeAndTest(k, step);
         rp.same[k] = j != kNone && moves_.pos[k] == r.move_pos[j] && moves_.dir[k] == r.move_dir[j] &&

@@ -150,6 +150,7 @@ TEST(ParticleDistance, TheDistanceRoundTripsAndBadOnesAreRefusedNamingThePlace) 
     file.scene = convergingStrands(0.025f);
     file.scene.walk.on_distance.kind = StrandActionKind::Turn;
     file.scene.walk.on_distance.turn_angle_deg = 35.0f;
+    file.scene.walk.retry_refused = true;
     ParticleSystemFile back;
     std::string error;
     ASSERT_TRUE(parseParticleSystem(particleSystemToJson(file), "keep.json", &back, &error)) << error;
@@ -159,6 +160,7 @@ TEST(ParticleDistance, TheDistanceRoundTripsAndBadOnesAreRefusedNamingThePlace) 
     refused(R"({"keep_distance_m": -0.01})", "/walk/keep_distance_m");
     refused(R"({"keep_distance_m": "far"})", "/walk/keep_distance_m");
     refused(R"({"on_distance": {"kind": "wander"}})", "/walk/on_distance/kind");
+    refused(R"({"retry_refused": "yes"})", "/walk/retry_refused");
     // A distance far beyond the step would make every query visit the whole system.
     refused(R"({"step_length_m": 0.01, "keep_distance_m": 5})", "walk.keep_distance_m");
     ParticleScene nan = convergingStrands(std::nanf(""));

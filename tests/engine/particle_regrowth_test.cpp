@@ -191,6 +191,16 @@ TEST(ParticleRegrowth, IncrementalEqualsFullWithDistanceKeeping) {
     }
 }
 
+// Retrying refused moves, a proposal reads the earlier segments near its trials too.
+TEST(ParticleRegrowth, IncrementalEqualsFullWhenRetryingRefusedMoves) {
+    ParticleScene scene = crowdedSplittingGrass();
+    scene.generators[0].count = 700;
+    scene.walk.retry_refused = true;
+    const uint64_t reused = regrowAfterRandomEdits(scene, 8, 8, "retrying, ",
+                                                   [](const Strands& out) { EXPECT_GT(out.stats.collisions, 20u); });
+    EXPECT_GT(reused, 0u);
+}
+
 TEST(ParticleRegrowth, AMovedAttractorReGrowsOnlyWhatItReaches) {
     ParticleScene scene = crowdedSplittingGrass();
     StrandRegrower regrower;

@@ -417,12 +417,10 @@ ParticleScene crowdedGrass() {
     return scene;
 }
 
-TEST(ParticleCollisions, StrandsNeverComeCloserThanTwiceTheirRadius) {
-    const ParticleScene scene = crowdedGrass();
-    const Strands s = grow(scene);
-    ASSERT_GT(s.stats.collisions, 100u);  // the scene does crowd
-    ASSERT_GT(s.stats.splits, 10u);
-    const double reach = 2.0 * double(scene.walk.strand_radius_m) - 1e-6;
+// Brute force over every pair of segments of different strands (a split's children may share their
+// split point with their family): none closer than 2r. Returns how many near pairs it measured.
+size_t expectTwiceTheRadiusApart(const Strands& s, float radius) {
+    const double reach = 2.0 * double(radius) - 1e-6;
     size_t pairs = 0;
     for (size_t a = 0; a < s.size(); ++a)
         for (size_t b = a + 1; b < s.size(); ++b)
@@ -438,7 +436,36 @@ TEST(ParticleCollisions, StrandsNeverComeCloserThanTwiceTheirRadius) {
                     ++pairs;
                     EXPECT_GE(segDist(p0, p1, q0, q1), reach) << "strands " << a << ", " << b << " segments " << i << ", " << j;
                 }
-    EXPECT_GT(pairs, 1000u);  // many near pairs were checked
+    return pairs;
+}
+
+TEST(ParticleCollisions, StrandsNeverComeCloserThanTwiceTheirRadius) {
+    const ParticleScene scene = crowdedGrass();
+    const Strands s = grow(scene);
+    ASSERT_GT(s.stats.collisions, 100u);  // the scene does crowd
+    ASSERT_GT(s.stats.splits, 10u);
+    EXPECT_GT(expectTwiceTheRadiusApart(s, scene.walk.strand_radius_m), 1000u);  // many near pairs were checked
+}
+
+// walk.retry_refused: a refused fittest trial gives way to the next-fittest that is not refused, so the
+// strands still keep 2r apart, fewer strands stop on a collision and they grow further; the same for any
+// thread count.
+TEST(ParticleCollisions, RetryingTakesTheNextFittestTrialAndStillKeepsTwiceTheRadius) {
+    ParticleScene scene = crowdedGrass();
+    scene.walk.on_collision.kind = StrandActionKind::Stop;
+    const Strands once = grow(scene);
+    scene.walk.retry_refused = true;
+    const Strands retried = grow(scene, 1);
+    ASSERT_GT(once.stats.collisions, 100u);
+    // Each collision stops a strand; a same-step conflict (a lower id's move) is not retried.
+    EXPECT_LT(retried.stats.collisions, once.stats.collisions);
+    EXPECT_GT(retried.stats.moves, once.stats.moves + once.stats.moves / 10) << once.stats.moves;
+    EXPECT_GT(expectTwiceTheRadiusApart(retried, scene.walk.strand_radius_m), 1000u);
+    for (const int threads : {2, 8}) {
+        const Strands other = grow(scene, threads);
+        EXPECT_EQ(other.offsets, retried.offsets) << threads;
+        EXPECT_EQ(other.points, retried.points) << threads;
+    }
 }
 
 TEST(ParticleCollisions, WithoutCollisionsTheSameSceneOverlaps) {
@@ -495,6 +522,13 @@ TEST(ParticleSolids, StrandsPulledIntoAMeshStopAtItsSurface) {
     const Strands solid = grow(scene);
     EXPECT_GT(solid.stats.solid_hits, 100u);
     EXPECT_EQ(inside(solid), 0u);
+    // Retrying, a strand pressed against the surface slides along it: more moves, still never inside.
+    scene.walk.retry_refused = true;
+    const Strands sliding = grow(scene);
+    EXPECT_EQ(inside(sliding), 0u);
+    EXPECT_GT(sliding.stats.moves, solid.stats.moves);
+    EXPECT_LT(sliding.stats.solid_hits, solid.stats.solid_hits);
+    scene.walk.retry_refused = false;
     scene.walk.solids = false;
     const Strands open = grow(scene);
     EXPECT_EQ(open.stats.solid_hits, 0u);
