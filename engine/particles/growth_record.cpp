@@ -1,5 +1,7 @@
 #include "particles/growth_record.h"
 
+#include <cmath>
+
 namespace ug {
 
 AttractorEdit::AttractorEdit(const std::vector<Attractor>& before, const std::vector<Attractor>& after,
@@ -34,9 +36,28 @@ bool AttractorEdit::reaches(glm::vec3 p0) const {
     return false;
 }
 
+CutterEdit::CutterEdit(const std::vector<Cutter>& before, const std::vector<Cutter>& after, float step_length_m)
+    : before_(before), after_(after), changed_(after.size(), 0), margin_m_(step_length_m * 1.01f + 1e-6f) {
+    for (uint32_t c = 0; c < after.size(); ++c)
+        if (!(before[c] == after[c])) {
+            changed_[c] = 1;
+            list_.push_back(c);
+        }
+}
+
+bool CutterEdit::reaches(glm::vec3 p0) const {
+    for (uint32_t c : list_)
+        for (const Cutter* cut : {&before_[c], &after_[c]}) {
+            // Rounding of g grows with the coordinates' size.
+            const float slack = margin_m_ + 1e-6f * (glm::length(p0) + glm::length(cut->center_m));
+            if (std::abs(cutterValue(*cut, p0) - cut->threshold_m) <= slack) return true;
+        }
+    return false;
+}
+
 bool regrowable(const ParticleScene& before, const ParticleScene& after) {
     return before.generators == after.generators && before.terrain == after.terrain &&
-           before.cutters == after.cutters && before.walk == after.walk && before.obstacles == after.obstacles &&
+           before.cutters.size() == after.cutters.size() && before.walk == after.walk && before.obstacles == after.obstacles &&
            before.detail_obstacles == after.detail_obstacles &&
            before.attractors.size() == after.attractors.size();
 }

@@ -74,8 +74,31 @@ private:
     float margin_m_;                // a step length and then some, against rounding
 };
 
-// Whether a growth of `after` can start from a record of `before`: everything but the attractors' places,
-// shapes and charges is the same (generators, terrain, cutters, the walk, the number of attractors).
+// How the cutters of an edited scene differ from the recorded one's (as many of them). A cutter clips a
+// move only where g crosses its threshold along it, and g is 1-Lipschitz (a signed distance), so a move
+// from p0 can meet a changed cutter, old or new, only where |g(p0) - threshold| is within a step: a strand
+// farther from every changed cutter moves as recorded. A move that a changed cutter clips (whose action may
+// have changed too) parts from its record.
+class CutterEdit {
+public:
+    CutterEdit(const std::vector<Cutter>& before, const std::vector<Cutter>& after, float step_length_m);
+
+    // Whether a move from p0 can meet a changed cutter.
+    bool reaches(glm::vec3 p0) const;
+    // Whether cutter `index` (-1: none) changed.
+    bool changed(int32_t index) const { return index >= 0 && changed_[size_t(index)]; }
+
+private:
+    const std::vector<Cutter>& before_;
+    const std::vector<Cutter>& after_;
+    std::vector<uint8_t> changed_;  // per cutter
+    std::vector<uint32_t> list_;    // the changed ones
+    float margin_m_;
+};
+
+// Whether a growth of `after` can start from a record of `before`: everything but the attractors (places,
+// shapes, charges) and the cutters (places, thresholds, sides, actions) is the same (generators, terrain,
+// the walk, the solids, the number of attractors and of cutters).
 bool regrowable(const ParticleScene& before, const ParticleScene& after);
 
 }  // namespace ug

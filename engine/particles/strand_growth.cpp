@@ -124,6 +124,7 @@ float cutParameter(const Cutter& c, glm::vec3 p0, glm::vec3 p1) {
 struct Replay {
     const GrowthRecord& record;
     AttractorEdit edit;
+    CutterEdit cutter_edit;
     std::vector<uint8_t> parted;    // per recorded strand: the new growth no longer has an identical one
     SegmentGrid changed_segments;   // changed segments of earlier steps, new and recorded
     SegmentGrid changed_moves;      // changed moves of this step, new and recorded
@@ -136,6 +137,7 @@ struct Replay {
 
     Replay(const GrowthRecord& r, const ParticleScene& before, const ParticleScene& after, float reach)
         : record(r), edit(before.attractors, after.attractors, after.walk.step_length_m),
+          cutter_edit(before.cutters, after.cutters, after.walk.step_length_m),
           parted(r.strand_parent.size(), 0), changed_segments(reach), changed_moves(reach) {}
 };
 
@@ -591,13 +593,14 @@ void Growth::replayMove(size_t k, uint32_t step, bool everywhere) {
     const uint32_t j = rp.entry[k];
     const glm::vec3 p0 = points_.pos[strands_.last[active_[k]]];
     // Keeping distance or retrying, a proposal also reads the earlier segments near its trials.
-    rp.proposed[k] = j == kNone || everywhere || rp.edit.reaches(p0) ||
+    rp.proposed[k] = j == kNone || everywhere || rp.edit.reaches(p0) || rp.cutter_edit.reaches(p0) ||
                      (proposal_reads_segments_ && rp.changed_segments.anyNear(p0, [](uint32_t, uint32_t) { return true; }));
     if (rp.proposed[k]) {
         proposeAndTest(k, step);
+        // A move a changed cutter clips is a changed move, whatever its place: the cutter's action may differ.
         rp.same[k] = j != kNone && moves_.pos[k] == r.move_pos[j] && moves_.dir[k] == r.move_dir[j] &&
-                     moves_.cutter[k] == r.move_cutter[j] && moves_.still[k] == r.move_still[j] &&
-                     moves_.blocked[k] == firstVerdict(r, j);
+                     moves_.cutter[k] == r.move_cutter[j] && !rp.cutter_edit.changed(moves_.cutter[k]) &&
+                     moves_.still[k] == r.move_still[j] && moves_.blocked[k] == firstVerdict(r, j);
         return;
     }
     // The proposal is the record's, bit for bit, and so is the solid test (solids do not change).

@@ -1,7 +1,7 @@
 // Incremental re-growth of particle strands (StrandRegrower, docs/particles.md "Incremental re-growth"):
 // after any sequence of edits the strands are a full growth's, bit for bit, on any thread count; an edit
-// of an attractor with a radius of influence re-grows only part of the strands; any other edit grows in
-// full.
+// of an attractor with a radius of influence or of a cutter re-grows only part of the strands; any other
+// edit grows in full.
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -247,16 +247,120 @@ TEST(ParticleRegrowth, ACancelledGrowthKeepsTheRecordOfTheLastFinishedOne) {
     EXPECT_EQ(error, kGrowthCancelled);
 }
 
+// One random edit of a cutter: moved, its threshold, its side, its action, its kind.
+std::string editCutter(ParticleScene* scene, std::mt19937* rng) {
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    Cutter& c = scene->cutters[std::uniform_int_distribution<size_t>(0, scene->cutters.size() - 1)(*rng)];
+    switch (std::uniform_int_distribution<int>(0, 4)(*rng)) {
+        case 0: c.threshold_m += unit(*rng) * 0.03f; return "threshold";
+        case 1: c.center_m += glm::vec3(unit(*rng), unit(*rng), unit(*rng) * 0.1f) * 0.2f; return "moved";
+        case 2: c.action.kind = c.action.kind == StrandActionKind::Stop ? StrandActionKind::Split : StrandActionKind::Stop; return "action";
+        case 3:
+            c.kind = CutterKind::Sphere;
+            c.center_m = glm::vec3(unit(*rng) * 0.4f, unit(*rng) * 0.4f, 0.25f);
+            c.radius_m = 0.08f;
+            c.threshold_m = 0.0f;
+            c.side = CutterSide::Below;
+            return "a sphere";
+        default:
+            c.kind = CutterKind::Plane;
+            c.normal = glm::vec3(0.0f, 0.0f, 1.0f);
+            c.side = CutterSide::Above;
+            c.threshold_m = 0.15f + 0.1f * (unit(*rng) + 1.0f);
+            return "a plane";
+    }
+}
+
+// A cutter edit re-grows only the strands that come within a step of a changed cutter, old or new (its g
+// is a signed distance), and the moves it clips: the same strands as a full growth after any sequence.
+TEST(ParticleRegrowth, IncrementalEqualsFullAfterRandomCutterEdits) {
+    ParticleScene scene = crowdedSplittingGrass();
+    scene.generators[0].count = 900;
+    Cutter sphere;
+    sphere.kind = CutterKind::Sphere;
+    sphere.center_m = {0.25f, -0.2f, 0.12f};
+    sphere.radius_m = 0.06f;
+    sphere.side = CutterSide::Below;
+    sphere.action.kind = StrandActionKind::Stop;
+    scene.cutters.push_back(sphere);
+    StrandRegrower regrower;
+    std::mt19937 rng(23);
+    Strands out;
+    std::string error;
+    ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
+    uint64_t reused = 0;
+    for (int e = 0; e < 12; ++e) {
+        const std::string what = e % 3 == 2 ? editAttractor(&scene, &rng) : editCutter(&scene, &rng);
+        ASSERT_TRUE(regrower.grow(scene, {.threads = e % 2 ? 8 : 1}, &out, &error)) << error;
+        EXPECT_TRUE(regrower.lastReport().incremental) << what;
+        reused += regrower.lastReport().reused;
+        expectIdentical(out, fullGrowth(scene), "edit " + std::to_string(e) + ": " + what);
+    }
+    EXPECT_GT(out.stats.cutter_hits, 0u);
+    EXPECT_GT(reused, 0u);
+}
+
+TEST(ParticleRegrowth, AMovedCutterReGrowsOnlyWhatComesNearIt) {
+    ParticleScene scene = crowdedSplittingGrass();
+    Cutter sphere;  // a small stone that stops what reaches it, in one corner of the patch
+    sphere.kind = CutterKind::Sphere;
+    sphere.center_m = {0.45f, 0.45f, 0.1f};
+    sphere.radius_m = 0.05f;
+    sphere.side = CutterSide::Below;
+    scene.cutters.push_back(sphere);
+    StrandRegrower regrower;
+    Strands out;
+    std::string error;
+    ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
+    scene.cutters[1].center_m.x -= 0.04f;
+    ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
+    const RegrowReport report = regrower.lastReport();
+    ASSERT_TRUE(report.incremental);
+    EXPECT_GT(report.recomputed, 0u);
+    EXPECT_LT(double(report.recomputed), 0.25 * double(report.recomputed + report.reused));
+    expectIdentical(out, fullGrowth(scene), "the stone moved");
+}
+
+// A cutter whose action alone changes (its children gone, or new ones): the moves it clips part from the
+// record, so the children the record had are not taken for unchanged neighbours.
+TEST(ParticleRegrowth, ACuttersNewActionPartsTheMovesItClips) {
+    ParticleScene scene = crowdedSplittingGrass();
+    // A small sphere in the crowd that splits what reaches it: its children grow among strands that never
+    // touch it, whose records were refused by those children's segments.
+    scene.cutters[0].threshold_m = 1.0f;  // the plane out of reach
+    Cutter sphere;
+    sphere.kind = CutterKind::Sphere;
+    sphere.center_m = {0.05f, 0.0f, 0.0f};
+    sphere.radius_m = 0.2f;
+    sphere.side = CutterSide::Below;
+    sphere.action = crowdedSplittingGrass().cutters[0].action;  // a split
+    scene.cutters.insert(scene.cutters.begin(), sphere);
+    StrandRegrower regrower;
+    Strands out;
+    std::string error;
+    ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
+    const uint64_t splits = out.stats.splits;
+    for (const StrandActionKind kind : {StrandActionKind::Stop, StrandActionKind::Split, StrandActionKind::Kill}) {
+        scene.cutters[0].action.kind = kind;
+        ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
+        EXPECT_TRUE(regrower.lastReport().incremental);
+        expectIdentical(out, fullGrowth(scene), std::string("the cutter's action became ") + strandActionName(kind));
+        if (kind == StrandActionKind::Stop) {
+            EXPECT_LT(out.stats.splits, splits);
+        }
+    }
+}
+
 TEST(ParticleRegrowth, OtherEditsGrowInFullAndFailuresDropTheRecord) {
     ParticleScene scene = crowdedSplittingGrass();
     StrandRegrower regrower;
     Strands out;
     std::string error;
     ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
-    scene.cutters[0].threshold_m = 0.15f;
+    scene.walk.trials = 5;  // the walk changes every move
     ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
     EXPECT_FALSE(regrower.lastReport().incremental);
-    expectIdentical(out, fullGrowth(scene), "cutter moved");
+    expectIdentical(out, fullGrowth(scene), "trials changed");
     scene.attractors[1].influence_m = 0.4f;  // a new radius changes the term everywhere: all proposed again
     ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
     EXPECT_TRUE(regrower.lastReport().incremental);
