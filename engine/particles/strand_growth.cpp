@@ -151,6 +151,7 @@ public:
           keep2_(walk_.keep_distance_m * walk_.keep_distance_m),
           files_segments_(walk_.collisions || walk_.keep_distance_m > 0.0f),
           proposal_reads_segments_(walk_.keep_distance_m > 0.0f || (walk_.retry_refused && walk_.collisions)),
+          choosy_(walk_.keep_distance_m > 0.0f || walk_.retry_refused),
           // A segment is at most step_length long; two whose tubes touch have midpoints within
           // step_length + 2r (padded against rounding), the reach of the grids' queries. When a proposal
           // reads the segments (keeping distance, retrying), a trial's move (a step from the strand's
@@ -187,6 +188,7 @@ private:
     void propose(size_t k, uint32_t step);
     void place(size_t k, glm::vec3 p0, glm::vec3 dir);
     uint8_t refusal(size_t k) const;
+    uint8_t earlierVerdict(size_t k) const;
     void proposeAndTest(size_t k, uint32_t step);
     void replayMove(size_t k, uint32_t step, bool everywhere);
     void matchRecordedMoves(uint32_t step);
@@ -218,6 +220,7 @@ private:
     bool files_segments_;  // earlier segments are filed in grid_ (collisions or distance keeping)
     // A proposal depends on the earlier segments near it (distance keeping, or retrying with collisions).
     bool proposal_reads_segments_;
+    bool choosy_;  // a move is chosen among every trial that is not refused (keeping distance, retrying)
     float reach_;
     PointStore points_;
     StrandStore strands_;
@@ -281,7 +284,7 @@ void Growth::propose(size_t k, uint32_t step) {
     float best_f = 0.0f;
     uint32_t best_t = 0;
     // Keeping distance or retrying, every trial is kept, to take the fittest that is not refused.
-    const bool choosy = keep2_ > 0.0f || walk_.retry_refused;
+    const bool choosy = choosy_;
     std::array<float, 256> trial_f;
     std::array<glm::vec3, 256> trial_dir;
     for (uint32_t t = 0; t < walk_.trials; ++t) {
@@ -356,7 +359,13 @@ void Growth::place(size_t k, glm::vec3 p0, glm::vec3 dir) {
 uint8_t Growth::refusal(size_t k) const {
     if (moves_.still[k]) return 0;
     if (keep2_ > 0.0f && crowded(active_[k], moves_.pos[k])) return 4;
-    if (!walk_.retry_refused) return 0;
+    return walk_.retry_refused ? earlierVerdict(k) : 0;
+}
+
+// The placed move k against what earlier steps left: 3 it enters a solid, 1 it comes within 2r of an
+// earlier segment, else 0 (a move that does not leave its point never does).
+uint8_t Growth::earlierVerdict(size_t k) const {
+    if (moves_.still[k]) return 0;
     if (walk_.solids && entersSolid(k)) return 3;
     if (walk_.collisions && hitsEarlierSegment(k)) return 1;
     return 0;
@@ -578,8 +587,7 @@ void Growth::proposeAndTest(size_t k, uint32_t step) {
     propose(k, step);
     // Refused while choosing, or (retrying) already tested.
     if (moves_.blocked[k] || walk_.retry_refused) return;
-    if (walk_.solids && !moves_.still[k] && entersSolid(k)) moves_.blocked[k] = 3;
-    else if (walk_.collisions && !moves_.still[k] && hitsEarlierSegment(k)) moves_.blocked[k] = 1;
+    moves_.blocked[k] = earlierVerdict(k);
 }
 
 // The first verdict (before the test against this step's lower moves) of recorded move j.
