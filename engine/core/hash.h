@@ -30,6 +30,13 @@ inline uint64_t hashWords(uint64_t a, uint64_t b = 0, uint64_t c = 0, uint64_t d
     return mix64(h ^ d);
 }
 
+// hashWords(a, b, c, d) for many d (the trials of one move): the state after a, b and c is mixed once,
+// then hashLastWord(state, d) is exactly hashWords(a, b, c, d).
+inline uint64_t hashFirstWords(uint64_t a, uint64_t b, uint64_t c) {
+    return mix64(mix64(mix64(a ^ 0x243f6a8885a308d3ull) ^ b) ^ c);
+}
+inline uint64_t hashLastWord(uint64_t first_words, uint64_t d) { return mix64(first_words ^ d); }
+
 // Uniform float in [0, 1) from the top 24 bits of a hash: exact, never 1.
 inline float unitFloat(uint64_t h) { return float(h >> 40) * (1.0f / 16777216.0f); }
 // Uniform double in [0, 1) from the top 53 bits.

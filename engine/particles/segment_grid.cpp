@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "core/parallel.h"
+
 namespace ug {
 
 void SegmentGrid::clear() {
@@ -16,7 +18,7 @@ void SegmentGrid::rehash(size_t slots) {
     // Refiled in insertion order so every list keeps the order a table of this size from the start
     // would have (queries only ask "any?", but the order is cheap to keep fixed).
     for (uint32_t id : ids_) {
-        const uint32_t slot = cellHash(cellOf(entries_[id].mid)) & mask_;
+        const uint32_t slot = GridCells::hash(cells_.cellOf(entries_[id].mid)) & mask_;
         entries_[id].next = heads_[slot];
         heads_[slot] = id;
     }
@@ -33,7 +35,7 @@ void SegmentGrid::reserve(size_t segments) {
     if (slots > heads_.size()) rehash(slots);
 }
 
-void SegmentGrid::insert(uint32_t id, glm::vec3 midpoint, uint32_t tag) {
+void SegmentGrid::store(uint32_t id, glm::vec3 midpoint, uint32_t tag) {
     if (id >= entries_.size()) {
         entries_.resize(std::max<size_t>(size_t(id) + 1, entries_.size() * 2));
         tags_.resize(entries_.size());
@@ -42,13 +44,66 @@ void SegmentGrid::insert(uint32_t id, glm::vec3 midpoint, uint32_t tag) {
     tags_[id] = tag;
     ids_.push_back(id);
     ++count_;
+}
+
+void SegmentGrid::insert(uint32_t id, glm::vec3 midpoint, uint32_t tag) {
+    store(id, midpoint, tag);
     if (heads_.empty() || count_ * 2 > heads_.size()) {
         rehash(std::max<size_t>(1024, heads_.size() * 4));
         return;
     }
-    const uint32_t slot = cellHash(cellOf(midpoint)) & mask_;
-    entries_[id].next = heads_[slot];
-    heads_[slot] = id;
+    link(id, GridCells::hash(cells_.cellOf(midpoint)) & mask_);
+}
+
+void SegmentGrid::insert(const std::vector<Filed>& batch, int threads) {
+    for (const Filed& f : batch) store(f.id, f.midpoint, f.tag);
+    if (heads_.empty() || count_ * 2 > heads_.size()) {
+        // The size serial filing would reach (it quadruples the table whenever it is half full).
+        size_t slots = std::max<size_t>(1024, heads_.size() * 4);
+        while (count_ * 2 > slots) slots *= 4;
+        rehash(slots);  // files the batch too
+        return;
+    }
+    std::vector<uint32_t> slot(batch.size());
+    parallelFor(batch.size(), threads, 4096, [&](size_t begin, size_t end, int) {
+        for (size_t i = begin; i < end; ++i) slot[i] = GridCells::hash(cells_.cellOf(batch[i].midpoint)) & mask_;
+    });
+    // Each share of the table is linked by one worker, in the batch's order: the lists are those of
+    // serial insertion, for any thread count.
+    const size_t shares = size_t(resolveThreadCount(threads));
+    const uint64_t slots = uint64_t(mask_) + 1;
+    parallelFor(shares, threads, 1, [&](size_t begin, size_t end, int) {
+        for (size_t share = begin; share < end; ++share) {
+            const uint64_t lo = slots * share / shares, hi = slots * (share + 1) / shares;
+            for (size_t i = 0; i < batch.size(); ++i)
+                if (slot[i] >= lo && slot[i] < hi) link(batch[i].id, slot[i]);
+        }
+    });
+}
+
+void StepSegmentGrid::build(const std::vector<SegmentGrid::Filed>& batch, int threads) {
+    size_t slots = 1024;
+    while (slots < batch.size() * 2) slots *= 2;
+    mask_ = uint32_t(slots - 1);
+    slot_.resize(batch.size());
+    parallelFor(batch.size(), threads, 4096, [&](size_t begin, size_t end, int) {
+        for (size_t i = begin; i < end; ++i) slot_[i] = GridCells::hash(cells_.cellOf(batch[i].midpoint)) & mask_;
+    });
+    // A counting sort by slot, stable: start_[s + 1] counts slot s, the running sum makes it slot s + 1's
+    // start, and placing the segments advances each slot's start to its end.
+    start_.assign(slots + 1, 0);
+    for (uint32_t s : slot_) ++start_[s + 1];
+    for (size_t s = 0; s < slots; ++s) start_[s + 1] += start_[s];
+    entries_.resize(batch.size());
+    tags_.resize(batch.size());
+    for (size_t i = 0; i < batch.size(); ++i) {
+        const uint32_t at = start_[slot_[i]]++;
+        entries_[at] = Entry{batch[i].midpoint, batch[i].id};
+        tags_[at] = batch[i].tag;
+    }
+    // The increments moved every start to its slot's end, the next slot's start: shift them back.
+    for (size_t s = slots; s > 0; --s) start_[s] = start_[s - 1];
+    start_[0] = 0;
 }
 
 float segmentSegmentDistance2(glm::vec3 p0, glm::vec3 p1, glm::vec3 q0, glm::vec3 q1) {

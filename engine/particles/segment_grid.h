@@ -1,17 +1,21 @@
-// A spatial hash of strand segments for the collision test of particle sculpting: each segment is filed
-// under the cell of its midpoint, cells are hashed into a power-of-two table of list heads, and a query
-// for the segments whose midpoints lie within `reach` of a point visits the 2 x 2 x 2 cells around it.
-// Cells are twice the reach (padded against rounding), so the reach's cube lies in the cell and its
-// neighbours on the nearer side along each axis; with reach = the longest segment plus the distance looked
-// for, every segment that can come that close to the query is visited. Eight lookups of cells twice as
-// wide took a quarter less CPU time than 27 of cells as wide as the reach (a 20k-strand fur ball), though
-// they visit more segments.
+// Spatial hashes of strand segments for the collision tests of particle sculpting: each segment is filed
+// under the cell of its midpoint, cells are hashed into a power-of-two table of slots, and a query for the
+// segments whose midpoints lie within `reach` of a point visits the 2 x 2 x 2 cells around it. Cells are
+// twice the reach (padded against rounding), so the reach's cube lies in the cell and its neighbours on
+// the nearer side along each axis; with reach = the longest segment plus the distance looked for, every
+// segment that can come that close to the query is visited. Eight lookups of cells twice as wide took a
+// quarter less CPU time than 27 of cells as wide as the reach (a 20k-strand fur ball), though they visit
+// more segments.
 //
-// Cells that hash to the same slot share a list: a query sees a few extra segments, never fewer, so the
-// table needs no keys. Insertion is serial (the caller files segments in a fixed order); queries are
-// read-only and may run on any number of threads.
+// Cells that hash to the same slot share it: a query sees a few extra segments, never fewer, so the
+// tables need no keys. Queries are read-only and may run on any number of threads.
+//
+// SegmentGrid grows step by step (the segments of earlier steps): a list per slot, linked through the
+// segments. StepSegmentGrid holds one step's moves, built at once: a slot's segments lie together (a
+// counting sort), so a query reads a few contiguous runs instead of chasing a list through memory.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -19,19 +23,53 @@
 
 namespace ug {
 
+// The cells and slots both grids share.
+class GridCells {
+public:
+    explicit GridCells(float reach_m) : reach_(reach_m), cell_(2.0f * reach_m * 1.001f), inv_cell_(1.0f / cell_) {}
+
+    float reach() const { return reach_; }
+    glm::ivec3 cellOf(glm::vec3 p) const { return glm::ivec3(glm::floor(p * inv_cell_)); }
+    // The lowest cell of the 2 x 2 x 2 block whose cells hold every midpoint within the reach of p: the
+    // reach's cube around p lies in p's cell and its neighbours on the sides p is nearer to.
+    glm::ivec3 blockOf(glm::vec3 p) const {
+        const glm::vec3 f = p * inv_cell_;
+        const glm::ivec3 c(glm::floor(f));
+        const glm::vec3 frac = f - glm::vec3(c);
+        return {c.x - (frac.x < 0.5f), c.y - (frac.y < 0.5f), c.z - (frac.z < 0.5f)};
+    }
+    // Linear in the cell's coordinates, so neighbouring cells along x take neighbouring slots (a query's
+    // two cells along x are one run) and the queries of neighbouring strands (close ids, close places)
+    // touch the same cache lines, where a scrambling hash sends each lookup somewhere new. Distinct cells
+    // that alias only lengthen a slot.
+    static uint32_t hash(glm::ivec3 c) { return uint32_t(c.x) + uint32_t(c.y) * 4099u + uint32_t(c.z) * 16'851'989u; }
+
+private:
+    float reach_, cell_, inv_cell_;
+};
+
 class SegmentGrid {
 public:
     static constexpr uint32_t kNone = 0xffffffffu;
 
     // reach_m > 0: the distance between midpoints that queries look for.
-    explicit SegmentGrid(float reach_m = 1.0f)
-        : reach_(reach_m), cell_(2.0f * reach_m * 1.001f), inv_cell_(1.0f / cell_) {}
+    explicit SegmentGrid(float reach_m = 1.0f) : cells_(reach_m) {}
 
     // Forgets every segment; keeps the cell size and the memory.
     void clear();
     // Files segment `id` (ids are the caller's, dense from 0) with its midpoint and a tag of the caller's
     // (the strand) kept beside it, so a query rejects most segments without touching the caller's data.
     void insert(uint32_t id, glm::vec3 midpoint, uint32_t tag);
+    // insert() for each segment of a batch, in its order, on up to `threads` threads: each links the slots
+    // of its own share of the table in the batch's order, so every list comes out as serial insertion
+    // leaves it (a growth files each step's segments at once; serially, that took a fifth of a fur ball's
+    // growth).
+    struct Filed {
+        uint32_t id;
+        uint32_t tag;
+        glm::vec3 midpoint;
+    };
+    void insert(const std::vector<Filed>& batch, int threads);
     // Sizes the table for `segments` segments with ids below that, so filing them never rehashes.
     void reserve(size_t segments);
     size_t size() const { return count_; }
@@ -42,17 +80,12 @@ public:
     template <typename Visit>
     bool anyNear(glm::vec3 midpoint, Visit&& visit) const {
         if (heads_.empty()) return false;
-        const float reach2 = reach_ * reach_;
-        // Cells are twice the reach, so the reach's cube around midpoint lies in the 2 x 2 x 2 cells
-        // on the sides of its cell that midpoint is nearer to.
-        const glm::vec3 f = midpoint * inv_cell_;
-        const glm::ivec3 c(glm::floor(f));
-        const glm::vec3 frac = f - glm::vec3(c);
-        const glm::ivec3 lo(c.x - (frac.x < 0.5f), c.y - (frac.y < 0.5f), c.z - (frac.z < 0.5f));
+        const float reach2 = cells_.reach() * cells_.reach();
+        const glm::ivec3 lo = cells_.blockOf(midpoint);
         for (int dz = 0; dz <= 1; ++dz)
             for (int dy = 0; dy <= 1; ++dy)
                 for (int dx = 0; dx <= 1; ++dx) {
-                    const uint32_t slot = (cellHash(glm::ivec3(lo.x, lo.y + dy, lo.z + dz)) + uint32_t(dx)) & mask_;
+                    const uint32_t slot = (GridCells::hash(glm::ivec3(lo.x, lo.y + dy, lo.z + dz)) + uint32_t(dx)) & mask_;
                     for (uint32_t id = heads_[slot]; id != kNone;) {
                         const Entry& e = entries_[id];
                         const glm::vec3 d = e.mid - midpoint;
@@ -71,24 +104,68 @@ private:
         uint32_t next;
     };
 
-    glm::ivec3 cellOf(glm::vec3 p) const {
-        return glm::ivec3(glm::floor(p * inv_cell_));
-    }
-    // Linear in the cell's coordinates, so neighbouring cells along x share cache lines and the queries
-    // of neighbouring strands (close ids, close places) touch the same lines, where a scrambling hash
-    // sends each lookup somewhere new. Distinct cells that alias only lengthen a list.
-    static uint32_t cellHash(glm::ivec3 c) {
-        return uint32_t(c.x) + uint32_t(c.y) * 4099u + uint32_t(c.z) * 16'851'989u;
-    }
     void rehash(size_t slots);
+    void store(uint32_t id, glm::vec3 midpoint, uint32_t tag);
+    void link(uint32_t id, uint32_t slot) {
+        entries_[id].next = heads_[slot];
+        heads_[slot] = id;
+    }
 
-    float reach_, cell_, inv_cell_;
+    GridCells cells_;
     uint32_t mask_ = 0;
     size_t count_ = 0;
     std::vector<uint32_t> heads_;
     std::vector<Entry> entries_;  // by id
     std::vector<uint32_t> tags_;  // by id
     std::vector<uint32_t> ids_;   // filed ids in insertion order (rehash keeps their order)
+};
+
+class StepSegmentGrid {
+public:
+    explicit StepSegmentGrid(float reach_m = 1.0f) : cells_(reach_m) {}
+
+    // Replaces the grid's segments by the batch's (ids need not be dense), on up to `threads` threads;
+    // keeps the memory.
+    void build(const std::vector<SegmentGrid::Filed>& batch, int threads);
+
+    // As SegmentGrid::anyNear.
+    template <typename Visit>
+    bool anyNear(glm::vec3 midpoint, Visit&& visit) const {
+        if (entries_.empty()) return false;
+        const float reach2 = cells_.reach() * cells_.reach();
+        const glm::ivec3 lo = cells_.blockOf(midpoint);
+        auto scan = [&](uint32_t begin, uint32_t end) {
+            for (uint32_t i = begin; i < end; ++i) {
+                const glm::vec3 d = entries_[i].mid - midpoint;
+                if (glm::dot(d, d) <= reach2 && visit(entries_[i].id, tags_[i])) return true;
+            }
+            return false;
+        };
+        for (int dz = 0; dz <= 1; ++dz)
+            for (int dy = 0; dy <= 1; ++dy) {
+                const uint32_t slot = GridCells::hash(glm::ivec3(lo.x, lo.y + dy, lo.z + dz)) & mask_;
+                // The block's two cells along x take this slot and the next, one run unless it wraps.
+                if (slot < mask_) {
+                    if (scan(start_[slot], start_[slot + 2])) return true;
+                } else if (scan(start_[slot], start_[slot + 1]) || scan(start_[0], start_[1])) {
+                    return true;
+                }
+            }
+        return false;
+    }
+
+private:
+    struct Entry {
+        glm::vec3 mid;
+        uint32_t id;
+    };
+
+    GridCells cells_;
+    uint32_t mask_ = 0;
+    std::vector<uint32_t> start_;  // per slot, where its segments begin in entries_; one more at the end
+    std::vector<Entry> entries_;   // by slot, in the batch's order within one
+    std::vector<uint32_t> tags_;   // beside entries_
+    std::vector<uint32_t> slot_;   // scratch: each batch segment's slot
 };
 
 // Squared distance between segments p0p1 and q0q1 (either may be a point).

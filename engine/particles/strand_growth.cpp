@@ -225,7 +225,8 @@ private:
     PointStore points_;
     StrandStore strands_;
     SegmentGrid grid_;       // segments of earlier steps, by their end point's id
-    SegmentGrid step_grid_;  // this step's moves, by their index in active_
+    StepSegmentGrid step_grid_;  // this step's moves, by their index in active_
+    std::vector<SegmentGrid::Filed> filing_;  // what a step files in either grid, in id order
     std::vector<uint32_t> active_;
     std::vector<float> charge_;  // a_i(t) of this step
     Moves moves_;
@@ -272,7 +273,6 @@ void Growth::seed() {
     }
     stats_.seeded = seeds.positions.size();
     if (files_segments_) grid_.reserve(expected);
-    if (walk_.collisions) step_grid_.reserve(seeds.positions.size());
 }
 
 void Growth::propose(size_t k, uint32_t step) {
@@ -287,8 +287,9 @@ void Growth::propose(size_t k, uint32_t step) {
     const bool choosy = choosy_;
     std::array<float, 256> trial_f;
     std::array<glm::vec3, 256> trial_dir;
+    const uint64_t move_hash = hashFirstWords(walk_.seed, kTrialTag + strands_.key[s], step);
     for (uint32_t t = 0; t < walk_.trials; ++t) {
-        const uint64_t h = hashWords(walk_.seed, kTrialTag + strands_.key[s], step, t);
+        const uint64_t h = hashLastWord(move_hash, t);
         const glm::vec3 dir = frame * coneDirectionCos(cos_cone_, unitFloat(h), unitFloat(mix64(h)));
         const glm::vec3 p = p0 + dir * walk_.step_length_m;
         float f = 0.0f;
@@ -740,9 +741,10 @@ bool Growth::run(Strands* out, std::string* error) {
         }
         if (walk_.collisions) {
             // Moves of this step, filed in id order; a move refused by an earlier segment never blocks.
-            step_grid_.clear();
+            filing_.clear();
             for (size_t k = 0; k < active_.size(); ++k)
-                if (filed(k)) step_grid_.insert(uint32_t(k), moveMidpoint(k), active_[k]);
+                if (filed(k)) filing_.push_back({uint32_t(k), active_[k], moveMidpoint(k)});
+            step_grid_.build(filing_, threads_);
             testLowerMoves(step);
         }
         if (record_) {
@@ -761,7 +763,14 @@ bool Growth::run(Strands* out, std::string* error) {
             r.move_still.insert(r.move_still.end(), moves_.still.begin(), moves_.still.end());
         }
 
+        // The strands that move (or are clipped where they stand) turn their frames to their moves, each
+        // on its own, before the serial actions that may turn or split them.
+        parallelFor(active_.size(), threads_, 512, [&](size_t begin, size_t end, int) {
+            for (size_t k = begin; k < end; ++k)
+                if (moves_.blocked[k] == 0) strands_.frame[active_[k]] = turnFrameTo(strands_.frame[active_[k]], moves_.dir[k]);
+        });
         // Actions, serially in id order: children and points get their ids in that order.
+        filing_.clear();
         for (size_t k = 0; k < active_.size(); ++k) {
             const uint32_t s = active_[k];
             if (replay_) {
@@ -791,7 +800,7 @@ bool Growth::run(Strands* out, std::string* error) {
                     points_.prev.push_back(from);
                     points_.strand.push_back(s);
                     if (files_segments_) {
-                        grid_.insert(id, mid, s);
+                        filing_.push_back({id, s, mid});
                         if (replay_ && strands_.recorded[s] == kNone)
                             replay_->changed_segments.insert(replay_->changed_ids++, mid, 0);
                     }
@@ -799,7 +808,6 @@ bool Growth::run(Strands* out, std::string* error) {
                     ++strands_.npoints[s];
                     ++stats_.moves;
                 }
-                strands_.frame[s] = turnFrameTo(strands_.frame[s], moves_.dir[k]);
                 ++strands_.age[s];
                 if (moves_.cutter[k] >= 0) {
                     ++stats_.cutter_hits;
@@ -819,6 +827,8 @@ bool Growth::run(Strands* out, std::string* error) {
                 }
             }
         }
+        // Filed after the actions, which read no segment: the next step's proposals are the first to.
+        if (files_segments_) grid_.insert(filing_, threads_);
         if (replay_) partFromRecord(step);
     }
     emit(out);
@@ -844,26 +854,32 @@ void Growth::emit(Strands* out) const {
     *out = Strands{};
     out->stats = stats_;
     out->stats.strands = strands_.size();
+    // Which strands come out and where their points go, serially (a parent always precedes its children
+    // and, having split, has moved and was not killed); then each chain is walked back on its own.
     std::vector<int32_t> index(strands_.size(), -1);
-    std::vector<glm::vec3> chain;
     for (uint32_t s = 0; s < strands_.size(); ++s) {
         if (strands_.state[s] == StrandState::Killed) continue;
         if (strands_.npoints[s] < 2) {
             ++out->stats.dropped;
             continue;
         }
-        chain.clear();
-        for (uint32_t p = strands_.last[s];; p = points_.prev[p]) {
-            chain.push_back(points_.pos[p]);
-            if (p == strands_.first[s]) break;
-        }
         index[s] = int32_t(out->size());
-        out->points.insert(out->points.end(), chain.rbegin(), chain.rend());
-        out->offsets.push_back(uint32_t(out->points.size()));
-        // A parent always precedes its children and, having split, has moved and was not killed.
+        out->offsets.push_back(uint32_t(out->points.size() + strands_.npoints[s]));
         out->parent.push_back(strands_.parent[s] >= 0 ? index[size_t(strands_.parent[s])] : -1);
         out->particle.push_back(s);
+        out->points.resize(out->offsets.back());  // grows geometrically; filled below
     }
+    parallelFor(out->particle.size(), threads_, 1024, [&](size_t begin, size_t end, int) {
+        for (size_t i = begin; i < end; ++i) {
+            const uint32_t s = out->particle[i];
+            size_t at = out->offsets[i + 1];
+            for (uint32_t p = strands_.last[s];; p = points_.prev[p]) {
+                out->points[--at] = points_.pos[p];
+                if (p == strands_.first[s]) break;
+            }
+            assert(at == out->offsets[i]);
+        }
+    });
     out->radii.assign(out->points.size(), walk_.strand_radius_m);
 }
 
