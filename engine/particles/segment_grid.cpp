@@ -85,6 +85,8 @@ void StepSegmentGrid::build(const std::vector<SegmentGrid::Filed>& batch, int th
     size_t slots = 1024;
     while (slots < batch.size() * 2) slots *= 2;
     mask_ = uint32_t(slots - 1);
+    ascending_ = std::is_sorted(batch.begin(), batch.end(),
+                                [](const SegmentGrid::Filed& a, const SegmentGrid::Filed& b) { return a.id < b.id; });
     slot_.resize(batch.size());
     parallelFor(batch.size(), threads, 4096, [&](size_t begin, size_t end, int) {
         for (size_t i = begin; i < end; ++i) slot_[i] = GridCells::hash(cells_.cellOf(batch[i].midpoint)) & mask_;

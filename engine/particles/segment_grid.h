@@ -128,29 +128,28 @@ public:
     // keeps the memory.
     void build(const std::vector<SegmentGrid::Filed>& batch, int threads);
 
-    // As SegmentGrid::anyNear.
+    // As SegmentGrid::anyNear, for the segments with ids below `below` only (the test of a move against
+    // the moves of lower ids): a slot keeps the batch's order, so when the batch's ids ascend, the scan of
+    // a slot stops at the first id that does not qualify.
     template <typename Visit>
-    bool anyNear(glm::vec3 midpoint, Visit&& visit) const {
+    bool anyNear(glm::vec3 midpoint, Visit&& visit, uint32_t below = SegmentGrid::kNone) const {
         if (entries_.empty()) return false;
         const float reach2 = cells_.reach() * cells_.reach();
         const glm::ivec3 lo = cells_.blockOf(midpoint);
-        auto scan = [&](uint32_t begin, uint32_t end) {
-            for (uint32_t i = begin; i < end; ++i) {
-                const glm::vec3 d = entries_[i].mid - midpoint;
-                if (glm::dot(d, d) <= reach2 && visit(entries_[i].id, tags_[i])) return true;
-            }
-            return false;
-        };
         for (int dz = 0; dz <= 1; ++dz)
-            for (int dy = 0; dy <= 1; ++dy) {
-                const uint32_t slot = GridCells::hash(glm::ivec3(lo.x, lo.y + dy, lo.z + dz)) & mask_;
-                // The block's two cells along x take this slot and the next, one run unless it wraps.
-                if (slot < mask_) {
-                    if (scan(start_[slot], start_[slot + 2])) return true;
-                } else if (scan(start_[slot], start_[slot + 1]) || scan(start_[0], start_[1])) {
-                    return true;
+            for (int dy = 0; dy <= 1; ++dy)
+                for (int dx = 0; dx <= 1; ++dx) {
+                    // The block's two cells along x take neighbouring slots.
+                    const uint32_t slot = (GridCells::hash(glm::ivec3(lo.x, lo.y + dy, lo.z + dz)) + uint32_t(dx)) & mask_;
+                    for (uint32_t i = start_[slot]; i < start_[slot + 1]; ++i) {
+                        if (entries_[i].id >= below) {
+                            if (ascending_) break;
+                            continue;
+                        }
+                        const glm::vec3 d = entries_[i].mid - midpoint;
+                        if (glm::dot(d, d) <= reach2 && visit(entries_[i].id, tags_[i])) return true;
+                    }
                 }
-            }
         return false;
     }
 
@@ -162,6 +161,7 @@ private:
 
     GridCells cells_;
     uint32_t mask_ = 0;
+    bool ascending_ = true;        // the batch's ids ascend
     std::vector<uint32_t> start_;  // per slot, where its segments begin in entries_; one more at the end
     std::vector<Entry> entries_;   // by slot, in the batch's order within one
     std::vector<uint32_t> tags_;   // beside entries_

@@ -494,13 +494,12 @@ bool Growth::crowded(uint32_t s, glm::vec3 p) const {
 bool Growth::hitsLowerMove(size_t k) const {
     const uint32_t from = strands_.last[active_[k]];
     const glm::vec3 a = points_.pos[from], b = moves_.pos[k];
+    // Only lower ids have priority; siblings leaving their split point together share it.
     return step_grid_.anyNear(0.5f * (a + b), [&](uint32_t j, uint32_t) {
-        // Only lower ids have priority; siblings leaving their split point together share it.
-        if (j >= k) return false;
         const uint32_t other = strands_.last[active_[j]];
         if (other == from) return false;
         return segmentSegmentDistance2(a, b, points_.pos[other], moves_.pos[j]) < reach2_;
-    });
+    }, uint32_t(k));
 }
 
 void Growth::split(const StrandAction& action, uint32_t s) {

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <thread>
 #include <vector>
 
 #include "core/hash.h"
@@ -48,6 +49,35 @@ TEST(Parallel, CoversEveryIndexOnceForAnyThreadCount) {
         });
         for (size_t i = 0; i < hits.size(); ++i) ASSERT_EQ(hits[i].load(), 1) << i;
     }
+}
+
+TEST(Parallel, LoopsFromSeveralThreadsAndNestedLoopsEachCoverTheirIndicesOnce) {
+    // The kept threads run one loop at a time: loops started together from other threads, and loops
+    // started inside a loop's body, take threads of their own; every one still covers its range once.
+    constexpr int kCallers = 4;
+    std::vector<std::vector<std::atomic<int>>> hits(kCallers);
+    for (auto& h : hits) h = std::vector<std::atomic<int>>(3001);
+    std::vector<std::atomic<int>> nested(64 * 50);
+    std::vector<std::thread> callers;
+    for (int c = 0; c < kCallers; ++c)
+        callers.emplace_back([&, c] {
+            for (int round = 0; round < 20; ++round)
+                parallelFor(hits[size_t(c)].size(), 3, 7, [&](size_t b, size_t e, int worker) {
+                    EXPECT_LT(worker, 3);
+                    for (size_t i = b; i < e; ++i) hits[size_t(c)][i]++;
+                });
+        });
+    parallelFor(64, 2, 1, [&](size_t b, size_t e, int) {
+        for (size_t i = b; i < e; ++i)
+            parallelFor(50, 2, 3, [&](size_t nb, size_t ne, int worker) {
+                EXPECT_LT(worker, 2);
+                for (size_t j = nb; j < ne; ++j) nested[i * 50 + j]++;
+            });
+    });
+    for (std::thread& t : callers) t.join();
+    for (int c = 0; c < kCallers; ++c)
+        for (size_t i = 0; i < hits[size_t(c)].size(); ++i) ASSERT_EQ(hits[size_t(c)][i].load(), 20) << c << " " << i;
+    for (size_t i = 0; i < nested.size(); ++i) ASSERT_EQ(nested[i].load(), 1) << i;
 }
 
 }  // namespace ug

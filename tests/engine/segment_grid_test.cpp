@@ -2,6 +2,7 @@
 // what brute force finds, and a batch filed on several threads leaves the lists serial filing leaves.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <set>
 #include <vector>
 
@@ -54,6 +55,33 @@ TEST(StepSegmentGrid, VisitsExactlyTheSegmentsWithinReach) {
             seen += ids.size();
         }
         EXPECT_GT(seen, 1500u * 4u);  // about 6 a query: the sets are not trivially empty
+    }
+}
+
+TEST(StepSegmentGrid, AQueryBelowAnIdVisitsOnlyTheLowerIdsWithinReach) {
+    // The scan of a slot stops at the first id not below when the batch's ids ascend; when they do not,
+    // it must go on.
+    const float reach = 0.05f;
+    std::vector<SegmentGrid::Filed> batch = scatteredBatch(4000, 0.6f);
+    for (bool ascending : {true, false}) {
+        if (!ascending) std::reverse(batch.begin(), batch.end());
+        StepSegmentGrid grid(reach);
+        grid.build(batch, 2);
+        size_t seen = 0;
+        for (uint32_t q = 0; q < 1000; ++q) {
+            const glm::vec3 p = randomPoint(8, q, 0.7f);
+            const uint32_t below = 5 * (4 * q) + 2;  // ids are 5i + 2
+            std::set<uint32_t> ids, expected;
+            grid.anyNear(p, [&](uint32_t id, uint32_t) {
+                ids.insert(id);
+                return false;
+            }, below);
+            for (uint32_t id : withinReach(batch, p, reach))
+                if (id < below) expected.insert(id);
+            ASSERT_EQ(ids, expected) << "query " << q << (ascending ? ", ascending" : ", descending");
+            seen += ids.size();
+        }
+        EXPECT_GT(seen, 1000u * 2u);
     }
 }
 
