@@ -44,6 +44,19 @@ public:
     // that alias only lengthen a slot.
     static uint32_t hash(glm::ivec3 c) { return uint32_t(c.x) + uint32_t(c.y) * 4099u + uint32_t(c.z) * 16'851'989u; }
 
+    // Calls scan(slot) for the slots (of a table of mask + 1) of the 2 x 2 x 2 cells around p, until one
+    // returns true; returns whether one did. The block's two cells along x take neighbouring slots.
+    template <typename Scan>
+    bool anySlotAround(glm::vec3 p, uint32_t mask, Scan&& scan) const {
+        const glm::ivec3 lo = blockOf(p);
+        for (int dz = 0; dz <= 1; ++dz)
+            for (int dy = 0; dy <= 1; ++dy) {
+                const uint32_t row = hash(glm::ivec3(lo.x, lo.y + dy, lo.z + dz));
+                if (scan(row & mask) || scan((row + 1u) & mask)) return true;
+            }
+        return false;
+    }
+
 private:
     float reach_, cell_, inv_cell_;
 };
@@ -81,19 +94,15 @@ public:
     bool anyNear(glm::vec3 midpoint, Visit&& visit) const {
         if (heads_.empty()) return false;
         const float reach2 = cells_.reach() * cells_.reach();
-        const glm::ivec3 lo = cells_.blockOf(midpoint);
-        for (int dz = 0; dz <= 1; ++dz)
-            for (int dy = 0; dy <= 1; ++dy)
-                for (int dx = 0; dx <= 1; ++dx) {
-                    const uint32_t slot = (GridCells::hash(glm::ivec3(lo.x, lo.y + dy, lo.z + dz)) + uint32_t(dx)) & mask_;
-                    for (uint32_t id = heads_[slot]; id != kNone;) {
-                        const Entry& e = entries_[id];
-                        const glm::vec3 d = e.mid - midpoint;
-                        if (glm::dot(d, d) <= reach2 && visit(id, tags_[id])) return true;
-                        id = e.next;
-                    }
-                }
-        return false;
+        return cells_.anySlotAround(midpoint, mask_, [&](uint32_t slot) {
+            for (uint32_t id = heads_[slot]; id != kNone;) {
+                const Entry& e = entries_[id];
+                const glm::vec3 d = e.mid - midpoint;
+                if (glm::dot(d, d) <= reach2 && visit(id, tags_[id])) return true;
+                id = e.next;
+            }
+            return false;
+        });
     }
 
 private:
@@ -135,22 +144,17 @@ public:
     bool anyNear(glm::vec3 midpoint, Visit&& visit, uint32_t below = SegmentGrid::kNone) const {
         if (entries_.empty()) return false;
         const float reach2 = cells_.reach() * cells_.reach();
-        const glm::ivec3 lo = cells_.blockOf(midpoint);
-        for (int dz = 0; dz <= 1; ++dz)
-            for (int dy = 0; dy <= 1; ++dy)
-                for (int dx = 0; dx <= 1; ++dx) {
-                    // The block's two cells along x take neighbouring slots.
-                    const uint32_t slot = (GridCells::hash(glm::ivec3(lo.x, lo.y + dy, lo.z + dz)) + uint32_t(dx)) & mask_;
-                    for (uint32_t i = start_[slot]; i < start_[slot + 1]; ++i) {
-                        if (entries_[i].id >= below) {
-                            if (ascending_) break;
-                            continue;
-                        }
-                        const glm::vec3 d = entries_[i].mid - midpoint;
-                        if (glm::dot(d, d) <= reach2 && visit(entries_[i].id, tags_[i])) return true;
-                    }
+        return cells_.anySlotAround(midpoint, mask_, [&](uint32_t slot) {
+            for (uint32_t i = start_[slot]; i < start_[slot + 1]; ++i) {
+                if (entries_[i].id >= below) {
+                    if (ascending_) break;
+                    continue;
                 }
-        return false;
+                const glm::vec3 d = entries_[i].mid - midpoint;
+                if (glm::dot(d, d) <= reach2 && visit(entries_[i].id, tags_[i])) return true;
+            }
+            return false;
+        });
     }
 
 private:
