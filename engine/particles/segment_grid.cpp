@@ -64,7 +64,8 @@ void SegmentGrid::insert(const std::vector<Filed>& batch, int threads) {
         rehash(slots);  // files the batch too
         return;
     }
-    std::vector<uint32_t> slot(batch.size());
+    std::vector<uint32_t>& slot = slot_;
+    slot.resize(batch.size());
     parallelFor(batch.size(), threads, 4096, [&](size_t begin, size_t end, int) {
         for (size_t i = begin; i < end; ++i) slot[i] = GridCells::hash(cells_.cellOf(batch[i].midpoint)) & mask_;
     });

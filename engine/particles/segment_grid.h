@@ -127,6 +127,7 @@ private:
     std::vector<Entry> entries_;  // by id
     std::vector<uint32_t> tags_;  // by id
     std::vector<uint32_t> ids_;   // filed ids in insertion order (rehash keeps their order)
+    std::vector<uint32_t> slot_;  // scratch: each batch segment's slot (a growth files a batch a step)
 };
 
 class StepSegmentGrid {

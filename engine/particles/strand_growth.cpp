@@ -863,11 +863,11 @@ void Growth::emit(Strands* out) const {
             continue;
         }
         index[s] = int32_t(out->size());
-        out->offsets.push_back(uint32_t(out->points.size() + strands_.npoints[s]));
+        out->offsets.push_back(out->offsets.back() + strands_.npoints[s]);
         out->parent.push_back(strands_.parent[s] >= 0 ? index[size_t(strands_.parent[s])] : -1);
         out->particle.push_back(s);
-        out->points.resize(out->offsets.back());  // grows geometrically; filled below
     }
+    out->points.resize(out->offsets.back());
     parallelFor(out->particle.size(), threads_, 1024, [&](size_t begin, size_t end, int) {
         for (size_t i = begin; i < end; ++i) {
             const uint32_t s = out->particle[i];
