@@ -79,7 +79,7 @@ private:
         std::set<uint64_t> uploaded_tiles;  // packed keys
         std::shared_ptr<const InstanceStore> before;
         std::vector<double> stamp_ms;
-        Bounds moved_from;  // move: the primitive's support before
+        Bounds moved_from;  // move: the support of the primitive's stroke before
     };
     // The user primitives' skeletons and hulls change only with an edit, the selection or the hull toggle,
     // so they are kept between frames: a stroke leaves dozens of hulls of hundreds of triangles each.
@@ -169,6 +169,7 @@ private:
     bool runReplayAction(const ReplayAction& action);
     void recordChangeBox(Bounds box);
     void recordPile(const BrushStroke& stroke);
+    static Bounds strokeBounds(const Document& doc, uint64_t id, nlohmann::json* centres);
     // A type named by the script, or kNoType with *error set (the run fails: the script is wrong).
     static constexpr size_t kNoType = SIZE_MAX;
     size_t replayType(const std::string& name);

@@ -1,6 +1,7 @@
 #include <imgui.h>
 
 #include "editor/panels.h"
+#include "editor/tools.h"
 #include "scene/sculpt_pile.h"
 
 namespace ug::editor {
@@ -26,6 +27,10 @@ void drawInspector(Document* doc, const std::vector<std::string>& type_names, To
     }
     ImGui::Text("%s #%llu (%s)", isPileCone(prim) ? "pile (cone)" : primitiveKindName(prim.kind), (unsigned long long)s->selected,
                 type < type_names.size() ? type_names[type].c_str() : "?");
+    // A brush stroke is one thing: the fields below move it and scale its weights and radii together.
+    const size_t members = doc->strokeMembers(s->selected).size();
+    if (members > 1)
+        ImGui::TextWrapped("Stroke %u: %zu primitives, edited, moved and deleted together.", prim.stroke, members);
     // The widgets edit a copy; the document gets one SetPrimitive when an edit is finished (the drag
     // released, the field left), so a drag is one undo step and the instancer is fed once.
     static uint64_t editing_id = 0;
@@ -51,7 +56,9 @@ void drawInspector(Document* doc, const std::vector<std::string>& type_names, To
     commit |= ImGui::IsItemDeactivatedAfterEdit();
     if (commit) {
         std::string error;
-        if (!doc->setPrimitive(s->selected, editing, &error)) *message = error;
+        if (!doc->setPrimitives(strokeEdit(*doc, s->selected, editing), members > 1 ? "Edit stroke" : "Edit primitive",
+                                &error))
+            *message = error;
     }
     if (ImGui::Button("Delete")) requests->delete_selected = true;
     ImGui::SameLine();

@@ -135,14 +135,18 @@ glm::vec3 primitiveColor(bool selected, const Primitive& p, glm::vec3 type_color
     return p.weight < 0.0f ? glm::vec3(0.9f, 0.3f, 0.3f) : type_color;
 }
 
-// Calls fn(primitive, display colour) for every user primitive of every type.
+// Calls fn(primitive, display colour) for every user primitive of every type; the selected one's whole
+// brush stroke is drawn selected (it is selected, moved and deleted as one).
 template <typename Fn>
 void forEachUserPrimitive(const Document& doc, const std::vector<DetailLodMesh>& meshes, uint64_t selected, Fn fn) {
+    Primitive chosen;
+    const uint32_t stroke = selected != 0 && doc.findPrimitive(selected, nullptr, &chosen) ? chosen.stroke : 0;
     for (size_t type = 0; type < doc.project().detail_types.size(); ++type) {
         const glm::vec3 type_color = typeDisplayColor(meshes, type);
         for (uint64_t id : doc.primitiveIds(type)) {
             Primitive p;
-            if (doc.findPrimitive(id, nullptr, &p)) fn(p, primitiveColor(id == selected, p, type_color));
+            if (doc.findPrimitive(id, nullptr, &p))
+                fn(p, primitiveColor(id == selected || (stroke != 0 && p.stroke == stroke), p, type_color));
         }
     }
 }

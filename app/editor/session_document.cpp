@@ -151,9 +151,11 @@ void EditorSession::handleEditRequests() {
             save_as_open = true;
             save_as_path = doc->path();
         }
+        // The selected primitive's whole brush stroke goes (or is copied), as one undo step.
         if (requests.delete_selected && tools.selected != 0) {
             move_drag.end();
-            if (doc->removePrimitive(tools.selected, &op_error))
+            const std::vector<uint64_t> members = doc->strokeMembers(tools.selected);
+            if (doc->removePrimitives(members, members.size() > 1 ? "Delete stroke" : "Delete primitive", &op_error))
                 tools.selected = 0;
             else
                 messages.push_back(op_error);
@@ -162,10 +164,12 @@ void EditorSession::handleEditRequests() {
             Primitive p;
             if (doc->findPrimitive(tools.selected, nullptr, &p)) {
                 const float offset = std::max(p.radius_m, p.disc_radius_m);
-                const uint64_t id =
-                    doc->duplicatePrimitive(tools.selected, glm::vec3(offset, 0.0f, 0.0f), &op_error);
-                if (id)
-                    tools.selected = id;
+                const std::vector<uint64_t> members = doc->strokeMembers(tools.selected);
+                const std::vector<uint64_t> copies =
+                    doc->duplicatePrimitives(members, glm::vec3(offset, 0.0f, 0.0f), &op_error);
+                const auto at = std::find(members.begin(), members.end(), tools.selected);
+                if (copies.size() == members.size() && at != members.end())
+                    tools.selected = copies[size_t(at - members.begin())];
                 else
                     messages.push_back(op_error);
             }

@@ -53,8 +53,8 @@ bool EditorSession::stepReplay() {
                 doc->findPrimitive(move_drag.id(), nullptr, &p);
                 replay.record["moves"] = move_drag.moves();
                 replay.record["to_center"] = {p.center_m.x, p.center_m.y, p.center_m.z};
-                // Old and new supports: where the move can change instances.
-                recordChangeBox(unite(replay.moved_from, editBounds(p)));
+                // Old and new supports (of the whole stroke): where the move can change instances.
+                recordChangeBox(unite(replay.moved_from, strokeBounds(*doc, move_drag.id(), &replay.record["to_centers"])));
                 move_drag.end();
                 replay.finishing = true;
             }
@@ -96,6 +96,20 @@ void EditorSession::recordChangeBox(Bounds box) {
     box.lo -= grow;
     box.hi += grow;
     replay.record["box"] = {{"min", {box.lo.x, box.lo.y, box.lo.z}}, {"max", {box.hi.x, box.hi.y, box.hi.z}}};
+}
+
+// The union of the supports of `id`'s stroke (Document::strokeMembers), and its members' centres ([x, y, z]
+// each, in strokeMembers' order) in *centres: a test sees every member move, not just the one grabbed.
+Bounds EditorSession::strokeBounds(const Document& d, uint64_t id, nlohmann::json* centres) {
+    Bounds all;
+    *centres = nlohmann::json::array();
+    for (uint64_t member : d.strokeMembers(id)) {
+        Primitive p;
+        if (!d.findPrimitive(member, nullptr, &p)) continue;
+        all = unite(all, editBounds(p));
+        centres->push_back({p.center_m.x, p.center_m.y, p.center_m.z});
+    }
+    return all;
 }
 
 void EditorSession::recordPile(const BrushStroke& st) {
@@ -210,7 +224,8 @@ bool EditorSession::runReplayAction(const ReplayAction& a) {
                 tools.selected = nearest;
                 replay.record["id"] = nearest;
                 replay.record["from_center"] = {p.center_m.x, p.center_m.y, p.center_m.z};
-                replay.moved_from = editBounds(p);
+                replay.moved_from = strokeBounds(*doc, nearest, &replay.record["from_centers"]);
+                replay.record["stroke_ids"] = doc->strokeMembers(nearest);
                 replay.path = strokePath(a);
                 replay.step = 0;
                 continue_move = true;

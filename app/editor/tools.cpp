@@ -137,6 +137,7 @@ bool BrushStroke::begin(Document* doc, ToolKind tool, const BrushSettings& brush
     points_.clear();
     pile_ids_.clear();
     pile_volume_m3_ = 0.0f;
+    stroke_tag_ = doc->newStrokeTag();
     const char* names[] = {"Select", "Paint", "Sculpt", "Erase"};
     doc_->beginStroke(names[int(tool)]);
     const SurfaceHit hit = pick(ray);
@@ -168,6 +169,13 @@ bool BrushStroke::drag(const Ray& ray, double now_s, std::string* error) {
     return stamp(hit, now_s, error);
 }
 
+Primitive BrushStroke::pileCone(float volume_m3) const {
+    Primitive prim =
+        pileConePrimitive(pileConeForVolume(pile_base_, volume_m3, pileAngleDeg()), pileWeight(), kSculptIso);
+    prim.stroke = stroke_tag_;
+    return prim;
+}
+
 float BrushStroke::pileWeight() const { return kSculptPileWeight * std::max(1.0f, brush_.strength); }
 
 float BrushStroke::stampVolume() const {
@@ -183,8 +191,7 @@ float BrushStroke::pileAngleDeg() const {
 bool BrushStroke::startPile(const SurfaceHit& landing, double now_s, std::string* error) {
     pile_base_ = landing.point_m;
     pile_volume_m3_ = stampVolume();
-    const Primitive prim =
-        pileConePrimitive(pileConeForVolume(pile_base_, pile_volume_m3_, pileAngleDeg()), pileWeight(), kSculptIso);
+    const Primitive prim = pileCone(pile_volume_m3_);
     const uint64_t id = doc_->addPrimitive(brush_.sculpt_type, prim, error);
     if (id == 0) return false;
     pile_ids_.push_back(id);
@@ -199,12 +206,10 @@ bool BrushStroke::startPile(const SurfaceHit& landing, double now_s, std::string
 bool BrushStroke::growPile(double now_s, std::string* error) {
     if (pile_ids_.empty()) return true;
     const float volume = pile_volume_m3_ + stampVolume();
-    const Primitive prim =
-        pileConePrimitive(pileConeForVolume(pile_base_, volume, pileAngleDeg()), pileWeight(), kSculptIso);
-    if (!doc_->setPrimitive(pile_ids_.back(), prim, error)) return false;
+    if (!doc_->setPrimitive(pile_ids_.back(), pileCone(volume), error)) return false;
     pile_volume_m3_ = volume;
     // The cone only grows, so its new support holds the old one.
-    changed_ = unite(changed_, editBounds(prim));
+    changed_ = unite(changed_, editBounds(pileCone(volume)));
     last_time_s_ = now_s;
     ++stamps_;
     points_.push_back(pile_base_);
@@ -243,7 +248,8 @@ bool BrushStroke::stamp(const SurfaceHit& hit, double now_s, std::string* error)
             }
             break;
     }
-    for (const auto& [type, prim] : prims) {
+    for (auto& [type, prim] : prims) {
+        prim.stroke = stroke_tag_;
         if (doc_->addPrimitive(type, prim, error) == 0) return false;
         changed_ = unite(changed_, editBounds(prim));
     }
@@ -255,6 +261,10 @@ bool BrushStroke::stamp(const SurfaceHit& hit, double now_s, std::string* error)
 }
 
 namespace {
+
+bool isTerrainKind(const Primitive& prim) {
+    return prim.kind == PrimitiveKind::TerrainLayer || prim.kind == PrimitiveKind::TerrainSolid;
+}
 
 // Where the ray meets the plane through `point` with normal `n`; false when parallel or behind.
 bool rayPlane(const Ray& ray, glm::vec3 point, glm::vec3 n, glm::vec3* hit) {
@@ -271,16 +281,20 @@ bool rayPlane(const Ray& ray, glm::vec3 point, glm::vec3 n, glm::vec3* hit) {
 bool MoveDrag::begin(Document* doc, uint64_t id, const Ray& ray) {
     if (active()) end();
     Primitive prim;
-    if (!doc->findPrimitive(id, nullptr, &prim) || prim.kind == PrimitiveKind::TerrainLayer ||
-        prim.kind == PrimitiveKind::TerrainSolid)
-        return false;
+    if (!doc->findPrimitive(id, nullptr, &prim) || isTerrainKind(prim)) return false;
+    // The whole stroke the primitive belongs to moves with it; its terrain layers (a paint stroke never
+    // makes one, a file may tag one) follow their height field and stay.
+    start_.clear();
+    for (uint64_t member : doc->strokeMembers(id)) {
+        Primitive p;
+        if (doc->findPrimitive(member, nullptr, &p) && !isTerrainKind(p)) start_.emplace_back(member, p);
+    }
     doc_ = doc;
     id_ = id;
-    start_ = prim;
     grab_m_ = dragGrab(ray, prim.center_m);
     applied_offset_m_ = glm::vec3(0.0f);
     moves_ = 0;
-    doc_->beginStroke("Move");
+    doc_->beginStroke(start_.size() > 1 ? "Move stroke" : "Move");
     return true;
 }
 
@@ -310,7 +324,10 @@ bool MoveDrag::drag(const Ray& ray, bool vertical, std::string* error) {
     // A millimetre of motion is below anything a density change shows; skipping it keeps a still mouse
     // from flooding the live instancer.
     if (glm::length(offset - applied_offset_m_) < 1e-3f) return true;
-    if (!doc_->setPrimitive(id_, translatedPrimitive(start_, offset), error)) return false;
+    std::vector<std::pair<uint64_t, Primitive>> moved;
+    moved.reserve(start_.size());
+    for (const auto& [member, start] : start_) moved.emplace_back(member, translatedPrimitive(start, offset));
+    if (!doc_->setPrimitives(moved, "Move", error)) return false;
     applied_offset_m_ = offset;
     ++moves_;
     return true;
@@ -320,6 +337,29 @@ void MoveDrag::end() {
     if (!active()) return;
     doc_->endStroke();
     doc_ = nullptr;
+}
+
+std::vector<std::pair<uint64_t, Primitive>> strokeEdit(const Document& doc, uint64_t id, const Primitive& edited) {
+    Primitive before;
+    if (!doc.findPrimitive(id, nullptr, &before)) return {};
+    const glm::vec3 offset = edited.center_m - before.center_m;
+    const float radius_factor = before.radius_m > 0.0f ? edited.radius_m / before.radius_m : 1.0f;
+    std::vector<std::pair<uint64_t, Primitive>> edits;
+    for (uint64_t member : doc.strokeMembers(id)) {
+        Primitive p;
+        if (!doc.findPrimitive(member, nullptr, &p)) continue;
+        if (member == id) {
+            edits.emplace_back(member, edited);
+            continue;
+        }
+        if (!isTerrainKind(p)) p = translatedPrimitive(p, offset);
+        p.weight = before.weight != 0.0f ? p.weight * (edited.weight / before.weight)
+                                         : p.weight + (edited.weight - before.weight);
+        p.radius_m *= radius_factor;
+        p.end_radius_m *= radius_factor;
+        edits.emplace_back(member, p);
+    }
+    return edits;
 }
 
 Ray rayThroughPixel(const glm::mat4& view_proj, float width, float height, glm::vec2 cursor) {
@@ -358,8 +398,7 @@ uint64_t pickPrimitive(const Document& doc, const glm::mat4& view_proj, float wi
         for (uint64_t id : doc.primitiveIds(type)) {
             Primitive prim;
             if (!doc.findPrimitive(id, nullptr, &prim)) continue;
-            if (prim.kind == PrimitiveKind::TerrainLayer || prim.kind == PrimitiveKind::TerrainSolid)
-                continue;
+            if (isTerrainKind(prim)) continue;
             centres.push_back(prim.center_m);
             ids.push_back(id);
         }

@@ -8,7 +8,9 @@
 //   travels on release: stroke.end();                                                     // endStroke: one
 //   undo step
 //
-// What a stamp adds (each one a user primitive, editable afterwards with Select, and saved in the project):
+// What a stamp adds (each one a user primitive, saved in the project). Every primitive a stroke adds carries
+// the stroke's tag (Primitive::stroke, Document::newStrokeTag), so Select picks, moves, deletes, duplicates
+// and re-weights the stroke as one thing (Document::strokeMembers), whatever its number of stamps:
 //   Paint   per painted type i (mix weight m_i > 0): a disc at the surface under the brush (the ground, or
 //           a sculpted pile: pickBrushSurface), normal = the surface normal, disc_radius = brush radius, radius = falloff, weight = strength * m_i
 //           (negative in subtract mode). A stamp every radius / 3 of travel over the ground.
@@ -24,7 +26,8 @@
 //           while the brush is held still, every kSculptHoldInterval_s the current cone takes one more
 //           stamp's volume in place (the same primitive, Document::setPrimitive), so a held brush is one
 //           primitive that grows as a cone, selected, moved, deleted and re-weighted as a unit, and the
-//           whole stroke is one undo step. (A dragged stroke leaves one cone per radius / 3 of travel.)
+//           whole stroke is one undo step. (A dragged stroke leaves one cone per radius / 3 of travel,
+//           all with the stroke's tag: one unit for Select too.)
 //   Erase   per painted type: a point at the surface under the brush with weight
 //           -kEraseWeight * strength * m_i, radius = brush radius: it cancels painted and sculpted density (and the file's) under the brush. We chose
 //           negative points over deleting the primitives whose centres are under the brush because it
@@ -35,6 +38,7 @@
 #include <cstdint>
 #include <glm/glm.hpp>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "field/bounds.h"
@@ -131,6 +135,7 @@ class BrushStroke {
     float pileWeight() const;   // kSculptPileWeight * max(1, strength)
     float stampVolume() const;  // one stamp's material: the old brush's ball (weight max(1, strength))
     float pileAngleDeg() const;  // the sculpt type's angle of repose
+    Primitive pileCone(float volume_m3) const;  // the cone at pile_base_ holding this much, tagged
     bool startPile(const SurfaceHit& landing, double now_s, std::string* error);
     bool growPile(double now_s, std::string* error);
 
@@ -142,15 +147,16 @@ class BrushStroke {
     int stamps_ = 0;
     Bounds changed_;
     std::vector<glm::vec3> points_;
+    uint32_t stroke_tag_ = 0;  // on every primitive this stroke adds
     // Sculpt: the cone being grown (pile_ids_.back()), its base and its material so far.
     std::vector<uint64_t> pile_ids_;
     glm::vec3 pile_base_{0.0f};
     float pile_volume_m3_ = 0.0f;
 };
 
-// Select tool, dragging a user primitive: its skeleton follows the cursor on the horizontal plane through
-// its centre (vertical: along Z, on the upright plane facing the ray). Each frame's position is one
-// Document::setPrimitive inside a stroke, so the fill follows live and the whole drag is one undo step; a
+// Select tool, dragging a user primitive and the rest of its brush stroke (Document::strokeMembers): their
+// skeletons follow the cursor on the horizontal plane through the grabbed one's centre (vertical: along Z,
+// on the upright plane facing the ray). Each frame's position is one Document::setPrimitives inside a stroke, so the fill follows live and the whole drag is one undo step; a
 // click without motion leaves no step. Terrain kinds have no skeleton to move (begin() refuses them).
 class MoveDrag {
   public:
@@ -165,11 +171,17 @@ class MoveDrag {
   private:
     Document* doc_ = nullptr;
     uint64_t id_ = 0;
-    Primitive start_;
+    std::vector<std::pair<uint64_t, Primitive>> start_;  // the stroke's primitives where the drag began
     glm::vec3 grab_m_{0.0f};
     glm::vec3 applied_offset_m_{0.0f};
     int moves_ = 0;
 };
+
+// A brush stroke edited as a unit through one of its primitives (the Inspector): `id` becomes `edited`, and
+// every other member of its stroke (Document::strokeMembers) moves by the same offset of the centre, and has
+// its weight and falloff radii scaled by the same factors (from a zero weight: the difference is added).
+// Terrain kinds keep their (absent) skeleton. The edits for Document::setPrimitives; empty for an unknown id.
+std::vector<std::pair<uint64_t, Primitive>> strokeEdit(const Document& doc, uint64_t id, const Primitive& edited);
 
 // The drags' shared motion: where the ray grabs a thing centred at `centre` (on the horizontal plane
 // through it, else the centre itself), and the offset from `grab` the ray has reached: on the horizontal

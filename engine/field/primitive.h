@@ -68,6 +68,9 @@ struct Primitive {
     float thickness_m = 0.0f;            // TerrainLayer: >= 0
     uint32_t height_field = 0;           // TerrainLayer, TerrainSolid: index into the field's height fields
     uint32_t external = 0;               // External: index into the field's external fields
+    // The brush stroke that made it (0: none): the editor selects, moves, deletes and re-weights a
+    // stroke's primitives as one thing. A tag only: it never changes a value.
+    uint32_t stroke = 0;
 };
 
 // Builders fill the fields their kind uses; normals are normalized here (a zero normal stays zero and

@@ -1,6 +1,8 @@
 #include "scene/document.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -454,7 +456,74 @@ uint64_t Document::duplicatePrimitive(uint64_t id, glm::vec3 offset_m, std::stri
         *error = "no primitive with id " + std::to_string(id);
         return 0;
     }
+    prim.stroke = 0;  // a lone copy joins no stroke
     return addPrimitive(type, translatedPrimitive(prim, offset_m), error);
+}
+
+std::vector<uint64_t> Document::strokeMembers(uint64_t id) const {
+    Primitive prim;
+    if (!findPrimitive(id, nullptr, &prim)) return {};
+    if (prim.stroke == 0) return {id};
+    std::vector<uint64_t> members;
+    for (size_t t = 0; t < densities_.size(); ++t)
+        for (size_t k = 0; k < densities_[t].ids.size(); ++k)
+            if (densities_[t].ids[k] != 0 &&
+                userPrimitive(project_.detail_types[t].density, k).stroke == prim.stroke)
+                members.push_back(densities_[t].ids[k]);
+    return members;
+}
+
+uint32_t Document::newStrokeTag() const {
+    uint32_t largest = 0;
+    for (size_t t = 0; t < densities_.size(); ++t)
+        for (size_t k = 0; k < densities_[t].ids.size(); ++k)
+            if (densities_[t].ids[k] != 0)
+                largest = std::max(largest, userPrimitive(project_.detail_types[t].density, k).stroke);
+    // Tags come from files too; past the last one, the first free tag above 0 (never reached in practice).
+    return largest < UINT32_MAX ? largest + 1 : 1;
+}
+
+bool Document::setPrimitives(const std::vector<std::pair<uint64_t, Primitive>>& edits, const std::string& name,
+                             std::string* error) {
+    if (edits.empty()) return true;
+    auto compound = std::make_unique<CompoundCommand>(name);
+    for (const auto& [id, prim] : edits) compound->push(std::make_unique<SetPrimitiveCommand>(id, prim));
+    return execute(std::move(compound), error);
+}
+
+bool Document::removePrimitives(const std::vector<uint64_t>& ids, const std::string& name, std::string* error) {
+    if (ids.empty()) return true;
+    auto compound = std::make_unique<CompoundCommand>(name);
+    for (uint64_t id : ids) compound->push(std::make_unique<RemovePrimitiveCommand>(id));
+    return execute(std::move(compound), error);
+}
+
+std::vector<uint64_t> Document::duplicatePrimitives(const std::vector<uint64_t>& ids, glm::vec3 offset_m,
+                                                    std::string* error) {
+    if (ids.empty()) return {};
+    auto compound = std::make_unique<CompoundCommand>(ids.size() == 1 ? "Duplicate primitive" : "Duplicate stroke");
+    std::vector<uint64_t> copies;
+    std::vector<std::pair<uint32_t, uint32_t>> retag;  // old stroke -> new stroke
+    uint32_t next_tag = newStrokeTag();
+    for (uint64_t id : ids) {
+        size_t type = 0;
+        Primitive prim;
+        if (!findPrimitive(id, &type, &prim)) {
+            *error = "no primitive with id " + std::to_string(id);
+            return {};
+        }
+        if (prim.stroke != 0) {
+            auto it = std::find_if(retag.begin(), retag.end(), [&](const auto& r) { return r.first == prim.stroke; });
+            if (it == retag.end()) it = retag.insert(retag.end(), {prim.stroke, next_tag++});
+            prim.stroke = it->second;
+        }
+        const uint64_t copy = next_id_ + copies.size();
+        compound->push(std::make_unique<AddPrimitiveCommand>(type, translatedPrimitive(prim, offset_m), copy));
+        copies.push_back(copy);
+    }
+    if (!execute(std::move(compound), error)) return {};
+    next_id_ += copies.size();
+    return copies;
 }
 
 bool Document::setInstancing(size_t type, const InstancingDesc& desc, std::string* error) {

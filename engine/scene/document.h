@@ -153,8 +153,24 @@ public:
     uint64_t addPrimitive(size_t type, const Primitive& prim, std::string* error);  // the new id, 0 on failure
     bool setPrimitive(uint64_t id, const Primitive& prim, std::string* error);
     bool removePrimitive(uint64_t id, std::string* error);
-    // A copy of `id` moved by offset_m (its skeleton; terrain kinds are not moved), in the same type.
+    // A copy of `id` moved by offset_m (its skeleton; terrain kinds are not moved), in the same type, in
+    // no stroke.
     uint64_t duplicatePrimitive(uint64_t id, glm::vec3 offset_m, std::string* error);
+    // ---- brush strokes as units (Primitive::stroke) ----
+    // The user primitives tagged with the same stroke as `id`, in every type, in type then blend order,
+    // `id` among them; {id} alone when it has no stroke; empty for an unknown id.
+    std::vector<uint64_t> strokeMembers(uint64_t id) const;
+    // A stroke tag no user primitive has (1 + the largest in use).
+    uint32_t newStrokeTag() const;
+    // Several primitives replaced, or removed, as ONE undo step named `name` (or one stamp of an open
+    // stroke: a drag) with one recompile; all or nothing. A stroke moves, re-weights and deletes so.
+    bool setPrimitives(const std::vector<std::pair<uint64_t, Primitive>>& edits, const std::string& name,
+                       std::string* error);
+    bool removePrimitives(const std::vector<uint64_t>& ids, const std::string& name, std::string* error);
+    // Copies of `ids` moved by offset_m, one undo step; the copies of a stroke's primitives form a new
+    // stroke (a fresh tag), untagged ones stay untagged. The new ids in order; empty on failure.
+    std::vector<uint64_t> duplicatePrimitives(const std::vector<uint64_t>& ids, glm::vec3 offset_m,
+                                              std::string* error);
     bool setInstancing(size_t type, const InstancingDesc& desc, std::string* error);
     bool setSeed(uint64_t seed, std::string* error);
     // The slope the sculpt brush keeps for `type`'s piles, in (0, 89] degrees; one undo step (or a stamp of

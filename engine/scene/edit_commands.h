@@ -198,8 +198,8 @@ private:
 };
 
 // Several commands as one undo step (a brush stroke's stamps). apply() runs them in order, revert() in
-// reverse. Commands added with push() have already been applied by the caller (a stroke applies each
-// stamp as it comes, so the user sees it fill).
+// reverse. An open stroke pushes commands the Document has already applied (each stamp as it comes, so the
+// user sees it fill); a batch (Document::setPrimitives) pushes unapplied ones and applies the whole.
 class CompoundCommand : public Command {
 public:
     explicit CompoundCommand(std::string name) : name_(std::move(name)) {}

@@ -6,6 +6,7 @@
 #include "scene/field_json.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <vector>
@@ -52,7 +53,7 @@ class FieldReader {
         if (kind == "point") {
             glm::vec3 c;
             float radius = 0.0f, weight = 1.0f;
-            if (!r_.expectObject(v, kp) || !r_.onlyKeys(v, kp, {"center", "radius", "weight"}) ||
+            if (!r_.expectObject(v, kp) || !r_.onlyKeys(v, kp, {"center", "radius", "weight", "stroke"}) ||
                 !vec3(v, kp, "center", &c) || !radiusField(v, kp, "radius", &radius) ||
                 !number(v, kp, "weight", &weight, false))
                 return false;
@@ -61,7 +62,7 @@ class FieldReader {
             glm::vec3 a, b;
             float radius = 0.0f, weight = 1.0f;
             if (!r_.expectObject(v, kp) ||
-                !r_.onlyKeys(v, kp, {"a", "b", "radius", "end_radius", "weight"}) || !vec3(v, kp, "a", &a) ||
+                !r_.onlyKeys(v, kp, {"a", "b", "radius", "end_radius", "weight", "stroke"}) || !vec3(v, kp, "a", &a) ||
                 !vec3(v, kp, "b", &b) || !radiusField(v, kp, "radius", &radius) ||
                 !number(v, kp, "weight", &weight, false))
                 return false;
@@ -72,7 +73,7 @@ class FieldReader {
             glm::vec3 c, n;
             float disc_radius = 0.0f, radius = 0.0f, weight = 1.0f;
             if (!r_.expectObject(v, kp) ||
-                !r_.onlyKeys(v, kp, {"center", "normal", "disc_radius", "radius", "weight"}) ||
+                !r_.onlyKeys(v, kp, {"center", "normal", "disc_radius", "radius", "weight", "stroke"}) ||
                 !vec3(v, kp, "center", &c) || !normal(v, kp, "normal", &n) ||
                 !nonNegative(v, kp, "disc_radius", &disc_radius) || !radiusField(v, kp, "radius", &radius) ||
                 !number(v, kp, "weight", &weight, false))
@@ -83,7 +84,7 @@ class FieldReader {
             glm::vec3 c, half;
             float radius = 0.0f, weight = 1.0f;
             if (!r_.expectObject(v, kp) ||
-                !r_.onlyKeys(v, kp, {"center", "half_extents", "radius", "weight"}) ||
+                !r_.onlyKeys(v, kp, {"center", "half_extents", "radius", "weight", "stroke"}) ||
                 !vec3(v, kp, "center", &c) || !vec3(v, kp, "half_extents", &half) ||
                 !radiusField(v, kp, "radius", &radius) || !number(v, kp, "weight", &weight, false))
                 return false;
@@ -93,7 +94,7 @@ class FieldReader {
         } else if (kind == "half_space") {
             glm::vec3 c, n;
             float radius = 0.0f, weight = 1.0f;
-            if (!r_.expectObject(v, kp) || !r_.onlyKeys(v, kp, {"point", "normal", "radius", "weight"}) ||
+            if (!r_.expectObject(v, kp) || !r_.onlyKeys(v, kp, {"point", "normal", "radius", "weight", "stroke"}) ||
                 !vec3(v, kp, "point", &c) || !normal(v, kp, "normal", &n) ||
                 !radiusField(v, kp, "radius", &radius) || !number(v, kp, "weight", &weight, false))
                 return false;
@@ -101,7 +102,7 @@ class FieldReader {
             prim.normal = n;
         } else if (kind == "terrain_layer") {
             float thickness = 0.0f, radius = 0.0f, weight = 1.0f;
-            if (!r_.expectObject(v, kp) || !r_.onlyKeys(v, kp, {"thickness", "radius", "weight"}))
+            if (!r_.expectObject(v, kp) || !r_.onlyKeys(v, kp, {"thickness", "radius", "weight", "stroke"}))
                 return false;
             if (!has_terrain_) return r_.fail(kp, "the project has no terrain (add a top-level \"terrain\")");
             if (!nonNegative(v, kp, "thickness", &thickness) || !radiusField(v, kp, "radius", &radius) ||
@@ -110,7 +111,7 @@ class FieldReader {
             prim = makeTerrainLayer(0, thickness, radius, weight);
         } else if (kind == "terrain_solid") {
             float radius = 0.0f, weight = kSolidWeight;
-            if (!r_.expectObject(v, kp) || !r_.onlyKeys(v, kp, {"radius", "weight"})) return false;
+            if (!r_.expectObject(v, kp) || !r_.onlyKeys(v, kp, {"radius", "weight", "stroke"})) return false;
             if (!has_terrain_) return r_.fail(kp, "the project has no terrain (add a top-level \"terrain\")");
             if (!radiusField(v, kp, "radius", &radius) || !number(v, kp, "weight", &weight, false))
                 return false;
@@ -120,6 +121,7 @@ class FieldReader {
                                    "' (point, segment, disc, box, half_space, terrain_layer, terrain_solid, "
                                    "polyline, blend, union, intersection, difference)");
         }
+        if (!r_.integer(v, kp, "stroke", &prim.stroke, 1, UINT32_MAX)) return false;
         // The checks above give the precise member; this backstop keeps the reader and the field's own
         // rules from drifting apart.
         std::string why;
@@ -282,8 +284,15 @@ json primitiveJson(const Primitive& p) {
     return nullptr;
 }
 
+// With its stroke tag, when it has one: {"segment": {..., "stroke": 3}}.
+json taggedPrimitiveJson(const Primitive& p) {
+    json j = primitiveJson(p);
+    if (p.stroke != 0 && j.is_object()) j.begin().value()["stroke"] = p.stroke;
+    return j;
+}
+
 json childJson(const DensityField& f, uint32_t ref) {
-    if (isPrimitiveChild(ref)) return primitiveJson(f.primitives[childIndex(ref)]);
+    if (isPrimitiveChild(ref)) return taggedPrimitiveJson(f.primitives[childIndex(ref)]);
     const FieldNode& n = f.nodes[ref];
     json children = json::array();
     for (uint32_t c = 0; c < n.child_count; ++c)

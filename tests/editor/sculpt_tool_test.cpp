@@ -173,8 +173,81 @@ TEST_F(SculptTool, StrokeSurvivesSaving) {
             EXPECT_EQ(p.radius_m, cone.radius_m);
             EXPECT_EQ(p.end_radius_m, cone.end_radius_m);
             EXPECT_EQ(p.weight, cone.weight);
+            EXPECT_EQ(p.stroke, cone.stroke);
+            EXPECT_NE(p.stroke, 0u);
         }
     EXPECT_EQ(segments, 1u);
+    doc->close();
+}
+
+// A dragged stroke leaves a cone every radius / 3 of travel; they are one unit (issue 9: "a stroke is one
+// edit object"): Select moves them all, the Inspector re-weights them all, Delete takes them all, each one
+// undo step; a second stroke is another unit.
+TEST_F(SculptTool, ADraggedStrokeIsOneUnitToMoveReweightAndDelete) {
+    std::unique_ptr<Document> doc = makeDoc(35.0f);
+    ASSERT_TRUE(doc);
+    BrushSettings brush = defaultBrush(*doc);
+    brush.radius_m = 0.6f;
+    BrushStroke stroke;
+    std::string error;
+    ASSERT_TRUE(stroke.begin(doc.get(), ToolKind::Sculpt, brush, viewRay({-2.0f, 0.0f, 0.0f}, -90.0f, 35.0f), 0.0, &error));
+    for (int k = 1; k <= 20; ++k)
+        ASSERT_TRUE(stroke.drag(viewRay({-2.0f + 0.2f * k, 0.0f, 0.0f}, -90.0f, 35.0f), 0.01 * k, &error)) << error;
+    const std::vector<uint64_t> cones = stroke.pileIds();
+    stroke.end();
+    ASSERT_GE(cones.size(), 10u);
+    const std::vector<uint64_t> other = hold(doc.get(), viewRay({0.0f, 2.5f, 0.0f}, 0.0f, 60.0f), 5);
+    ASSERT_EQ(other.size(), 1u);
+    EXPECT_EQ(doc->strokeMembers(cones[3]), cones);
+    EXPECT_EQ(doc->strokeMembers(other[0]), other);
+    auto centres = [&](const std::vector<uint64_t>& ids) {
+        std::vector<Primitive> out;
+        for (uint64_t id : ids) {
+            Primitive p;
+            EXPECT_TRUE(doc->findPrimitive(id, nullptr, &p));
+            out.push_back(p);
+        }
+        return out;
+    };
+    const std::vector<Primitive> before = centres(cones);
+    const Primitive other_before = centres(other)[0];
+
+    // Select-drag the middle cone 1 m along +y: every cone of its stroke goes, the other pile stays.
+    const glm::vec3 grab = before[5].center_m;
+    MoveDrag move;
+    ASSERT_TRUE(move.begin(doc.get(), cones[5], rayDownOnto(*doc, glm::vec2(grab))));
+    for (int k = 1; k <= 4; ++k)
+        ASSERT_TRUE(move.drag(rayDownOnto(*doc, glm::vec2(grab) + glm::vec2(0.0f, 0.25f * k)), false, &error)) << error;
+    move.end();
+    EXPECT_EQ(doc->undoName(), "Move stroke");
+    const std::vector<Primitive> moved = centres(cones);
+    for (size_t k = 0; k < cones.size(); ++k) {
+        EXPECT_NEAR(moved[k].center_m.y - before[k].center_m.y, 1.0f, 1e-3f) << k;
+        EXPECT_NEAR(moved[k].center_m.x, before[k].center_m.x, 1e-4f) << k;
+        EXPECT_NEAR(moved[k].end_m.y - before[k].end_m.y, 1.0f, 1e-3f) << k;
+    }
+    EXPECT_EQ(centres(other)[0].center_m, other_before.center_m);
+
+    // The Inspector halves the grabbed cone's weight: the stroke's weights all halve, one undo step.
+    Primitive edited = moved[5];
+    edited.weight *= 0.5f;
+    ASSERT_TRUE(doc->setPrimitives(strokeEdit(*doc, cones[5], edited), "Edit stroke", &error)) << error;
+    const std::vector<Primitive> reweighted = centres(cones);
+    for (size_t k = 0; k < cones.size(); ++k) {
+        EXPECT_FLOAT_EQ(reweighted[k].weight, 0.5f * moved[k].weight) << k;
+        EXPECT_EQ(reweighted[k].center_m, moved[k].center_m) << k;
+    }
+    EXPECT_EQ(centres(other)[0].weight, other_before.weight);
+    ASSERT_TRUE(doc->undo());
+    EXPECT_EQ(centres(cones)[0].weight, moved[0].weight);
+
+    // Delete through any cone takes the stroke, one undo step; undo brings every cone back.
+    ASSERT_TRUE(doc->removePrimitives(doc->strokeMembers(cones[0]), "Delete stroke", &error)) << error;
+    EXPECT_EQ(doc->primitiveIds(0), other);
+    ASSERT_TRUE(doc->undo());
+    EXPECT_EQ(doc->strokeMembers(cones[0]), cones);
+    ASSERT_TRUE(doc->undo());  // the move
+    EXPECT_EQ(centres(cones)[7].center_m, before[7].center_m);
     doc->close();
 }
 

@@ -258,6 +258,103 @@ TEST(DocumentCommand, UndoAndRedoGiveBackTheExactInstanceSets) {
     EXPECT_FALSE(doc->canRedo());
 }
 
+// A brush stroke is one unit (issue 9): its primitives share a tag (Primitive::stroke), and moving,
+// re-weighting, duplicating and deleting them together is one undo step each, exact, and saved.
+TEST(DocumentCommand, AStrokesPrimitivesAreMovedDuplicatedAndDeletedAsOneUndoStepAndKeepTheirTagSaved) {
+    TempDir dir;
+    const fs::path path = dir.path() / "scene.json";
+    auto doc = openDoc(writeProject(path, projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    std::string error;
+    const uint64_t file_point = doc->primitiveIds(0)[0];
+    EXPECT_EQ(doc->strokeMembers(file_point), std::vector<uint64_t>{file_point});  // untagged: alone
+    EXPECT_TRUE(doc->strokeMembers(987654).empty());
+    const uint32_t tag = doc->newStrokeTag();
+    EXPECT_EQ(tag, 1u);
+    // A stroke over two types (a paint stroke mixing rock and pebble), and a lone primitive.
+    std::vector<Primitive> prims;
+    for (int k = 0; k < 4; ++k) {
+        Primitive p = makeCone({-1.2f + 0.6f * k, -0.5f, 0.0f}, 0.5f, {-1.2f + 0.6f * k, -0.5f, 0.4f}, 0.2f, 2.0f);
+        p.stroke = tag;
+        prims.push_back(p);
+    }
+    doc->beginStroke("Sculpt");
+    std::vector<uint64_t> ids;
+    for (size_t k = 0; k < prims.size(); ++k) ids.push_back(doc->addPrimitive(k < 3 ? 0 : 1, prims[k], &error));
+    doc->endStroke();
+    for (uint64_t id : ids) ASSERT_NE(id, 0u) << error;
+    const uint64_t lone = doc->addPrimitive(0, makePoint({1.0f, 1.0f, 0.0f}, 0.4f, 1.0f), &error);
+    ASSERT_NE(lone, 0u) << error;
+    EXPECT_EQ(doc->newStrokeTag(), tag + 1);
+    EXPECT_EQ(doc->strokeMembers(ids[2]), ids);  // any member names the whole stroke, across types
+    EXPECT_EQ(doc->strokeMembers(lone), std::vector<uint64_t>{lone});
+    const InstanceStore made = settled(*doc);
+
+    // Moved together: one undo step.
+    std::vector<std::pair<uint64_t, Primitive>> moved;
+    for (size_t k = 0; k < ids.size(); ++k) moved.emplace_back(ids[k], translatedPrimitive(prims[k], {0.3f, 0.2f, 0.0f}));
+    ASSERT_TRUE(doc->setPrimitives(moved, "Move stroke", &error)) << error;
+    EXPECT_EQ(doc->undoName(), "Move stroke");
+    for (size_t k = 0; k < ids.size(); ++k) {
+        Primitive p;
+        ASSERT_TRUE(doc->findPrimitive(ids[k], nullptr, &p));
+        EXPECT_TRUE(samePrimitive(p, moved[k].second)) << k;
+    }
+    const InstanceStore after_move = settled(*doc);
+    EXPECT_FALSE(after_move == made);
+    // All or nothing: an unknown id among the edits refuses the whole batch.
+    std::vector<std::pair<uint64_t, Primitive>> bad = moved;
+    bad[0].second = translatedPrimitive(prims[0], {5.0f, 0.0f, 0.0f});
+    bad.emplace_back(987654, prims[0]);
+    EXPECT_FALSE(doc->setPrimitives(bad, "Move stroke", &error));
+    EXPECT_NE(error.find("987654"), std::string::npos) << error;
+    Primitive still;
+    ASSERT_TRUE(doc->findPrimitive(ids[0], nullptr, &still));
+    EXPECT_TRUE(samePrimitive(still, moved[0].second));
+
+    // Duplicated: the copies are a new stroke of their own, the original untouched.
+    const std::vector<uint64_t> copies = doc->duplicatePrimitives(ids, {0.0f, 1.0f, 0.0f}, &error);
+    ASSERT_EQ(copies.size(), ids.size()) << error;
+    EXPECT_EQ(doc->strokeMembers(copies[1]), copies);
+    EXPECT_EQ(doc->strokeMembers(ids[1]), ids);
+    Primitive copy;
+    ASSERT_TRUE(doc->findPrimitive(copies[0], nullptr, &copy));
+    EXPECT_EQ(copy.stroke, tag + 1);
+    // A lone duplicate of a member joins no stroke.
+    const uint64_t single = doc->duplicatePrimitive(ids[0], {0.0f, -1.0f, 0.0f}, &error);
+    ASSERT_NE(single, 0u) << error;
+    EXPECT_EQ(doc->strokeMembers(single), std::vector<uint64_t>{single});
+
+    // Saved and reopened: the tags come back with the primitives, so the strokes are units again.
+    ASSERT_TRUE(doc->save(&error)) << error;
+    {
+        auto reopened = openDoc(path.string(), optionsFor(dir));
+        ASSERT_TRUE(reopened);
+        size_t tagged = 0;
+        for (size_t t = 0; t < 2; ++t)
+            for (uint64_t id : reopened->primitiveIds(t)) {
+                Primitive p;
+                ASSERT_TRUE(reopened->findPrimitive(id, nullptr, &p));
+                if (p.stroke == tag) {
+                    ++tagged;
+                    EXPECT_EQ(reopened->strokeMembers(id).size(), ids.size());
+                }
+            }
+        EXPECT_EQ(tagged, ids.size());
+        EXPECT_TRUE(liveStore(*reopened) == settled(*doc));
+    }
+
+    // Deleted together: one undo step, which gives back the exact set.
+    const InstanceStore before_delete = settled(*doc);
+    ASSERT_TRUE(doc->removePrimitives(doc->strokeMembers(ids[3]), "Delete stroke", &error)) << error;
+    for (uint64_t id : ids) EXPECT_FALSE(doc->findPrimitive(id, nullptr, nullptr));
+    EXPECT_TRUE(doc->findPrimitive(lone, nullptr, nullptr));
+    EXPECT_FALSE(settled(*doc) == before_delete);
+    ASSERT_TRUE(doc->undo());
+    EXPECT_TRUE(settled(*doc) == before_delete);
+    EXPECT_EQ(doc->strokeMembers(ids[0]), ids);
+}
+
 TEST(DocumentCommand, AStrokeOfTwentyStampsIsOneUndoStep) {
     TempDir dir;
     auto doc = openDoc(writeProject(dir.path() / "scene.json", projectJson(modelsDir())), optionsFor(dir));

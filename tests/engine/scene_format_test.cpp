@@ -31,7 +31,7 @@ const char* kEverything = R"({
      "density": {"blend": [
        {"point": {"center": [0.5, 0.25, 0.1], "radius": 1.5, "weight": 0.7}},
        {"segment": {"a": [0, 0, 0], "b": [2, 1, 0.5], "radius": 0.6}},
-       {"segment": {"a": [0, 0, 0], "b": [-1, 2, 0], "radius": 0.4, "end_radius": 0.9, "weight": -0.3}},
+       {"segment": {"a": [0, 0, 0], "b": [-1, 2, 0], "radius": 0.4, "end_radius": 0.9, "weight": -0.3, "stroke": 7}},
        {"union": [
          {"disc": {"center": [1, 1, 0.2], "normal": [0, 1, 1], "disc_radius": 0.8, "radius": 0.3, "weight": 2}},
          {"box": {"center": [-1, -1, 0], "half_extents": [0.5, 0.2, 0.1], "radius": 0.25}}]},
@@ -65,7 +65,9 @@ DensityField handBuiltEverything() {
     auto node = [&](FieldOp op, std::vector<uint32_t> refs) { return nodeChild(addNode(&h, op, refs)); };
     const uint32_t p0 = prim(makePoint({0.5f, 0.25f, 0.1f}, 1.5f, 0.7f));
     const uint32_t p1 = prim(makeSegment({0, 0, 0}, {2, 1, 0.5f}, 0.6f));
-    const uint32_t p2 = prim(makeCone({0, 0, 0}, 0.4f, {-1, 2, 0}, 0.9f, -0.3f));
+    Primitive cone = makeCone({0, 0, 0}, 0.4f, {-1, 2, 0}, 0.9f, -0.3f);
+    cone.stroke = 7;  // the brush stroke's tag, kept through the file
+    const uint32_t p2 = prim(cone);
     const uint32_t disc = prim(makeDisc({1, 1, 0.2f}, {0, 1, 1}, 0.8f, 0.3f, 2.0f));
     const uint32_t box = prim(makeBox({-1, -1, 0}, {0.5f, 0.2f, 0.1f}, 0.25f));
     const uint32_t uni = node(FieldOp::Union, {disc, box});
@@ -332,6 +334,10 @@ TEST(SceneFormat, ErrorsNameThePlaceAndTheReason) {
          "/detail_types/0/density/disc/disc_radius: must be >= 0, got -1"},
         {density(R"({"box": {"center": [0, 0, 0], "half_extents": [1, -1, 1], "radius": 1}})"),
          "/detail_types/0/density/box/half_extents: must be >= 0 on every axis"},
+        {density(R"({"point": {"center": [0, 0, 0], "radius": 1, "stroke": 0}})"),
+         "/detail_types/0/density/point/stroke: 0 is out of range [1, "},
+        {density(R"({"point": {"center": [0, 0, 0], "radius": 1, "stroke": -2}})"),
+         "/detail_types/0/density/point/stroke: expected a non-negative integer, got a negative one"},
         {density(R"({"point": {"center": "here", "radius": 1}})"),
          "/detail_types/0/density/point/center: expected [x, y, z]"},
         {density(R"({"point": {"center": [0, "y", 0], "radius": 1}})"),

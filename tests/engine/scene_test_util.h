@@ -57,6 +57,7 @@ inline ::testing::AssertionResult samePrimitive(const Primitive& a, const Primit
         return ::testing::AssertionFailure() << "half_extents_m";
     if (!sameBits(a.thickness_m, b.thickness_m)) return ::testing::AssertionFailure() << "thickness_m";
     if (a.height_field != b.height_field) return ::testing::AssertionFailure() << "height_field";
+    if (a.stroke != b.stroke) return ::testing::AssertionFailure() << "stroke " << a.stroke << " vs " << b.stroke;
     return ::testing::AssertionSuccess();
 }
 

@@ -218,11 +218,11 @@ def piles(stats_path, cli_path, original_path, saved_path):
     s = json.load(open(stats_path))
     out = []
     sculpts = actions(s, "sculpt_stroke")
-    assert len(sculpts) == 3, len(sculpts)
+    assert len(sculpts) == 4, len(sculpts)
     for a, xy, label in zip(sculpts, ((-6, -10), (3, -12), (-12, 4)), ("oblique", "side", "top")):
         assert a["stamps"] == 40, (label, a["stamps"])
         out.append(check_pile(a, xy, label))
-    heights = [a["pile"]["height"] for a in sculpts]
+    heights = [a["pile"]["height"] for a in sculpts[:3]]
     assert max(heights) < 1.2 * min(heights), ("the view changed the pile", heights)
     # One undo step takes the whole stroke away (the exact set before it), redo brings it back.
     undo, redo = actions(s, "undo")[0], actions(s, "redo")[0]
@@ -237,18 +237,27 @@ def piles(stats_path, cli_path, original_path, saved_path):
     assert abs(dx[0] - 2.0) < 1e-3 and abs(dx[1]) < 1e-3, dx
     assert mv["instance_store_hash_after"] != mv["instance_store_hash_before"], mv
     out.append("the side pile moved by (2, 0) as one primitive")
+    # A dragged stroke leaves a cone every radius / 3 of travel, all one unit: grabbing one moves them all.
+    dragged, mv2 = sculpts[3], actions(s, "move")[1]
+    cone_ids = dragged["pile"]["ids"]
+    assert len(cone_ids) >= 6, dragged["pile"]
+    assert sorted(mv2["stroke_ids"]) == sorted(cone_ids), (mv2["stroke_ids"], cone_ids)
+    assert len(mv2["from_centers"]) == len(cone_ids) == len(mv2["to_centers"]), mv2
+    for a, b in zip(mv2["from_centers"], mv2["to_centers"]):
+        assert abs(b[0] - a[0]) < 1e-3 and abs(b[1] - a[1] - 2.0) < 1e-3, (a, b)
+    out.append("a dragged stroke of %d cones moved by (0, 2) as one unit" % len(cone_ids))
     # Saved and re-read: the rock density holds three cones (vertical, narrowing segments; the file had
     # none), and the CLI makes the same instances.
     rock = lambda doc: [t for t in doc["detail_types"] if t["name"] == "rock"][0]
     original, saved = json.load(open(original_path)), json.load(open(saved_path))
     before, after = cones(rock(original).get("density")), cones(rock(saved)["density"])
-    assert before == 0 and after == 3, (before, after)
+    assert before == 0 and after == 3 + len(cone_ids), (before, after)
     assert rock(saved)["angle_of_repose_deg"] == 35, rock(saved)
     cli = json.load(open(cli_path))
     saved_a = actions(s, "save_as")[0]
     assert saved_a["ok"] and cli["instances_per_type"] == saved_a["per_type_after"], (
         cli["instances_per_type"], saved_a["per_type_after"])
-    out.append("saved: 3 cones, the CLI re-instantiates %d instances as the editor" % cli["instances"])
+    out.append("saved: %d cones, the CLI re-instantiates %d instances as the editor" % (after, cli["instances"]))
     print("; ".join(out))
 
 

@@ -123,7 +123,8 @@ fi
 # ---- Sculpt from any view: held rock piles poured through the camera's rays ("from_camera") from an
 # oblique, a side and a top view land on the brush's ground point as cones at the rock's angle of repose,
 # each one primitive and one undo step; the oblique pile is photographed from the side; the side pile is
-# moved as a unit; the file is saved and re-instantiated by the CLI. ----
+# moved as a unit; a dragged stroke (a cone every radius / 3) is moved as a unit too; the file is saved and
+# re-instantiated by the CLI. ----
 cat >"$tmp/piles.json" <<EOF
 [{"frame": 1, "action": "view", "target": [-6, -10, 0], "distance": 8, "yaw_deg": -90, "pitch_deg": 30},
  {"action": "sculpt_stroke", "type": "rock", "points": [[-6, -10]], "radius": 0.6, "steps": 40, "from_camera": true},
@@ -136,6 +137,8 @@ cat >"$tmp/piles.json" <<EOF
  {"action": "view", "target": [-12, 4, 0], "distance": 8, "yaw_deg": -90, "pitch_deg": 89},
  {"action": "sculpt_stroke", "type": "rock", "points": [[-12, 4]], "radius": 0.6, "steps": 40, "from_camera": true},
  {"action": "move", "from": [3, -12], "to": [5, -12], "steps": 4},
+ {"action": "sculpt_stroke", "type": "rock", "points": [[8, -15], [10, -15]], "radius": 0.6, "steps": 30},
+ {"action": "move", "from": [9, -15], "to": [9, -13], "steps": 4},
  {"action": "save_as", "path": "$tmp/saved/meadow_piles.json"},
  {"action": "wait_idle"}]
 EOF
