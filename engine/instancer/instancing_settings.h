@@ -4,7 +4,9 @@
 // swaps in new fields after each edit.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <memory>
 
 #include "field/density_field.h"
@@ -43,10 +45,13 @@ struct SizeConstraint {
 // Candidates that would sink into the ground: rejected like a constraint (issue "piles that rest": half of
 // the beaver dam's grass tufts reached more than 2 cm below the terrain they were exported with). A
 // candidate is kept when none of its lowest collision spheres reaches more than max_sink_m below the
-// terrain under its centre. Off without a terrain.
+// ground under its centre: the terrain, or without one the scene's ground plane (a pile on a floor: the
+// rock pile's bottom rocks reached up to 5 cm into it). Off with neither.
 struct SinkConstraint {
-    std::shared_ptr<const HeightField> terrain;  // null: off
+    std::shared_ptr<const HeightField> terrain;  // null: the plane below, if any
+    float ground_z = std::numeric_limits<float>::quiet_NaN();  // without a terrain: the plane z = ground_z; NaN: off
     float max_sink_m = 0.02f;                    // >= 0
+    bool enabled() const { return terrain || std::isfinite(ground_z); }
 };
 
 struct InstanceTypeSettings {

@@ -267,7 +267,7 @@ bool validateInput(const InstancerInput& in, std::string* error) {
                 return fail(where + "orientation min_cos must be in [-1, 1]");
             if (!validate(t.orientation.direction, &e)) return fail(where + "orientation: " + e);
         }
-        if (t.sink.terrain && !(std::isfinite(t.sink.max_sink_m) && t.sink.max_sink_m >= 0.0f))
+        if (t.sink.enabled() && !(std::isfinite(t.sink.max_sink_m) && t.sink.max_sink_m >= 0.0f))
             return fail(where + "max_sink_m must be finite and >= 0");
         if (t.size.enabled) {
             if (!std::isfinite(t.size.tolerance) || t.size.tolerance < 0.0f)
@@ -416,12 +416,13 @@ void Instantiator::Engine::computeTile(TileState* ts, const std::vector<const Ti
                     continue;
                 }
             }
-            if (settings.sink.terrain) {
-                const HeightField& ground = *settings.sink.terrain;
+            if (settings.sink.enabled()) {
+                const HeightField* terrain = settings.sink.terrain.get();
                 bool sunk = false;
                 for (uint32_t low = 0; low < kSinkSpheres && !sunk; ++low) {
                     const glm::vec4 sp = prep.low_spheres[size_t(j) * kSinkSpheres + low];
-                    sunk = ground.sample(o.x + sp.x, o.y + sp.y) - (o.z + sp.z - sp.w) > settings.sink.max_sink_m;
+                    const float ground = terrain ? terrain->sample(o.x + sp.x, o.y + sp.y) : settings.sink.ground_z;
+                    sunk = ground - (o.z + sp.z - sp.w) > settings.sink.max_sink_m;
                 }
                 if (sunk) {
                     ++ts->constraint_rejected;

@@ -145,6 +145,8 @@ bool compileDetailType(const Project& project, size_t type_index,
             return fail(error, project, tp + "/terrain_falloff_m", "must be finite and > 0");
         subtractSolids(field.get(), {makeTerrainSolid(0, d.terrain_falloff_m)});
         s.sink.terrain = terrain;  // what keeps details out of the ground also keeps them from sinking in
+    } else if (!terrain && project.settling.ground_z) {
+        s.sink.ground_z = *project.settling.ground_z;  // the floor the settling rests them on
     }
     s.field = field;
 

@@ -216,6 +216,34 @@ TEST(Settling, CreatesNoOverlapAndLeavesNothingHovering) {
     EXPECT_LE(rest_after.hovering_fraction, 0.02);
 }
 
+// Without a terrain, the ground plane keeps candidates from sinking into it (SinkConstraint::ground_z), as
+// a terrain does: the rock pile's bottom rocks reached up to 5 cm into its floor. Settling never pushes
+// anything under it, so what is instantiated on the plane stays above it.
+TEST(Settling, TheGroundPlaneRefusesCandidatesThatWouldSinkIntoIt) {
+    PileScene scene;
+    const std::vector<const DetailModel*> models = {&scene.fx.models[0], &scene.fx.models[1]};
+    const InstanceStore loose = scene.instantiate();
+    const RestReport without = measureRest(placeInstances(loose, scene.fx.tile), models, scene.settle.support, 0.02f, 2);
+    ASSERT_GT(without.sunk, 0u) << "the fixture should reach into its floor without the constraint";
+    for (InstanceTypeSettings& t : scene.fx.input.types) t.sink.ground_z = 0.0f;
+    const InstanceStore kept = scene.instantiate();
+    EXPECT_GT(kept.instanceCount(), loose.instanceCount() / 2);
+    EXPECT_TRUE(kept == scene.instantiate(1)) << "one thread and two differ";
+    SettledDrops drops;
+    settleAll(scene.settle, kept, 2, &drops);
+    for (const SettledDrops* d : std::initializer_list<const SettledDrops*>{nullptr, &drops}) {
+        const RestReport r = measureRest(placeInstances(kept, scene.fx.tile, d), models, scene.settle.support, 0.02f, 2);
+        EXPECT_EQ(r.sunk, 0u) << (d ? "settled" : "as instantiated");
+        EXPECT_LE(r.max_sunk_m, 0.02 + 1e-6);
+    }
+    // A non-finite limit with the plane on is refused, naming the type.
+    scene.fx.input.types[1].sink.max_sink_m = std::numeric_limits<float>::quiet_NaN();
+    Instantiator inst;
+    std::string error;
+    EXPECT_FALSE(inst.setInput(scene.fx.input, &error));
+    EXPECT_NE(error.find("max_sink_m"), std::string::npos) << error;
+}
+
 TEST(Settling, UpdateAfterAnEditEqualsSettlingTheNewStore) {
     PileScene scene;
     Instantiator inst;

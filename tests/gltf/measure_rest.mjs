@@ -5,10 +5,11 @@
 // EXT_mesh_gpu_instancing TRS), places the mesh's collision_spheres extras, and measures
 //   hovering = instances that could fall more than 2 cm (straight down, -Y in glTF) before a sphere
 //              touches the ground plane y = 0 or a sphere of another instance whose centre is not above;
+//   sunk     = instances with a sphere whose bottom lies more than 2 cm below the ground plane y = 0;
 //   twins    = instances with a copy of the same mesh, rotation and scale one tile away (tile size from
 //              the scene's extras, stats.ghost_tile.tile_size_m).
 // Only for scenes without a terrain (the support is the plane). Prints one JSON line:
-// {"instances", "hovering", "hovering_fraction", "twins", "twin_fraction"}.
+// {"instances", "hovering", "hovering_fraction", "sunk", "twins", "twin_fraction"}.
 //
 //   node measure_rest.mjs FILE.glb
 import { readFile } from 'node:fs/promises';
@@ -109,6 +110,10 @@ function hovering(instances) {
     return count;
 }
 
+function sunk(instances) {
+    return instances.filter((inst) => inst.spheres.some((s) => -(s.c[1] - s.r) > kThreshold)).length;
+}
+
 function twins(instances, tile) {
     const meshIds = new Map();
     const frame = (inst) => {
@@ -155,7 +160,7 @@ async function main() {
     const h = hovering(instances);
     const t = twins(instances, tile);
     console.log(JSON.stringify({ instances: instances.length, hovering: h, hovering_fraction: h / instances.length,
-                                 twins: t, twin_fraction: t / instances.length }));
+                                 sunk: sunk(instances), twins: t, twin_fraction: t / instances.length }));
 }
 
 main().catch((e) => {

@@ -36,11 +36,16 @@ scene = sys.argv[3]
 n = ours["rest"]["instances"]
 ok = theirs["instances"] == n and n > 0
 checks = [("hovering", ours["rest"]["hovering_fraction"] * n, theirs["hovering"]),
+          ("sunk", ours["rest"]["sunk_fraction"] * n, theirs["sunk"]),
           ("twins", ours["tiling"]["twin_fraction"] * n, theirs["twins"])]
 for name, a, b in checks:
     if abs(a - b) > max(1.0, 0.002 * n):
         ok = False
     print(f"{scene}: {name}: engine {a:.0f}, export {b} of {n}")
+# Issue 9: nothing more than 2 cm below the ground it is exported with (the floor y = 0 here).
+if theirs["sunk"] != 0:
+    ok = False
+    print(f"{scene}: {theirs['sunk']} instances reach more than 2 cm into the floor")
 if theirs["instances"] != n:
     print(f"{scene}: instances: engine {n}, export {theirs['instances']}")
 sys.exit(0 if ok else 1)
