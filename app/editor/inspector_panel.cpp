@@ -12,7 +12,8 @@ void drawInspector(Document* doc, const std::vector<std::string>& type_names, To
     // Top right, clear of the Statistics window on the left.
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - 10, vp->Pos.y + 30), ImGuiCond_FirstUseEver, ImVec2(1, 0));
-    ImGui::SetNextWindowSize(ImVec2(300, 0), ImGuiCond_FirstUseEver);
+    // Tall enough for a primitive's fields: sized to "Nothing selected" it clipped them on the first pick.
+    ImGui::SetNextWindowSize(ImVec2(300, 230), ImGuiCond_FirstUseEver);
     if (!ImGui::Begin("Inspector", open)) {
         ImGui::End();
         return;

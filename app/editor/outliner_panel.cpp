@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
+#include <set>
 
 #include "editor/panels.h"
 #include "scene/sculpt_pile.h"
@@ -64,6 +65,13 @@ void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uin
     if (!beginDocumentPanel("Outliner", open, doc != nullptr)) return;
     const size_t types = std::min(view.type_names.size(), doc->project().detail_types.size());
     visible->resize(types, 1);
+    // A new selection (a click in the view) opens its type's row, so the user sees what was picked.
+    static uint64_t revealed = 0;
+    size_t reveal_type = SIZE_MAX;
+    if (tools->selected != revealed) {
+        revealed = tools->selected;
+        if (revealed != 0) doc->findPrimitive(revealed, &reveal_type, nullptr);
+    }
     for (size_t t = 0; t < types; ++t) {
         ImGui::PushID(int(t));
         const glm::vec3 c = t < view.colors.size() ? view.colors[t] : glm::vec3(0.6f);
@@ -93,6 +101,7 @@ void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uin
             user_ids.push_back(id);
             user.push_back(p);
         }
+        if (t == reveal_type) ImGui::SetNextItemOpen(true);
         if (ImGui::TreeNodeEx(
                 "##layer", ImGuiTreeNodeFlags_SpanAvailWidth | (t == 0 ? ImGuiTreeNodeFlags_DefaultOpen : 0),
                 "%s", label.c_str())) {
@@ -100,16 +109,34 @@ void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uin
             ImGui::TextWrapped("%s", densitySummary(doc->project().detail_types[t].density, user).c_str());
             ImGui::PopStyleColor();
             if (ids.empty()) ImGui::TextDisabled("no user primitives");
+            // A brush stroke is one row (one unit: tools.h), at its first primitive; the selection is
+            // shown on the row of the stroke that holds it.
+            Primitive chosen;
+            const uint32_t chosen_stroke =
+                tools->selected != 0 && doc->findPrimitive(tools->selected, nullptr, &chosen) ? chosen.stroke : 0;
+            std::set<uint32_t> listed;
             for (size_t k = 0; k < user.size(); ++k) {
                 const uint64_t id = user_ids[k];
                 const Primitive& p = user[k];
+                size_t members = 1;
+                if (p.stroke != 0) {
+                    if (!listed.insert(p.stroke).second) continue;
+                    members = size_t(std::count_if(user.begin(), user.end(),
+                                                   [&](const Primitive& q) { return q.stroke == p.stroke; }));
+                }
                 ImGui::PushID(static_cast<int>(id));
                 char text[160];
                 // A sculpted pile is one cone however long the brush was held (tools.h): named as such.
-                std::snprintf(text, sizeof(text), "%s #%llu  (%.2f, %.2f, %.2f) r %.2f w %.2f",
-                              isPileCone(p) ? "pile" : primitiveKindName(p.kind), (unsigned long long)id, p.center_m.x, p.center_m.y,
-                              p.center_m.z, p.radius_m, p.weight);
-                if (ImGui::Selectable(text, tools->selected == id)) tools->selected = id;
+                const char* kind = isPileCone(p) ? "pile" : primitiveKindName(p.kind);
+                if (members > 1)
+                    std::snprintf(text, sizeof(text), "stroke %u: %zu %s%s  from (%.2f, %.2f, %.2f) w %.2f", p.stroke,
+                                  members, kind, p.kind == PrimitiveKind::Box ? "es" : "s", p.center_m.x, p.center_m.y,
+                                  p.center_m.z, p.weight);
+                else
+                    std::snprintf(text, sizeof(text), "%s #%llu  (%.2f, %.2f, %.2f) r %.2f w %.2f", kind,
+                                  (unsigned long long)id, p.center_m.x, p.center_m.y, p.center_m.z, p.radius_m, p.weight);
+                const bool selected = tools->selected == id || (p.stroke != 0 && p.stroke == chosen_stroke);
+                if (ImGui::Selectable(text, selected) && !selected) tools->selected = id;
                 if (ImGui::BeginPopupContextItem()) {
                     tools->selected = id;
                     if (ImGui::MenuItem("Duplicate", "Ctrl+D")) requests->duplicate_selected = true;
