@@ -265,7 +265,8 @@ def driven(original_path, saved_path, stats_path, cli_path, work):
     s = json.load(open(stats_path))
     doc = s["document"]
     start = json.load(open(os.path.join(work, "session.start.json")))["document"]
-    # Two discs painted, the pile undone, the first disc picked and deleted, then saved from the dialog.
+    # Two discs painted, the pile undone, the first disc picked and deleted, a dragged sculpt stroke picked
+    # and deleted as one, then saved from the dialog.
     # (Editable primitives include the file's own top-level ones, present from the start.)
     assert not doc["dirty"] and doc["user_primitives"] == start["user_primitives"] + 1, (start, doc)
     assert not s["messages"], s["messages"]
@@ -280,7 +281,10 @@ def driven(original_path, saved_path, stats_path, cli_path, work):
     # The held sculpt (the mouse, from the 60-degree view): a cone at the rock's angle of repose under the
     # cursor's ground point, one primitive, measured as it was released (before Ctrl+Z took it away).
     strokes = s["sculpt_strokes"]
-    assert len(strokes) == 1, strokes
+    assert len(strokes) == 2, strokes
+    # The dragged stroke left several cones, and one click and Delete took them all: the document ends
+    # with the file's primitives and one disc (above), and no cone is saved (below).
+    assert strokes[1]["primitives"] >= 3, strokes[1]
     pile = strokes[0]
     assert pile["stamps"] > 5, pile
     # On sloping ground a cone's volume lies downhill of its apex (the meadow's slopes put the centroid of
@@ -295,8 +299,9 @@ def driven(original_path, saved_path, stats_path, cli_path, work):
     w, h, _ = decode_png(os.path.join(work, shots[0]))
     assert (w, h) == (960, 540), (w, h)
     print(held)
-    print("mouse paint, a held stroke undone by Ctrl+Z, click-pick + Delete, F12, Ctrl+Q/Esc kept running, Ctrl+Q/Enter "
-          "saved 1 user disc; the CLI re-instantiates %d instances as the editor" % cli["instances"])
+    print("mouse paint, a held stroke undone by Ctrl+Z, click-pick + Delete, a dragged %d-cone sculpt stroke "
+          "click-picked and deleted as one, F12, Ctrl+Q/Esc kept running, Ctrl+Q/Enter saved 1 user disc; "
+          "the CLI re-instantiates %d instances as the editor" % (strokes[1]["primitives"], cli["instances"]))
 
 
 if __name__ == "__main__":

@@ -6,6 +6,8 @@
 #   Ctrl+Z              undo the pile
 #   B, click elsewhere  a second disc
 #   Q, click the first disc's centre, Delete     select by picking, delete
+#   S, press, drag, release    a dragged sculpt stroke: a cone every radius / 3 of travel, one stroke
+#   Q, click its first cone, Delete                  the whole stroke goes (a stroke is one unit)
 #   F12                 screenshot
 #   Ctrl+Q, Esc         the unsaved-changes dialog, cancelled: the editor keeps running
 #   Ctrl+Q, Enter       the dialog's default: save, then quit
@@ -39,6 +41,10 @@ key s; xdotool mousemove 420 250; sleep "$hold"; xdotool mousedown 1; sleep 1.5;
 chord ctrl z
 key b; click 560 200
 key q; click 480 330; key Delete
+key s; xdotool mousemove 300 400; sleep "$hold"; xdotool mousedown 1; sleep "$hold"
+for x in $(seq 310 10 420); do xdotool mousemove "$x" 400; sleep 0.15; done
+xdotool mouseup 1; sleep "$hold"
+key q; click 300 400; key Delete
 sleep 1
 key F12
 chord ctrl q; sleep 1
