@@ -26,6 +26,7 @@
 #include <glm/glm.hpp>
 #include <nlohmann/json.hpp>
 
+#include "analysis/placed_instances.h"
 #include "editor/document_loader.h"
 #include "editor/export_job.h"
 #include "editor/gl/renderer.h"
@@ -198,6 +199,10 @@ private:
     TileUploads uploads;      // what the latest live result changed in them
     std::shared_ptr<const InstanceStore> store;  // the result on screen
     std::shared_ptr<const SettledDrops> drops;   // and its settled drops (null: the scene does not settle)
+    // Click to place: the result on screen as world frames (surface_pick.h), and which result they are.
+    std::vector<PlacedInstance> pick_instances;
+    std::shared_ptr<const InstanceStore> pick_store;
+    std::shared_ptr<const SettledDrops> pick_drops;
     uint64_t shown_generation = 0;
     bool have_result = false;
     std::string asking_recovery;  // a path whose recovery dialog is open

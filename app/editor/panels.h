@@ -206,6 +206,9 @@ struct ParticlesPanelState {
     ParticleHandle selected_handle;  // picked in the viewport (an attractor, generator or cutter), or none
     glm::vec3 place_at{0.0f};        // where Add puts a new part: the ground under the view's centre
     ParticlePart placing = ParticlePart::None;  // armed: the next left click in the view places one there
+    // Clicks also meet the detail instances (rocks, not the ground under the grass): a generator placed
+    // on one grows on its type's instances there (addDetailsGenerator).
+    bool place_on_details = false;
     bool growing = false;    // its strands are growing in the background
     float progress = 0.0f;   // of that growth, [0, 1]
     bool can_cancel = false;        // the growth is for an edit that Cancel would undo

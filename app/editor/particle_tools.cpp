@@ -167,6 +167,19 @@ ParticleHandle addParticlePart(ParticleScene* scene, ParticlePart part, glm::vec
     return {};
 }
 
+ParticleHandle addDetailsGenerator(ParticleScene* scene, const std::string& detail_type, glm::vec3 at) {
+    ParticleGenerator g;
+    g.kind = GeneratorKind::Details;
+    g.detail_type = detail_type;
+    g.center_m = at;
+    g.half_extents_m = glm::vec3(0.5f);
+    g.min_normal_z = 0.45f;
+    g.count = 4000;
+    g.heading_cone_deg = 30.0f;
+    scene->generators.push_back(g);
+    return {ParticlePart::Generator, scene->generators.size() - 1, false};
+}
+
 ActionMode actionMode(const StrandAction& action) {
     if (action.table.empty()) return ActionMode::Single;
     return action.choice == ActionChoice::Random ? ActionMode::Random : ActionMode::Priority;

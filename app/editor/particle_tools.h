@@ -73,6 +73,12 @@ ParticleGenerator groundPatch(glm::vec3 at, float half_side_m, uint32_t count, f
 // Returns the new part's handle.
 ParticleHandle addParticlePart(ParticleScene* scene, ParticlePart part, glm::vec3 at, glm::vec3 normal, bool on_terrain);
 
+// A generator on the detail instances of `detail_type` around `at` (a click on one of them): a details
+// generator (moss on rocks) over their faces turned up (normal z >= 0.45) whose origins lie within a 1 m
+// cube centred there, 4,000 strands, headings in a 30 degree cone; the project places it on the instances
+// as it instantiates them. Returns its handle.
+ParticleHandle addDetailsGenerator(ParticleScene* scene, const std::string& detail_type, glm::vec3 at);
+
 // How a critical state acts (the Particles window's "acts by"): by one action, or by a table (§5.2) taken
 // by priority or at random (StrandAction::table). Changing it keeps what the state did: one action
 // becomes a table of one, a table becomes its first action; weights go back to 1 outside a random table.

@@ -355,7 +355,7 @@ void editWalk(WalkSettings* w, PanelEdit* e) {
 // "Click to place": the next left click in the view puts a new part on what it meets (surface_pick.h;
 // session_input.cpp places it); the armed button is framed, pressing it again disarms.
 void placeButtons(ParticlesPanelState* state) {
-    ImGui::TextUnformatted("Click to place:");
+    ImGui::TextUnformatted("Place:");
     for (const ParticlePart part : {ParticlePart::Generator, ParticlePart::Attractor, ParticlePart::Cutter}) {
         ImGui::SameLine();
         const bool armed = state->placing == part;
@@ -366,6 +366,12 @@ void placeButtons(ParticlesPanelState* state) {
             ImGui::SetTooltip("then click the ground or an object in the view to put a new %s there (Shift: several; Esc: stop)",
                               particlePartName(part));
     }
+    // On the same row: the window's layout below stays where users (and the X-driven test) find it.
+    ImGui::SameLine();
+    ImGui::Checkbox("on details", &state->place_on_details);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Clicks meet the detail instances too; a generator placed on one grows on the instances\n"
+                          "of its type within half a metre (moss on the rocks). Off: the ground under them.");
 }
 
 // The rows of one of the system's lists: each part's tree node (highlighted while its dot is the one

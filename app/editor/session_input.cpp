@@ -292,7 +292,14 @@ void EditorSession::placeParticlePart(const Ray& ray, bool mouse_free) {
         p.placing = ParticlePart::None;
         return;
     }
-    const ScenePick pick = pickSceneSurface(*doc, ray);
+    // The instances as they are drawn (settled), placed again only when the result on screen changes.
+    if (p.place_on_details && (pick_store != store || pick_drops != drops)) {
+        pick_instances = store ? placeInstances(*store, doc->ghostTile(), drops.get()) : std::vector<PlacedInstance>{};
+        pick_store = store;
+        pick_drops = drops;
+    }
+    const ScenePick pick = pickSceneSurface(*doc, ray, p.place_on_details ? std::span<const PlacedInstance>(pick_instances)
+                                                                          : std::span<const PlacedInstance>());
     if (!mouse_free || !pick.hit.hit) return;
     addBrushMarker(*doc, pick.hit.point_m, 0.1f, false, &markers);
     const glm::vec3 orange(1.0f, 0.75f, 0.1f);  // the armed button's colour
@@ -301,8 +308,14 @@ void EditorSession::placeParticlePart(const Ray& ray, bool mouse_free) {
     if (!ImGui::IsMouseClicked(ImGuiMouseButton_Left)) return;
     ParticleSystemFile system = systems[p.selected];
     // On the ground of a project with a terrain, a generator is dropped onto it as the terrain's are.
-    const bool on_terrain = pick.object < 0 && system.scene.terrain != nullptr;
-    const ParticleHandle added = addParticlePart(&system.scene, p.placing, pick.hit.point_m, pick.hit.normal, on_terrain);
+    const bool on_terrain = pick.object < 0 && pick.instance < 0 && system.scene.terrain != nullptr;
+    // A generator on a detail instance grows on its type's instances there (moss on the rocks around the
+    // click): one instance alone is re-made whenever its tile is instantiated again.
+    const bool on_details = p.placing == ParticlePart::Generator && pick.instance >= 0 &&
+                            pick.detail_type < doc->project().detail_types.size();
+    const ParticleHandle added =
+        on_details ? addDetailsGenerator(&system.scene, doc->project().detail_types[pick.detail_type].model.name, pick.hit.point_m)
+                   : addParticlePart(&system.scene, p.placing, pick.hit.point_m, pick.hit.normal, on_terrain);
     std::string place_error;
     doc->beginStroke(std::string("Place ") + particlePartName(p.placing));
     const bool ok = doc->setParticleSystem(p.selected, system, &place_error);

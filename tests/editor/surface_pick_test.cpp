@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <random>
 
 #include "editor/particle_tools.h"
@@ -13,6 +14,7 @@
 #include "editor_test_util.h"
 #include "env/env_scene.h"
 #include "mesh/triangle_bvh.h"
+#include "particles/particle_json.h"
 
 namespace ug::editor {
 namespace {
@@ -117,6 +119,76 @@ TEST(SurfacePick, PartsPlacedOnASurfaceSitOnItAlongItsNormal) {
     addParticlePart(&scene, ParticlePart::Generator, ground.hit.point_m, ground.hit.normal, true);
     EXPECT_TRUE(scene.generators[0].on_terrain);
     EXPECT_NEAR(glm::length(scene.generators[0].axis_u_m), 0.25f, 1e-6f);
+}
+
+// Click to place on a detail instance (the rocks of rock_pile_moss, settled as drawn): the pick is the
+// nearest of the ground and the instances' models, at the distance the brute-force ray test finds on each
+// model placed in the world; a generator placed there is a details generator on that type, and the project
+// gathers the rocks around the click into it.
+TEST(SurfacePick, DetailInstancesAreHitOnTheirModelsAndAGeneratorThereGrowsOnThem) {
+    std::random_device rd;
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("ug_pick_details_" + std::to_string(rd()) + std::to_string(rd()));
+    std::string error;
+    std::unique_ptr<Document> doc =
+        Document::open((std::filesystem::path(UG_SOURCE_DIR) / "assets/scenes/rock_pile_moss.json").string(),
+                       DocumentOptions{.cache_dir = (dir / "cache").string(), .threads = 2}, &error);
+    ASSERT_TRUE(doc) << error;
+    doc->live().waitIdle();
+    LiveResult r;
+    ASSERT_TRUE(doc->live().poll(&r));
+    const std::vector<PlacedInstance> placed = placeInstances(*r.store, doc->ghostTile(), r.drops.get());
+    ASSERT_GT(placed.size(), 500u);
+    std::vector<TriangleMesh> world(placed.size());
+    for (size_t i = 0; i < placed.size(); ++i) {
+        world[i] = doc->models()[placed[i].type].mesh;
+        for (glm::vec3& p : world[i].positions) p = placed[i].position + placed[i].rotation * (placed[i].scale * p);
+    }
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    int on_instances = 0;
+    glm::vec3 rock_hit(0.0f);
+    for (int k = 0; k < 30; ++k) {
+        const glm::vec3 aim = placed[(k * 37) % placed.size()].position;
+        const glm::vec3 eye = aim + glm::normalize(glm::vec3(unit(rng), unit(rng), 0.5f + std::abs(unit(rng)))) * 3.0f;
+        const Ray ray{eye, glm::normalize(aim - eye)};
+        const ScenePick pick = pickSceneSurface(*doc, ray, placed);
+        const SurfaceHit ground = pickGround(*doc, ray);
+        float nearest = ground.hit ? glm::distance(eye, ground.point_m) : INFINITY;
+        int64_t instance = -1;
+        for (size_t i = 0; i < world.size(); ++i) {
+            const float t = rayHitBruteForce(world[i], eye, ray.direction);
+            if (t < nearest) {
+                nearest = t;
+                instance = int64_t(i);
+            }
+        }
+        ASSERT_TRUE(pick.hit.hit) << k;
+        EXPECT_EQ(pick.instance, instance) << k;
+        EXPECT_EQ(pick.object, -1) << k;
+        EXPECT_NEAR(glm::distance(eye, pick.hit.point_m), nearest, 1e-3f) << k;
+        EXPECT_LE(glm::dot(pick.hit.normal, ray.direction), 0.0f) << k << ": the face seen";
+        if (instance >= 0) {
+            EXPECT_EQ(pick.detail_type, placed[size_t(instance)].type) << k;
+            if (doc->project().detail_types[pick.detail_type].model.name == "rock") rock_hit = pick.hit.point_m;
+            ++on_instances;
+        }
+    }
+    EXPECT_GT(on_instances, 20) << "rays aimed at instances' origins should mostly meet them";
+    ASSERT_NE(rock_hit, glm::vec3(0.0f));
+    // A generator placed on a rock: moss on the rocks around the click, gathered by the project.
+    ParticleSystemFile system = (*doc->particles())[0];
+    const size_t before = system.scene.generators.size();
+    const ParticleHandle added = addDetailsGenerator(&system.scene, "rock", rock_hit);
+    EXPECT_EQ(added, (ParticleHandle{ParticlePart::Generator, before, false}));
+    ASSERT_TRUE(doc->setParticleSystem(0, system, &error)) << error;
+    const ParticleGenerator& g = (*doc->particles())[0].scene.generators.at(before);
+    EXPECT_EQ(g.kind, GeneratorKind::Details);
+    ASSERT_TRUE(g.mesh);
+    EXPECT_GT(g.mesh->triangleCount(), 100u) << "the rocks within half a metre of the click";
+    doc.reset();
+    std::error_code ec;
+    std::filesystem::remove_all(dir, ec);
 }
 
 }  // namespace

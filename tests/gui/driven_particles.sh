@@ -48,9 +48,9 @@ dump new_system '"name": "strands"'
 # Remove system, under the new system's lists (one attractor open, the other headers closed).
 click 407 444
 dump removed "$settled"
-# Click to place: the window's "generator" button (right of "Click to place:" under the status line),
-# then a click on the ground in the view: a new generator there, one undo step; Ctrl+Z takes it away.
-click 504 103
+# Click to place: the window's "generator" button (right of "Place:" under the status line), then a
+# click on the ground in the view: a new generator there, one undo step; Ctrl+Z takes it away.
+click 441 103
 click 1000 600
 dump placed "$settled"
 undo
