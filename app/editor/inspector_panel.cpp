@@ -1,5 +1,7 @@
 #include <imgui.h>
 
+#include <cfloat>
+
 #include "editor/panels.h"
 #include "editor/tools.h"
 #include "scene/sculpt_pile.h"
@@ -12,9 +14,10 @@ void drawInspector(Document* doc, const std::vector<std::string>& type_names, To
     // Top right, clear of the Statistics window on the left.
     const ImGuiViewport* vp = ImGui::GetMainViewport();
     ImGui::SetNextWindowPos(ImVec2(vp->Pos.x + vp->Size.x - 10, vp->Pos.y + 30), ImGuiCond_FirstUseEver, ImVec2(1, 0));
-    // Tall enough for a primitive's fields: sized to "Nothing selected" it clipped them on the first pick.
-    ImGui::SetNextWindowSize(ImVec2(300, 230), ImGuiCond_FirstUseEver);
-    if (!ImGui::Begin("Inspector", open)) {
+    // As tall as what it shows: sized once to "Nothing selected" it clipped a primitive's fields, and a
+    // fixed taller window would cover the view where nothing is selected.
+    ImGui::SetNextWindowSizeConstraints(ImVec2(300, 0), ImVec2(300, FLT_MAX));
+    if (!ImGui::Begin("Inspector", open, ImGuiWindowFlags_AlwaysAutoResize)) {
         ImGui::End();
         return;
     }

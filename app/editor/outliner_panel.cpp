@@ -114,6 +114,9 @@ void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uin
             Primitive chosen;
             const uint32_t chosen_stroke =
                 tools->selected != 0 && doc->findPrimitive(tools->selected, nullptr, &chosen) ? chosen.stroke : 0;
+            std::map<uint32_t, size_t> stroke_sizes;  // one pass: a stroke's row shows its size
+            for (const Primitive& p : user)
+                if (p.stroke != 0) ++stroke_sizes[p.stroke];
             std::set<uint32_t> listed;
             for (size_t k = 0; k < user.size(); ++k) {
                 const uint64_t id = user_ids[k];
@@ -121,8 +124,7 @@ void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uin
                 size_t members = 1;
                 if (p.stroke != 0) {
                     if (!listed.insert(p.stroke).second) continue;
-                    members = size_t(std::count_if(user.begin(), user.end(),
-                                                   [&](const Primitive& q) { return q.stroke == p.stroke; }));
+                    members = stroke_sizes[p.stroke];
                 }
                 ImGui::PushID(static_cast<int>(id));
                 char text[160];
