@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <random>
+#include <utility>
 
 #include "editor/particle_tools.h"
 #include "editor/surface_pick.h"
@@ -27,6 +28,22 @@ TriangleMesh worldMesh(const EnvScene& env, size_t object) {
     return m;
 }
 
+// By brute force, independently of the pick: the distance to the nearest of the ground and the world
+// meshes along the ray, and which mesh (-1: the ground, or nothing).
+std::pair<float, int64_t> nearestAlong(const Document& doc, const Ray& ray, const std::vector<TriangleMesh>& meshes) {
+    const SurfaceHit ground = pickGround(doc, ray);
+    float nearest = ground.hit ? glm::distance(ray.origin_m, ground.point_m) : INFINITY;
+    int64_t which = -1;
+    for (size_t k = 0; k < meshes.size(); ++k) {
+        const float t = rayHitBruteForce(meshes[k], ray.origin_m, ray.direction);
+        if (t < nearest) {
+            nearest = t;
+            which = int64_t(k);
+        }
+    }
+    return {nearest, which};
+}
+
 TEST(SurfacePick, TheNearestOfTheGroundAndTheObjectsAlongTheRay) {
     test::OpenEnvDocument o;
     ASSERT_TRUE(o.doc);
@@ -44,16 +61,7 @@ TEST(SurfacePick, TheNearestOfTheGroundAndTheObjectsAlongTheRay) {
         const glm::vec3 eye = aim + glm::normalize(glm::vec3(unit(rng), unit(rng), 0.3f + std::abs(unit(rng)))) * 4.0f;
         const Ray ray{eye, glm::normalize(aim - eye)};
         const ScenePick pick = pickSceneSurface(doc, ray);
-        const SurfaceHit ground = pickGround(doc, ray);
-        float nearest = ground.hit ? glm::distance(eye, ground.point_m) : INFINITY;
-        int64_t object = -1;
-        for (size_t k = 0; k < meshes.size(); ++k) {
-            const float t = rayHitBruteForce(meshes[k], eye, ray.direction);
-            if (t < nearest) {
-                nearest = t;
-                object = int64_t(k);
-            }
-        }
+        const auto [nearest, object] = nearestAlong(doc, ray, meshes);
         ASSERT_EQ(pick.hit.hit, std::isfinite(nearest)) << i;
         if (!pick.hit.hit) continue;
         EXPECT_EQ(pick.object, object) << i;
@@ -153,16 +161,7 @@ TEST(SurfacePick, DetailInstancesAreHitOnTheirModelsAndAGeneratorThereGrowsOnThe
         const glm::vec3 eye = aim + glm::normalize(glm::vec3(unit(rng), unit(rng), 0.5f + std::abs(unit(rng)))) * 3.0f;
         const Ray ray{eye, glm::normalize(aim - eye)};
         const ScenePick pick = pickSceneSurface(*doc, ray, placed);
-        const SurfaceHit ground = pickGround(*doc, ray);
-        float nearest = ground.hit ? glm::distance(eye, ground.point_m) : INFINITY;
-        int64_t instance = -1;
-        for (size_t i = 0; i < world.size(); ++i) {
-            const float t = rayHitBruteForce(world[i], eye, ray.direction);
-            if (t < nearest) {
-                nearest = t;
-                instance = int64_t(i);
-            }
-        }
+        const auto [nearest, instance] = nearestAlong(*doc, ray, world);
         ASSERT_TRUE(pick.hit.hit) << k;
         EXPECT_EQ(pick.instance, instance) << k;
         EXPECT_EQ(pick.object, -1) << k;
