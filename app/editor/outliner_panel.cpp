@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cstdio>
 #include <map>
-#include <set>
+#include <utility>
 
 #include "editor/panels.h"
 #include "scene/sculpt_pile.h"
@@ -114,17 +114,18 @@ void drawOutliner(const Document* doc, const OutlinerView& view, std::vector<uin
             Primitive chosen;
             const uint32_t chosen_stroke =
                 tools->selected != 0 && doc->findPrimitive(tools->selected, nullptr, &chosen) ? chosen.stroke : 0;
-            std::map<uint32_t, size_t> stroke_sizes;  // one pass: a stroke's row shows its size
+            // One pass counts each stroke; its row takes the count, and the stroke's later primitives
+            // (count already taken: 0) have no row.
+            std::map<uint32_t, size_t> stroke_sizes;
             for (const Primitive& p : user)
                 if (p.stroke != 0) ++stroke_sizes[p.stroke];
-            std::set<uint32_t> listed;
             for (size_t k = 0; k < user.size(); ++k) {
                 const uint64_t id = user_ids[k];
                 const Primitive& p = user[k];
                 size_t members = 1;
                 if (p.stroke != 0) {
-                    if (!listed.insert(p.stroke).second) continue;
-                    members = stroke_sizes[p.stroke];
+                    members = std::exchange(stroke_sizes[p.stroke], 0);
+                    if (members == 0) continue;
                 }
                 ImGui::PushID(static_cast<int>(id));
                 char text[160];

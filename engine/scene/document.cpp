@@ -460,25 +460,33 @@ uint64_t Document::duplicatePrimitive(uint64_t id, glm::vec3 offset_m, std::stri
     return addPrimitive(type, translatedPrimitive(prim, offset_m), error);
 }
 
+namespace {
+
+// fn(id, primitive) for every user primitive, in type then blend order.
+template <typename Fn>
+void eachUserPrimitive(const std::vector<EditableDensity>& densities, const Project& project, Fn fn) {
+    for (size_t t = 0; t < densities.size(); ++t)
+        for (size_t k = 0; k < densities[t].ids.size(); ++k)
+            if (densities[t].ids[k] != 0) fn(densities[t].ids[k], userPrimitive(project.detail_types[t].density, k));
+}
+
+}  // namespace
+
 std::vector<uint64_t> Document::strokeMembers(uint64_t id) const {
     Primitive prim;
     if (!findPrimitive(id, nullptr, &prim)) return {};
     if (prim.stroke == 0) return {id};
     std::vector<uint64_t> members;
-    for (size_t t = 0; t < densities_.size(); ++t)
-        for (size_t k = 0; k < densities_[t].ids.size(); ++k)
-            if (densities_[t].ids[k] != 0 &&
-                userPrimitive(project_.detail_types[t].density, k).stroke == prim.stroke)
-                members.push_back(densities_[t].ids[k]);
+    eachUserPrimitive(densities_, project_, [&](uint64_t member, const Primitive& p) {
+        if (p.stroke == prim.stroke) members.push_back(member);
+    });
     return members;
 }
 
 uint32_t Document::newStrokeTag() const {
     uint32_t largest = 0;
-    for (size_t t = 0; t < densities_.size(); ++t)
-        for (size_t k = 0; k < densities_[t].ids.size(); ++k)
-            if (densities_[t].ids[k] != 0)
-                largest = std::max(largest, userPrimitive(project_.detail_types[t].density, k).stroke);
+    eachUserPrimitive(densities_, project_,
+                      [&](uint64_t, const Primitive& p) { largest = std::max(largest, p.stroke); });
     // Tags come from files too; past the last one, the first free tag above 0 (never reached in practice).
     return largest < UINT32_MAX ? largest + 1 : 1;
 }
