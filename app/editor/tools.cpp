@@ -171,9 +171,30 @@ bool BrushStroke::drag(const Ray& ray, double now_s, std::string* error) {
 
 Primitive BrushStroke::pileCone(float volume_m3) const {
     Primitive prim =
-        pileConePrimitive(pileConeForVolume(pile_base_, volume_m3, pileAngleDeg()), pileWeight(), kSculptIso);
+        pileConePrimitive(pileConeOnBed(pile_base_, pile_bed_, volume_m3, pileAngleDeg()), pileWeight(), kSculptIso);
     prim.stroke = stroke_tag_;
     return prim;
+}
+
+PileBed samplePileBed(const Document& doc, size_t type, glm::vec3 base_m, float radius_m) {
+    // 25 x 25 columns: the bed only corrects the cone's height, so its cells may be coarse (a tenth of the
+    // cone's radius), and a stamp stays a few hundred short ray casts.
+    constexpr int kHalfCells = 12;
+    PileBed bed;
+    bed.centre_m = glm::vec2(base_m);
+    bed.half_cells = kHalfCells;
+    bed.cell_m = radius_m / float(kHalfCells);
+    bed.height_m.assign(size_t(2 * kHalfCells + 1) * size_t(2 * kHalfCells + 1), 0.0f);
+    size_t k = 0;
+    for (int j = -kHalfCells; j <= kHalfCells; ++j)
+        for (int i = -kHalfCells; i <= kHalfCells; ++i, ++k) {
+            const glm::vec2 xy = bed.centre_m + bed.cell_m * glm::vec2(i, j);
+            // The pile, or the ground where there is none: on a slope the ground uphill of the base is a
+            // bed too, since the cone's material cannot be inside it.
+            const SurfaceHit top = pickPile(doc, type, rayDownOnto(doc, xy));
+            if (top.hit) bed.height_m[k] = std::max(0.0f, top.point_m.z - base_m.z);
+        }
+    return bed;
 }
 
 float BrushStroke::pileWeight() const { return kSculptPileWeight * std::max(1.0f, brush_.strength); }
@@ -189,8 +210,16 @@ float BrushStroke::pileAngleDeg() const {
 }
 
 bool BrushStroke::startPile(const SurfaceHit& landing, double now_s, std::string* error) {
-    pile_base_ = landing.point_m;
+    // The cone stands on the ground under the landing and rises through the pile there (pileConeOnBed).
+    pile_base_ = glm::vec3(glm::vec2(landing.point_m), groundHeightAt(*doc_, glm::vec2(landing.point_m)));
     pile_volume_m3_ = stampVolume();
+    const PileCone lone = pileConeForVolume(pile_base_, pile_volume_m3_, pileAngleDeg());
+    const float slope = lone.height_m / std::max(lone.base_radius_m, 1e-6f);
+    const float under = landing.on_pile ? std::max(0.0f, landing.point_m.z - pile_base_.z) : 0.0f;
+    // Wide enough for the cone a held brush grows to in a few seconds on top of what is there; a longer
+    // hold's cone reaches past it, where the bed counts as empty and the cone rises a little less.
+    const float reach = std::min(8.0f, 2.0f * (under + 2.0f * lone.height_m) / std::max(slope, 1e-3f));
+    pile_bed_ = samplePileBed(*doc_, brush_.sculpt_type, pile_base_, reach);
     const Primitive prim = pileCone(pile_volume_m3_);
     const uint64_t id = doc_->addPrimitive(brush_.sculpt_type, prim, error);
     if (id == 0) return false;
@@ -212,7 +241,8 @@ bool BrushStroke::growPile(double now_s, std::string* error) {
     changed_ = unite(changed_, editBounds(pileCone(volume)));
     last_time_s_ = now_s;
     ++stamps_;
-    points_.push_back(pile_base_);
+    const glm::vec3 landed = points_.back();  // held still: the same spot again
+    points_.push_back(landed);
     return true;
 }
 

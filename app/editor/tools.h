@@ -19,10 +19,12 @@
 //           pulls the brush towards the camera), and from above that ground point the brush looks
 //           straight down onto the sculpt type's pile (its f = kSculptIso isosurface) or the ground
 //           (sculptLanding). There the stroke grows ONE cone primitive (scene/sculpt_pile.h): a vertical
-//           Segment whose isosurface is a cone at the type's angle of repose
-//           (DetailTypeDesc::angle_of_repose_deg), holding the material of all its stamps (each the
-//           volume of the old brush's ball, sculptStampVolume; weight kSculptPileWeight * max(1,
-//           strength)). A stamp every radius / 3 of travel over the ground starts a new cone there;
+//           Segment standing on the ground under that spot whose isosurface is a cone at the type's angle
+//           of repose (DetailTypeDesc::angle_of_repose_deg), as tall as it must be to add the material of
+//           all its stamps to the pile already there (pileConeOnBed; each stamp the volume of the old
+//           brush's ball, sculptStampVolume; weight kSculptPileWeight * max(1, strength)). Material runs
+//           down the heap, so a slow drag over its own pile builds a ridge of steady height rather than
+//           stacking each cone on the last one's flank. A stamp every radius / 3 of travel over the ground starts a new cone there;
 //           while the brush is held still, every kSculptHoldInterval_s the current cone takes one more
 //           stamp's volume in place (the same primitive, Document::setPrimitive), so a held brush is one
 //           primitive that grows as a cone, selected, moved, deleted and re-weighted as a unit, and the
@@ -101,6 +103,10 @@ Ray rayDownOnto(const Document& doc, glm::vec2 xy_m);
 // pile there (or the ground). Does not depend on where the ray comes from, only on its ground point.
 SurfaceHit sculptLanding(const Document& doc, size_t type, const Ray& ray);
 
+// The `type`'s pile around a cone's base (scene/sculpt_pile.h PileBed): the height of its surface, or of
+// the ground where there is no pile, above base_m.z on 25 x 25 columns within radius_m of the base's XY.
+PileBed samplePileBed(const Document& doc, size_t type, glm::vec3 base_m, float radius_m);
+
 // The sculpt type's pile around `centre_xy` (scene/sculpt_pile.h measurePile), from vertical columns on a
 // grid of `cell_m` within `search_radius_m`: the pile's surface (from top_z down) above the ground.
 // Replayed strokes report it (viewer.cpp "pile"), so tests judge the shape the user would see.
@@ -124,7 +130,7 @@ class BrushStroke {
     int stamps() const { return stamps_; }
     // The union of the added primitives' supports (where the fields changed).
     const Bounds& changedBounds() const { return changed_; }
-    // Where each stamp landed, in order (sculpt: the base of the cone it grew).
+    // Where each stamp landed, in order (sculpt: on the pile or the ground, above the base of the cone it grew).
     const std::vector<glm::vec3>& stampPoints() const { return points_; }
     // Sculpt: the ids of the cones this stroke made (one per spot the brush was held or passed over).
     const std::vector<uint64_t>& pileIds() const { return pile_ids_; }
@@ -135,7 +141,7 @@ class BrushStroke {
     float pileWeight() const;   // kSculptPileWeight * max(1, strength)
     float stampVolume() const;  // one stamp's material: the old brush's ball (weight max(1, strength))
     float pileAngleDeg() const;  // the sculpt type's angle of repose
-    Primitive pileCone(float volume_m3) const;  // the cone at pile_base_ holding this much, tagged
+    Primitive pileCone(float volume_m3) const;  // the cone at pile_base_ adding this much to pile_bed_, tagged
     bool startPile(const SurfaceHit& landing, double now_s, std::string* error);
     bool growPile(double now_s, std::string* error);
 
@@ -150,7 +156,8 @@ class BrushStroke {
     uint32_t stroke_tag_ = 0;  // on every primitive this stroke adds
     // Sculpt: the cone being grown (pile_ids_.back()), its base and its material so far.
     std::vector<uint64_t> pile_ids_;
-    glm::vec3 pile_base_{0.0f};
+    glm::vec3 pile_base_{0.0f};  // on the ground under where the material landed
+    PileBed pile_bed_;           // the pile it was poured onto
     float pile_volume_m3_ = 0.0f;
 };
 

@@ -25,6 +25,46 @@ float sculptStampVolume(float brush_radius_m, float weight, float iso) {
     return 2.0f / 3.0f * kPi * r * r * r;
 }
 
+float PileBed::maxHeight() const {
+    float m = 0.0f;
+    for (float h : height_m) m = std::max(m, h);
+    return m;
+}
+
+PileCone pileConeOnBed(glm::vec3 base_m, const PileBed& bed, float volume_m3, float angle_of_repose_deg) {
+    const PileCone lone = pileConeForVolume(base_m, volume_m3, angle_of_repose_deg);
+    const float bed_top = bed.maxHeight();
+    if (!(bed_top > 0.0f) || !(lone.height_m > 0.0f)) return lone;
+    const float slope = lone.height_m / lone.base_radius_m;
+    const int side = 2 * bed.half_cells + 1;
+    const float cell_area = bed.cell_m * bed.cell_m;
+    // Material above the bed = the cone's volume minus the part of it the bed already fills.
+    auto above_bed = [&](float h) {
+        float filled = 0.0f;
+        for (int j = 0; j < side; ++j)
+            for (int i = 0; i < side; ++i) {
+                const float b = bed.height_m[size_t(j) * size_t(side) + size_t(i)];
+                if (!(b > 0.0f)) continue;
+                const glm::vec2 x = bed.centre_m + bed.cell_m * glm::vec2(i - bed.half_cells, j - bed.half_cells);
+                const float cone = h - slope * glm::length(x - glm::vec2(base_m));
+                if (cone > 0.0f) filled += std::min(cone, b) * cell_area;
+            }
+        return kPi * h * h * h / (3.0f * slope * slope) - filled;
+    };
+    // The lone cone has at most `volume_m3` above the bed; raised by the bed's top, its part above that
+    // level alone is the lone cone again, so at least `volume_m3`.
+    float lo = lone.height_m, hi = lone.height_m + bed_top;
+    for (int k = 0; k < 40 && hi - lo > 1e-5f * hi; ++k) {
+        const float mid = 0.5f * (lo + hi);
+        (above_bed(mid) >= volume_m3 ? hi : lo) = mid;
+    }
+    PileCone c;
+    c.base_m = base_m;
+    c.height_m = hi;
+    c.base_radius_m = hi / slope;
+    return c;
+}
+
 float pileTipFraction(float angle_of_repose_deg) {
     return std::min(0.15f, 0.5f * std::tan(glm::radians(clampAngle(angle_of_repose_deg))));
 }

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <functional>
+#include <vector>
 #include <glm/glm.hpp>
 
 #include "field/density_field.h"
@@ -41,6 +42,26 @@ struct PileCone {
 // The cone of `volume_m3` whose sides stand at the angle of repose (degrees, clamped to (0, 89]):
 // V = π r² h / 3 with h = r tan θ.
 PileCone pileConeForVolume(glm::vec3 base_m, float volume_m3, float angle_of_repose_deg);
+
+// What a new cone is poured onto: the height of the pile already there (the sculpt type's surface) above
+// the cone's base level, on a square grid of (2 half_cells + 1)² cells of `cell_m` centred on its axis,
+// row by row from -y; 0 where there is none and beyond the grid.
+struct PileBed {
+    glm::vec2 centre_m{0.0f};
+    float cell_m = 0.0f;
+    int half_cells = 0;
+    std::vector<float> height_m;
+    float maxHeight() const;
+};
+
+// The cone on a bed: material runs down a heap until its slopes stand at the angle of repose, so what is
+// poured at one spot onto a pile raises the surface to max(old surface, a cone at the angle of repose),
+// and the cone's apex height H is the one whose material above the bed, ∫ max(0, cone_H − bed) dx,
+// equals `volume_m3`. Its base stays on the base level (the ground): a stroke dragged slowly over its own
+// pile builds a ridge that stops growing taller once each new spot's material fills its stretch, instead
+// of stacking each cone on the last one's flank (the ramp a slow drag used to climb). On an empty bed this
+// is pileConeForVolume's cone exactly.
+PileCone pileConeOnBed(glm::vec3 base_m, const PileBed& bed, float volume_m3, float angle_of_repose_deg);
 
 // The tip's rounding, as a fraction of the base radius: small enough that the cone reads as a cone, and
 // at most half the height so flat piles keep a positive axis.

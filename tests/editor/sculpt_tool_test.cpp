@@ -251,5 +251,65 @@ TEST_F(SculptTool, ADraggedStrokeIsOneUnitToMoveReweightAndDelete) {
     doc->close();
 }
 
+// A slow drag pours a ridge, not a ramp (issue 9: a 2 m drag with a 0.6 m brush used to stack each new cone
+// on the flank of the last and climb 2.5 m, rocks in the air). Every cone stands on the ground; the ridge
+// levels off at the height where each spot's material fills its stretch of the drag, its flanks at the
+// angle of repose, and it is solid from the ground up. The same from above, the side and an oblique view.
+TEST_F(SculptTool, ASlowDragPoursARidgeOfSteadyHeightOnTheGround) {
+    const float slope = std::tan(glm::radians(35.0f));
+    const std::pair<float, float> views[] = {{-90.0f, 35.0f}, {0.0f, 10.0f}, {0.0f, 89.0f}};
+    for (const auto& [yaw, pitch] : views) {
+        SCOPED_TRACE("yaw " + std::to_string(yaw) + " pitch " + std::to_string(pitch));
+        std::unique_ptr<Document> doc = makeDoc(35.0f);
+        ASSERT_TRUE(doc);
+        BrushSettings brush = defaultBrush(*doc);
+        brush.radius_m = 0.6f;
+        BrushStroke stroke;
+        std::string error;
+        // 2 m in 30 mouse moves of 6.7 cm along +x: a cone every 0.2 m.
+        ASSERT_TRUE(stroke.begin(doc.get(), ToolKind::Sculpt, brush, viewRay({-1.0f, 0.0f, 0.0f}, yaw, pitch), 0.0,
+                                 &error));
+        for (int k = 1; k <= 30; ++k)
+            ASSERT_TRUE(stroke.drag(viewRay({-1.0f + 2.0f * k / 30.0f, 0.0f, 0.0f}, yaw, pitch), 0.01 * k, &error))
+                << error;
+        const std::vector<uint64_t> cones = stroke.pileIds();
+        stroke.end();
+        ASSERT_GE(cones.size(), 9u);
+        for (uint64_t id : cones) {
+            Primitive p;
+            ASSERT_TRUE(doc->findPrimitive(id, nullptr, &p));
+            EXPECT_NEAR(p.center_m.z, 0.0f, 1e-5f);  // on the ground, not on the pile
+        }
+        // What the stroke poured: a stamp's volume per cone; the ridge between the cones stands at
+        // h = sqrt(a·tanθ), a = V / spacing its cross-section.
+        const float stamp_v = sculptStampVolume(0.6f, 1.0f, kSculptIso);
+        const float steady_h = std::sqrt(stamp_v / 0.2f * slope);
+        const DensityField& field = *doc->compiled().types[0].field;
+        auto thickness = [&](glm::vec2 xy) { return pileThicknessOverPlane(field, kSculptIso, xy, 0.0f, 4.0f); };
+        float start = 0.0f, end = 0.0f, top = 0.0f;
+        for (int i = 0; i <= 40; ++i) {
+            const float x = -1.0f + 2.0f * i / 40.0f;
+            const float t = thickness({x, 0.0f});
+            top = std::max(top, t);
+            if (x <= -0.5f) start = std::max(start, t);
+            if (x >= 0.5f) end = std::max(end, t);
+            // Solid under the surface: no rocks in the air.
+            for (float z = 0.02f; z < t - 0.02f; z += 0.02f)
+                ASSERT_GE(evaluate(field, {x, 0.0f, z}), kSculptIso) << "x " << x << " z " << z;
+        }
+        // The flanks across the ridge's middle, at the angle of repose.
+        float half_width = 0.0f;
+        for (float y = 0.0f; y < 3.0f && thickness({0.0f, y}) > 0.02f; y += 0.01f) half_width = y;
+        const float mid = thickness({0.0f, 0.0f});
+        std::printf("ridge: start %.3f m, middle %.3f m, end %.3f m, top %.3f m (steady %.3f m), half width %.3f m, "
+                    "h/w %.3f\n",
+                    start, mid, end, top, steady_h, half_width, mid / half_width);
+        EXPECT_LT(top, 1.4f * steady_h);
+        EXPECT_LT(end, 1.25f * mid);  // levelled off, not still climbing
+        EXPECT_NEAR(mid / half_width, slope, 0.3f * slope);
+        doc->close();
+    }
+}
+
 }  // namespace
 }  // namespace ug::editor

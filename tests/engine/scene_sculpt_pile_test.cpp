@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 
 #include "scene/sculpt_pile.h"
 
@@ -75,6 +76,51 @@ TEST(SculptPile, MeasureFindsNothingOnBareGround) {
     const PileMeasure m = measurePile([](glm::vec2) { return 0.0f; }, glm::vec2(0.0f), 2.0f, 0.1f);
     EXPECT_FALSE(m.found);
     EXPECT_EQ(m.columns, 0);
+}
+
+// A bed sampled from a known surface: bed(xy) on (2 n + 1)² cells of `cell` around `centre`.
+PileBed bedOf(glm::vec2 centre, float cell, int n, const std::function<float(glm::vec2)>& height) {
+    PileBed bed;
+    bed.centre_m = centre;
+    bed.cell_m = cell;
+    bed.half_cells = n;
+    for (int j = -n; j <= n; ++j)
+        for (int i = -n; i <= n; ++i) bed.height_m.push_back(height(centre + cell * glm::vec2(i, j)));
+    return bed;
+}
+
+// Material poured onto a pile adds its volume above the pile at the angle of repose (pileConeOnBed): on
+// nothing it is the lone cone; on a plateau it is the lone cone lifted by the plateau; poured on the top
+// of a cone of the same angle it makes the cone of both volumes; on the flank of one it rises above it.
+TEST(SculptPile, ConeOnABedAddsItsVolumeAboveTheBed) {
+    const float deg = 35.0f, slope = std::tan(glm::radians(deg));
+    const glm::vec3 base(1.0f, -2.0f, 0.5f);
+    const float v = 0.16f;
+    const PileCone lone = pileConeForVolume(base, v, deg);
+    const PileCone on_nothing = pileConeOnBed(base, bedOf(glm::vec2(base), 0.05f, 20, [](glm::vec2) { return 0.0f; }), v, deg);
+    EXPECT_EQ(on_nothing.height_m, lone.height_m);
+    EXPECT_EQ(on_nothing.base_radius_m, lone.base_radius_m);
+
+    const PileCone on_plateau =
+        pileConeOnBed(base, bedOf(glm::vec2(base), 0.01f, 150, [](glm::vec2) { return 0.3f; }), v, deg);
+    EXPECT_NEAR(on_plateau.height_m, 0.3f + lone.height_m, 0.02f * lone.height_m);
+    EXPECT_NEAR(on_plateau.height_m / on_plateau.base_radius_m, slope, 1e-4f);
+    EXPECT_EQ(on_plateau.base_m, base);
+
+    const PileCone old = pileConeForVolume(base, 0.5f, deg);
+    auto old_surface = [&](glm::vec2 xy) {
+        return std::max(0.0f, old.height_m - slope * glm::length(xy - glm::vec2(base)));
+    };
+    const PileCone on_top = pileConeOnBed(base, bedOf(glm::vec2(base), 0.01f, 150, old_surface), v, deg);
+    EXPECT_NEAR(on_top.height_m, pileConeForVolume(base, 0.5f + v, deg).height_m, 0.01f * on_top.height_m);
+
+    // On the flank, 0.3 m from the old apex: higher than the flank there plus nothing, lower than the old
+    // apex plus a lone cone.
+    const glm::vec3 flank = base + glm::vec3(0.3f, 0.0f, 0.0f);
+    const PileCone on_flank = pileConeOnBed(flank, bedOf(glm::vec2(flank), 0.01f, 150, old_surface), v, deg);
+    EXPECT_GT(on_flank.height_m, old_surface(glm::vec2(flank)) + 0.2f * lone.height_m);
+    EXPECT_LT(on_flank.height_m, old.height_m + lone.height_m);
+    EXPECT_GT(on_flank.height_m, lone.height_m);
 }
 
 }  // namespace

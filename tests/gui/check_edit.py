@@ -241,11 +241,18 @@ def piles(stats_path, cli_path, original_path, saved_path):
     dragged, mv2 = sculpts[3], actions(s, "move")[1]
     cone_ids = dragged["pile"]["ids"]
     assert len(cone_ids) >= 6, dragged["pile"]
+    # Dragged slowly, the stroke pours a ridge on the ground whose height levels off where each cone's
+    # material fills its 0.2 m stretch (sqrt(V / 0.2 m * tan 35°) = 0.39 m for this brush; 0.36 m on flat
+    # ground in SculptTool.ASlowDragPoursARidgeOfSteadyHeightOnTheGround; here the pile's thickness is
+    # measured above the sloping meadow, so its downhill flank adds the ground's drop: 0.64 m). It used to
+    # stack cones on each other's flanks into a 2.5 m ramp.
+    assert dragged["pile"]["height"] < 0.8, ("the dragged stroke climbs", dragged["pile"])
     assert sorted(mv2["stroke_ids"]) == sorted(cone_ids), (mv2["stroke_ids"], cone_ids)
     assert len(mv2["from_centers"]) == len(cone_ids) == len(mv2["to_centers"]), mv2
     for a, b in zip(mv2["from_centers"], mv2["to_centers"]):
         assert abs(b[0] - a[0]) < 1e-3 and abs(b[1] - a[1] - 2.0) < 1e-3, (a, b)
-    out.append("a dragged stroke of %d cones moved by (0, 2) as one unit" % len(cone_ids))
+    out.append("a dragged stroke of %d cones, a ridge %.2f m high, moved by (0, 2) as one unit" % (
+        len(cone_ids), dragged["pile"]["height"]))
     # Saved and re-read: the rock density holds three cones (vertical, narrowing segments; the file had
     # none), and the CLI makes the same instances.
     rock = lambda doc: [t for t in doc["detail_types"] if t["name"] == "rock"][0]

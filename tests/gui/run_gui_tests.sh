@@ -138,6 +138,8 @@ cat >"$tmp/piles.json" <<EOF
  {"action": "sculpt_stroke", "type": "rock", "points": [[-12, 4]], "radius": 0.6, "steps": 40, "from_camera": true},
  {"action": "move", "from": [3, -12], "to": [5, -12], "steps": 4},
  {"action": "sculpt_stroke", "type": "rock", "points": [[8, -15], [10, -15]], "radius": 0.6, "steps": 30},
+ {"action": "view", "target": [9, -15, 0.3], "distance": 6, "yaw_deg": -90, "pitch_deg": 5},
+ {"action": "screenshot", "path": "$tmp/ridge_side.png", "overlays": false},
  {"action": "move", "from": [9, -15], "to": [9, -13], "steps": 4},
  {"action": "save_as", "path": "$tmp/saved/meadow_piles.json"},
  {"action": "wait_idle"}]
