@@ -315,9 +315,15 @@ bool MoveDrag::begin(Document* doc, uint64_t id, const Ray& ray) {
     // The whole stroke the primitive belongs to moves with it; its terrain layers (a paint stroke never
     // makes one, a file may tag one) follow their height field and stay.
     start_.clear();
+    grounded_.clear();
     for (uint64_t member : doc->strokeMembers(id)) {
         Primitive p;
-        if (doc->findPrimitive(member, nullptr, &p) && !isTerrainKind(p)) start_.emplace_back(member, p);
+        if (!doc->findPrimitive(member, nullptr, &p) || isTerrainKind(p)) continue;
+        start_.emplace_back(member, p);
+        // The Sculpt tool stands its cones on the ground (BrushStroke::startPile); a centimetre of slack
+        // for a file's hand-placed ones.
+        grounded_.push_back(isPileCone(p) &&
+                            std::abs(p.center_m.z - groundHeightAt(*doc, glm::vec2(p.center_m))) < 0.01f);
     }
     doc_ = doc;
     id_ = id;
@@ -356,7 +362,15 @@ bool MoveDrag::drag(const Ray& ray, bool vertical, std::string* error) {
     if (glm::length(offset - applied_offset_m_) < 1e-3f) return true;
     std::vector<std::pair<uint64_t, Primitive>> moved;
     moved.reserve(start_.size());
-    for (const auto& [member, start] : start_) moved.emplace_back(member, translatedPrimitive(start, offset));
+    for (size_t k = 0; k < start_.size(); ++k) {
+        const auto& [member, start] = start_[k];
+        glm::vec3 shift = offset;
+        if (grounded_[k]) {
+            const glm::vec2 xy = glm::vec2(start.center_m) + glm::vec2(offset);
+            shift.z = groundHeightAt(*doc_, xy) + offset.z - start.center_m.z;
+        }
+        moved.emplace_back(member, translatedPrimitive(start, shift));
+    }
     if (!doc_->setPrimitives(moved, "Move", error)) return false;
     applied_offset_m_ = offset;
     ++moves_;

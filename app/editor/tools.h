@@ -163,7 +163,9 @@ class BrushStroke {
 
 // Select tool, dragging a user primitive and the rest of its brush stroke (Document::strokeMembers): their
 // skeletons follow the cursor on the horizontal plane through the grabbed one's centre (vertical: along Z,
-// on the upright plane facing the ray). Each frame's position is one Document::setPrimitives inside a stroke, so the fill follows live and the whole drag is one undo step; a
+// on the upright plane facing the ray). A sculpted pile's cone that stands on the ground keeps standing on
+// it: its base follows the ground's height under its new place (plus any height the drag gave it), so a pile
+// moved across a slope neither floats (its top rocks left in the air) nor sinks. Each frame's position is one Document::setPrimitives inside a stroke, so the fill follows live and the whole drag is one undo step; a
 // click without motion leaves no step. Terrain kinds have no skeleton to move (begin() refuses them).
 class MoveDrag {
   public:
@@ -179,6 +181,7 @@ class MoveDrag {
     Document* doc_ = nullptr;
     uint64_t id_ = 0;
     std::vector<std::pair<uint64_t, Primitive>> start_;  // the stroke's primitives where the drag began
+    std::vector<bool> grounded_;  // per start_ member: a pile cone standing on the ground (it follows it)
     glm::vec3 grab_m_{0.0f};
     glm::vec3 applied_offset_m_{0.0f};
     int moves_ = 0;

@@ -20,10 +20,11 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// No terrain: the ground is the plane z = 0. One rock type, no density of its own.
-std::string projectJson(float angle_deg) {
+// By default no terrain: the ground is the plane z = 0. One rock type, no density of its own.
+// `terrain`: a project "terrain" entry ending in a comma, or nothing for the plane z = 0.
+std::string projectJson(float angle_deg, const std::string& terrain = "") {
     const std::string models = (fs::path(UG_SOURCE_DIR) / "assets" / "models").string();
-    return R"({"format": "undergrowth-project", "format_version": 2, "name": "sculpt_test",
+    return R"({"format": "undergrowth-project", "format_version": 2, "name": "sculpt_test", )" + terrain + R"(
  "ghost_tile": {"tile_size_m": 0.5, "delta_m": -0.002, "seed": 7},
  "extent": {"min": [-6, -6, -0.5], "max": [6, 6, 4]},
  "detail_types": [{"name": "rock", "model": {"mesh": ")" +
@@ -44,10 +45,10 @@ protected:
         fs::remove_all(*dir_, ec);
         delete dir_;
     }
-    std::unique_ptr<Document> makeDoc(float angle_deg) {
+    std::unique_ptr<Document> makeDoc(float angle_deg, const std::string& terrain = "") {
         Project p;
         std::string error;
-        EXPECT_TRUE(parseProject(projectJson(angle_deg), "sculpt_test.json", &p, &error)) << error;
+        EXPECT_TRUE(parseProject(projectJson(angle_deg, terrain), "sculpt_test.json", &p, &error)) << error;
         p.base_dir = dir_->string();
         DocumentOptions options{.cache_dir = (*dir_ / "cache").string(), .config_dir = "", .threads = 2};
         std::unique_ptr<Document> doc = Document::create(std::move(p), "", options, &error);
@@ -309,6 +310,58 @@ TEST_F(SculptTool, ASlowDragPoursARidgeOfSteadyHeightOnTheGround) {
         EXPECT_NEAR(mid / half_width, slope, 0.3f * slope);
         doc->close();
     }
+}
+
+// A pile moved across sloping ground keeps standing on it (the issue: piles rest on something): dragged
+// with the Select tool, each cone's base follows the ground's height under its new place, not the height it
+// had where it was poured; its shape does not change. A dragged stroke's cones each follow the ground.
+TEST_F(SculptTool, APileMovedOverSlopingGroundKeepsItsBaseOnTheGround) {
+    const std::string hills = R"("terrain": {"procedural": {"origin": [-6, -6], "cell_size_m": 0.25, "width": 49,
+        "height": 49, "seed": 5, "octaves": 3, "base_height_m": 0, "amplitude_m": 0.8, "feature_size_m": 4,
+        "lacunarity": 2, "gain": 0.5}},)";
+    std::unique_ptr<Document> doc = makeDoc(35.0f, hills);
+    ASSERT_TRUE(doc && doc->terrain());
+    const std::vector<uint64_t> held = hold(doc.get(), viewRay({-1.0f, -1.0f, 0.0f}, -90.0f, 35.0f), 20);
+    BrushSettings brush = defaultBrush(*doc);
+    brush.radius_m = 0.6f;
+    BrushStroke stroke;
+    std::string error;
+    ASSERT_TRUE(stroke.begin(doc.get(), ToolKind::Sculpt, brush, rayDownOnto(*doc, {-2.0f, 1.5f}), 0.0, &error));
+    for (int k = 1; k <= 10; ++k)
+        ASSERT_TRUE(stroke.drag(rayDownOnto(*doc, {-2.0f + 0.15f * k, 1.5f}), 0.01 * k, &error)) << error;
+    const std::vector<uint64_t> ridge = stroke.pileIds();
+    stroke.end();
+    ASSERT_EQ(held.size(), 1u);
+    ASSERT_GE(ridge.size(), 5u);
+    for (const std::vector<uint64_t>& ids : {held, ridge}) {
+        std::vector<Primitive> before;
+        for (uint64_t id : ids) {
+            before.emplace_back();
+            ASSERT_TRUE(doc->findPrimitive(id, nullptr, &before.back()));
+            EXPECT_NEAR(before.back().center_m.z, groundHeightAt(*doc, glm::vec2(before.back().center_m)), 1e-5f);
+        }
+        MoveDrag move;
+        const glm::vec2 grab(before[0].center_m);
+        ASSERT_TRUE(move.begin(doc.get(), ids[0], rayDownOnto(*doc, grab)));
+        for (int k = 1; k <= 5; ++k)
+            ASSERT_TRUE(move.drag(rayDownOnto(*doc, grab + glm::vec2(0.5f * k, 0.4f * k)), false, &error)) << error;
+        move.end();
+        float climbed = 0.0f;
+        for (size_t k = 0; k < ids.size(); ++k) {
+            Primitive p;
+            ASSERT_TRUE(doc->findPrimitive(ids[k], nullptr, &p));
+            const glm::vec2 xy(p.center_m);
+            EXPECT_NEAR(xy.x - before[k].center_m.x, 2.5f, 1e-3f);
+            EXPECT_NEAR(xy.y - before[k].center_m.y, 2.0f, 1e-3f);
+            EXPECT_NEAR(p.center_m.z, groundHeightAt(*doc, xy), 1e-4f) << k;  // on the ground where it is now
+            EXPECT_NEAR(p.end_m.z - p.center_m.z, before[k].end_m.z - before[k].center_m.z, 1e-4f);  // same cone
+            EXPECT_EQ(p.end_m.x, p.center_m.x);  // still vertical
+            climbed = std::max(climbed, std::abs(p.center_m.z - before[k].center_m.z));
+        }
+        // The ground is not level between the two places, or the test proves nothing.
+        EXPECT_GT(climbed, 0.05f);
+    }
+    doc->close();
 }
 
 }  // namespace

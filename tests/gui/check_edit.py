@@ -237,7 +237,8 @@ def piles(stats_path, cli_path, original_path, saved_path):
     assert abs(dx[0] - 2.0) < 1e-3 and abs(dx[1]) < 1e-3, dx
     assert mv["instance_store_hash_after"] != mv["instance_store_hash_before"], mv
     out.append("the side pile moved by (2, 0) as one primitive")
-    # A dragged stroke leaves a cone every radius / 3 of travel, all one unit: grabbing one moves them all.
+    # A dragged stroke (through an oblique camera's rays) leaves a cone every radius / 3 of travel, all one
+    # unit: grabbing one moves them all.
     dragged, mv2 = sculpts[3], actions(s, "move")[1]
     cone_ids = dragged["pile"]["ids"]
     assert len(cone_ids) >= 6, dragged["pile"]
@@ -247,6 +248,9 @@ def piles(stats_path, cli_path, original_path, saved_path):
     # measured above the sloping meadow, so its downhill flank adds the ground's drop: 0.64 m). It used to
     # stack cones on each other's flanks into a 2.5 m ramp.
     assert dragged["pile"]["height"] < 0.8, ("the dragged stroke climbs", dragged["pile"])
+    # Dragged through the rays of an oblique camera, it still lies along the drag's ground line (y = -15),
+    # not pulled towards the camera.
+    assert abs(dragged["pile"]["centroid"][1] + 15.0) < 0.2, ("the ridge left the drag line", dragged["pile"])
     assert sorted(mv2["stroke_ids"]) == sorted(cone_ids), (mv2["stroke_ids"], cone_ids)
     assert len(mv2["from_centers"]) == len(cone_ids) == len(mv2["to_centers"]), mv2
     for a, b in zip(mv2["from_centers"], mv2["to_centers"]):
