@@ -161,18 +161,13 @@ void EditorSession::handleEditRequests() {
                 messages.push_back(op_error);
         }
         if (requests.duplicate_selected && tools.selected != 0) {
-            Primitive p;
-            if (doc->findPrimitive(tools.selected, nullptr, &p)) {
-                const float offset = std::max(p.radius_m, p.disc_radius_m);
-                const std::vector<uint64_t> members = doc->strokeMembers(tools.selected);
-                const std::vector<uint64_t> copies =
-                    doc->duplicatePrimitives(members, glm::vec3(offset, 0.0f, 0.0f), &op_error);
-                const auto at = std::find(members.begin(), members.end(), tools.selected);
-                if (copies.size() == members.size() && at != members.end())
-                    tools.selected = copies[size_t(at - members.begin())];
-                else
-                    messages.push_back(op_error);
-            }
+            const std::vector<uint64_t> members = doc->strokeMembers(tools.selected);
+            const std::vector<uint64_t> copies = duplicateStroke(doc, tools.selected, &op_error);
+            const auto at = std::find(members.begin(), members.end(), tools.selected);
+            if (copies.size() == members.size() && at != members.end())
+                tools.selected = copies[size_t(at - members.begin())];
+            else
+                messages.push_back(op_error);
         }
         if (!requests.env_drop.into.empty()) {
             // The Outliner's tree: the node moves into the group, staying where it is in the world.

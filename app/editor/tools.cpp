@@ -308,6 +308,33 @@ bool rayPlane(const Ray& ray, glm::vec3 point, glm::vec3 n, glm::vec3* hit) {
 
 }  // namespace
 
+bool standsOnGround(const Document& doc, const Primitive& prim) {
+    return isPileCone(prim) && std::abs(prim.center_m.z - groundHeightAt(doc, glm::vec2(prim.center_m))) < 0.01f;
+}
+
+glm::vec3 groundFollowingOffset(const Document& doc, const Primitive& prim, bool on_ground, glm::vec3 offset_m) {
+    if (!on_ground) return offset_m;
+    const glm::vec2 xy = glm::vec2(prim.center_m) + glm::vec2(offset_m);
+    return glm::vec3(glm::vec2(offset_m), groundHeightAt(doc, xy) + offset_m.z - prim.center_m.z);
+}
+
+std::vector<uint64_t> duplicateStroke(Document* doc, uint64_t id, std::string* error) {
+    Primitive picked;
+    if (!doc->findPrimitive(id, nullptr, &picked)) {
+        *error = "no primitive with id " + std::to_string(id);
+        return {};
+    }
+    const glm::vec3 along(std::max(picked.radius_m, picked.disc_radius_m), 0.0f, 0.0f);
+    const std::vector<uint64_t> members = doc->strokeMembers(id);
+    std::vector<glm::vec3> offsets;
+    for (uint64_t member : members) {
+        Primitive p;
+        offsets.push_back(doc->findPrimitive(member, nullptr, &p) ? groundFollowingOffset(*doc, p, standsOnGround(*doc, p), along)
+                                                                  : along);
+    }
+    return doc->duplicatePrimitives(members, offsets, error);
+}
+
 bool MoveDrag::begin(Document* doc, uint64_t id, const Ray& ray) {
     if (active()) end();
     Primitive prim;
@@ -320,10 +347,7 @@ bool MoveDrag::begin(Document* doc, uint64_t id, const Ray& ray) {
         Primitive p;
         if (!doc->findPrimitive(member, nullptr, &p) || isTerrainKind(p)) continue;
         start_.emplace_back(member, p);
-        // The Sculpt tool stands its cones on the ground (BrushStroke::startPile); a centimetre of slack
-        // for a file's hand-placed ones.
-        grounded_.push_back(isPileCone(p) &&
-                            std::abs(p.center_m.z - groundHeightAt(*doc, glm::vec2(p.center_m))) < 0.01f);
+        grounded_.push_back(standsOnGround(*doc, p));
     }
     doc_ = doc;
     id_ = id;
@@ -364,12 +388,7 @@ bool MoveDrag::drag(const Ray& ray, bool vertical, std::string* error) {
     moved.reserve(start_.size());
     for (size_t k = 0; k < start_.size(); ++k) {
         const auto& [member, start] = start_[k];
-        glm::vec3 shift = offset;
-        if (grounded_[k]) {
-            const glm::vec2 xy = glm::vec2(start.center_m) + glm::vec2(offset);
-            shift.z = groundHeightAt(*doc_, xy) + offset.z - start.center_m.z;
-        }
-        moved.emplace_back(member, translatedPrimitive(start, shift));
+        moved.emplace_back(member, translatedPrimitive(start, groundFollowingOffset(*doc_, start, grounded_[k], offset)));
     }
     if (!doc_->setPrimitives(moved, "Move", error)) return false;
     applied_offset_m_ = offset;

@@ -187,6 +187,19 @@ class MoveDrag {
     int moves_ = 0;
 };
 
+// A sculpted pile's cone standing on the ground (BrushStroke::startPile stands them there; a centimetre of
+// slack for a file's hand-placed ones). Moved or copied, such a cone keeps standing on the ground.
+bool standsOnGround(const Document& doc, const Primitive& prim);
+// How far `prim` goes when its stroke is moved by offset_m: that far, except that a cone standing on the
+// ground (on_ground: standsOnGround where it started) lands on the ground under its new place, raised by
+// offset_m.z.
+glm::vec3 groundFollowingOffset(const Document& doc, const Primitive& prim, bool on_ground, glm::vec3 offset_m);
+
+// Ctrl+D: a copy of the stroke `id` belongs to, as a new stroke, moved along +X by the primitive's larger
+// radius (so it does not land on the original) and following the ground as a move does; one undo step.
+// The copies' ids in the stroke's order (Document::strokeMembers); empty with *error on failure.
+std::vector<uint64_t> duplicateStroke(Document* doc, uint64_t id, std::string* error);
+
 // A brush stroke edited as a unit through one of its primitives (the Inspector): `id` becomes `edited`, and
 // every other member of its stroke (Document::strokeMembers) moves by the same offset of the centre, and has
 // its weight and falloff radii scaled by the same factors (from a zero weight: the difference is added).

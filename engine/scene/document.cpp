@@ -508,12 +508,23 @@ bool Document::removePrimitives(const std::vector<uint64_t>& ids, const std::str
 
 std::vector<uint64_t> Document::duplicatePrimitives(const std::vector<uint64_t>& ids, glm::vec3 offset_m,
                                                     std::string* error) {
+    return duplicatePrimitives(ids, std::vector<glm::vec3>(ids.size(), offset_m), error);
+}
+
+std::vector<uint64_t> Document::duplicatePrimitives(const std::vector<uint64_t>& ids,
+                                                    const std::vector<glm::vec3>& offsets_m, std::string* error) {
     if (ids.empty()) return {};
+    if (offsets_m.size() != ids.size()) {
+        *error = "duplicate: " + std::to_string(offsets_m.size()) + " offsets for " + std::to_string(ids.size()) +
+                 " primitives";
+        return {};
+    }
     auto compound = std::make_unique<CompoundCommand>(ids.size() == 1 ? "Duplicate primitive" : "Duplicate stroke");
     std::vector<uint64_t> copies;
     std::vector<std::pair<uint32_t, uint32_t>> retag;  // old stroke -> new stroke
     uint32_t next_tag = newStrokeTag();
-    for (uint64_t id : ids) {
+    for (size_t k = 0; k < ids.size(); ++k) {
+        const uint64_t id = ids[k];
         size_t type = 0;
         Primitive prim;
         if (!findPrimitive(id, &type, &prim)) {
@@ -526,7 +537,7 @@ std::vector<uint64_t> Document::duplicatePrimitives(const std::vector<uint64_t>&
             prim.stroke = it->second;
         }
         const uint64_t copy = next_id_ + copies.size();
-        compound->push(std::make_unique<AddPrimitiveCommand>(type, translatedPrimitive(prim, offset_m), copy));
+        compound->push(std::make_unique<AddPrimitiveCommand>(type, translatedPrimitive(prim, offsets_m[k]), copy));
         copies.push_back(copy);
     }
     if (!execute(std::move(compound), error)) return {};

@@ -167,10 +167,13 @@ public:
     bool setPrimitives(const std::vector<std::pair<uint64_t, Primitive>>& edits, const std::string& name,
                        std::string* error);
     bool removePrimitives(const std::vector<uint64_t>& ids, const std::string& name, std::string* error);
-    // Copies of `ids` moved by offset_m, one undo step; the copies of a stroke's primitives form a new
-    // stroke (a fresh tag), untagged ones stay untagged. The new ids in order; empty on failure.
+    // Copies of `ids` moved by offset_m (or each by its own of `offsets_m`, one per id), one undo step; the
+    // copies of a stroke's primitives form a new stroke (a fresh tag), untagged ones stay untagged. The new
+    // ids in order; empty on failure.
     std::vector<uint64_t> duplicatePrimitives(const std::vector<uint64_t>& ids, glm::vec3 offset_m,
                                               std::string* error);
+    std::vector<uint64_t> duplicatePrimitives(const std::vector<uint64_t>& ids,
+                                              const std::vector<glm::vec3>& offsets_m, std::string* error);
     bool setInstancing(size_t type, const InstancingDesc& desc, std::string* error);
     bool setSeed(uint64_t seed, std::string* error);
     // The slope the sculpt brush keeps for `type`'s piles, in (0, 89] degrees; one undo step (or a stamp of

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <random>
 #include <string>
 #include <utility>
@@ -78,6 +79,24 @@ std::vector<uint64_t> hold(Document* doc, const Ray& ray, int steps, float radiu
     const std::vector<uint64_t> ids = stroke.pileIds();
     stroke.end();
     return ids;
+}
+
+// Drags the sculpt brush (radius 0.6 m) from `from` to `to` in `moves` mouse moves, each through the ray
+// ray_at gives for the ground point under the cursor; returns the stroke's cones.
+std::vector<uint64_t> dragSculpt(Document* doc, glm::vec2 from, glm::vec2 to, int moves,
+                                 const std::function<Ray(glm::vec3)>& ray_at) {
+    BrushSettings brush = defaultBrush(*doc);
+    brush.radius_m = 0.6f;
+    BrushStroke stroke;
+    std::string error;
+    EXPECT_TRUE(stroke.begin(doc, ToolKind::Sculpt, brush, ray_at(glm::vec3(from, 0.0f)), 0.0, &error)) << error;
+    for (int k = 1; k <= moves; ++k)
+        EXPECT_TRUE(stroke.drag(ray_at(glm::vec3(from + (to - from) * (float(k) / float(moves)), 0.0f)), 0.01 * k,
+                                &error))
+            << error;
+    const std::vector<uint64_t> cones = stroke.pileIds();
+    stroke.end();
+    return cones;
 }
 
 TEST_F(SculptTool, HeldBrushPoursTheSameVerticalConeFromAnyView) {
@@ -187,15 +206,9 @@ TEST_F(SculptTool, StrokeSurvivesSaving) {
 TEST_F(SculptTool, ADraggedStrokeIsOneUnitToMoveReweightAndDelete) {
     std::unique_ptr<Document> doc = makeDoc(35.0f);
     ASSERT_TRUE(doc);
-    BrushSettings brush = defaultBrush(*doc);
-    brush.radius_m = 0.6f;
-    BrushStroke stroke;
     std::string error;
-    ASSERT_TRUE(stroke.begin(doc.get(), ToolKind::Sculpt, brush, viewRay({-2.0f, 0.0f, 0.0f}, -90.0f, 35.0f), 0.0, &error));
-    for (int k = 1; k <= 20; ++k)
-        ASSERT_TRUE(stroke.drag(viewRay({-2.0f + 0.2f * k, 0.0f, 0.0f}, -90.0f, 35.0f), 0.01 * k, &error)) << error;
-    const std::vector<uint64_t> cones = stroke.pileIds();
-    stroke.end();
+    const std::vector<uint64_t> cones =
+        dragSculpt(doc.get(), {-2.0f, 0.0f}, {2.0f, 0.0f}, 20, [](glm::vec3 g) { return viewRay(g, -90.0f, 35.0f); });
     ASSERT_GE(cones.size(), 10u);
     const std::vector<uint64_t> other = hold(doc.get(), viewRay({0.0f, 2.5f, 0.0f}, 0.0f, 60.0f), 5);
     ASSERT_EQ(other.size(), 1u);
@@ -263,18 +276,9 @@ TEST_F(SculptTool, ASlowDragPoursARidgeOfSteadyHeightOnTheGround) {
         SCOPED_TRACE("yaw " + std::to_string(yaw) + " pitch " + std::to_string(pitch));
         std::unique_ptr<Document> doc = makeDoc(35.0f);
         ASSERT_TRUE(doc);
-        BrushSettings brush = defaultBrush(*doc);
-        brush.radius_m = 0.6f;
-        BrushStroke stroke;
-        std::string error;
         // 2 m in 30 mouse moves of 6.7 cm along +x: a cone every 0.2 m.
-        ASSERT_TRUE(stroke.begin(doc.get(), ToolKind::Sculpt, brush, viewRay({-1.0f, 0.0f, 0.0f}, yaw, pitch), 0.0,
-                                 &error));
-        for (int k = 1; k <= 30; ++k)
-            ASSERT_TRUE(stroke.drag(viewRay({-1.0f + 2.0f * k / 30.0f, 0.0f, 0.0f}, yaw, pitch), 0.01 * k, &error))
-                << error;
-        const std::vector<uint64_t> cones = stroke.pileIds();
-        stroke.end();
+        const std::vector<uint64_t> cones = dragSculpt(doc.get(), {-1.0f, 0.0f}, {1.0f, 0.0f}, 30,
+                                                       [&](glm::vec3 g) { return viewRay(g, yaw, pitch); });
         ASSERT_GE(cones.size(), 9u);
         for (uint64_t id : cones) {
             Primitive p;
@@ -314,7 +318,8 @@ TEST_F(SculptTool, ASlowDragPoursARidgeOfSteadyHeightOnTheGround) {
 
 // A pile moved across sloping ground keeps standing on it (the issue: piles rest on something): dragged
 // with the Select tool, each cone's base follows the ground's height under its new place, not the height it
-// had where it was poured; its shape does not change. A dragged stroke's cones each follow the ground.
+// had where it was poured; its shape does not change. A dragged stroke's cones each follow the ground, and
+// so does a copy (Ctrl+D).
 TEST_F(SculptTool, APileMovedOverSlopingGroundKeepsItsBaseOnTheGround) {
     const std::string hills = R"("terrain": {"procedural": {"origin": [-6, -6], "cell_size_m": 0.25, "width": 49,
         "height": 49, "seed": 5, "octaves": 3, "base_height_m": 0, "amplitude_m": 0.8, "feature_size_m": 4,
@@ -322,15 +327,9 @@ TEST_F(SculptTool, APileMovedOverSlopingGroundKeepsItsBaseOnTheGround) {
     std::unique_ptr<Document> doc = makeDoc(35.0f, hills);
     ASSERT_TRUE(doc && doc->terrain());
     const std::vector<uint64_t> held = hold(doc.get(), viewRay({-1.0f, -1.0f, 0.0f}, -90.0f, 35.0f), 20);
-    BrushSettings brush = defaultBrush(*doc);
-    brush.radius_m = 0.6f;
-    BrushStroke stroke;
+    const std::vector<uint64_t> ridge = dragSculpt(doc.get(), {-2.0f, 1.5f}, {-0.5f, 1.5f}, 10,
+                                                   [&](glm::vec3 g) { return rayDownOnto(*doc, glm::vec2(g)); });
     std::string error;
-    ASSERT_TRUE(stroke.begin(doc.get(), ToolKind::Sculpt, brush, rayDownOnto(*doc, {-2.0f, 1.5f}), 0.0, &error));
-    for (int k = 1; k <= 10; ++k)
-        ASSERT_TRUE(stroke.drag(rayDownOnto(*doc, {-2.0f + 0.15f * k, 1.5f}), 0.01 * k, &error)) << error;
-    const std::vector<uint64_t> ridge = stroke.pileIds();
-    stroke.end();
     ASSERT_EQ(held.size(), 1u);
     ASSERT_GE(ridge.size(), 5u);
     for (const std::vector<uint64_t>& ids : {held, ridge}) {
@@ -361,6 +360,18 @@ TEST_F(SculptTool, APileMovedOverSlopingGroundKeepsItsBaseOnTheGround) {
         // The ground is not level between the two places, or the test proves nothing.
         EXPECT_GT(climbed, 0.05f);
     }
+    // Ctrl+D copies the held pile one falloff radius along +x, onto the ground there, one undo step.
+    Primitive original;
+    ASSERT_TRUE(doc->findPrimitive(held[0], nullptr, &original));
+    const std::vector<uint64_t> copy = duplicateStroke(doc.get(), held[0], &error);
+    ASSERT_EQ(copy.size(), 1u) << error;
+    Primitive c;
+    ASSERT_TRUE(doc->findPrimitive(copy[0], nullptr, &c));
+    EXPECT_NEAR(c.center_m.x - original.center_m.x, original.radius_m, 1e-4f);
+    EXPECT_NEAR(c.center_m.z, groundHeightAt(*doc, glm::vec2(c.center_m)), 1e-4f);
+    EXPECT_GT(std::abs(c.center_m.z - original.center_m.z), 0.01f);  // the ground differs there
+    EXPECT_NE(c.stroke, original.stroke);
+    EXPECT_EQ(doc->undoName(), "Duplicate primitive");
     doc->close();
 }
 
