@@ -235,10 +235,11 @@ bool BrushStroke::startPile(const SurfaceHit& landing, double now_s, std::string
 bool BrushStroke::growPile(double now_s, std::string* error) {
     if (pile_ids_.empty()) return true;
     const float volume = pile_volume_m3_ + stampVolume();
-    if (!doc_->setPrimitive(pile_ids_.back(), pileCone(volume), error)) return false;
+    const Primitive cone = pileCone(volume);
+    if (!doc_->setPrimitive(pile_ids_.back(), cone, error)) return false;
     pile_volume_m3_ = volume;
     // The cone only grows, so its new support holds the old one.
-    changed_ = unite(changed_, editBounds(pileCone(volume)));
+    changed_ = unite(changed_, editBounds(cone));
     last_time_s_ = now_s;
     ++stamps_;
     const glm::vec3 landed = points_.back();  // held still: the same spot again

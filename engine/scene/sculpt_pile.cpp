@@ -34,21 +34,30 @@ float PileBed::maxHeight() const {
 PileCone pileConeOnBed(glm::vec3 base_m, const PileBed& bed, float volume_m3, float angle_of_repose_deg) {
     const PileCone lone = pileConeForVolume(base_m, volume_m3, angle_of_repose_deg);
     const float bed_top = bed.maxHeight();
-    if (!(bed_top > 0.0f) || !(lone.height_m > 0.0f)) return lone;
-    const float slope = lone.height_m / lone.base_radius_m;
     const int side = 2 * bed.half_cells + 1;
+    if (!(bed_top > 0.0f) || !(lone.height_m > 0.0f) || bed.half_cells < 0 ||
+        bed.height_m.size() != size_t(side) * size_t(side))
+        return lone;
+    const float slope = lone.height_m / lone.base_radius_m;
     const float cell_area = bed.cell_m * bed.cell_m;
+    // The bed's cells under material, with how far the cone's side falls from its apex there; the same
+    // for every apex height the bisection tries.
+    struct Cell {
+        float bed_m, fall_m;
+    };
+    std::vector<Cell> cells;
+    for (int j = 0; j < side; ++j)
+        for (int i = 0; i < side; ++i) {
+            const float b = bed.height_m[size_t(j) * size_t(side) + size_t(i)];
+            if (!(b > 0.0f)) continue;
+            const glm::vec2 x = bed.centre_m + bed.cell_m * glm::vec2(i - bed.half_cells, j - bed.half_cells);
+            cells.push_back({b, slope * glm::length(x - glm::vec2(base_m))});
+        }
     // Material above the bed = the cone's volume minus the part of it the bed already fills.
     auto above_bed = [&](float h) {
         float filled = 0.0f;
-        for (int j = 0; j < side; ++j)
-            for (int i = 0; i < side; ++i) {
-                const float b = bed.height_m[size_t(j) * size_t(side) + size_t(i)];
-                if (!(b > 0.0f)) continue;
-                const glm::vec2 x = bed.centre_m + bed.cell_m * glm::vec2(i - bed.half_cells, j - bed.half_cells);
-                const float cone = h - slope * glm::length(x - glm::vec2(base_m));
-                if (cone > 0.0f) filled += std::min(cone, b) * cell_area;
-            }
+        for (const Cell& c : cells)
+            if (h > c.fall_m) filled += std::min(h - c.fall_m, c.bed_m) * cell_area;
         return kPi * h * h * h / (3.0f * slope * slope) - filled;
     };
     // The lone cone has at most `volume_m3` above the bed; raised by the bed's top, its part above that

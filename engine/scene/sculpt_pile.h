@@ -60,7 +60,7 @@ struct PileBed {
 // equals `volume_m3`. Its base stays on the base level (the ground): a stroke dragged slowly over its own
 // pile builds a ridge that stops growing taller once each new spot's material fills its stretch, instead
 // of stacking each cone on the last one's flank (the ramp a slow drag used to climb). On an empty bed this
-// is pileConeForVolume's cone exactly.
+// is pileConeForVolume's cone exactly, and so on a bed whose heights do not fill its grid.
 PileCone pileConeOnBed(glm::vec3 base_m, const PileBed& bed, float volume_m3, float angle_of_repose_deg);
 
 // The tip's rounding, as a fraction of the base radius: small enough that the cone reads as a cone, and
