@@ -15,8 +15,8 @@ shot rock_pile rock_pile                                     # the opening view
 shot rock_pile_close rock_pile --camera 0.2,-0.1,0.25,1.4,-70,38
 shot meadow meadow                                           # the opening view
 shot meadow_close meadow --camera -8,8,0.35,2.2,-100,22
-shot stone_hut stone_hut
-shot stone_hut_side stone_hut --camera 0,0,0.8,6,20,12
+shot stone_hut stone_hut --camera 0,0,1.6,12,-105,30
+shot stone_hut_side stone_hut --camera 0,0,1.8,10,10,10
 shot beaver_dam beaver_dam
 shot haystack_field haystack_field
 shot street_winter street_winter --camera 5,5,0.5,13,-115,32

@@ -156,9 +156,11 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
     const XyGrid columns(std::span<const glm::vec3>(bound_center), std::max(2.0f * max_bound + gap, 1e-3f));
 
     // Fixed per instance: the bound from the support and the max drop, and per lower neighbour the
-    // smallest clearance over their sphere pairs (drop_B adds to every pair of A and B alike).
+    // smallest clearance over their sphere pairs (drop_B adds to every pair of A and B alike); for a held
+    // instance, the neighbours whose least drop it follows.
     std::vector<float> bound(n);
     std::vector<std::vector<Pair>> pairs(n);
+    std::vector<std::vector<uint32_t>> beside(n);
     parallelFor(n, threads, 128, [&](size_t b, size_t e, int) {
         for (size_t i = b; i < e; ++i) {
             // Spheres come by ascending height: once even the largest sphere that high could not reach
@@ -210,10 +212,23 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
                 }
                 if (best <= max_drop) mine.push_back({o, best});  // beyond it: too far below to be reached
             });
-            // Nothing to land on within max_drop where everything still is: the instance is held where
-            // it was (a stone of a corbelled roof, wedged between its neighbours), never dropped into
-            // the open. Decided once, so drops still only grow from pass to pass.
-            if (mine.empty() && !(limit < max_drop)) bound[i] = 0.0f;
+            // Nothing to land on within max_drop where everything still is: the instance is HELD (a
+            // stone of a corbelled roof, wedged between its neighbours), never dropped into the open.
+            // It moves down with the wall that holds it: as far as the least of its neighbours beside
+            // or below it (bounding spheres that touch, centre not higher) has fallen, never further
+            // than max_drop, which its own pairs leave free. Held where it was without one. (Held at 0,
+            // a stone of a dome's inner face kept the courses resting on it up while the wall beside
+            // them settled: open bands tore through the stone hut's wall.) Decided once, so drops
+            // still only grow from pass to pass.
+            if (mine.empty() && !(limit < max_drop)) {
+                columns.forEachNear(glm::vec2(bound_center[i]), bound_radius[i] + max_bound + gap, [&](uint32_t o) {
+                    if (o == i || bound_center[o].z > bound_center[i].z) return;
+                    const float reach = bound_radius[i] + bound_radius[o] + gap;
+                    const glm::vec3 d = bound_center[i] - bound_center[o];
+                    if (glm::dot(d, d) < reach * reach) beside[i].push_back(o);
+                });
+                if (beside[i].empty()) bound[i] = 0.0f;
+            }
         }
     });
 
@@ -226,6 +241,8 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
                 float d = bound[i];
                 for (const Pair& p : pairs[i]) d = std::min(d, std::max(0.0f, p.offset + dropMetres(drops[p.lower])));
                 next[i] = toUnits(d);
+                // In units, not metres: a held instance keeps exactly in step with its wall.
+                for (uint32_t o : beside[i]) next[i] = std::min(next[i], drops[o]);
                 any = any || next[i] != drops[i];
             }
             if (any) moved.store(true, std::memory_order_relaxed);

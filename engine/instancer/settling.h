@@ -12,11 +12,16 @@
 //                        max(0, a.z - (e.z - drop_{k-1}(B)) - sqrt((ra + re + gap)^2 - h^2)))
 //    with h the horizontal distance of the pair (pairs with h >= ra + re + gap never meet), rounded down
 //    to kSettleQuantumM. An instance with nothing within max_drop below it in the unsettled frames (no
-//    such pair, support farther) is HELD: its drop stays 0 (a corbelled roof's stones are held by their
-//    neighbours; a vertical fall would drop them into the room). Each pass reads only the previous one, so the result is the same for any thread
-//    count and any order; passes stop after `passes` or when nothing moves.
+//    such pair, support farther) is HELD (a corbelled roof's stones are held by their neighbours; a
+//    vertical fall would drop them into the room): it moves down with the wall that holds it,
+//        drop_k(A) = min(max_drop, min over B beside A of drop_{k-1}(B)),
+//    B beside A when their bounding spheres (around the box of each one's spheres) come within the gap
+//    and B's bounding centre is not higher than A's; with nothing beside it its drop stays 0. Each pass
+//    reads only the previous one, so the result is the same for any thread count and any order; passes
+//    stop after `passes` or when nothing moves.
 //  - No two instances end up closer than they were allowed to be: in every pair the upper sphere stops
-//    above where the lower one was in the previous pass, and the lower one only goes down. Drops only
+//    above where the lower one was in the previous pass, and the lower one only goes down (a held
+//    instance falls at most max_drop, and all its pairs lie farther below it than that). Drops only
 //    grow from pass to pass, so a pile compacts from the bottom up by one layer per pass.
 //  - Locality: drop_k(A) depends on instances within `reach` horizontally and within max_drop + reach
 //    vertically of A (reach = twice the largest bounding radius + gap), so after K passes on the instances

@@ -82,6 +82,18 @@ std::vector<float> bruteForceDrops(const SettleInput& in, const std::vector<test
         items.push_back({t, j, test::worldSpheres(*in.tile, *in.models[in.tile->candidates.type[j]], t, j)});
     const size_t n = items.size();
     const float gap = std::max(0.0f, in.tile->settings.delta_m);
+    // Each instance's bounding sphere: around the box of its spheres.
+    std::vector<glm::vec3> bc(n);
+    std::vector<float> br(n);
+    for (size_t i = 0; i < n; ++i) {
+        glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+        for (const Sphere& a : items[i].spheres) {
+            lo = glm::min(lo, a.center - a.radius);
+            hi = glm::max(hi, a.center + a.radius);
+        }
+        bc[i] = 0.5f * (lo + hi);
+        br[i] = 0.5f * glm::length(hi - lo);
+    }
     std::vector<float> limit(n, in.settings.max_drop_m);
     for (size_t i = 0; i < n; ++i)
         for (const Sphere& a : items[i].spheres)
@@ -103,11 +115,18 @@ std::vector<float> bruteForceDrops(const SettleInput& in, const std::vector<test
                 }
         if (!any) limit[i] = -1.0f;
     }
+    // A held instance follows the instances beside it: bounding spheres within the gap, centre not higher.
+    std::vector<std::vector<size_t>> beside(n);
+    for (size_t i = 0; i < n; ++i)
+        for (size_t o = 0; o < n && limit[i] < 0.0f; ++o)
+            if (o != i && bc[o].z <= bc[i].z && glm::length(bc[i] - bc[o]) < br[i] + br[o] + gap) beside[i].push_back(o);
     std::vector<float> drop(n, 0.0f), next(n);
     for (int pass = 0; pass < in.settings.passes; ++pass) {
         for (size_t i = 0; i < n; ++i) {
             if (limit[i] < 0.0f) {
-                next[i] = 0.0f;
+                // The cap, rounded down as every drop is; then the least drop beside.
+                next[i] = beside[i].empty() ? 0.0f : dropMetres(uint16_t(std::floor(in.settings.max_drop_m / kSettleQuantumM)));
+                for (size_t o : beside[i]) next[i] = std::min(next[i], drop[o]);
                 continue;
             }
             float d = limit[i];
@@ -133,6 +152,34 @@ std::vector<float> bruteForceDrops(const SettleInput& in, const std::vector<test
         drop = next;
     }
     return drop;
+}
+
+// A stone held over the open (nothing within max_drop below it) moves down with the stone beside it; the
+// stone resting on it follows; a stone held with nothing beside it stays where it was.
+TEST(Settling, AHeldStoneMovesDownWithTheWallBesideIt) {
+    // Two spheres side by side along x: collision spheres 6 cm wide, a bounding sphere of radius 8.2 cm.
+    const DetailModel stone = test::sphereModel("stone", {{glm::vec3(-0.04f, 0.0f, 0.0f), 0.03f}, {glm::vec3(0.04f, 0.0f, 0.0f), 0.03f}});
+    const GhostTile tile = handTile({{0.25f, 0.20f, 0.13f},    // 0: 10 cm above the ground
+                                     {0.25f, 0.30f, 0.20f},    // 1: beside 0 (10 cm along y: no pair), 17 cm up
+                                     {0.25f, 0.30f, 0.27f},    // 2: resting 1 cm above 1
+                                     {0.25f, 0.45f, 0.40f}});  // 3: alone in the air
+    InstanceStore store;
+    store.appendTile(packTile(glm::ivec3(0)), std::vector<uint32_t>{0, 1, 2, 3});
+    SettleInput in;
+    in.tile = &tile;
+    in.models = {&stone};
+    in.support.ground_z = 0.0f;
+    in.settings = {.enabled = true, .passes = 8, .max_drop_m = 0.15f};
+    SettledDrops drops;
+    settleAll(in, store, 1, &drops);
+    const std::span<const uint16_t> d = drops.tile(packTile(glm::ivec3(0)));
+    ASSERT_EQ(d.size(), 4u);
+    EXPECT_NEAR(dropMetres(d[0]), 0.10f, 2e-4f);  // onto the ground
+    EXPECT_EQ(d[1], d[0]);                         // held, in step with the stone beside it
+    EXPECT_NEAR(dropMetres(d[2]), 0.11f, 3e-4f);  // onto the held stone, wherever it went
+    EXPECT_EQ(d[3], 0u);                           // held, nothing beside it
+    const std::vector<float> reference = bruteForceDrops(in, test::instancesOf(store));
+    for (size_t i = 0; i < 4; ++i) EXPECT_EQ(dropMetres(d[i]), reference[i]) << "stone " << i;
 }
 
 struct PileScene {

@@ -509,20 +509,24 @@ TEST(SceneCompile, BundledScenesHaveTheirDesignedShape) {
         for (float z : {-0.05f, -0.3f, -0.8f}) EXPECT_LE(evaluate(*s.types[0].field, {0, 0, z}), 0.0f);
     }
     {
-        // The stone hut is a shell, with a door and a window, and smaller stones near the openings.
+        // The stone hut is a corbelled cone (its inner face 58 degrees steep, so every course rests on the
+        // one below), with a door and a window, and smaller stones near the openings.
         Project p;
         CompiledScene s;
         load("stone_hut.json", &p, &s);
         const DensityField& f = *s.types[0].field;
-        EXPECT_LE(evaluate(f, {0, 0, 0.5f}), 0.0f);       // inside
-        EXPECT_GT(evaluate(f, {0, 3.25f, 0.3f}), 0.0f);   // the wall
-        EXPECT_GT(evaluate(f, {-2.3f, 0, 2.3f}), 0.0f);   // the wall, higher up
-        EXPECT_LE(evaluate(f, {3.25f, 0, 0.6f}), 0.0f);   // the door
-        EXPECT_LE(evaluate(f, {0, -3.25f, 1.9f}), 0.0f);  // the window
-        EXPECT_LE(evaluate(f, {0, 3.25f, 4.0f}), 0.0f);   // outside
+        EXPECT_LE(evaluate(f, {0, 0, 0.5f}), 0.0f);        // inside
+        EXPECT_LE(evaluate(f, {0, 0, 3.4f}), 0.0f);        // inside, under the top
+        EXPECT_GT(evaluate(f, {0, 2.7f, 0.3f}), 0.0f);     // the wall
+        EXPECT_GT(evaluate(f, {-1.45f, 0, 2.3f}), 0.0f);   // the wall, higher up
+        EXPECT_GT(evaluate(f, {0, 0, 4.2f}), 0.0f);        // the top
+        EXPECT_LE(evaluate(f, {0, 3.25f, 0.3f}), 0.0f);    // outside the foot
+        EXPECT_LE(evaluate(f, {2.6f, 0, 0.6f}), 0.0f);     // the door
+        EXPECT_LE(evaluate(f, {0, -2.08f, 1.3f}), 0.0f);   // the window
+        EXPECT_LE(evaluate(f, {0, 3.25f, 4.0f}), 0.0f);    // outside
         const SizeConstraint& size = s.types[0].size;
         ASSERT_TRUE(size.enabled);
-        EXPECT_LT(evaluateSize(size.target, nullptr, {3.2f, 0, 0.9f}), 0.75f);
+        EXPECT_LT(evaluateSize(size.target, nullptr, {2.45f, 0, 0.7f}), 0.75f);
         EXPECT_EQ(evaluateSize(size.target, nullptr, {-3.2f, 0, 0.9f}), 1.1f);
     }
 }
