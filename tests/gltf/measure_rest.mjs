@@ -77,15 +77,19 @@ function instancesOf(document) {
     return out;
 }
 
+// Only a sphere whose centre lies at most kThreshold + 2·maxR below a's can hold a within kThreshold of its
+// place, so a 3D grid searched over that band counts exactly what an all-pairs search would count (the
+// stone hut's walls stack hundreds of spheres over one ground cell; a search of whole columns took minutes).
 function hovering(instances) {
     const all = [];
     instances.forEach((inst, owner) => inst.spheres.forEach((s) => all.push({ ...s, owner })));
     const maxR = all.reduce((m, s) => Math.max(m, s.r), 0);
-    const cell = 2 * maxR;
+    const cell = Math.max(2 * maxR, 1e-6);
     const grid = new Map();
-    const key = (x, z) => `${Math.floor(x / cell)},${Math.floor(z / cell)}`;
+    const index = (v) => Math.floor(v / cell);
+    const key = (x, y, z) => `${x},${y},${z}`;
     for (const s of all) {
-        const k = key(s.c[0], s.c[2]);
+        const k = key(index(s.c[0]), index(s.c[1]), index(s.c[2]));
         if (!grid.has(k)) grid.set(k, []);
         grid.get(k).push(s);
     }
@@ -94,16 +98,18 @@ function hovering(instances) {
         let drop = Infinity;
         for (const a of inst.spheres) {
             drop = Math.min(drop, Math.max(0, a.c[1] - a.r));
-            const cx = Math.floor(a.c[0] / cell), cz = Math.floor(a.c[2] / cell);
-            for (let dx = -1; dx <= 1; ++dx)
-                for (let dz = -1; dz <= 1; ++dz)
-                    for (const b of grid.get(`${cx + dx},${cz + dz}`) || []) {
-                        if (b.owner === owner || b.c[1] > a.c[1]) continue;
-                        const reach = a.r + b.r;
-                        const h2 = (a.c[0] - b.c[0]) ** 2 + (a.c[2] - b.c[2]) ** 2;
-                        if (h2 >= reach * reach) continue;
-                        drop = Math.min(drop, Math.max(0, a.c[1] - b.c[1] - Math.sqrt(reach * reach - h2)));
-                    }
+            const cx = index(a.c[0]), cz = index(a.c[2]);
+            const yLow = index(a.c[1] - 2 * maxR - kThreshold), yHigh = index(a.c[1]);
+            for (let cy = yLow; cy <= yHigh; ++cy)
+                for (let dx = -1; dx <= 1; ++dx)
+                    for (let dz = -1; dz <= 1; ++dz)
+                        for (const b of grid.get(key(cx + dx, cy, cz + dz)) || []) {
+                            if (b.owner === owner || b.c[1] > a.c[1]) continue;
+                            const reach = a.r + b.r;
+                            const h2 = (a.c[0] - b.c[0]) ** 2 + (a.c[2] - b.c[2]) ** 2;
+                            if (h2 >= reach * reach) continue;
+                            drop = Math.min(drop, Math.max(0, a.c[1] - b.c[1] - Math.sqrt(reach * reach - h2)));
+                        }
         }
         if (drop > kThreshold) ++count;
     });
