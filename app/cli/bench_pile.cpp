@@ -85,9 +85,12 @@ bool benchPile(const BenchContext& ctx, std::vector<BenchRow>* rows, std::string
                              "settling pass, median of " + std::to_string(ctx.repetitions()) + ", " +
                                  std::to_string(store.instanceCount()) + " instances"});
         for (const TypePacking& p : m.packing)
-            if (c.pile_type && p.name == c.pile_type)
+            if (c.pile_type && p.name == c.pile_type) {
                 rows->push_back({prefix + ".volume_fraction", p.packing.volume_fraction, "", ">= 0.45", std::nullopt,
                                  p.name + ": solid share of the pile's core (mesh volume)"});
+                rows->push_back({prefix + ".overlap_fraction", p.packing.overlap_fraction, "", "", std::nullopt,
+                                 p.name + ": share of that solid inside two grains at once (interpenetration)"});
+            }
         if (std::string(c.scene) == "meadow") {
             rows->push_back({"tiling.meadow.twin_fraction", m.twin_fraction, "", "<= 0.05", std::nullopt,
                              "instances with an exact copy one tile away"});

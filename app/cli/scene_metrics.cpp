@@ -61,6 +61,7 @@ nlohmann::json sceneMetricsJson(const SceneMetrics& m) {
     nlohmann::json packing = nlohmann::json::object();
     for (const TypePacking& p : m.packing)
         packing[p.name] = {{"volume_fraction", p.packing.volume_fraction},
+                           {"overlap_fraction", p.packing.overlap_fraction},
                            {"core_volume_m3", p.packing.core_volume_m3},
                            {"shell_m", p.packing.shell_m}};
     return {{"rest", rest}, {"packing", packing}, {"tiling", tiling}};

@@ -180,9 +180,9 @@ PackingReport measurePacking(std::span<const PlacedInstance> all, const std::vec
     for (size_t s = 0; s < w.center.size(); ++s) lowest = std::min(lowest, w.center[s].z - w.radius[s]);
     const int nx = std::max(1, int(std::ceil((hi.x - lo.x) / cell_m)));
     const int ny = std::max(1, int(std::ceil((hi.y - lo.y) / cell_m)));
-    std::atomic<uint64_t> core{0}, solid{0};
+    std::atomic<uint64_t> core{0}, solid{0}, overlap{0};
     parallelFor(size_t(nx) * size_t(ny), threads, 64, [&](size_t b, size_t e, int) {
-        uint64_t my_core = 0, my_solid = 0;
+        uint64_t my_core = 0, my_solid = 0, my_overlap = 0;
         for (size_t col = b; col < e; ++col) {
             const glm::vec2 xy = lo + cell_m * (glm::vec2(float(col % size_t(nx)), float(col / size_t(nx))) + 0.5f);
             if (clip && !(clip->lo.x <= xy.x && xy.x < clip->hi.x && clip->lo.y <= xy.y && xy.y < clip->hi.y))
@@ -201,22 +201,27 @@ PackingReport measurePacking(std::span<const PlacedInstance> all, const std::vec
             for (float z = bottom + 0.5f * cell_m; z < top - 2.0f * m; z += cell_m) {
                 ++my_core;
                 const glm::vec3 p(xy, z);
-                bool inside = false;
+                int inside = 0;  // meshes holding p, counted up to two (solid, and solid twice over)
                 bounds_grid.forEachNear(xy, max_bound, [&](uint32_t i) {
-                    if (inside) return;
+                    if (inside >= 2) return;
                     const glm::vec3 d = p - bound_center[i];
                     if (glm::dot(d, d) > bound_radius[i] * bound_radius[i]) return;
                     const glm::vec3 q = glm::conjugate(pile[i].rotation) * (p - pile[i].position) / pile[i].scale;
-                    inside = insideMesh(*bvh[pile[i].type], q);
+                    if (insideMesh(*bvh[pile[i].type], q)) ++inside;
                 });
-                if (inside) ++my_solid;
+                if (inside >= 1) ++my_solid;
+                if (inside >= 2) ++my_overlap;
             }
         }
         core += my_core;
         solid += my_solid;
+        overlap += my_overlap;
     });
     report.core_samples = core.load();
     report.solid_samples = solid.load();
+    report.overlap_samples = overlap.load();
+    report.overlap_fraction =
+        report.solid_samples ? double(report.overlap_samples) / double(report.solid_samples) : 0.0;
     report.core_volume_m3 = double(report.core_samples) * double(cell_m) * cell_m * cell_m;
     report.volume_fraction =
         report.core_samples ? double(report.solid_samples) / double(report.core_samples) : 0.0;

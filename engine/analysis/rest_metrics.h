@@ -14,6 +14,9 @@
 //    at least m below the grains' tops: the loose top layer and the sloped rim are left out, as one would
 //    leave out the surface of a heap of gravel. Inside = ray parity against the model's mesh in model
 //    space (meshes that are not closed, like leaves, hold no volume).
+//  - overlap of a pile: the share of that solid volume that lies inside two or more instances' meshes at
+//    once. Grains that rest touch and do not pass into one another, so this is the honest companion of the
+//    volume fraction: a denser pile bought by letting collision spheres overlap (delta < 0) shows here.
 #pragma once
 
 #include <cstdint>
@@ -56,6 +59,8 @@ struct PackingReport {
     double volume_fraction = 0.0;  // solid samples / core samples (0 when the core is empty)
     uint64_t core_samples = 0;
     uint64_t solid_samples = 0;
+    uint64_t overlap_samples = 0;  // core samples inside two or more instances' meshes
+    double overlap_fraction = 0.0; // overlap samples / solid samples (0 when nothing is solid)
     double core_volume_m3 = 0.0;
     float shell_m = 0.0f;          // the top layer left out: the median instance bounding radius
 };

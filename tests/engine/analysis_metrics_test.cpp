@@ -114,6 +114,8 @@ TEST(PackingMetrics, CubeLatticeFillsItsPitchCubed) {
     const PackingReport r = measurePacking(inst, models, RestSupport{}, {}, 0.02f, 2, &interior);
     EXPECT_GT(r.core_samples, 100000u);
     EXPECT_NEAR(r.volume_fraction, 0.512, 0.03);
+    EXPECT_EQ(r.overlap_samples, 0u);  // the cubes do not touch
+    EXPECT_EQ(r.overlap_fraction, 0.0);
     // Every second cube removed (a checkerboard): half as much.
     std::vector<PlacedInstance> half;
     for (size_t i = 0; i < inst.size(); ++i)
@@ -124,6 +126,35 @@ TEST(PackingMetrics, CubeLatticeFillsItsPitchCubed) {
     const PackingReport all = measurePacking(inst, models, RestSupport{}, {}, 0.02f, 1);
     EXPECT_LT(all.volume_fraction, r.volume_fraction);
     EXPECT_GT(all.volume_fraction, 0.35);
+}
+
+TEST(PackingMetrics, InterpenetratingCubesShowTheirSharedVolume) {
+    // Cubes of side 0.14 on a 0.1 lattice: along each axis neighbours share 0.04 of every 0.1, so the block
+    // is solid throughout and a point lies in one cube only where it is clear of the shared slabs along
+    // all three axes: (0.6)^3 of the volume; the rest, 1 - 0.216 = 0.784, lies in two or more.
+    TriangleMesh cube = unitCube();
+    for (glm::vec3& p : cube.positions) p *= 0.14f;
+    DetailModel box = sphereModel("box", {{glm::vec3(0.0f), 0.07f}});
+    box.mesh = cube;
+    box.bounds = {glm::vec3(0.0f), 0.07f * std::sqrt(3.0f)};
+    const std::vector<const DetailModel*> models = {&box};
+    std::vector<PlacedInstance> inst;
+    for (int z = 0; z < 8; ++z)
+        for (int y = 0; y < 12; ++y)
+            for (int x = 0; x < 12; ++x)
+                inst.push_back(at({0.05f + 0.1f * float(x), 0.05f + 0.1f * float(y), 0.055f + 0.1f * float(z)}));
+    const Bounds interior{glm::vec3(0.3f, 0.3f, -1.0f), glm::vec3(0.9f, 0.9f, 2.0f)};
+    const PackingReport r = measurePacking(inst, models, RestSupport{}, {}, 0.02f, 2, &interior);
+    EXPECT_GT(r.core_samples, 20000u);
+    EXPECT_NEAR(r.volume_fraction, 1.0, 0.01);
+    EXPECT_NEAR(r.overlap_fraction, 0.784, 0.03);
+    EXPECT_LE(r.overlap_samples, r.solid_samples);
+    // Spread to a 0.15 lattice the same cubes leave 1 cm gaps: nothing is shared.
+    for (PlacedInstance& p : inst) p.position *= 1.5f;
+    const Bounds wider{glm::vec3(0.45f, 0.45f, -1.0f), glm::vec3(1.35f, 1.35f, 3.0f)};
+    const PackingReport apart = measurePacking(inst, models, RestSupport{}, {}, 0.02f, 2, &wider);
+    EXPECT_GT(apart.solid_samples, 0u);
+    EXPECT_EQ(apart.overlap_samples, 0u);
 }
 
 std::vector<PlacedInstance> tiledSet(int tiles_x, int tiles_y, int per_tile, float s, bool vary_tile) {
