@@ -95,20 +95,31 @@ TEST(RestMetrics, SameDropsForAnyThreadCountAndPerTypeSplitAddsUp) {
     EXPECT_LT(one.hovering, one.instances);
 }
 
+// An axis-aligned cube of the given side, its one collision sphere inscribed.
+DetailModel cubeModel(float side) {
+    DetailModel box = sphereModel("box", {{glm::vec3(0.0f), 0.5f * side}});
+    box.mesh = unitCube();
+    for (glm::vec3& p : box.mesh.positions) p *= side;
+    box.bounds = {glm::vec3(0.0f), 0.5f * side * std::sqrt(3.0f)};
+    return box;
+}
+
+// Instances on a 0.1 m lattice of nx x ny x nz, the lowest layer's centres 5.5 cm up.
+std::vector<PlacedInstance> cubeLattice(int nx, int ny, int nz) {
+    std::vector<PlacedInstance> inst;
+    for (int z = 0; z < nz; ++z)
+        for (int y = 0; y < ny; ++y)
+            for (int x = 0; x < nx; ++x)
+                inst.push_back(at({0.05f + 0.1f * float(x), 0.05f + 0.1f * float(y), 0.055f + 0.1f * float(z)}));
+    return inst;
+}
+
 TEST(PackingMetrics, CubeLatticeFillsItsPitchCubed) {
     // Cubes of side 0.08 on a 0.1 lattice: each axis of the sample grid (2 cm) meets a cube at 4 of every
     // 5 samples, so the core is (0.8)^3 = 0.512 solid, up to the partial pitch the shell cuts at the top.
-    TriangleMesh cube = unitCube();
-    for (glm::vec3& p : cube.positions) p *= 0.08f;
-    DetailModel box = sphereModel("box", {{glm::vec3(0.0f), 0.04f}});
-    box.mesh = cube;
-    box.bounds = {glm::vec3(0.0f), 0.04f * std::sqrt(3.0f)};
+    const DetailModel box = cubeModel(0.08f);
     const std::vector<const DetailModel*> models = {&box};
-    std::vector<PlacedInstance> inst;
-    for (int z = 0; z < 10; ++z)
-        for (int y = 0; y < 20; ++y)
-            for (int x = 0; x < 20; ++x)
-                inst.push_back(at({0.05f + 0.1f * float(x), 0.05f + 0.1f * float(y), 0.055f + 0.1f * float(z)}));
+    const std::vector<PlacedInstance> inst = cubeLattice(20, 20, 10);
     // Away from the block's sides, where the core meets open air.
     const Bounds interior{glm::vec3(0.5f, 0.5f, -1.0f), glm::vec3(1.5f, 1.5f, 2.0f)};
     const PackingReport r = measurePacking(inst, models, RestSupport{}, {}, 0.02f, 2, &interior);
@@ -132,17 +143,9 @@ TEST(PackingMetrics, InterpenetratingCubesShowTheirSharedVolume) {
     // Cubes of side 0.14 on a 0.1 lattice: along each axis neighbours share 0.04 of every 0.1, so the block
     // is solid throughout and a point lies in one cube only where it is clear of the shared slabs along
     // all three axes: (0.6)^3 of the volume; the rest, 1 - 0.216 = 0.784, lies in two or more.
-    TriangleMesh cube = unitCube();
-    for (glm::vec3& p : cube.positions) p *= 0.14f;
-    DetailModel box = sphereModel("box", {{glm::vec3(0.0f), 0.07f}});
-    box.mesh = cube;
-    box.bounds = {glm::vec3(0.0f), 0.07f * std::sqrt(3.0f)};
+    const DetailModel box = cubeModel(0.14f);
     const std::vector<const DetailModel*> models = {&box};
-    std::vector<PlacedInstance> inst;
-    for (int z = 0; z < 8; ++z)
-        for (int y = 0; y < 12; ++y)
-            for (int x = 0; x < 12; ++x)
-                inst.push_back(at({0.05f + 0.1f * float(x), 0.05f + 0.1f * float(y), 0.055f + 0.1f * float(z)}));
+    std::vector<PlacedInstance> inst = cubeLattice(12, 12, 8);
     const Bounds interior{glm::vec3(0.3f, 0.3f, -1.0f), glm::vec3(0.9f, 0.9f, 2.0f)};
     const PackingReport r = measurePacking(inst, models, RestSupport{}, {}, 0.02f, 2, &interior);
     EXPECT_GT(r.core_samples, 20000u);
