@@ -9,14 +9,15 @@
 
 #include <glm/glm.hpp>
 
+#include "core/large_pages.h"
 #include "particles/particle_scene.h"
 
 namespace ug {
 
 struct GrowthRecord {
     // Points, as the growth placed them: a strand is the chain of prev links (kNoPoint at a root).
-    std::vector<glm::vec3> point_pos;
-    std::vector<uint32_t> point_prev, point_strand;
+    LargeVector<glm::vec3> point_pos;  // moved from the growth's own arrays (large_pages.h)
+    LargeVector<uint32_t> point_prev, point_strand;
     std::vector<uint32_t> step_points;  // [t]: the first point placed at step t (t = 0: the seeds); one past the last step ends it
     // Strands: the parent (-1 for a root) and the first of a split's children (kNoPoint if none; they
     // have consecutive ids).
@@ -35,10 +36,11 @@ struct GrowthRecord {
 
     // Empties every array, keeping its memory for the next growth.
     void clear() {
-        for (auto* v : {&point_prev, &point_strand, &step_points, &strand_first_child, &step_strands, &step_moves,
-                        &move_strand, &move_from})
+        for (auto* v : {&point_prev, &point_strand}) v->clear();
+        for (auto* v : {&step_points, &strand_first_child, &step_strands, &step_moves, &move_strand, &move_from})
             v->clear();
-        for (auto* v : {&point_pos, &move_pos, &move_dir}) v->clear();
+        point_pos.clear();
+        for (auto* v : {&move_pos, &move_dir}) v->clear();
         for (auto* v : {&move_blocked, &move_still}) v->clear();
         strand_parent.clear();
         move_cutter.clear();

@@ -25,10 +25,9 @@ void SegmentGrid::rehash(size_t slots) {
 }
 
 void SegmentGrid::reserve(size_t segments) {
-    if (segments > entries_.size()) {
-        entries_.resize(segments);
-        tags_.resize(segments);
-    }
+    // Capacity only: store() sizes the arrays as ids arrive, so each page is written once, not zeroed first.
+    entries_.reserve(segments);
+    tags_.reserve(segments);
     ids_.reserve(segments);
     size_t slots = 1024;
     while (slots < segments * 2) slots *= 2;
@@ -37,8 +36,9 @@ void SegmentGrid::reserve(size_t segments) {
 
 void SegmentGrid::store(uint32_t id, glm::vec3 midpoint, uint32_t tag) {
     if (id >= entries_.size()) {
-        entries_.resize(std::max<size_t>(size_t(id) + 1, entries_.size() * 2));
-        tags_.resize(entries_.size());
+        // Within the reserved capacity, or grown geometrically by the vectors themselves.
+        entries_.resize(size_t(id) + 1);
+        tags_.resize(size_t(id) + 1);
     }
     entries_[id] = Entry{midpoint, kNone};
     tags_[id] = tag;

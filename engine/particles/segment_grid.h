@@ -21,6 +21,8 @@
 
 #include <glm/glm.hpp>
 
+#include "core/large_pages.h"
+
 namespace ug {
 
 // The cells and slots both grids share.
@@ -123,10 +125,11 @@ private:
     GridCells cells_;
     uint32_t mask_ = 0;
     size_t count_ = 0;
-    std::vector<uint32_t> heads_;
-    std::vector<Entry> entries_;  // by id
-    std::vector<uint32_t> tags_;  // by id
-    std::vector<uint32_t> ids_;   // filed ids in insertion order (rehash keeps their order)
+    // A fur ball's are tens of megabytes each (large_pages.h).
+    LargeVector<uint32_t> heads_;
+    LargeVector<Entry> entries_;  // by id
+    LargeVector<uint32_t> tags_;  // by id
+    LargeVector<uint32_t> ids_;   // filed ids in insertion order (rehash keeps their order)
     std::vector<uint32_t> slot_;  // scratch: each batch segment's slot (a growth files a batch a step)
 };
 

@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "core/hash.h"
+#include "core/large_pages.h"
 #include "core/parallel.h"
 #include "mesh/triangle_bvh.h"
 #include "particles/growth_record.h"
@@ -33,9 +34,9 @@ enum class StrandState : uint8_t { Active, Stopped, Killed };
 // chain of prev links from its last point back to its first; a split's children start at their parent's
 // last point, which they share (that shared id is what exempts them from colliding with it).
 struct PointStore {
-    std::vector<glm::vec3> pos;
-    std::vector<uint32_t> prev;    // the previous point of the strand, kNone at a root
-    std::vector<uint32_t> strand;  // the strand that placed it
+    LargeVector<glm::vec3> pos;
+    LargeVector<uint32_t> prev;    // the previous point of the strand, kNone at a root
+    LargeVector<uint32_t> strand;  // the strand that placed it
 };
 
 // Per-strand state, one array per field.

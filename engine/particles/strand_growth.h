@@ -23,6 +23,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/large_pages.h"
 #include "particles/particle_scene.h"
 
 namespace ug {
@@ -42,8 +43,9 @@ struct StrandStats {
 
 // The output: polylines of at least one segment, in strand id order.
 struct Strands {
-    std::vector<glm::vec3> points;
-    std::vector<float> radii;             // per point (the tube radius r)
+    // A fur ball's are tens of megabytes (large_pages.h).
+    LargeVector<glm::vec3> points;
+    LargeVector<float> radii;             // per point (the tube radius r)
     std::vector<uint32_t> offsets{0};     // strand s is points[offsets[s], offsets[s + 1])
     std::vector<int32_t> parent;          // per strand: the strand it split from, or -1
     std::vector<uint32_t> particle;       // per strand: its id in the simulation

@@ -277,7 +277,7 @@ bool loadSceneParticles(const Project& project, const std::shared_ptr<const Heig
 
 namespace {
 
-bool centreInside(const Bounds& region, const std::vector<glm::vec3>& points) {
+bool centreInside(const Bounds& region, const LargeVector<glm::vec3>& points) {
     Bounds b;
     for (const glm::vec3& p : points) b = unite(b, Bounds{p, p});
     const glm::vec3 c = 0.5f * (b.lo + b.hi);
