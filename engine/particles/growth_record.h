@@ -37,8 +37,8 @@ struct GrowthRecord {
     // Empties every array, keeping its memory for the next growth.
     void clear() {
         for (auto* v : {&point_prev, &point_strand}) v->clear();
-        for (auto* v : {&step_points, &strand_first_child, &step_strands, &step_moves, &move_strand, &move_from})
-            v->clear();
+        for (auto* v : {&step_points, &strand_first_child, &step_strands, &step_moves}) v->clear();
+        for (auto* v : {&move_strand, &move_from}) v->clear();
         point_pos.clear();
         for (auto* v : {&move_pos, &move_dir}) v->clear();
         for (auto* v : {&move_blocked, &move_still}) v->clear();

@@ -56,7 +56,23 @@ void SegmentGrid::insert(uint32_t id, glm::vec3 midpoint, uint32_t tag) {
 }
 
 void SegmentGrid::insert(const std::vector<Filed>& batch, int threads) {
-    for (const Filed& f : batch) store(f.id, f.midpoint, f.tag);
+    // Stored as store() would, on every thread: sized once, each segment at its own id.
+    uint32_t top = 0;
+    for (const Filed& f : batch) top = std::max(top, f.id);
+    if (!batch.empty() && top >= entries_.size()) {
+        entries_.resize(size_t(top) + 1);
+        tags_.resize(size_t(top) + 1);
+    }
+    const size_t first = ids_.size();
+    ids_.resize(first + batch.size());
+    count_ += batch.size();
+    parallelFor(batch.size(), threads, 4096, [&](size_t begin, size_t end, int) {
+        for (size_t i = begin; i < end; ++i) {
+            entries_[batch[i].id] = Entry{batch[i].midpoint, kNone};
+            tags_[batch[i].id] = batch[i].tag;
+            ids_[first + i] = batch[i].id;
+        }
+    });
     if (heads_.empty() || count_ * 2 > heads_.size()) {
         // The size serial filing would reach (it quadruples the table whenever it is half full).
         size_t slots = std::max<size_t>(1024, heads_.size() * 4);

@@ -75,10 +75,10 @@ public:
     // Files segment `id` (ids are the caller's, dense from 0) with its midpoint and a tag of the caller's
     // (the strand) kept beside it, so a query rejects most segments without touching the caller's data.
     void insert(uint32_t id, glm::vec3 midpoint, uint32_t tag);
-    // insert() for each segment of a batch, in its order, on up to `threads` threads: each links the slots
-    // of its own share of the table in the batch's order, so every list comes out as serial insertion
-    // leaves it (a growth files each step's segments at once; serially, that took a fifth of a fur ball's
-    // growth).
+    // insert() for each segment of a batch (of distinct ids), in its order, on up to `threads` threads:
+    // each links the slots of its own share of the table in the batch's order, so every list comes out as
+    // serial insertion leaves it (a growth files each step's segments at once; serially, that took a
+    // fifth of a fur ball's growth).
     struct Filed {
         uint32_t id;
         uint32_t tag;

@@ -207,10 +207,16 @@ private:
     bool canAct(const StrandAction& action, uint32_t strand) const;
     void turn(const StrandAction& action, uint32_t strand, uint32_t step);
     void split(const StrandAction& action, uint32_t strand);
+    void placePoints();
     void emit(Strands* out) const;
     void keepRecord();
     glm::vec3 moveMidpoint(size_t k) const { return 0.5f * (points_.pos[strands_.last[active_[k]]] + moves_.pos[k]); }
     bool filed(size_t k) const { return !moves_.still[k] && (moves_.blocked[k] == 0 || moves_.blocked[k] == 2); }
+    // Move k is accepted and leaves its point: it places a new one.
+    bool movedTo(size_t k) const { return moves_.blocked[k] == 0 && !moves_.still[k]; }
+    glm::vec3 segmentMidpoint(uint32_t point) const {
+        return 0.5f * (points_.pos[points_.prev[point]] + points_.pos[point]);
+    }
 
     const ParticleScene& scene_;
     const WalkSettings& walk_;
@@ -228,6 +234,7 @@ private:
     SegmentGrid grid_;       // segments of earlier steps, by their end point's id
     StepSegmentGrid step_grid_;  // this step's moves, by their index in active_
     std::vector<SegmentGrid::Filed> filing_;  // what a step files in either grid, in id order
+    std::vector<uint32_t> point_at_;  // per active strand: the id of the point its move places (placePoints)
     std::vector<uint32_t> active_;
     std::vector<float> charge_;  // a_i(t) of this step
     Moves moves_;
@@ -697,6 +704,37 @@ void Growth::partFromRecord(uint32_t step) {
             rp.changed_segments.insert(rp.changed_ids++, 0.5f * (r.point_pos[r.point_prev[p]] + r.point_pos[p]), 0);
 }
 
+// Appends the points of this step's accepted moves in id order and lists their segments for the grid
+// (filing_). A move's point id is the number of points before it, so each move places its own on any
+// thread. Ages advance here too. Nothing in it reads another strand, and the serial actions after it
+// (a split appends strands) read only what it wrote for their own strand.
+void Growth::placePoints() {
+    point_at_.resize(active_.size() + 1);
+    point_at_[0] = uint32_t(points_.pos.size());
+    for (size_t k = 0; k < active_.size(); ++k) point_at_[k + 1] = point_at_[k] + uint32_t(movedTo(k));
+    const size_t first = points_.pos.size(), placed = point_at_.back() - first;
+    points_.pos.resize(first + placed);
+    points_.prev.resize(first + placed);
+    points_.strand.resize(first + placed);
+    filing_.resize(files_segments_ ? placed : 0);
+    stats_.moves += placed;
+    parallelFor(active_.size(), threads_, 2048, [&](size_t begin, size_t end, int) {
+        for (size_t k = begin; k < end; ++k) {
+            if (moves_.blocked[k]) continue;
+            const uint32_t s = active_[k];
+            ++strands_.age[s];
+            if (!movedTo(k)) continue;
+            const uint32_t id = point_at_[k], from = strands_.last[s];
+            points_.pos[id] = moves_.pos[k];
+            points_.prev[id] = from;
+            points_.strand[id] = s;
+            if (files_segments_) filing_[id - first] = {id, s, segmentMidpoint(id)};
+            strands_.last[s] = id;
+            ++strands_.npoints[s];
+        }
+    });
+}
+
 bool Growth::run(Strands* out, std::string* error) {
     seed();
     if (record_) {
@@ -769,8 +807,8 @@ bool Growth::run(Strands* out, std::string* error) {
             for (size_t k = begin; k < end; ++k)
                 if (moves_.blocked[k] == 0) strands_.frame[active_[k]] = turnFrameTo(strands_.frame[active_[k]], moves_.dir[k]);
         });
-        // Actions, serially in id order: children and points get their ids in that order.
-        filing_.clear();
+        placePoints();
+        // Actions, serially in id order: children get their ids in that order.
         for (size_t k = 0; k < active_.size(); ++k) {
             const uint32_t s = active_[k];
             if (replay_) {
@@ -783,6 +821,11 @@ bool Growth::run(Strands* out, std::string* error) {
                     replay_->parted[strands_.recorded[s]] = 1;
                     strands_.recorded[s] = kNone;
                 }
+                // The segment it placed (placePoints) is changed geometry once the strand has parted.
+                if (files_segments_ && movedTo(k) && strands_.recorded[s] == kNone) {
+                    const glm::vec3 mid = segmentMidpoint(strands_.last[s]);
+                    replay_->changed_segments.insert(replay_->changed_ids++, mid, 0);
+                }
             }
             const bool counting = strands_.countdown[s] >= 0;
             if (moves_.blocked[k] == 4) {
@@ -791,31 +834,13 @@ bool Growth::run(Strands* out, std::string* error) {
             } else if (moves_.blocked[k]) {
                 ++(moves_.blocked[k] == 3 ? stats_.solid_hits : stats_.collisions);
                 apply(walk_.on_collision, s, step, 0);
-            } else {
-                if (!moves_.still[k]) {
-                    const uint32_t id = uint32_t(points_.pos.size());
-                    const uint32_t from = strands_.last[s];
-                    const glm::vec3 mid = 0.5f * (points_.pos[from] + moves_.pos[k]);
-                    points_.pos.push_back(moves_.pos[k]);
-                    points_.prev.push_back(from);
-                    points_.strand.push_back(s);
-                    if (files_segments_) {
-                        filing_.push_back({id, s, mid});
-                        if (replay_ && strands_.recorded[s] == kNone)
-                            replay_->changed_segments.insert(replay_->changed_ids++, mid, 0);
-                    }
-                    strands_.last[s] = id;
-                    ++strands_.npoints[s];
-                    ++stats_.moves;
-                }
-                ++strands_.age[s];
-                if (moves_.cutter[k] >= 0) {
-                    ++stats_.cutter_hits;
-                    strands_.cut_mask[s] |= 1u << moves_.cutter[k];
-                    apply(scene_.cutters[size_t(moves_.cutter[k])].action, s, step, 2 + uint32_t(moves_.cutter[k]));
-                } else if (walk_.max_age_steps > 0 && strands_.age[s] >= walk_.max_age_steps) {
-                    apply(walk_.on_age, s, step, 1);
-                }
+            } else if (moves_.cutter[k] >= 0) {
+                ++stats_.cutter_hits;
+                strands_.cut_mask[s] |= 1u << moves_.cutter[k];
+                const uint32_t c = uint32_t(moves_.cutter[k]);
+                apply(scene_.cutters[c].action, s, step, 2 + c);
+            } else if (walk_.max_age_steps > 0 && strands_.age[s] >= walk_.max_age_steps) {
+                apply(walk_.on_age, s, step, 1);
             }
             // A countdown started in an earlier step runs out here, whatever happened in this one.
             if (counting && strands_.state[s] == StrandState::Active && --strands_.countdown[s] <= 0) {
