@@ -4,7 +4,7 @@
 // Why: a growth of a fur ball (100,000 strands, 64 steps) files six million points and segments, about
 // 250 MB written once. With 4 KiB pages that is 60,000 page faults, and a fault costs ~10 µs on the
 // virtual machines CI and users run on: half a second of a 3.5 s growth went to faulting memory in
-// (docs/particles.md, "Speed"). A 2 MiB page is one fault for 512 of those, and one TLB entry for the
+// (docs/particles.md, "Performance"). A 2 MiB page is one fault for 512 of those, and one TLB entry for the
 // grid's random reads. Smaller arrays take the ordinary allocator: rounding them up to 2 MiB would waste
 // more than it saves.
 //

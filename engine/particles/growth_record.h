@@ -36,14 +36,9 @@ struct GrowthRecord {
 
     // Empties every array, keeping its memory for the next growth.
     void clear() {
-        for (auto* v : {&point_prev, &point_strand}) v->clear();
-        for (auto* v : {&step_points, &strand_first_child, &step_strands, &step_moves}) v->clear();
-        for (auto* v : {&move_strand, &move_from}) v->clear();
-        point_pos.clear();
-        for (auto* v : {&move_pos, &move_dir}) v->clear();
-        for (auto* v : {&move_blocked, &move_still}) v->clear();
-        strand_parent.clear();
-        move_cutter.clear();
+        const auto clearAll = [](auto&... arrays) { (arrays.clear(), ...); };
+        clearAll(point_pos, point_prev, point_strand, step_points, strand_parent, strand_first_child, step_strands,
+                 step_moves, move_strand, move_from, move_pos, move_dir, move_cutter, move_blocked, move_still);
     }
 
     // Range helpers that read past the recorded steps as empty (the growth ended early: no active strand).

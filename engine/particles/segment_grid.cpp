@@ -34,12 +34,15 @@ void SegmentGrid::reserve(size_t segments) {
     if (slots > heads_.size()) rehash(slots);
 }
 
+void SegmentGrid::sizeFor(uint32_t id) {
+    if (id < entries_.size()) return;
+    // Within the reserved capacity, or grown geometrically by the vectors themselves.
+    entries_.resize(size_t(id) + 1);
+    tags_.resize(size_t(id) + 1);
+}
+
 void SegmentGrid::store(uint32_t id, glm::vec3 midpoint, uint32_t tag) {
-    if (id >= entries_.size()) {
-        // Within the reserved capacity, or grown geometrically by the vectors themselves.
-        entries_.resize(size_t(id) + 1);
-        tags_.resize(size_t(id) + 1);
-    }
+    sizeFor(id);
     entries_[id] = Entry{midpoint, kNone};
     tags_[id] = tag;
     ids_.push_back(id);
@@ -59,10 +62,7 @@ void SegmentGrid::insert(const std::vector<Filed>& batch, int threads) {
     // Stored as store() would, on every thread: sized once, each segment at its own id.
     uint32_t top = 0;
     for (const Filed& f : batch) top = std::max(top, f.id);
-    if (!batch.empty() && top >= entries_.size()) {
-        entries_.resize(size_t(top) + 1);
-        tags_.resize(size_t(top) + 1);
-    }
+    if (!batch.empty()) sizeFor(top);
     const size_t first = ids_.size();
     ids_.resize(first + batch.size());
     count_ += batch.size();

@@ -116,6 +116,7 @@ private:
     };
 
     void rehash(size_t slots);
+    void sizeFor(uint32_t id);  // entries_ and tags_ reach id
     void store(uint32_t id, glm::vec3 midpoint, uint32_t tag);
     void link(uint32_t id, uint32_t slot) {
         entries_[id].next = heads_[slot];

@@ -35,9 +35,9 @@ TEST(LargePages, ALargeBlockIsAlignedToAHugePage) {
     const size_t n = large_pages::kThreshold / sizeof(uint64_t) + 1;
     uint64_t* block = allocator.allocate(n);
     EXPECT_EQ(reinterpret_cast<uintptr_t>(block) % large_pages::kHugePage, 0u);
+    // Under AddressSanitizer (CI's second stage) a block shorter than n elements fails here.
     block[0] = 1;
-    block[n - 1] = 2;  // the last element is inside the block
-    EXPECT_EQ(block[0] + block[n - 1], 3u);
+    block[n - 1] = 2;
     allocator.deallocate(block, n);
 }
 
