@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cassert>
 #include <atomic>
-#include <bit>
 #include <chrono>
 #include <cmath>
 #include <cstring>
@@ -137,15 +136,28 @@ bool finiteBounds(const Bounds& b) {
     return true;
 }
 
+// Bits set in w. std::popcount is a libgcc call on the x86-64 baseline (no POPCNT guaranteed), and the
+// resolver ranks a candidate at every alive neighbour it meets: inlined, it is a dozen instructions.
+inline uint32_t bitCount(uint64_t w) {
+    w = w - ((w >> 1) & 0x5555555555555555ull);
+    w = (w & 0x3333333333333333ull) + ((w >> 2) & 0x3333333333333333ull);
+    w = (w + (w >> 4)) & 0x0f0f0f0f0f0f0f0full;
+    return uint32_t((w * 0x0101010101010101ull) >> 56);
+}
+
 struct TileState {
     uint64_t key = 0;
     glm::ivec3 coord{0};
-    std::vector<uint32_t> alive;     // candidate ids, ascending
-    std::vector<uint64_t> priority;  // per alive candidate
-    std::vector<uint32_t> order;     // alive indices by ascending key
-    std::vector<uint8_t> status;     // per alive candidate; accessed through atomic_ref while resolving
-    std::vector<uint64_t> bits;      // alive bitset over the Ghost Tile's candidates
-    std::vector<uint32_t> rank;      // alive count before each 64-bit word
+    // Views of one block (`memory`), allocated once at its final size: a tile used to make a dozen
+    // allocations (six arrays, two of them grown one candidate at a time), and a scattered layer has
+    // hundreds of thousands of tiles. The resolver reads one neighbour's bits, ranks, priorities and
+    // statuses together, so they also share cache lines and pages now.
+    std::span<uint32_t> alive;     // candidate ids, ascending
+    std::span<uint64_t> priority;  // per alive candidate
+    std::span<uint8_t> status;     // per alive candidate; accessed through atomic_ref while resolving
+    std::span<uint64_t> bits;      // alive bitset over the Ghost Tile's candidates
+    std::span<uint32_t> rank;      // alive count before each 64-bit word
+    std::unique_ptr<uint64_t[]> memory;
     int32_t neighbour[kOffsetCount];
     // Counters of the computation that produced this state.
     uint32_t tested = 0, culled = 0, density_rejected = 0, constraint_rejected = 0;
@@ -156,12 +168,27 @@ struct TileState {
     void store(uint32_t a, uint8_t v) {
         std::atomic_ref<uint8_t>(status[a]).store(v, std::memory_order_relaxed);
     }
+    // Sizes the views for `count` alive candidates over `words` bitset words: bits zero, statuses unknown.
+    void allocate(uint32_t count, uint32_t words) {
+        const size_t wide = size_t(count) + words;                  // priorities, bits
+        const size_t narrow = size_t(words) + count;                // ranks, ids
+        const size_t bytes = wide * 8 + narrow * 4 + count;         // and statuses
+        memory.reset(new uint64_t[(bytes + 7) / 8]);
+        uint8_t* p = reinterpret_cast<uint8_t*>(memory.get());
+        priority = {reinterpret_cast<uint64_t*>(p), count};
+        bits = {priority.data() + count, words};
+        rank = {reinterpret_cast<uint32_t*>(bits.data() + words), words};
+        alive = {rank.data() + words, count};
+        status = {reinterpret_cast<uint8_t*>(alive.data() + count), count};
+        std::fill(bits.begin(), bits.end(), 0);
+        std::fill(status.begin(), status.end(), kUnknown);
+    }
     // The alive index of candidate j, or -1.
     int64_t find(uint32_t j) const {
         const uint64_t w = bits[j >> 6];
         const uint64_t bit = uint64_t(1) << (j & 63);
         if (!(w & bit)) return -1;
-        return int64_t(rank[j >> 6]) + std::popcount(w & (bit - 1));
+        return int64_t(rank[j >> 6]) + bitCount(w & (bit - 1));
     }
 };
 
@@ -179,7 +206,8 @@ struct TileScratch {
     std::vector<float> first_values;
     std::vector<uint32_t> second;  // survivors (indices) whose first anchor is positive
     std::vector<float> values;
-    std::vector<std::pair<uint32_t, uint64_t>> by_id;  // (candidate, priority), to restore id order
+    std::vector<uint32_t> scan_alive;                    // alive candidates in scan (z) order ...
+    std::vector<uint64_t> scan_priority;                 // ... and their priorities, before ranking by id
 };
 
 }  // namespace
@@ -314,8 +342,12 @@ void Instantiator::Engine::computeTile(TileState* ts, const std::vector<const Ti
     const glm::vec3 origin = tileOrigin(ts->coord, prep.s);
     const Bounds tile_box{origin, origin + prep.s};
     const uint64_t tile_key = ts->key;
-    ts->alive.clear();
-    ts->priority.clear();
+    // Alive candidates are gathered in the scratch (in scan order) and copied once, by id, at the end:
+    // the tile's own arrays are allocated once, at their final size.
+    auto& scan_alive = scratch->scan_alive;
+    auto& scan_priority = scratch->scan_priority;
+    scan_alive.clear();
+    scan_priority.clear();
     // The tile holds one variant: the other variants' candidates are never alive here, so the resolver,
     // which looks neighbours up by candidate id (TileState::find), never sees them.
     const uint32_t variant = tileVariant(input.seed, tile_key, c.variants);
@@ -449,37 +481,25 @@ void Instantiator::Engine::computeTile(TileState* ts, const std::vector<const Ti
             if (!(e <= std::numeric_limits<float>::max())) e = std::numeric_limits<float>::max();
             uint32_t e_bits;
             std::memcpy(&e_bits, &e, 4);  // e >= 0: the bit pattern orders like the value
-            ts->alive.push_back(j);
-            ts->priority.push_back((uint64_t(layer_bits) << 32) | e_bits);
+            scan_alive.push_back(j);
+            scan_priority.push_back((uint64_t(layer_bits) << 32) | e_bits);
         }
     }
 
-    // The scan above went in z order; TileState::find ranks candidates by id, so alive is kept by id.
-    if (!std::is_sorted(ts->alive.begin(), ts->alive.end())) {
-        auto& by_id = scratch->by_id;
-        by_id.resize(ts->alive.size());
-        for (size_t a = 0; a < by_id.size(); ++a) by_id[a] = {ts->alive[a], ts->priority[a]};
-        std::sort(by_id.begin(), by_id.end());
-        for (size_t a = 0; a < by_id.size(); ++a) {
-            ts->alive[a] = by_id[a].first;
-            ts->priority[a] = by_id[a].second;
-        }
-    }
-    const uint32_t words = (prep.n + 63) / 64;
-    ts->bits.assign(words, 0);
-    ts->rank.assign(words, 0);
-    for (uint32_t j : ts->alive) ts->bits[j >> 6] |= uint64_t(1) << (j & 63);
+    // The alive bitset and its ranks: TileState::find ranks candidates by id, so alive is kept by id.
+    ts->allocate(uint32_t(scan_alive.size()), (prep.n + 63) / 64);
+    for (uint32_t j : scan_alive) ts->bits[j >> 6] |= uint64_t(1) << (j & 63);
     uint32_t running = 0;
-    for (uint32_t w = 0; w < words; ++w) {
+    for (uint32_t w = 0; w < ts->bits.size(); ++w) {
         ts->rank[w] = running;
-        running += uint32_t(std::popcount(ts->bits[w]));
+        running += bitCount(ts->bits[w]);
     }
-    ts->status.assign(ts->alive.size(), kUnknown);
-    ts->order.resize(ts->alive.size());
-    for (uint32_t a = 0; a < ts->order.size(); ++a) ts->order[a] = a;
-    std::sort(ts->order.begin(), ts->order.end(), [&](uint32_t x, uint32_t y) {
-        return keyBefore(ts->priority[x], tile_key, ts->alive[x], ts->priority[y], tile_key, ts->alive[y]);
-    });
+    // The scan went in z order: each candidate goes to its rank (no sort needed).
+    for (size_t k = 0; k < scan_alive.size(); ++k) {
+        const size_t a = size_t(ts->find(scan_alive[k]));
+        ts->alive[a] = scan_alive[k];
+        ts->priority[a] = scan_priority[k];
+    }
     std::fill(std::begin(ts->neighbour), std::end(ts->neighbour), complete ? kEmptyTile : kUnknownTile);
 }
 
@@ -831,21 +851,31 @@ bool Instantiator::Engine::resolveTiles(const std::vector<int32_t>& which, const
     std::atomic<uint64_t> resolved_tiles{0};
     parallelFor(order.size(), threads, 4, [&](size_t b, size_t e, int worker) {
         Resolver resolver(tiles, input.tile->graph);
+        // Counted here, on this worker's stack, and added once: the workers' slots share a cache line,
+        // and counting every decision into them made both workers wait for that line.
+        uint64_t resolved_here = 0;
         for (size_t k = b; k < e; ++k) {
-            if (options.cancel && options.cancel->load()) return stop.store(true);
+            if (options.cancel && options.cancel->load()) {
+                resolved_per_worker[size_t(worker)] += resolved_here;
+                return stop.store(true);
+            }
             if (options.fraction) {
                 const uint64_t n = resolved_tiles.fetch_add(1, std::memory_order_relaxed) + 1;
                 storeMax(options.fraction, kComputeShare + (1.0f - kComputeShare) * float(n) / float(order.size() + 1));
             }
             const int32_t t = order[k];
-            for (uint32_t a : tiles[t].order) {
+            // Driven in id order: the selection does not depend on the order (any order gives the
+            // lexicographically-first set), and sorting every tile by key cost more than the deeper
+            // recursions it saved.
+            for (uint32_t a = 0; a < tiles[t].alive.size(); ++a) {
                 // In region mode, only the wanted candidates are driven; others resolve on demand.
                 if (!complete && !originInside(region, tileOrigin(tiles[t].coord, prep.s) +
                                                           input.tile->candidates.position[tiles[t].alive[a]]))
                     continue;
-                resolver.resolve(Ref{t, a}, &missing_per_worker[size_t(worker)], &resolved_per_worker[size_t(worker)]);
+                resolver.resolve(Ref{t, a}, &missing_per_worker[size_t(worker)], &resolved_here);
             }
         }
+        resolved_per_worker[size_t(worker)] += resolved_here;
     });
     for (auto& m : missing_per_worker) missing->insert(missing->end(), m.begin(), m.end());
     for (uint64_t r : resolved_per_worker) *resolved += r;
