@@ -236,7 +236,8 @@ public:
                              std::string* error, RegionFootprint* plan_only = nullptr) const;
     // Computes the given tiles one by one (no block pass), in parallel: dirty tiles, lazily needed tiles.
     std::vector<TileState> computeTiles(const std::vector<uint64_t>& keys, const InstanceOptions& options) const;
-    void install(std::vector<TileState>&& computed, std::vector<int32_t>* installed);
+    // `threads` links the tiles in parallel when the engine held none before (a full or region run).
+    void install(std::vector<TileState>&& computed, std::vector<int32_t>* installed, int threads = 1);
     void link(int32_t t);
     void linkAround(int32_t t);
 
@@ -687,8 +688,11 @@ void Instantiator::Engine::linkAround(int32_t t) {
 }
 
 // Adds or replaces tiles, then links them and their neighbours.
-void Instantiator::Engine::install(std::vector<TileState>&& computed, std::vector<int32_t>* installed) {
+void Instantiator::Engine::install(std::vector<TileState>&& computed, std::vector<int32_t>* installed, int threads) {
     installed->clear();
+    const bool first = index.empty();
+    tiles.reserve(tiles.size() + computed.size());
+    index.reserve(index.size() + computed.size());
     for (TileState& ts : computed) {
         auto it = index.find(ts.key);
         int32_t t;
@@ -701,6 +705,14 @@ void Instantiator::Engine::install(std::vector<TileState>&& computed, std::vecto
             tiles.push_back(std::move(ts));
         }
         installed->push_back(t);
+    }
+    if (first) {
+        // Every tile is new: each links itself (its neighbours do the same for their side), reading the
+        // finished index only, so the tiles can link in parallel.
+        parallelFor(installed->size(), threads, 1024, [&](size_t b, size_t e, int) {
+            for (size_t k = b; k < e; ++k) link((*installed)[k]);
+        });
+        return;
     }
     for (int32_t t : *installed) linkAround(t);
 }
@@ -956,7 +968,7 @@ bool Instantiator::instantiateAll(const InstanceOptions& options, InstanceStats*
     e.index.clear();
     e.instantiated = false;
     std::vector<int32_t> installed;
-    e.install(std::move(computed), &installed);
+    e.install(std::move(computed), &installed, resolveThreadCount(options.threads));
     std::vector<glm::ivec3> missing;
     if (!e.resolveTiles(installed, options, &missing, &st.resolved)) {
         if (error) *error = "instancer: cancelled";
@@ -1162,7 +1174,7 @@ bool instantiateRegion(const InstancerInput& input, const Bounds& region, const 
     if (!e.enumerateAndCompute(region, options, &computed, error)) return false;
     addTileCounters(computed, &st);
     std::vector<int32_t> installed, pending;
-    e.install(std::move(computed), &installed);
+    e.install(std::move(computed), &installed, resolveThreadCount(options.threads));
     pending = installed;
     // Decide the wanted candidates; whenever a decision needs a tile not computed yet, compute it and
     // try again. Each round only adds tiles, so this ends (at worst when the dependency chains do).
