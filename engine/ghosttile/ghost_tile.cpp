@@ -417,15 +417,21 @@ bool buildGhostTile(const GhostTileInput& input, const BuildOptions& options, Gh
         uint32_t row;
         uint32_t key;
     };
-    std::vector<std::vector<HalfEdge>> found(static_cast<size_t>(threads));
-    std::vector<std::vector<uint32_t>> scratch_a(static_cast<size_t>(threads)), scratch_b(static_cast<size_t>(threads));
+    // Per worker, each on cache lines of its own: a vector's end moves at every push, and with two
+    // workers' vectors side by side every push waited for the line to come back from the other core.
+    struct alignas(64) WorkerEdges {
+        std::vector<HalfEdge> edges;
+        std::vector<uint32_t> near_a, near_b;  // sphereSetsCollide's scratch
+    };
+    std::vector<WorkerEdges> found(static_cast<size_t>(threads));
     std::atomic<uint64_t> edge_total{0};
     std::atomic<bool> too_big{false};
     std::atomic<size_t> rows_done{0};
     const uint64_t max_edges = kMaxGraphBytes / 2;  // at least one byte per edge, plus the gathering
     parallelFor(n, threads, 8, [&](size_t begin, size_t end, int worker) {
         if (cancelled() || too_big.load(std::memory_order_relaxed)) return;
-        std::vector<HalfEdge>& edges = found[size_t(worker)];
+        WorkerEdges& mine = found[size_t(worker)];
+        std::vector<HalfEdge>& edges = mine.edges;
         const size_t before = edges.size();
         for (size_t ii = begin; ii < end; ++ii) {
             const uint32_t i = uint32_t(ii);
@@ -449,8 +455,7 @@ bool buildGhostTile(const GhostTileInput& input, const BuildOptions& options, Gh
                             const glm::vec3 shift = glm::vec3(offsetVector(v)) * s;
                             if (sphereSetsCollide(&spheres[sphere_begin[i]], sphere_begin[i + 1] - sphere_begin[i], bi,
                                                   &spheres[sphere_begin[j]], sphere_begin[j + 1] - sphere_begin[j],
-                                                  bound[j], shift, delta, margin, &scratch_a[size_t(worker)],
-                                                  &scratch_b[size_t(worker)])) {
+                                                  bound[j], shift, delta, margin, &mine.near_a, &mine.near_b)) {
                                 edges.push_back({i, ce.key});
                                 edges.push_back({j, i * kOffsetCount + mirrorOffset(v)});
                             }
@@ -473,28 +478,30 @@ bool buildGhostTile(const GhostTileInput& input, const BuildOptions& options, Gh
 
     // Gather rows (counting sort by row), sort each row, encode. Rows are independent: parallel again.
     std::vector<uint32_t> row_begin(size_t(n) + 1, 0);
-    for (const auto& list : found)
-        for (const HalfEdge& h : list) row_begin[h.row + 1]++;
+    for (const WorkerEdges& w : found)
+        for (const HalfEdge& h : w.edges) row_begin[h.row + 1]++;
     for (uint32_t i = 0; i < n; ++i) row_begin[i + 1] += row_begin[i];
     std::vector<uint32_t> keys(row_begin[n]);
     {
         std::vector<uint32_t> cursor(row_begin.begin(), row_begin.end() - 1);
-        for (auto& list : found) {
-            for (const HalfEdge& h : list) keys[cursor[h.row]++] = h.key;
-            std::vector<HalfEdge>().swap(list);
+        for (WorkerEdges& w : found) {
+            for (const HalfEdge& h : w.edges) keys[cursor[h.row]++] = h.key;
+            std::vector<HalfEdge>().swap(w.edges);
         }
     }
     const size_t chunk = 64;
     std::vector<std::vector<uint8_t>> chunk_bytes((size_t(n) + chunk - 1) / chunk);
     std::vector<uint32_t> row_size(n, 0);
     parallelFor(n, threads, chunk, [&](size_t begin, size_t end, int) {
-        std::vector<uint8_t>& bytes = chunk_bytes[begin / chunk];
+        // Encoded into a local vector and moved once: neighbouring chunks' vectors share cache lines.
+        std::vector<uint8_t> bytes;
         for (size_t i = begin; i < end; ++i) {
             std::sort(keys.begin() + row_begin[i], keys.begin() + row_begin[i + 1]);
             const size_t before = bytes.size();
             CollisionGraph::encodeRow(keys.data() + row_begin[i], row_begin[i + 1] - row_begin[i], &bytes);
             row_size[i] = uint32_t(bytes.size() - before);
         }
+        chunk_bytes[begin / chunk] = std::move(bytes);
     });
     progress(0.95f);
     std::vector<uint32_t> row_offsets(size_t(n) + 1, 0);
