@@ -236,7 +236,7 @@ public:
                              std::string* error, RegionFootprint* plan_only = nullptr) const;
     // Computes the given tiles one by one (no block pass), in parallel: dirty tiles, lazily needed tiles.
     std::vector<TileState> computeTiles(const std::vector<uint64_t>& keys, const InstanceOptions& options) const;
-    // `threads` links the tiles in parallel when the engine held none before (a full or region run).
+    // `threads` links the tiles in parallel when the engine holds none yet (a full or region run).
     void install(std::vector<TileState>&& computed, std::vector<int32_t>* installed, int threads = 1);
     void link(int32_t t);
     void linkAround(int32_t t);
@@ -690,9 +690,23 @@ void Instantiator::Engine::linkAround(int32_t t) {
 // Adds or replaces tiles, then links them and their neighbours.
 void Instantiator::Engine::install(std::vector<TileState>&& computed, std::vector<int32_t>* installed, int threads) {
     installed->clear();
-    const bool first = index.empty();
-    tiles.reserve(tiles.size() + computed.size());
-    index.reserve(index.size() + computed.size());
+    if (tiles.empty() && index.empty()) {
+        // A first install (a full or region run): the computed tiles, each key once, become the table as
+        // they are, and each links itself from the finished index (its neighbours do the same for their
+        // side), so the tiles link in parallel.
+        tiles = std::move(computed);
+        index.reserve(tiles.size());
+        installed->resize(tiles.size());
+        for (int32_t t = 0; t < int32_t(tiles.size()); ++t) {
+            index.emplace(tiles[t].key, t);
+            (*installed)[size_t(t)] = t;
+        }
+        assert(index.size() == tiles.size());
+        parallelFor(tiles.size(), threads, 1024, [&](size_t b, size_t e, int) {
+            for (size_t t = b; t < e; ++t) link(int32_t(t));
+        });
+        return;
+    }
     for (TileState& ts : computed) {
         auto it = index.find(ts.key);
         int32_t t;
@@ -705,14 +719,6 @@ void Instantiator::Engine::install(std::vector<TileState>&& computed, std::vecto
             tiles.push_back(std::move(ts));
         }
         installed->push_back(t);
-    }
-    if (first) {
-        // Every tile is new: each links itself (its neighbours do the same for their side), reading the
-        // finished index only, so the tiles can link in parallel.
-        parallelFor(installed->size(), threads, 1024, [&](size_t b, size_t e, int) {
-            for (size_t k = b; k < e; ++k) link((*installed)[k]);
-        });
-        return;
     }
     for (int32_t t : *installed) linkAround(t);
 }
