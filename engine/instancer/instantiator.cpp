@@ -9,6 +9,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <cstddef>
 #include <cstring>
 #include <limits>
 #include <mutex>
@@ -157,7 +158,7 @@ struct TileState {
     std::span<uint8_t> status;     // per alive candidate; accessed through atomic_ref while resolving
     std::span<uint64_t> bits;      // alive bitset over the Ghost Tile's candidates
     std::span<uint32_t> rank;      // alive count before each 64-bit word
-    std::unique_ptr<uint64_t[]> memory;
+    std::unique_ptr<std::byte[]> memory;  // bytes: storage for objects of several types
     int32_t neighbour[kOffsetCount];
     // Counters of the computation that produced this state.
     uint32_t tested = 0, culled = 0, density_rejected = 0, constraint_rejected = 0;
@@ -170,12 +171,12 @@ struct TileState {
     }
     // Sizes the views for `count` alive candidates over `words` bitset words: bits zero, statuses unknown.
     void allocate(uint32_t count, uint32_t words) {
-        const size_t wide = size_t(count) + words;                  // priorities, bits
-        const size_t narrow = size_t(words) + count;                // ranks, ids
-        const size_t bytes = wide * 8 + narrow * 4 + count;         // and statuses
-        memory.reset(new uint64_t[(bytes + 7) / 8]);
-        uint8_t* p = reinterpret_cast<uint8_t*>(memory.get());
-        priority = {reinterpret_cast<uint64_t*>(p), count};
+        const size_t wide = size_t(count) + words;           // priorities, bits
+        const size_t narrow = size_t(words) + count;         // ranks, ids
+        const size_t bytes = wide * 8 + narrow * 4 + count;  // and statuses
+        // new[] of bytes is aligned for every fundamental type; the 8-byte views come first.
+        memory.reset(new std::byte[bytes]);
+        priority = {reinterpret_cast<uint64_t*>(memory.get()), count};
         bits = {priority.data() + count, words};
         rank = {reinterpret_cast<uint32_t*>(bits.data() + words), words};
         alive = {rank.data() + words, count};
