@@ -875,8 +875,8 @@ bool Instantiator::Engine::resolveTiles(const std::vector<int32_t>& which, const
         uint64_t resolved_here = 0;
         for (size_t k = b; k < e; ++k) {
             if (options.cancel && options.cancel->load()) {
-                resolved_per_worker[size_t(worker)] += resolved_here;
-                return stop.store(true);
+                stop.store(true);
+                break;
             }
             if (options.fraction) {
                 const uint64_t n = resolved_tiles.fetch_add(1, std::memory_order_relaxed) + 1;
