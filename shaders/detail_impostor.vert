@@ -64,46 +64,51 @@ void main() {
     }
     vec3 world = vec3(tile) * u_tile_size_m + f.position_scale.xyz + rotate(f.rotation, scale * u_center) -
                  vec3(0.0, 0.0, drop);
-    // Lit like its faces on average, not like a flat lawn: the model's +Z (a leaf's face, a tuft's up)
-    // weighted by how flat its faces are (u_upness, render_data.h), and four upright faces around it
-    // (a tuft's blades, a rock's sides) for the rest; every normal turned toward the eye, as the mesh's
-    // two-sided sheets are (lit_surface.frag).
-    // The material's average colour (its texture's mean is u_color) with the mesh's per-instance tint.
-    vec3 albedo = u_color * (0.9 + 0.2 * float(h & 1023u) / 1023.0) * instanceTint(u_tint_variation, h);
-    vec3 up = rotate(f.rotation, vec3(0.0, 0.0, 1.0));
-    vec3 across = rotate(f.rotation, vec3(1.0, 0.0, 0.0));
-    vec3 along = cross(up, across);
-    float visibility = sunVisibility(world, up);
-    vec3 flat_lit = shadeSurfaceLit(albedo, dot(up, u_to_eye) < 0.0 ? -up : up, world, visibility);
-    vec3 upright_lit = vec3(0.0);
-    for (int k = 0; k < 4; ++k) {
-        vec3 side = (k & 1) == 0 ? across : along;
-        side = (k & 2) == 0 ? side : -side;
-        if (dot(side, u_to_eye) < 0.0) side = -side;
-        upright_lit += 0.25 * shadeSurfaceLit(albedo, side, world, visibility);
-    }
-    v_lit = toDisplay(mix(upright_lit, flat_lit, u_upness));
     gl_Position = u_view_proj * vec4(world, 1.0);
+    float px_per_m = u_point_scale / max(gl_Position.w, 1e-4);
+    float sprite_px = 2.0 * u_sprite_radius_m * scale * px_per_m;
+    float keep = float((h >> 20) & 1023u) / 1024.0;  // a one-pixel point is kept when keep < its area
+    float most_m2 = max(max(u_coverage_m2[0], u_coverage_m2[1]), max(u_coverage_m2[2], u_coverage_m2[3]));
+    if (sprite_px < 2.0 && keep >= most_m2 * scale * scale * px_per_m * px_per_m) {
+        // Dropped whatever its elevation (below): most of a far field ends here, before the arcsine.
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+        gl_PointSize = 1.0;
+        return;
+    }
     // The silhouette area from this elevation, in pixels.
     vec3 to_eye = u_eye - world;
     float e = clamp(asin(clamp(abs(to_eye.z) / max(length(to_eye), 1e-6), 0.0, 1.0)) / 0.5235988, 0.0, 2.999);
     int k = int(e);
     float cover_m2 = mix(u_coverage_m2[k], u_coverage_m2[k + 1], e - float(k)) * scale * scale;
-    float px_per_m = u_point_scale / max(gl_Position.w, 1e-4);
     float area_px = cover_m2 * px_per_m * px_per_m;
-    float sprite_px = 2.0 * u_sprite_radius_m * scale * px_per_m;
     if (sprite_px < 2.0) {
-        // One pixel, kept with the probability of the silhouette's area in pixels.
-        if (float((h >> 20) & 1023u) / 1024.0 >= area_px) {
+        // One pixel, kept with the probability of the silhouette's area in pixels. Decided before the
+        // lighting below: in a far field most points are dropped, and the lighting is most of the cost.
+        if (keep >= area_px) {
             gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
             gl_PointSize = 1.0;
             return;
         }
         v_layer = -1;
         gl_PointSize = 1.0;
-        return;
+    } else {
+        v_layer = u_layer_first + k;
+        v_layer_mix = e - float(k);
+        gl_PointSize = min(sprite_px, 255.0);
     }
-    v_layer = u_layer_first + k;
-    v_layer_mix = e - float(k);
-    gl_PointSize = min(sprite_px, 255.0);
+    // Lit like its faces on average, not like a flat lawn: the model's +Z (a leaf's face, a tuft's up)
+    // weighted by how flat its faces are (u_upness, render_data.h), and four upright faces around it
+    // (a tuft's blades, a rock's sides) for the rest; every normal turned toward the eye, as the mesh's
+    // two-sided sheets are (lit_surface.frag). The haze is linear in the colour: applied once, to the blend.
+    // The material's average colour (its texture's mean is u_color) with the mesh's per-instance tint.
+    vec3 albedo = u_color * (0.9 + 0.2 * float(h & 1023u) / 1023.0) * instanceTint(u_tint_variation, h);
+    vec3 up = rotate(f.rotation, vec3(0.0, 0.0, 1.0));
+    vec3 across = rotate(f.rotation, vec3(1.0, 0.0, 0.0));
+    vec3 along = cross(up, across);
+    float visibility = sunVisibility(world, up);
+    vec3 flat_lit = lightSurface(albedo, dot(up, u_to_eye) < 0.0 ? -up : up, visibility);
+    // Of the four upright faces, each opposite pair turned toward the eye is one normal: two to light.
+    vec3 upright_lit = 0.5 * (lightSurface(albedo, dot(across, u_to_eye) < 0.0 ? -across : across, visibility) +
+                              lightSurface(albedo, dot(along, u_to_eye) < 0.0 ? -along : along, visibility));
+    v_lit = toDisplay(hazed(mix(upright_lit, flat_lit, u_upness), world));
 }

@@ -67,17 +67,27 @@ float sunVisibility(vec3 world, vec3 n) {
     return 1.0 - u_shadow_strength * (1.0 - texture(u_shadow_map, t));
 }
 
-// shadeSurface with the sun's visibility given (the impostors light several normals at one point).
-vec3 shadeSurfaceLit(vec3 albedo, vec3 n, vec3 world, float visibility) {
+// The sky, bounce and sun light on a surface of normal n, before the haze; the sun's visibility given.
+vec3 lightSurface(vec3 albedo, vec3 n, float visibility) {
     float ndl = max(dot(n, u_sun_dir), 0.0) * visibility;
     vec3 ambient = mix(kGroundBounce, kSkyLight, 0.5 + 0.5 * n.z);
     vec3 direct = 1.1 * kSunColor * ndl;
     g_ambient_share = dot(ambient, vec3(1.0)) / max(dot(ambient + direct, vec3(1.0)), 1e-6);
-    vec3 c = albedo * (ambient + direct);
+    return albedo * (ambient + direct);
+}
+
+// The haze between the eye and `world` over a lit colour. Linear in the colour, so a blend of several
+// lit normals at one point (the impostors) takes it once.
+vec3 hazed(vec3 lit, vec3 world) {
     vec3 to_point = world - u_eye;
     float d = length(to_point);
     float fog = 1.0 - exp(-d * u_fog_density);
-    return mix(c, skyColor(to_point / max(d, 1e-6)), clamp(fog, 0.0, 1.0));
+    return mix(lit, skyColor(to_point / max(d, 1e-6)), clamp(fog, 0.0, 1.0));
+}
+
+// shadeSurface with the sun's visibility given.
+vec3 shadeSurfaceLit(vec3 albedo, vec3 n, vec3 world, float visibility) {
+    return hazed(lightSurface(albedo, n, visibility), world);
 }
 
 vec3 shadeSurface(vec3 albedo, vec3 n, vec3 world) {
