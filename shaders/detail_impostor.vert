@@ -7,19 +7,22 @@
 // the expected coverage stays the same.
 // Beyond the impostor distance an object covers a few pixels, where a disc of its colour and light
 // reads the same as its mesh and costs llvmpipe a fraction of a triangle.
-// Interface: a_instance (2, per vertex here: one vertex per instance), as instanced_detail.vert;
-// buffer 0 = candidate frames; u_view_proj, u_tile_size_m, u_color, u_center (model space),
+// A far run may be thinned (render_data.h PointRun): the command's i-th point is instance
+// a_run.x + i * a_run.y, and a one-pixel point is kept with a_run.y times its probability.
+// Interface: a_run (3, per instance: the command's baseInstance picks its run); buffer 0 = candidate
+// frames, buffer 1 = the type's packed instances (as instanced_detail.vert's a_instance); u_view_proj, u_tile_size_m, u_color, u_center (model space),
 // u_coverage_m2, u_sprite_radius_m, u_layer_first, u_upness, u_point_scale (pixels per metre at unit
 // depth), u_to_eye (unit, toward the camera),
 // u_lod_diameter_px, u_impostor_px (the switch, as instanced_detail.vert), plus lighting.glsl's; out
 // v_lit, the display colour.
-layout(location = 2) in uvec2 a_instance;
+layout(location = 3) in uvec2 a_run;  // offset, stride
 
 struct CandidateFrame {
     vec4 position_scale;
     vec4 rotation;
 };
 layout(std430, binding = 0) readonly buffer CandidateFrames { CandidateFrame u_frames[]; };
+layout(std430, binding = 1) readonly buffer PackedInstances { uvec2 u_instances[]; };
 
 uniform mat4 u_view_proj;
 uniform float u_tile_size_m;
@@ -45,6 +48,7 @@ vec3 rotate(vec4 q, vec3 v) {
 }
 
 void main() {
+    uvec2 a_instance = u_instances[a_run.x + uint(gl_VertexID) * a_run.y];
     // Sign-extend the tile coordinates (16, 16 and 9 bits; arithmetic shifts of a signed int).
     ivec3 tile = ivec3(int(a_instance.x << 16) >> 16, int(a_instance.x) >> 16, int(a_instance.y << 23) >> 23);
     // The settled drop, in steps of u_drop_unit_m (render_data.h).
@@ -67,7 +71,8 @@ void main() {
     gl_Position = u_view_proj * vec4(world, 1.0);
     float px_per_m = u_point_scale / max(gl_Position.w, 1e-4);
     float sprite_px = 2.0 * u_sprite_radius_m * scale * px_per_m;
-    float keep = float((h >> 20) & 1023u) / 1024.0;  // a one-pixel point is kept when keep < its area
+    // A one-pixel point is kept when keep < its area (times the run's stride: it stands for that many).
+    float keep = float((h >> 20) & 1023u) / 1024.0 / float(a_run.y);
     float most_m2 = max(max(u_coverage_m2[0], u_coverage_m2[1]), max(u_coverage_m2[2], u_coverage_m2[3]));
     if (sprite_px < 2.0 && keep >= most_m2 * scale * scale * px_per_m * px_per_m) {
         // Dropped whatever its elevation (below): most of a far field ends here, before the arcsine.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <limits>
 
 #include <glm/gtc/quaternion.hpp>
 
@@ -438,12 +439,39 @@ uint32_t instanceHash(PackedInstance packed) {
     return h >> 10;
 }
 
+uint32_t pointStride(const DetailLodMesh& m, float px_per_m) {
+    const float scale = m.scale_max;
+    const float sprite_px = 2.0f * m.silhouettes.radius * m.silhouettes.extent * scale * px_per_m;
+    if (!(sprite_px < 2.0f)) return 1;  // a sprite shows its silhouette: every one is drawn (and a NaN)
+    const float most_m2 = *std::max_element(m.coverage_m2.begin(), m.coverage_m2.end());
+    const float area_px = most_m2 * scale * scale * px_per_m * px_per_m;
+    uint32_t stride = 1;
+    while (stride < kMaxPointStride && 2.0f * float(stride) * area_px <= 1.0f) stride *= 2;
+    return stride;
+}
+
+namespace {
+
+// The most pixels per metre a point in the box can be drawn at: the shader's u_point_scale / clip w, and w
+// (linear in the position) is least at a corner. 0 when the box reaches the eye's plane (no bound).
+float mostPixelsPerMetre(const glm::mat4& view_proj, float point_scale, glm::vec3 lo, glm::vec3 hi) {
+    float w_min = std::numeric_limits<float>::max();
+    for (int c = 0; c < 8; ++c) {
+        const glm::vec4 p((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z, 1.0f);
+        w_min = std::min(w_min, (view_proj * p).w);
+    }
+    return w_min > 1e-3f ? point_scale / w_min : 0.0f;
+}
+
+}  // namespace
+
 void buildIndirectDraws(const ResidentTiles& in, const std::vector<DetailLodMesh>& meshes, const ViewParams& view,
                         const LodSettings& lod, IndirectDraws* out) {
     const uint32_t types = in.type_count;
     assert(meshes.size() == types);
     out->elements.clear();
     out->points.clear();
+    out->point_runs.clear();
     out->groups.assign(types, {});
     out->tiles_visible = 0;
     out->tiles_culled = 0;
@@ -457,8 +485,12 @@ void buildIndirectDraws(const ResidentTiles& in, const std::vector<DetailLodMesh
     const float s = in.tile_size_m;
     const float half_diagonal = 0.5f * std::sqrt(3.0f) * s;
     const size_t tile_count = in.tileCount();
-    // Pass 1: cull each cell once and keep its distance (negative: culled).
+    // Pass 1: cull each cell once and keep its distance (negative: culled) and, for thinning far points,
+    // the most pixels per metre its points can have (the cell grown by the reach, and by the deepest
+    // settled drop below; 0: not thinned).
+    const glm::vec3 drop_max(0.0f, 0.0f, in.drop_unit_m * float(kPackedDropSteps));
     out->tile_distance.resize(tile_count);
+    out->tile_point_px.resize(tile_count);
     for (size_t t = 0; t < tile_count; ++t) {
         const glm::vec3 lo = tileOrigin(in.tile_coord[t], s);
         if (boxOutside(planes, lo - reach, lo + s + reach)) {
@@ -468,6 +500,9 @@ void buildIndirectDraws(const ResidentTiles& in, const std::vector<DetailLodMesh
         }
         ++out->tiles_visible;
         out->tile_distance[t] = std::max(glm::length(lo + 0.5f * s - view.eye) - half_diagonal, 1e-3f);
+        out->tile_point_px[t] =
+            view.point_scale > 0.0f ? mostPixelsPerMetre(view.view_proj, view.point_scale, lo - reach - drop_max, lo + s + reach)
+                                    : 0.0f;
     }
     // Pass 2, per type: one LOD per visible cell, a command for the cell's slot in that LOD's group. A
     // command that starts where the group's previous one ends extends it instead (adjacent slots).
@@ -485,11 +520,20 @@ void buildIndirectDraws(const ResidentTiles& in, const std::vector<DetailLodMesh
             const float px_far = diameter_px_at_1m[i] / (distance + 2.0f * half_diagonal);
             const float impostor_px = meshes[i].impostorPx(lod);
             if (px_far < impostor_px * (1.0f + kImpostorBand)) {  // some may be impostors (drawnAsMesh)
-                out->groups[i][kImpostorLod].instances += n;
-                if (out->points.size() > points_first && out->points.back().first + out->points.back().count == offset)
-                    out->points.back().count += n;
-                else
-                    out->points.push_back({n, 1, offset, 0});
+                const float px_per_m = out->tile_point_px[t];
+                const uint32_t stride = px_per_m > 0.0f ? pointStride(meshes[i], px_per_m) : 1;
+                // A run of the same stride that ends where this tile's slot begins takes it in.
+                PointRun* run = out->points.size() > points_first ? &out->point_runs.back() : nullptr;
+                if (run && run->stride == stride && run->offset + run->span == offset) {
+                    run->span += n;
+                } else {
+                    out->point_runs.push_back({offset, stride, n});
+                    out->points.push_back({0, 1, 0, uint32_t(out->points.size())});
+                    run = &out->point_runs.back();
+                }
+                const uint32_t drawn_before = out->points.back().count;
+                out->points.back().count = (run->span + stride - 1) / stride;
+                out->groups[i][kImpostorLod].instances += out->points.back().count - drawn_before;
             }
             if (px_near < impostor_px) continue;  // none is a mesh
             const int level = px_near >= lod.lod1_px ? 0 : px_near >= lod.lod2_px ? 1 : 2;

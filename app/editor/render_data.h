@@ -211,6 +211,9 @@ struct ViewParams {
     glm::mat4 view_proj{1.0f};
     glm::vec3 eye{0.0f};
     float pixels_per_radian = 1.0f;  // viewport height / vertical field of view
+    // Pixels per metre at unit depth (detail_impostor.vert's u_point_scale): with it, far tiles whose
+    // points are all one pixel draw a share of them (pointStride); 0 draws every point.
+    float point_scale = 0.0f;
 };
 
 // The GL indirect command layouts (GL 4.3 "DrawElementsIndirectCommand", "DrawArraysIndirectCommand").
@@ -222,11 +225,27 @@ struct DrawElementsIndirectCommand {
     uint32_t base_instance = 0;   // slot offset: where the tile's instances start in the type's buffer
 };
 struct DrawArraysIndirectCommand {
-    uint32_t count = 0;           // impostors: one point per instance
+    uint32_t count = 0;           // impostors: one point per drawn instance
     uint32_t instance_count = 1;
-    uint32_t first = 0;           // slot offset (the instance attribute advances per vertex here)
-    uint32_t base_instance = 0;
+    uint32_t first = 0;           // always 0: gl_VertexID counts the command's points
+    uint32_t base_instance = 0;   // the command's PointRun (a per-instance attribute, read once)
 };
+
+// Which instances a point command draws: its i-th point is instance offset + i * stride of the type's
+// buffer (detail_impostor.vert). A stride above 1 draws one instance in `stride` of a far run, each kept
+// with `stride` times the probability of the one-pixel point it stands for, so the expected coverage is
+// the same (pointStride) for a fraction of the vertices: llvmpipe shades vertices on one thread.
+struct PointRun {
+    uint32_t offset = 0;  // the run's first instance (slot offset)
+    uint32_t stride = 1;
+    uint32_t span = 0;    // instances the run covers (it draws ceil(span / stride) points)
+};
+constexpr uint32_t kMaxPointStride = 64;
+// The largest power of two, at most kMaxPointStride, by which the points of a type seen at most
+// `px_per_m` pixels per metre can be thinned: every point there is one pixel (its sprite under 2 px at
+// the largest scale) and stride times its largest area, over the elevations, is at most one pixel. 1 when
+// some point there may be a sprite.
+uint32_t pointStride(const DetailLodMesh& mesh, float px_per_m);
 static_assert(sizeof(DrawElementsIndirectCommand) == 20 && sizeof(DrawArraysIndirectCommand) == 16);
 
 // One frame's indirect draws: a command per visible (tile, type) at the tile's LOD, grouped by (type, LOD)
@@ -240,9 +259,11 @@ struct IndirectDraws {
     };
     std::vector<DrawElementsIndirectCommand> elements;  // type 0 LOD 0..2, type 1 LOD 0..2, ...
     std::vector<DrawArraysIndirectCommand> points;      // type 0, type 1, ...
+    std::vector<PointRun> point_runs;                   // beside `points`: command k reads run k
     std::vector<std::array<Group, kLodCount>> groups;   // per type
     std::array<std::vector<DrawElementsIndirectCommand>, kMeshLodCount> scratch;  // per LOD, reused
     std::vector<float> tile_distance;                   // per resident tile; < 0: culled
+    std::vector<float> tile_point_px;                   // per visible tile: most pixels per metre (0: no bound)
     uint64_t tiles_visible = 0;
     uint64_t tiles_culled = 0;
     uint64_t commandCount() const { return elements.size() + points.size(); }

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <random>
 #include <set>
@@ -253,11 +254,17 @@ std::map<std::tuple<uint32_t, uint64_t, uint32_t>, int> drawn(const ResidentTile
             const IndirectDraws::Group& g = d.groups[type][size_t(level)];
             uint64_t instances = 0;
             for (uint32_t k = g.first; k < g.first + g.count; ++k) {
-                uint32_t first = 0, n = 0;
+                uint32_t first = 0, n = 0, stride = 1;
                 if (level == kImpostorLod) {
+                    // detail_impostor.vert: the i-th point is instance run.offset + i * run.stride.
                     const DrawArraysIndirectCommand& cmd = d.points[k];
                     EXPECT_EQ(cmd.instance_count, 1u);
-                    first = cmd.first;
+                    EXPECT_EQ(cmd.first, 0u);
+                    EXPECT_EQ(cmd.base_instance, k) << "a command reads the run beside it";
+                    const PointRun& run = d.point_runs.at(cmd.base_instance);
+                    EXPECT_EQ(cmd.count, (run.span + run.stride - 1) / run.stride);
+                    first = run.offset;
+                    stride = run.stride;
                     n = cmd.count;
                 } else {
                     const DrawElementsIndirectCommand& cmd = d.elements[k];
@@ -268,7 +275,7 @@ std::map<std::tuple<uint32_t, uint64_t, uint32_t>, int> drawn(const ResidentTile
                 }
                 EXPECT_GT(n, 0u);
                 instances += n;
-                for (uint32_t i = first; i < first + n; ++i) {
+                for (uint32_t i = first; i < first + n * stride; i += stride) {
                     glm::ivec3 tile;
                     uint32_t j = 0;
                     unpackInstance(r.types[type].mirror[i], &tile, &j);
@@ -360,6 +367,107 @@ TEST(IndirectDraws, EveryVisibleInstanceOnceAndCulledTilesAbsent) {
     size_t in_both = 0;
     for (const auto& [key, times] : drawn(r, d, meshes)) in_both += times == 2 ? 1 : 0;
     EXPECT_GT(in_both, 0u) << "no tile is drawn in both representations: the band is missing";
+}
+
+TEST(PointStride, ThinsOnlyOnePixelPointsAndNeverPastOnePixelOfArea) {
+    DetailLodMesh m;
+    m.scale_max = 1.0f;
+    m.silhouettes.radius = 0.1f;
+    m.silhouettes.extent = 1.0f;
+    m.coverage_m2 = {0.004f, 0.01f, 0.006f, 0.002f};
+    // 2 px per metre: a 0.4 px sprite whose largest area is 0.04 px: 16 of them make 0.64 px, 32 would
+    // make 1.28.
+    EXPECT_EQ(pointStride(m, 2.0f), 16u);
+    // 0.2 px per metre: 0.0004 px, thinned as far as allowed.
+    EXPECT_EQ(pointStride(m, 0.2f), kMaxPointStride);
+    // 10 px per metre: a 2 px sprite shows its silhouette; 9.9: one pixel of 0.98 px area, alone.
+    EXPECT_EQ(pointStride(m, 10.0f), 1u);
+    EXPECT_EQ(pointStride(m, 9.9f), 1u);
+    EXPECT_EQ(pointStride(m, std::nanf("")), 1u);
+    // A larger scale counts: at scale 2 the 2 px per metre point has 0.16 px, stride 4 (0.64).
+    m.scale_max = 2.0f;
+    EXPECT_EQ(pointStride(m, 2.0f), 4u);
+}
+
+TEST(IndirectDraws, FarPointsAreThinnedOnlyWhereEveryDrawnOneIsAPixelOfAtMostOnePixelOfArea) {
+    const CandidateSet c = twoTypeCandidates();
+    std::vector<DetailLodMesh> meshes = testMeshes();
+    for (DetailLodMesh& m : meshes) {
+        m.silhouettes.radius = 0.1f;
+        m.silhouettes.extent = 1.0f;
+        m.coverage_m2 = {0.001f, 0.002f, 0.002f, 0.001f};  // thin, as grass: a fraction of its square
+    }
+    std::mt19937 rng(4);
+    TileMap tiles(lessTile);
+    for (int x = -40; x < 40; ++x)
+        for (int y = -40; y < 40; ++y) {
+            std::vector<uint32_t> ids;
+            for (uint32_t j = 0; j < 5; ++j)
+                if (rng() % 2 == 0) ids.push_back(j);
+            if (!ids.empty()) tiles[{x, y, 0}] = ids;
+        }
+    ResidentTiles r;
+    TileUploads up;
+    std::string error;
+    ASSERT_TRUE(rebuildResidentTiles(makeStore(tiles), nullptr, c, 0.5f, 0.0f, &r, &up, &error)) << error;
+
+    // A 40 m field seen from 30 m up, 40 m south of it: its near rows are sprites (3 px), its far ones
+    // pixels.
+    ViewParams view;
+    view.eye = glm::vec3(0.0f, -60.0f, 30.0f);
+    const float fov = glm::radians(50.0f), height_px = 720.0f;
+    view.view_proj = glm::perspective(fov, 16.0f / 9.0f, 0.05f, 400.0f) *
+                     glm::lookAt(view.eye, glm::vec3(0.0f, 0.0f, 0.0f), glm::vec3(0, 0, 1));
+    view.pixels_per_radian = height_px / fov;
+    const LodSettings lod{.lod1_px = 90.0f, .lod2_px = 30.0f, .impostor_px = 20.0f};
+    IndirectDraws all, thinned;
+    buildIndirectDraws(r, meshes, view, lod, &all);
+    view.point_scale = 0.5f * height_px / std::tan(0.5f * fov);
+    buildIndirectDraws(r, meshes, view, lod, &thinned);
+
+    // The runs cover the instances the unthinned commands draw, each once.
+    auto covered = [&](const IndirectDraws& d, uint32_t type) {
+        std::multiset<uint32_t> out;
+        const IndirectDraws::Group& g = d.groups[type][kImpostorLod];
+        for (uint32_t k = g.first; k < g.first + g.count; ++k)
+            for (uint32_t i = 0; i < d.point_runs[k].span; ++i) out.insert(d.point_runs[k].offset + i);
+        return out;
+    };
+    uint32_t thinned_runs = 0, whole_runs = 0;
+    for (uint32_t type = 0; type < 2; ++type) {
+        EXPECT_EQ(covered(thinned, type), covered(all, type));
+        EXPECT_EQ(all.groups[type][kImpostorLod].instances, covered(all, type).size());
+        EXPECT_LT(thinned.groups[type][kImpostorLod].instances, all.groups[type][kImpostorLod].instances);
+        // Every point a thinned run draws is one pixel in the shader, and its stride times its largest
+        // area is at most one pixel: kept with stride times its probability, it keeps the expected
+        // coverage of the points it stands for.
+        const IndirectDraws::Group& g = thinned.groups[type][kImpostorLod];
+        const DetailLodMesh& m = meshes[type];
+        const float most_m2 = *std::max_element(m.coverage_m2.begin(), m.coverage_m2.end());
+        for (uint32_t k = g.first; k < g.first + g.count; ++k) {
+            const PointRun& run = thinned.point_runs[k];
+            ASSERT_TRUE(run.stride >= 1 && run.stride <= kMaxPointStride && (run.stride & (run.stride - 1)) == 0);
+            if (run.stride == 1) {
+                ++whole_runs;
+                continue;
+            }
+            ++thinned_runs;
+            for (uint32_t i = run.offset; i < run.offset + run.span; i += run.stride) {
+                glm::ivec3 tile;
+                uint32_t j = 0;
+                unpackInstance(r.types[type].mirror[i], &tile, &j);
+                const glm::vec3 world = glm::vec3(tile) * r.tile_size_m + c.position[j];
+                const float w = (view.view_proj * glm::vec4(world, 1.0f)).w;
+                const float px_per_m = view.point_scale / w;
+                EXPECT_LT(2.0f * m.silhouettes.radius * m.silhouettes.extent * m.scale_max * px_per_m, 2.0f);
+                EXPECT_LE(float(run.stride) * most_m2 * m.scale_max * m.scale_max * px_per_m * px_per_m, 1.0f);
+            }
+        }
+    }
+    EXPECT_GT(thinned_runs, 0u) << "nothing thinned: the view is too close for the test";
+    EXPECT_GT(whole_runs, 0u) << "everything thinned: the view is too far for the test";
+    // Without point_scale nothing is thinned.
+    for (const PointRun& run : all.point_runs) EXPECT_EQ(run.stride, 1u);
 }
 
 }  // namespace

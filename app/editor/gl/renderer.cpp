@@ -34,6 +34,9 @@ constexpr int kTextureWorldXY = 2;   // world X and Y (the terrain)
 GLint loc(const ShaderProgram& p, const char* name) { return glGetUniformLocation(p.id, name); }
 
 // The bound texture's filtering and wrapping (both axes alike).
+// Pixels per metre at unit depth: the impostors' point size (u_point_scale) and thinning (ViewParams).
+float pointScale(const OrbitCamera& cam, int height) { return 0.5f * float(height) / std::tan(0.5f * cam.fov_y_rad); }
+
 void setSampling(GLenum target, GLint min_filter, GLint mag_filter, GLint wrap) {
     glTexParameteri(target, GL_TEXTURE_MIN_FILTER, min_filter);
     glTexParameteri(target, GL_TEXTURE_MAG_FILTER, mag_filter);
@@ -95,8 +98,10 @@ Renderer::~Renderer() {
     if (overlay_buffer_) glDeleteBuffers(1, &overlay_buffer_);
     releaseThumbnails();
     if (marker_buffer_) glDeleteBuffers(1, &marker_buffer_);
-    for (IndirectBuffer* b : {&indirect_, &shadow_indirect_})
+    for (IndirectBuffer* b : {&indirect_, &shadow_indirect_}) {
         if (b->id) glDeleteBuffers(1, &b->id);
+        if (b->runs_id) glDeleteBuffers(1, &b->runs_id);
+    }
 }
 
 bool Renderer::init(const std::string& dir, std::string* error) {
@@ -134,8 +139,10 @@ bool Renderer::init(const std::string& dir, std::string* error) {
                      error) ||
         !loadProgram(dir, "static_mesh.vert", "shadow_depth.frag", {"u_view_proj"}, &shadow_static_, error))
         return false;
-    glGenBuffers(1, &indirect_.id);
-    glGenBuffers(1, &shadow_indirect_.id);
+    for (IndirectBuffer* b : {&indirect_, &shadow_indirect_}) {
+        glGenBuffers(1, &b->id);
+        glGenBuffers(1, &b->runs_id);
+    }
 
     glGenVertexArrays(1, &empty_vao_);
     // Markers (every frame) and the channel overlay (kept until replaced): position, colour.
@@ -251,16 +258,19 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
         t.texture = uploadTexture(m.material.texture, &textures_);
         glGenBuffers(1, &t.instance_buffer);
         // The instance attribute: two unsigned ints, advancing once per instance of the mesh, from the
-        // command's baseInstance on (the tile's slot). The impostor VAO reads the same buffer one instance
-        // per vertex (points, no mesh), from the command's `first` on.
+        // command's baseInstance on (the tile's slot).
+        glBindVertexArray(t.vao);
+        glBindBuffer(GL_ARRAY_BUFFER, t.instance_buffer);
+        glEnableVertexAttribArray(2);
+        glVertexAttribIPointer(2, 2, GL_UNSIGNED_INT, sizeof(PackedInstance), nullptr);
+        glVertexAttribDivisor(2, 1);
+        // The impostors read the same buffer as storage, at the instances their command's run picks (a
+        // far run draws one in its stride): the run is a per-instance attribute, its command's
+        // baseInstance (the buffer is bound when drawing).
         glGenVertexArrays(1, &t.impostor_vao);
-        for (GLuint vao : {t.vao, t.impostor_vao}) {
-            glBindVertexArray(vao);
-            glBindBuffer(GL_ARRAY_BUFFER, t.instance_buffer);
-            glEnableVertexAttribArray(2);
-            glVertexAttribIPointer(2, 2, GL_UNSIGNED_INT, sizeof(PackedInstance), nullptr);
-            glVertexAttribDivisor(2, vao == t.vao ? 1 : 0);
-        }
+        glBindVertexArray(t.impostor_vao);
+        glEnableVertexAttribArray(3);
+        glVertexAttribDivisor(3, 1);
         glBindVertexArray(0);
     }
     // The impostors' silhouettes: one R8 array, four layers (elevations) per type, mipmapped (the sprites
@@ -778,6 +788,14 @@ void Renderer::uploadDraws(const ViewParams& params, const LodSettings& lod, Ind
     if (element_bytes) glBufferSubData(GL_DRAW_INDIRECT_BUFFER, 0, GLsizeiptr(element_bytes), draws->elements.data());
     if (point_bytes)
         glBufferSubData(GL_DRAW_INDIRECT_BUFFER, GLintptr(element_bytes), GLsizeiptr(point_bytes), draws->points.data());
+    const size_t run_bytes = draws->point_runs.size() * sizeof(PointRun);
+    glBindBuffer(GL_ARRAY_BUFFER, buffer->runs_id);
+    if (run_bytes > buffer->runs_capacity_bytes) {
+        buffer->runs_capacity_bytes = std::max<size_t>(2 * run_bytes, 4096);
+        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(buffer->runs_capacity_bytes), nullptr, GL_DYNAMIC_DRAW);
+    }
+    if (run_bytes) glBufferSubData(GL_ARRAY_BUFFER, 0, GLsizeiptr(run_bytes), draws->point_runs.data());
+    glBindBuffer(GL_ARRAY_BUFFER, 0);
 }
 
 void Renderer::drawMeshLods(const ShaderProgram& program, const IndirectDraws& draws, const IndirectBuffer& buffer,
@@ -829,6 +847,7 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
         params.view_proj = view_proj;
         params.eye = eye;
         params.pixels_per_radian = float(height) / cam.fov_y_rad;
+        params.point_scale = pointScale(cam, height);
         uploadDraws(params, lod, &draws_, &indirect_);
         last_view_proj_ = view_proj;
         last_lod_ = lod;
@@ -855,7 +874,8 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
     glUniformMatrix4fv(loc(impostor_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
     glUniform1f(loc(impostor_, "u_tile_size_m"), tile_size_m_);
     glUniform1f(loc(impostor_, "u_drop_unit_m"), tiles_ ? tiles_->drop_unit_m : 0.0f);
-    glUniform1f(loc(impostor_, "u_point_scale"), 0.5f * float(height) / std::tan(0.5f * cam.fov_y_rad));
+    glUniform1f(loc(impostor_, "u_point_scale"), pointScale(cam, height));
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, candidate_buffer_);
     const glm::vec3 to_eye(view[0][2], view[1][2], view[2][2]);
     glUniform3fv(loc(impostor_, "u_to_eye"), 1, glm::value_ptr(to_eye));
     setLighting(impostor_, eye, fog_density);
@@ -881,6 +901,9 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
         glUniform1i(loc(impostor_, "u_layer_first"), silhouette_array_ ? GLint(i * kCoverageElevations) : -1000000);
         glUniform1f(loc(impostor_, "u_lod_diameter_px"), m.lodDiameterPx(pixels_per_radian));
         glBindVertexArray(types_[i].impostor_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, indirect_.runs_id);
+        glVertexAttribIPointer(3, 2, GL_UNSIGNED_INT, sizeof(PointRun), nullptr);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, types_[i].instance_buffer);
         glMultiDrawArraysIndirect(
             GL_POINTS,
             reinterpret_cast<void*>(indirect_.points_offset + uintptr_t(g.first) * sizeof(DrawArraysIndirectCommand)),

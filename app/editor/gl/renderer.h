@@ -152,6 +152,8 @@ private:
         unsigned id = 0;
         size_t capacity_bytes = 0;
         size_t points_offset = 0;  // bytes: the impostor commands follow the element commands
+        unsigned runs_id = 0;      // the point commands' PointRuns (a per-instance attribute)
+        size_t runs_capacity_bytes = 0;
     };
     // Builds the commands of `draws` (cull + LOD per tile) for `params` and uploads them to `buffer`.
     void uploadDraws(const ViewParams& params, const LodSettings& lod, IndirectDraws* draws, IndirectBuffer* buffer);
