@@ -10,9 +10,9 @@
 // A far run may be thinned (render_data.h PointRun): the command's i-th point is instance
 // a_run.x + i * a_run.y, and a one-pixel point is kept with a_run.y times its probability.
 // Interface: a_run (3, per instance: the command's baseInstance picks its run); buffer 0 = candidate
-// frames, buffer 1 = the type's packed instances (as instanced_detail.vert's a_instance); u_view_proj, u_tile_size_m, u_color, u_center (model space),
-// u_coverage_m2, u_sprite_radius_m, u_layer_first, u_upness, u_point_scale (pixels per metre at unit
-// depth), u_to_eye (unit, toward the camera),
+// frames, buffer 1 = the type's packed instances (as instanced_detail.vert's a_instance); u_view_proj,
+// u_tile_size_m, u_color, u_center (model space), u_coverage_m2, u_sprite_radius_m, u_layer_first,
+// u_upness, u_point_scale (pixels per metre at unit depth), u_to_eye (unit, toward the camera),
 // u_lod_diameter_px, u_impostor_px (the switch, as instanced_detail.vert), plus lighting.glsl's; out
 // v_lit, the display colour.
 layout(location = 3) in uvec2 a_run;  // offset, stride

@@ -33,10 +33,10 @@ constexpr int kTextureWorldXY = 2;   // world X and Y (the terrain)
 
 GLint loc(const ShaderProgram& p, const char* name) { return glGetUniformLocation(p.id, name); }
 
-// The bound texture's filtering and wrapping (both axes alike).
 // Pixels per metre at unit depth: the impostors' point size (u_point_scale) and thinning (ViewParams).
 float pointScale(const OrbitCamera& cam, int height) { return 0.5f * float(height) / std::tan(0.5f * cam.fov_y_rad); }
 
+// The bound texture's filtering and wrapping (both axes alike).
 void setSampling(GLenum target, GLint min_filter, GLint mag_filter, GLint wrap) {
     glTexParameteri(target, GL_TEXTURE_MIN_FILTER, min_filter);
     glTexParameteri(target, GL_TEXTURE_MAG_FILTER, mag_filter);
