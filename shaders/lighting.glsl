@@ -85,13 +85,8 @@ vec3 hazed(vec3 lit, vec3 world) {
     return mix(lit, skyColor(to_point / max(d, 1e-6)), clamp(fog, 0.0, 1.0));
 }
 
-// shadeSurface with the sun's visibility given.
-vec3 shadeSurfaceLit(vec3 albedo, vec3 n, vec3 world, float visibility) {
-    return hazed(lightSurface(albedo, n, visibility), world);
-}
-
 vec3 shadeSurface(vec3 albedo, vec3 n, vec3 world) {
-    return shadeSurfaceLit(albedo, n, world, dot(n, u_sun_dir) > 0.0 ? sunVisibility(world, n) : 0.0);
+    return hazed(lightSurface(albedo, n, dot(n, u_sun_dir) > 0.0 ? sunVisibility(world, n) : 0.0), world);
 }
 
 // Gamma 2 (sqrt) rather than 2.2: within a few levels of sRGB in the mid-tones, and much cheaper per pixel.

@@ -296,19 +296,26 @@ std::map<std::tuple<uint32_t, uint64_t, uint32_t>, int> drawn(const ResidentTile
     return out;
 }
 
+// The tiles (-half..half-1)² at z = 0, each of the five candidates in one with probability 1/one_in
+// (empty tiles left out).
+TileMap randomField(int half, uint32_t one_in, std::mt19937* rng) {
+    TileMap m(lessTile);
+    for (int x = -half; x < half; ++x)
+        for (int y = -half; y < half; ++y) {
+            std::vector<uint32_t> ids;
+            for (uint32_t j = 0; j < 5; ++j)
+                if ((*rng)() % one_in == 0) ids.push_back(j);
+            if (!ids.empty()) m[{x, y, 0}] = ids;
+        }
+    return m;
+}
+
 TEST(IndirectDraws, EveryVisibleInstanceOnceAndCulledTilesAbsent) {
     const CandidateSet c = twoTypeCandidates();
     const std::vector<DetailLodMesh> meshes = testMeshes();
     std::mt19937 rng(9);
-    TileMap m(lessTile);
     // A 40 x 40 tile field (20 m) around the origin; the camera stands at its south edge looking north.
-    for (int x = -20; x < 20; ++x)
-        for (int y = -20; y < 20; ++y) {
-            std::vector<uint32_t> ids;
-            for (uint32_t j = 0; j < 5; ++j)
-                if (rng() % 3 == 0) ids.push_back(j);
-            if (!ids.empty()) m[{x, y, 0}] = ids;
-        }
+    TileMap m = randomField(20, 3, &rng);
     m[{0, 8, 0}] = {0, 3};  // at the look-at point
     InstanceStore store = makeStore(m);
     ResidentTiles r;
@@ -398,14 +405,7 @@ TEST(IndirectDraws, FarPointsAreThinnedOnlyWhereEveryDrawnOneIsAPixelOfAtMostOne
         m.coverage_m2 = {0.001f, 0.002f, 0.002f, 0.001f};  // thin, as grass: a fraction of its square
     }
     std::mt19937 rng(4);
-    TileMap tiles(lessTile);
-    for (int x = -40; x < 40; ++x)
-        for (int y = -40; y < 40; ++y) {
-            std::vector<uint32_t> ids;
-            for (uint32_t j = 0; j < 5; ++j)
-                if (rng() % 2 == 0) ids.push_back(j);
-            if (!ids.empty()) tiles[{x, y, 0}] = ids;
-        }
+    const TileMap tiles = randomField(40, 2, &rng);
     ResidentTiles r;
     TileUploads up;
     std::string error;

@@ -266,10 +266,12 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
         glVertexAttribDivisor(2, 1);
         // The impostors read the same buffer as storage, at the instances their command's run picks (a
         // far run draws one in its stride): the run is a per-instance attribute, its command's
-        // baseInstance (the buffer is bound when drawing).
+        // baseInstance, from the main pass's runs (a buffer that keeps its name when it grows).
         glGenVertexArrays(1, &t.impostor_vao);
         glBindVertexArray(t.impostor_vao);
+        glBindBuffer(GL_ARRAY_BUFFER, indirect_.runs_id);
         glEnableVertexAttribArray(3);
+        glVertexAttribIPointer(3, 2, GL_UNSIGNED_INT, sizeof(PointRun), nullptr);
         glVertexAttribDivisor(3, 1);
         glBindVertexArray(0);
     }
@@ -901,8 +903,6 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
         glUniform1i(loc(impostor_, "u_layer_first"), silhouette_array_ ? GLint(i * kCoverageElevations) : -1000000);
         glUniform1f(loc(impostor_, "u_lod_diameter_px"), m.lodDiameterPx(pixels_per_radian));
         glBindVertexArray(types_[i].impostor_vao);
-        glBindBuffer(GL_ARRAY_BUFFER, indirect_.runs_id);
-        glVertexAttribIPointer(3, 2, GL_UNSIGNED_INT, sizeof(PointRun), nullptr);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, types_[i].instance_buffer);
         glMultiDrawArraysIndirect(
             GL_POINTS,
