@@ -85,7 +85,10 @@ ViewerStatus EditorSession::run() {
         handleFileRequests();
         handleDialogs();
         if (!stepReplay()) return ViewerStatus::Failed;
+        showFreshResults();
+        const auto render_start = Clock::now();
         if (!renderFrame()) return ViewerStatus::Failed;
+        last_render_ms = std::chrono::duration<double, std::milli>(Clock::now() - render_start).count();
         if (!afterFrame()) break;
     }
     result->frames_measured = int(frame_ms.size());
@@ -100,6 +103,17 @@ ViewerStatus EditorSession::run() {
     fillDocumentResult();
     if (!scripted) writeInteractiveStats();
     return ViewerStatus::Ok;
+}
+
+void EditorSession::showFreshResults() {
+    const auto deadline =
+        Clock::now() + std::chrono::milliseconds(int64_t(std::clamp(last_render_ms, 0.0, kFreshWaitMaxMs)));
+    const auto left = [&] {
+        return std::max(std::chrono::milliseconds(0),
+                        std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()));
+    };
+    showFreshEnvironment(left());
+    showFreshStrands(left());
 }
 
 void EditorSession::updateStatus() {

@@ -106,6 +106,15 @@ private:
     void fillDocumentResult();
     void writeInteractiveStats();
     void updateStatus();             // the Statistics window's status line and progress bar
+    // After this frame's edits, before it renders: an environment or particle edit's effects or strands are
+    // waited for and shown in this very frame when they make it in time. Rendering the frame without them
+    // would show nothing new, take as long as a frame takes, and on a software renderer take the cores the
+    // worker needs; so the wait lasts up to the previous frame's render time (a fast GPU waits a few ms at
+    // most, llvmpipe the ~50 ms of a footprint), at most kFreshWaitMaxMs, both waits together. (The
+    // instances of a paint stroke are not waited for: their settling, 60-110 ms a stamp on the meadow,
+    // keeps the live instancer busy past each frame of a stroke, so a wait would only hold the frame.)
+    void showFreshResults();
+    static constexpr double kFreshWaitMaxMs = 250.0;
     // ---- session_document.cpp ----
     void startLoad(const std::string& path, bool recover);
     // Opens `path`, asking first (interactive) when an autosave of it is newer than the file.
@@ -128,6 +137,8 @@ private:
     void startStrands();
     void syncStrands();
     bool strandsSettled() const;  // the strands on screen are the document's systems'
+    // An edit made this frame: its strands shown in this frame if they are grown within `budget`.
+    void showFreshStrands(std::chrono::milliseconds budget);
     // The Particles window's Cancel: the growth in progress stops and the edit it grows is undone, so
     // the strands on screen are the document's again (only when Ctrl+Z would undo exactly that edit;
     // false when it did nothing).
@@ -138,6 +149,10 @@ private:
     // icicles swapped into the static meshes.
     void startEnvironment();
     void syncEnvironment();
+    // The environment submitted when an edit moved its generation; whether it did.
+    bool submitEnvironment();
+    // An edit made this frame: its effects shown in this frame if they are done within `budget`.
+    void showFreshEnvironment(std::chrono::milliseconds budget);
     void placeFromPalette(const Ray& ray, bool mouse_free);  // the palette armed: a click places its type
     void placeParticlePart(const Ray& ray, bool mouse_free);  // the Particles window's click to place
     // The scene's static meshes to the renderer, less the objects the Outliner hides (drawn_static_meshes).
@@ -267,6 +282,7 @@ private:
     const std::string new_template = std::string(UG_SOURCE_DIR) + "/assets/scenes/default.json";
 
     std::vector<double> frame_ms;
+    double last_render_ms = 0.0;  // the last renderFrame() (showFreshEnvironment's budget)
     std::vector<uint8_t> pixels;
     int screenshot_count = 0;
     std::string screenshot_request_path;

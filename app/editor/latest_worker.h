@@ -7,6 +7,7 @@
 //   worker.submit(input);  ...  Result r; if (worker.poll(&r)) show(r);
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <functional>
 #include <mutex>
@@ -54,6 +55,14 @@ public:
         std::lock_guard<std::mutex> lock(mutex_);
         return working_ || pending_.has_value();
     }
+    // Blocks until a finished result waits to be polled, nothing is waiting or being worked on, or `budget`
+    // has passed; whether a result waits. (The editor lets a fresh edit's result catch the next frame.)
+    template <class Rep, class Period>
+    bool waitForResult(std::chrono::duration<Rep, Period> budget) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        idle_.wait_for(lock, budget, [this] { return done_.has_value() || (!working_ && !pending_); });
+        return done_.has_value();
+    }
     // Blocks until nothing is waiting or being worked on (tests, scripted runs).
     void waitIdle() {
         std::unique_lock<std::mutex> lock(mutex_);
@@ -75,13 +84,14 @@ private:
             working_ = false;
             // A newer finished result replaces an older one the UI has not taken: only the newest is shown.
             done_ = std::move(result);
-            if (!pending_) idle_.notify_all();
+            idle_.notify_all();  // waitIdle re-checks that nothing is pending; waitForResult takes the result
         }
     }
 
     Work work_;
     mutable std::mutex mutex_;
-    std::condition_variable wake_, idle_;
+    std::condition_variable wake_;
+    std::condition_variable idle_;  // a result finished (and maybe nothing is left to do)
     std::optional<Input> pending_;
     bool working_ = false;
     bool stop_ = false;

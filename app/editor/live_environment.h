@@ -6,6 +6,7 @@
 // boundary, hands over the newest: the session swaps them into the scene's static meshes.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -39,6 +40,8 @@ public:
     void submit(std::shared_ptr<const EnvScene> scene, uint64_t generation) { worker_.submit({std::move(scene), generation}); }
     bool poll(LiveEnvironmentResult* out) { return worker_.poll(out); }
     bool busy() const { return worker_.busy(); }
+    // Waits up to `budget` for a result to poll (LatestWorker::waitForResult).
+    bool waitForResult(std::chrono::milliseconds budget) { return worker_.waitForResult(budget); }
     void waitIdle() { worker_.waitIdle(); }
 
 private:

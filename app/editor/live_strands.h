@@ -7,6 +7,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -42,6 +43,8 @@ public:
     bool poll(LiveStrandsResult* out) { return worker_.poll(out); }
     // Whether a submission is waiting or growing.
     bool busy() const { return worker_.busy(); }
+    // Waits up to `budget` for a result to poll (LatestWorker::waitForResult).
+    bool waitForResult(std::chrono::milliseconds budget) { return worker_.waitForResult(budget); }
     // Blocks until nothing is waiting or growing (tests, scripted runs).
     void waitIdle() { worker_.waitIdle(); }
     // Stops the growth of `generation` (or of an older one) before its next step: its result comes back

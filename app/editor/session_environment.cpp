@@ -53,13 +53,7 @@ void EditorSession::syncEnvironment() {
         envObjectMask(scene->env_scene->desc(), environment_panel.hidden, scene->env_scene->objects().size()) !=
             env_hidden_drawn)
         showStaticMeshes();
-    Document& d = *scene->doc;
-    if (d.environmentGeneration() != environment_submitted) {
-        environment_submitted = d.environmentGeneration();
-        live_environment->submit(d.environment(), environment_submitted);
-        // Instances packed from now on pick their look (wet, dry) in the edited environment.
-        scene->looks.environment = d.environment();
-    }
+    submitEnvironment();
     LiveEnvironmentResult r;
     if (!live_environment->poll(&r)) {
         environment_panel.computing = live_environment->busy();
@@ -84,6 +78,21 @@ void EditorSession::syncEnvironment() {
     r.meshes.clear();
     last_environment = std::move(r);
     environment_panel.computing = live_environment->busy();
+}
+
+bool EditorSession::submitEnvironment() {
+    Document& d = *scene->doc;
+    if (d.environmentGeneration() == environment_submitted) return false;
+    environment_submitted = d.environmentGeneration();
+    live_environment->submit(d.environment(), environment_submitted);
+    // Instances packed from now on pick their look (wet, dry) in the edited environment.
+    scene->looks.environment = d.environment();
+    return true;
+}
+
+void EditorSession::showFreshEnvironment(std::chrono::milliseconds budget) {
+    if (!scene || !live_environment || !submitEnvironment()) return;
+    if (live_environment->waitForResult(budget)) syncEnvironment();
 }
 
 void EditorSession::showStaticMeshes() {

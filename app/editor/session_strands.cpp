@@ -69,6 +69,12 @@ void EditorSession::syncStrands() {
                                  d.undoRevertsParticles(d.particlesGeneration());
 }
 
+void EditorSession::showFreshStrands(std::chrono::milliseconds budget) {
+    if (!scene || scene->doc->particlesGeneration() == strands_submitted) return;
+    syncStrands();  // submits this frame's edit
+    if (live_strands && live_strands->waitForResult(budget)) syncStrands();
+}
+
 bool EditorSession::cancelStrands() {
     Document& d = *scene->doc;
     const uint64_t generation = d.particlesGeneration();

@@ -9,6 +9,7 @@
 
 #include <meshoptimizer.h>
 
+#include "core/hash.h"
 #include "core/parallel.h"
 
 namespace ug::editor {
@@ -295,6 +296,17 @@ StaticLodMesh authoredStaticLod(const TriangleMesh& mesh, const std::vector<Mesh
     }
     out.bounds = piece.bounds;
     out.pieces.push_back(piece);
+    return out;
+}
+
+std::vector<SunCaster> sunCasters(const std::vector<MeshInstances>* meshes) {
+    static_assert(sizeof(InstanceTransform) == 8 * sizeof(float), "instances are hashed as bytes: no padding");
+    std::vector<SunCaster> out;
+    if (!meshes) return out;
+    for (const MeshInstances& entry : *meshes)
+        if (entry.mesh && !entry.mesh->indices.empty() && castsSunShadow(entry))
+            out.push_back({entry.mesh, entry.lod_levels,
+                           hashBytes(entry.instances.data(), entry.instances.size() * sizeof(InstanceTransform))});
     return out;
 }
 

@@ -118,6 +118,18 @@ private:
 // the roof's and its snow's.
 inline bool castsSunShadow(const MeshInstances& mesh) { return !mesh.ground_layer; }
 
+// One static mesh that casts into the sun's map, as far as the map can tell: the mesh and its levels (held,
+// so an address names one mesh while it is kept) and a hash of its instances. Two lists of them equal:
+// the map drawn for one is the other's (a footprint swaps only the terrain's snow, which casts nothing).
+struct SunCaster {
+    std::shared_ptr<const TriangleMesh> mesh;
+    std::shared_ptr<const std::vector<MeshLodLevel>> lod_levels;
+    uint64_t instances_hash = 0;
+    bool operator==(const SunCaster&) const = default;
+};
+// The casters among `meshes` (null: none), in their order; entries without triangles are not drawn.
+std::vector<SunCaster> sunCasters(const std::vector<MeshInstances>* meshes);
+
 // The level to draw a piece at, -1 for none: with the piece's object-space errors scaled by `scale` (the
 // instances' largest), the coarsest level whose error covers less than kStaticLodErrorPx at `distance_m`;
 // -1 when `size_m` (the mesh's or piece's bounding diagonal, already scaled) covers less than kStaticSkipPx.

@@ -312,6 +312,47 @@ TEST(StaticLod, TheCacheBuildsOnlyNewMeshesAndGivesWhatABuildGives) {
     EXPECT_EQ(built, 1u);
 }
 
+TEST(StaticLod, TheSunsCastersChangeWithWhatCastsAndNotWithTheTerrainsSnow) {
+    auto bench = std::make_shared<const TriangleMesh>(sphereMesh(8, 16));
+    auto bench_snow = std::make_shared<const TriangleMesh>(gridMesh(4, 0.1f, 0.0f, 0.0f));
+    auto terrain_snow = std::make_shared<const TriangleMesh>(gridMesh(8, 0.1f, 0.0f, 0.0f));
+    auto scene = [&](std::shared_ptr<const TriangleMesh> ground, glm::vec3 bench_at,
+                     std::shared_ptr<const TriangleMesh> on_bench) {
+        std::vector<MeshInstances> meshes(3);
+        meshes[0].name = "env/bench";
+        meshes[0].mesh = bench;
+        meshes[0].instances = {InstanceTransform{.position = bench_at}};
+        meshes[1].name = "snow/bench/0";
+        meshes[1].mesh = on_bench;
+        meshes[1].instances = meshes[0].instances;
+        meshes[2].name = "snow/terrain/0_0";
+        meshes[2].mesh = ground;
+        meshes[2].ground_layer = true;
+        return meshes;
+    };
+    const std::vector<MeshInstances> before = scene(terrain_snow, {1.0f, 2.0f, 0.0f}, bench_snow);
+    const std::vector<SunCaster> casters = sunCasters(&before);
+    ASSERT_EQ(casters.size(), 2u);  // the bench and its snow; the terrain's snow casts nothing
+    EXPECT_EQ(casters[0].mesh, bench);
+    EXPECT_EQ(casters[1].mesh, bench_snow);
+    // A footprint: the terrain's snow is a new mesh, the casters are the same.
+    const auto trodden = std::make_shared<const TriangleMesh>(*terrain_snow);
+    const std::vector<MeshInstances> footprint = scene(trodden, {1.0f, 2.0f, 0.0f}, bench_snow);
+    EXPECT_EQ(sunCasters(&footprint), casters);
+    // The bench moved by a millimetre, or its snow recomputed as a new mesh (equal triangles, new object):
+    // the map is drawn again.
+    const std::vector<MeshInstances> moved = scene(terrain_snow, {1.001f, 2.0f, 0.0f}, bench_snow);
+    EXPECT_NE(sunCasters(&moved), casters);
+    const auto recomputed = std::make_shared<const TriangleMesh>(*bench_snow);
+    const std::vector<MeshInstances> resnowed = scene(terrain_snow, {1.0f, 2.0f, 0.0f}, recomputed);
+    EXPECT_NE(sunCasters(&resnowed), casters);
+    // No meshes, and meshes without triangles, cast nothing.
+    EXPECT_TRUE(sunCasters(nullptr).empty());
+    std::vector<MeshInstances> empty = before;
+    empty[0].mesh = std::make_shared<const TriangleMesh>();
+    EXPECT_EQ(sunCasters(&empty).size(), 1u);
+}
+
 TEST(StaticLod, ChunksKnowTheirLargestScaleAndPiecesTheirEngineBoxes) {
     MeshInstances entry;
     auto mesh = std::make_shared<TriangleMesh>(gridMesh(4, 0.25f, 0.0f, 0.0f));  // [0, 1]^2, |z| <= 0.1

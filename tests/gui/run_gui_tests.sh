@@ -504,6 +504,33 @@ else
   bad "edit street_winter: environment edit: $out $(tail -5 "$edir/log" 2>/dev/null)"
 fi
 
+# ---- the sun's map kept across swaps that change no caster (a footprint replaces the terrain's snow, which
+# casts nothing; a live result that changed no tile): a bench placed, the street's bench dragged (its old
+# shadow must go) and footprints walked; the picture equals the one drawn with the map redrawn at every
+# swap (UG_SHADOW_REDRAW_ALWAYS), byte for byte.
+shdir="$tmp/shadow-kept"
+mkdir -p "$shdir"
+for mode in kept always; do
+  cat >"$shdir/$mode.json" <<EOF
+[{"frame": 1, "action": "wait_idle"},
+ {"action": "env_add", "type": "bench", "at": [5.0, 3.7]},
+ {"action": "env_move", "node": 12, "to": [6.6, 6.9], "steps": 5},
+ {"action": "footprints", "points": [[0.6, 3.3], [4.2, 3.5], [6.0, 5.6]]},
+ {"action": "wait_idle"},
+ {"action": "screenshot", "path": "$shdir/$mode.png", "overlays": false}]
+EOF
+done
+street="$root/assets/scenes/street_winter.json"
+if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$street" --frames 3 --size 960x540 --cache "$cache" \
+     --config "$shdir/config-kept" --replay "$shdir/kept.json" >"$shdir/log" 2>&1 &&
+   UG_SHADOW_REDRAW_ALWAYS=1 xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$street" --frames 3 --size 960x540 \
+     --cache "$cache" --config "$shdir/config-always" --replay "$shdir/always.json" >>"$shdir/log" 2>&1 &&
+   cmp -s "$shdir/kept.png" "$shdir/always.png"; then
+  ok "edit street_winter: the sun's map kept across swaps that change no caster equals it redrawn at every swap (a bench placed and dragged, footprints)"
+else
+  bad "edit street_winter: kept shadow map: $(cmp "$shdir/kept.png" "$shdir/always.png" 2>&1) $(tail -5 "$shdir/log" 2>/dev/null)"
+fi
+
 # ---- the tree's edits (the Environment window's Group, drag onto a group, Make reusable, Instance): the bus
 # shelter grouped with the bench, the group made reusable and placed again; the export equals `instantiate`
 # on the saved file, and four undos give the loaded scene's meshes back.

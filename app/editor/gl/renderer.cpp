@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 
 #include <epoxy/gl.h>
@@ -14,6 +15,13 @@
 namespace ug::editor::gl {
 
 namespace {
+
+// UG_SHADOW_REDRAW_ALWAYS=1: every swap of static meshes and every live result redraws the sun's map, as
+// before the map was kept across swaps that change no caster; the GUI tests compare the pictures.
+bool shadowRedrawnOnEverySwap() {
+    static const bool always = std::getenv("UG_SHADOW_REDRAW_ALWAYS") != nullptr;
+    return always;
+}
 
 const glm::vec3 kSunDir = glm::normalize(glm::vec3(0.45f, -0.50f, 0.74f));
 
@@ -318,7 +326,11 @@ void Renderer::releaseStaticMeshes() {
 
 void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
     releaseStaticMeshes();
-    shadow_map_dirty_ = true;
+    // The sun's map is drawn again only when what casts into it changed: a footprint replaces the terrain's
+    // snow, which casts nothing (castsSunShadow), and redrawing the map is a third of a winter frame.
+    std::vector<SunCaster> casters = sunCasters(meshes);
+    if (casters != static_casters_ || shadowRedrawnOnEverySwap()) shadow_map_dirty_ = true;
+    static_casters_ = std::move(casters);
     if (!meshes) return;
     statics_.reserve(meshes->size());
     // Levels of detail first, for all entries at once (the pieces of every entry spread over the workers).
@@ -421,8 +433,11 @@ void Renderer::drawStaticMeshes(const ShaderProgram& program, const glm::mat4& v
 }
 
 void Renderer::uploadTiles(const ResidentTiles* tiles, const TileUploads& uploads) {
+    // A result that changed no tile (an environment edit away from every scattered detail) keeps the draws
+    // and the sun's map.
+    if (tiles != tiles_ || uploads.full || !uploads.tiles.empty() || shadowRedrawnOnEverySwap())
+        draws_dirty_ = shadow_draws_dirty_ = shadow_map_dirty_ = true;
     tiles_ = tiles;
-    draws_dirty_ = shadow_draws_dirty_ = shadow_map_dirty_ = true;
     upload_tiles_ = uploads.tiles_uploaded;
     upload_bytes_ = uploads.bytes_uploaded;
     if (!tiles) return;

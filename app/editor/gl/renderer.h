@@ -209,6 +209,7 @@ private:
         bool casts_shadow = true;  // castsSunShadow
     };
     std::vector<StaticBuffers> statics_;
+    std::vector<SunCaster> static_casters_;  // what of statics_ casts into the sun's map
     std::vector<StaticDrawRange> static_draws_;  // scratch, per entry per pass
     double static_lod_ms_ = 0.0, static_upload_ms_ = 0.0;  // the latest setStaticMeshes()
     StaticLodCache static_lod_cache_;
