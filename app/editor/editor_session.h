@@ -282,7 +282,7 @@ private:
     const std::string new_template = std::string(UG_SOURCE_DIR) + "/assets/scenes/default.json";
 
     std::vector<double> frame_ms;
-    double last_render_ms = 0.0;  // the last renderFrame() (showFreshEnvironment's budget)
+    double last_render_ms = 0.0;  // the last renderFrame() (showFreshResults' budget)
     std::vector<uint8_t> pixels;
     int screenshot_count = 0;
     std::string screenshot_request_path;
