@@ -26,6 +26,8 @@ void Hasher::block(const unsigned char* p) {
 }
 
 void Hasher::addBytes(const void* data, size_t size) {
+    // Nothing to add; an empty vector's data() may be null, which memcpy must never be given.
+    if (size == 0) return;
     const unsigned char* p = static_cast<const unsigned char*>(data);
     total_ += size;
     if (tail_size_ > 0) {

@@ -33,6 +33,22 @@ TEST(Hash, OneBitChangesTheHash) {
     EXPECT_NE(hashBytes(data.data(), 99), base);
 }
 
+TEST(Hash, NoBytesFromANullPointerHashAsNoBytes) {
+    // An empty vector's data() may be null (the renderer hashes an entry's empty instance list): adding no
+    // bytes from it is allowed (UndefinedBehaviorSanitizer checks the memcpy) and changes nothing, even
+    // between other bytes.
+    const std::vector<unsigned char> none;
+    const unsigned char empty[1] = {0};
+    EXPECT_EQ(hashBytes(nullptr, 0), hashBytes(empty, 0));
+    const unsigned char data[5] = {1, 2, 3, 4, 5};
+    Hasher h;
+    h.addBytes(data, 3);
+    h.addBytes(none.data(), 0);
+    h.addBytes(nullptr, 0);
+    h.addBytes(data + 3, 2);
+    EXPECT_EQ(h.value(), hashBytes(data, 5));
+}
+
 TEST(Hash, UnitFloatStaysInHalfOpenRange) {
     EXPECT_EQ(unitFloat(0), 0.0f);
     EXPECT_LT(unitFloat(~0ull), 1.0f);
