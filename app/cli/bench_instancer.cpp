@@ -47,8 +47,9 @@ bool benchMeadowStamps(const BenchContext& ctx, SceneJob& job, Instantiator& ins
     std::vector<std::pair<size_t, uint32_t>> brush_prims;  // (type, primitive index) the brush added
     const SettleInput settle = settleInput(job.project, job.compiled.terrain, job.tile, job.models, job.environment.get());
     SettledDrops drops;
+    SettleHistory history;  // as the live instancer keeps it
     std::vector<double> settle_ms;
-    if (settle.settings.enabled) settleAll(settle, inst.store(), ctx.threads, &drops);
+    if (settle.settings.enabled) settleAll(settle, inst.store(), ctx.threads, &drops, &history);
     for (int k = 0; k < stamps; ++k) {
         const uint64_t h = hashWords(0xbe9c4, uint64_t(k));
         const size_t type = size_t(h % job.project.detail_types.size());
@@ -87,7 +88,7 @@ bool benchMeadowStamps(const BenchContext& ctx, SceneJob& job, Instantiator& ins
         instances_after.push_back(inst.store().instanceCount());
         if (settle.settings.enabled) {  // the drops of the changed neighbourhood, after the selection
             const auto t1 = Clock::now();
-            settleUpdate(settle, inst.store(), changed, ctx.threads, &drops, nullptr);
+            settleUpdate(settle, inst.store(), changed, ctx.threads, &drops, nullptr, &history);
             settle_ms.push_back(msSince(t1));
         }
     }
@@ -105,8 +106,9 @@ bool benchMeadowStamps(const BenchContext& ctx, SceneJob& job, Instantiator& ins
     }
     if (settle.settings.enabled) {
         SettledDrops full;
-        settleAll(settle, fresh.store(), ctx.threads, &full);
-        if (!(full == drops)) {
+        SettleHistory full_history;
+        settleAll(settle, fresh.store(), ctx.threads, &full, &full_history);
+        if (!(full == drops) || full_history.after_pass != history.after_pass) {
             *error = "meadow stamps: the incremental settled drops differ from settling the edited scene";
             return false;
         }

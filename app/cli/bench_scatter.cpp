@@ -159,9 +159,10 @@ bool streetEditRow(const BenchContext& ctx, SceneJob& job, std::vector<BenchRow>
     std::shared_ptr<const EnvScene> before = job.environment;
     const bool settles = project.settling.settle.enabled;
     SettledDrops drops;
+    SettleHistory history;  // as the live instancer keeps it
     if (settles)
         settleAll(settleInput(project, job.compiled.terrain, job.tile, job.models, before.get()), inst.store(),
-                  ctx.threads, &drops);
+                  ctx.threads, &drops, &history);
     const glm::vec3 seat = desc.roots[bench].transform.translation;
     const int edits = ctx.quick ? 6 : 40;
     std::vector<double> ms, settled_ms;  // until the instance set is final; and its settling too
@@ -195,7 +196,7 @@ bool streetEditRow(const BenchContext& ctx, SceneJob& job, std::vector<BenchRow>
             std::sort(resettle.begin(), resettle.end());
             resettle.erase(std::unique(resettle.begin(), resettle.end()), resettle.end());
             settleUpdate(settleInput(project, job.compiled.terrain, job.tile, job.models, after.get()), inst.store(),
-                         resettle, ctx.threads, &drops, nullptr);
+                         resettle, ctx.threads, &drops, nullptr, &history);
             settled_ms.push_back(msSince(t0));
         }
         before = after;
@@ -208,9 +209,10 @@ bool streetEditRow(const BenchContext& ctx, SceneJob& job, std::vector<BenchRow>
         return (*error = job.path + ": the street's incremental instances differ from a full run after its edits"), false;
     if (settles) {
         SettledDrops full;
+        SettleHistory full_history;
         settleAll(settleInput(project, job.compiled.terrain, job.tile, job.models, before.get()), fresh.store(),
-                  ctx.threads, &full);
-        if (!(full == drops))
+                  ctx.threads, &full, &full_history);
+        if (!(full == drops) || full_history.after_pass != history.after_pass)
             return (*error = job.path + ": the street's incremental settling differs from settling it in full"), false;
     }
     auto p95 = [](std::vector<double> v) {

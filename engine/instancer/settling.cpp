@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <unordered_set>
@@ -130,11 +131,24 @@ float supportTop(const RestSupport& support, glm::vec3 center, float radius) {
 
 float gapOf(const SettleInput& in) { return std::max(0.0f, in.tile->settings.delta_m); }
 
+// What a window's passes read and record besides computing drops. fixed (optional): per instance, 1
+// where its drops are given rather than computed (the ring an update reads from a history);
+// given[k][i] its drops after pass k + 1, for every pass, the last included. record (optional):
+// receives every instance's drops after each pass but the last.
+struct WindowPasses {
+    const std::vector<uint8_t>* fixed = nullptr;
+    const std::vector<std::vector<uint16_t>>* given = nullptr;
+    std::vector<std::vector<uint16_t>>* record = nullptr;
+};
+
 // The passes over one window; drops[i] for instance i of the window.
-std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int threads) {
+std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int threads, const WindowPasses& io = {}) {
     const size_t n = w.id.size();
+    const int passes = in.settings.passes;
     std::vector<uint16_t> drops(n, 0);
+    if (io.record) io.record->assign(size_t(passes - 1), drops);
     if (n == 0) return drops;
+    auto isFixed = [&](size_t i) { return io.fixed && (*io.fixed)[i] != 0; };
     const float gap = gapOf(in);
     const float max_drop = in.settings.max_drop_m;
     // Per instance: a bounding sphere and the height range of its sphere centres (broad phase).
@@ -163,6 +177,7 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
     std::vector<std::vector<uint32_t>> beside(n);
     parallelFor(n, threads, 128, [&](size_t b, size_t e, int) {
         for (size_t i = b; i < e; ++i) {
+            if (isFixed(i)) continue;  // its drops are given: it is only a neighbour here
             // Spheres come by ascending height: once even the largest sphere that high could not reach
             // the highest ground under the instance sooner, the rest cannot either.
             float limit = max_drop;
@@ -172,16 +187,27 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
                 limit = std::min(limit, std::max(0.0f, supportClearance(in.support, w.center[a], w.radius[a])));
             }
             bound[i] = limit;
+            // A pair whose clearance is not below the support's bound can never lower the drop (a drop
+            // is min(bound, clearance + the lower one's drop >= 0)), so the search looks only for
+            // clearances below it, and an instance resting on the support has no pair to look for.
+            // With nothing within max_drop (limit == max_drop) a pair at exactly max_drop still counts:
+            // it decides whether the instance is held.
+            const float wanted = limit < max_drop ? limit : std::nextafter(max_drop, std::numeric_limits<float>::infinity());
             std::vector<Pair>& mine = pairs[i];
+            if (wanted > 0.0f)
             columns.forEachNear(glm::vec2(bound_center[i]), bound_radius[i] + max_bound + gap, [&](uint32_t o) {
                 if (o == i || zlo[o] > zhi[i]) return;  // no sphere of o lies below one of i
                 const float dx = bound_center[i].x - bound_center[o].x, dy = bound_center[i].y - bound_center[o].y;
                 const float far = bound_radius[i] + bound_radius[o] + gap;
                 if (dx * dx + dy * dy >= far * far) return;
-                float best = std::numeric_limits<float>::infinity();
+                float best = wanted;
+                const float widest_any = w.instance_max_radius[i] + w.instance_max_radius[o] + gap;
                 for (uint32_t a = w.sphere_begin[i]; a < w.sphere_begin[i + 1]; ++a) {
                     const glm::vec3 ca = w.center[a];
                     const float ra = w.radius[a];
+                    // Spheres of i come by ascending height: once even o's highest sphere at the widest
+                    // reach is too far below to beat the best, the higher spheres of i cannot either.
+                    if (ca.z - zhi[o] - widest_any >= best) break;
                     const float ax = ca.x - bound_center[o].x, ay = ca.y - bound_center[o].y;
                     const float near = ra + bound_radius[o] + gap;
                     if (ax * ax + ay * ay >= near * near || ca.z < zlo[o]) continue;
@@ -210,7 +236,7 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
                         if (h2 < reach * reach) best = std::min(best, -std::sqrt(reach * reach - h2));
                     }
                 }
-                if (best <= max_drop) mine.push_back({o, best});  // beyond it: too far below to be reached
+                if (best < wanted) mine.push_back({o, best});
             });
             // Nothing to land on within max_drop where everything still is: the instance is HELD (a
             // stone of a corbelled roof, wedged between its neighbours), never dropped into the open.
@@ -233,11 +259,15 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
     });
 
     std::vector<uint16_t> next(n);
-    for (int pass = 0; pass < in.settings.passes; ++pass) {
+    for (int pass = 0; pass < passes; ++pass) {
         std::atomic<bool> moved{false};
         parallelFor(n, threads, 256, [&](size_t b, size_t e, int) {
             bool any = false;
             for (size_t i = b; i < e; ++i) {
+                if (isFixed(i)) {
+                    next[i] = (*io.given)[size_t(pass)][i];
+                    continue;
+                }
                 float d = bound[i];
                 for (const Pair& p : pairs[i]) d = std::min(d, std::max(0.0f, p.offset + dropMetres(drops[p.lower])));
                 next[i] = toUnits(d);
@@ -248,7 +278,14 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
             if (any) moved.store(true, std::memory_order_relaxed);
         });
         drops.swap(next);
-        if (!moved.load()) break;
+        if (io.record && pass + 1 < passes) (*io.record)[size_t(pass)] = drops;
+        // Nothing moved: every later pass would give the same drops. (A window with a given ring runs
+        // every pass: the ring may still move.)
+        if (!io.fixed && !moved.load()) {
+            if (io.record)
+                for (int later = pass + 1; later + 1 < passes; ++later) (*io.record)[size_t(later)] = drops;
+            break;
+        }
     }
     return drops;
 }
@@ -272,19 +309,33 @@ glm::ivec3 passHaloTiles(const SettleInput& in) {
 
 }  // namespace
 
-void settleAll(const SettleInput& in, const InstanceStore& store, int threads, SettledDrops* out) {
+namespace {
+
+// Values one per instance of the store, in store order, filed by tile.
+void fileByTile(const InstanceStore& store, const std::vector<uint16_t>& values, SettledDrops* out) {
     out->clear();
-    Window w;
-    store.forEach([&](uint64_t tile, uint32_t j) { addInstance(in, tile, j, &w); });
-    w.sphere_begin.push_back(uint32_t(w.center.size()));
-    const std::vector<uint16_t> drops = settleWindow(in, w, threads);
     size_t i = 0;
     std::vector<uint32_t> ids;
     for (size_t t = 0; t < store.tileCount(); ++t) {
         store.tileIds(t, &ids);
-        out->append(store.tileKey(t), std::span<const uint16_t>(drops.data() + i, ids.size()));
+        out->append(store.tileKey(t), std::span<const uint16_t>(values.data() + i, ids.size()));
         i += ids.size();
     }
+}
+
+}  // namespace
+
+void settleAll(const SettleInput& in, const InstanceStore& store, int threads, SettledDrops* out,
+               SettleHistory* history) {
+    Window w;
+    store.forEach([&](uint64_t tile, uint32_t j) { addInstance(in, tile, j, &w); });
+    w.sphere_begin.push_back(uint32_t(w.center.size()));
+    std::vector<std::vector<uint16_t>> record;
+    fileByTile(store, settleWindow(in, w, threads, {.record = history ? &record : nullptr}), out);
+    if (!history) return;
+    history->passes = in.settings.passes;
+    history->after_pass.resize(record.size());
+    for (size_t k = 0; k < record.size(); ++k) fileByTile(store, record[k], &history->after_pass[k]);
 }
 
 float settleHaloMetres(const SettleInput& in) {
@@ -292,12 +343,41 @@ float settleHaloMetres(const SettleInput& in) {
     return float(std::max(h.x, h.z) * in.settings.passes + 1) * in.tile->settings.tile_size_m;
 }
 
+namespace {
+
+// The store's tiles, each from `values` (a window's, where fresh[t] >= 0 says its tile starts) or, where
+// fresh[t] < 0, as `old` had it (a tile the window did not compute kept its instances and their values).
+// Tiles the store lost are gone.
+void mergeFresh(const InstanceStore& store, const std::vector<int64_t>& fresh, const std::vector<uint16_t>& values,
+                const SettledDrops& old, SettledDrops* out) {
+    out->clear();
+    std::vector<uint32_t> ids;
+    for (size_t t = 0; t < store.tileCount(); ++t) {
+        const uint64_t key = store.tileKey(t);
+        if (fresh[t] < 0) {
+            out->append(key, old.tile(key));
+            continue;
+        }
+        store.tileIds(t, &ids);
+        out->append(key, std::span<const uint16_t>(values.data() + fresh[t], ids.size()));
+    }
+}
+
+}  // namespace
+
 void settleUpdate(const SettleInput& in, const InstanceStore& store, std::span<const uint64_t> changed_tiles,
-                  int threads, SettledDrops* drops, std::vector<uint64_t>* touched) {
+                  int threads, SettledDrops* drops, std::vector<uint64_t>* touched, SettleHistory* history) {
     if (touched) touched->clear();
     if (changed_tiles.empty()) return;
-    const glm::ivec3 affect = passHaloTiles(in) * in.settings.passes;  // drops that may change
-    const glm::ivec3 need = affect * 2;                                 // instances those depend on
+    const int passes = in.settings.passes;
+    // With the drops after every pass known outside, the window is the tiles that may change and one
+    // pass's halo of neighbours read from the history; without, the neighbours' drops must be computed
+    // too, from instances as far again.
+    const bool narrow = history && history->passes == passes && history->after_pass.size() == size_t(passes - 1);
+    if (history && !narrow) history->clear();
+    const glm::ivec3 halo = passHaloTiles(in);
+    const glm::ivec3 affect = halo * passes;                        // drops that may change
+    const glm::ivec3 need = narrow ? affect + halo : affect * 2;    // instances those depend on
     std::vector<glm::ivec3> changed;
     glm::ivec3 lo(std::numeric_limits<int>::max()), hi(std::numeric_limits<int>::min());
     for (uint64_t k : changed_tiles) {
@@ -305,11 +385,11 @@ void settleUpdate(const SettleInput& in, const InstanceStore& store, std::span<c
         lo = glm::min(lo, changed.back());
         hi = glm::max(hi, changed.back());
     }
-    auto within = [&](const glm::ivec3& t, const glm::ivec3& halo) {
-        if (glm::any(glm::lessThan(t, lo - halo)) || glm::any(glm::greaterThan(t, hi + halo))) return false;
+    auto within = [&](const glm::ivec3& t, const glm::ivec3& reach) {
+        if (glm::any(glm::lessThan(t, lo - reach)) || glm::any(glm::greaterThan(t, hi + reach))) return false;
         for (const glm::ivec3& c : changed) {
             const glm::ivec3 d = glm::abs(t - c);
-            if (d.x <= halo.x && d.y <= halo.y && d.z <= halo.z) return true;
+            if (d.x <= reach.x && d.y <= reach.y && d.z <= reach.z) return true;
         }
         return false;
     };
@@ -317,36 +397,58 @@ void settleUpdate(const SettleInput& in, const InstanceStore& store, std::span<c
     std::vector<uint32_t> ids;
     // Per store tile: -1 keeps its old drops, else where its fresh ones start in the window.
     std::vector<int64_t> fresh(store.tileCount(), -1);
-    for (size_t t = 0; t < store.tileCount(); ++t) {
-        const glm::ivec3 coord = unpackTile(store.tileKey(t));
-        if (!within(coord, need)) continue;
-        store.tileIds(t, &ids);
-        if (within(coord, affect)) fresh[t] = int64_t(w.id.size());
-        for (uint32_t j : ids) addInstance(in, store.tileKey(t), j, &w);
-    }
-    w.sphere_begin.push_back(uint32_t(w.center.size()));
-    const std::vector<uint16_t> result = settleWindow(in, w, threads);
-    // The new drops in store order: fresh where they may have changed, the old ones elsewhere (a tile
-    // outside the affected set kept its instances and their drops). Tiles the store lost are gone.
-    SettledDrops next;
+    // Narrow: per window instance whether it is read, and what (after each pass, the last included).
+    std::vector<uint8_t> fixed;
+    std::vector<std::vector<uint16_t>> given(narrow ? size_t(passes) : 0);
     for (size_t t = 0; t < store.tileCount(); ++t) {
         const uint64_t key = store.tileKey(t);
-        if (fresh[t] >= 0) {
-            store.tileIds(t, &ids);
-            const std::span<const uint16_t> now(result.data() + fresh[t], ids.size());
-            const std::span<const uint16_t> before = drops->tile(key);
-            next.append(key, now);
-            // Only tiles whose drops differ need re-drawing (the changed tiles are added below).
-            if (touched && !std::equal(now.begin(), now.end(), before.begin(), before.end())) touched->push_back(key);
-        } else {
-            next.append(key, drops->tile(key));
+        const glm::ivec3 coord = unpackTile(key);
+        if (!within(coord, need)) continue;
+        store.tileIds(t, &ids);
+        const bool compute = within(coord, affect);
+        if (compute) fresh[t] = int64_t(w.id.size());
+        if (narrow) {
+            for (int k = 0; k < passes; ++k) {
+                const std::span<const uint16_t> known =
+                    compute ? std::span<const uint16_t>() : k + 1 < passes ? history->after_pass[size_t(k)].tile(key) : drops->tile(key);
+                if (!compute && known.size() != ids.size()) {
+                    // Not the history of these drops (a caller's mistake): start again without it.
+                    history->clear();
+                    settleUpdate(in, store, changed_tiles, threads, drops, touched, history);
+                    return;
+                }
+                if (compute) given[size_t(k)].resize(given[size_t(k)].size() + ids.size(), 0);
+                else given[size_t(k)].insert(given[size_t(k)].end(), known.begin(), known.end());
+            }
+            fixed.resize(fixed.size() + ids.size(), compute ? 0 : 1);
         }
+        for (uint32_t j : ids) addInstance(in, key, j, &w);
     }
-    *drops = std::move(next);
+    w.sphere_begin.push_back(uint32_t(w.center.size()));
+    std::vector<std::vector<uint16_t>> record;
+    const WindowPasses io = narrow ? WindowPasses{&fixed, &given, &record} : WindowPasses{};
+    const std::vector<uint16_t> result = settleWindow(in, w, threads, io);
+    SettledDrops next;
+    mergeFresh(store, fresh, result, *drops, &next);
     if (touched) {
+        // Only tiles whose drops differ need re-drawing, and the changed ones.
+        for (size_t t = 0; t < store.tileCount(); ++t) {
+            const uint64_t key = store.tileKey(t);
+            if (fresh[t] < 0) continue;
+            const std::span<const uint16_t> now = next.tile(key), before = drops->tile(key);
+            if (!std::equal(now.begin(), now.end(), before.begin(), before.end())) touched->push_back(key);
+        }
         for (uint64_t k : changed_tiles) touched->push_back(k);
         std::sort(touched->begin(), touched->end());
         touched->erase(std::unique(touched->begin(), touched->end()), touched->end());
+    }
+    *drops = std::move(next);
+    if (narrow) {
+        for (size_t k = 0; k + 1 < size_t(passes); ++k) {
+            SettledDrops merged;
+            mergeFresh(store, fresh, record[k], history->after_pass[k], &merged);
+            history->after_pass[k] = std::move(merged);
+        }
     }
 }
 

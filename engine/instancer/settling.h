@@ -81,17 +81,34 @@ private:
     std::vector<uint16_t> drops_;
 };
 
+// The drops after each pass but the last (pass 1 .. passes - 1; the last pass's are the SettledDrops).
+// An edit changes drop_k only within k pass halos of it, so with these an update computes just the tiles
+// it can reach and reads the ring around them from here; without them it must compute a ring as wide again
+// from scratch (2 x passes halos), most of an update's time. Kept by whoever keeps the drops (the live
+// instancer): about (passes - 1) x 2 bytes an instance.
+struct SettleHistory {
+    int passes = 0;  // the pass count it was computed with; 0: none
+    std::vector<SettledDrops> after_pass;  // passes - 1 entries
+    void clear() {
+        passes = 0;
+        after_pass.clear();
+    }
+};
+
 // Checks the settings (message names the setting) and that models match the tile.
 bool validateSettleInput(const SettleInput& input, std::string* error);
 
-// Drops for every instance of the store.
-void settleAll(const SettleInput& input, const InstanceStore& store, int threads, SettledDrops* out);
+// Drops for every instance of the store; `history` (optional) receives the drops after each pass.
+void settleAll(const SettleInput& input, const InstanceStore& store, int threads, SettledDrops* out,
+               SettleHistory* history = nullptr);
 
 // After the store changed only in `changed_tiles` (what Instantiator::update reports): recomputes the drops
 // that can have changed, exactly: *drops equals settleAll(store) afterwards. `touched` (optional) receives
-// changed_tiles and the tiles whose drops changed, ascending.
+// changed_tiles and the tiles whose drops changed, ascending. `history` (optional): the one settleAll or
+// an earlier update left with these drops; when it was computed with the input's pass count the update
+// computes only the tiles the edit can reach, and keeps it equal to settleAll's. Otherwise it is cleared.
 void settleUpdate(const SettleInput& input, const InstanceStore& store, std::span<const uint64_t> changed_tiles,
-                  int threads, SettledDrops* drops, std::vector<uint64_t>* touched);
+                  int threads, SettledDrops* drops, std::vector<uint64_t>* touched, SettleHistory* history = nullptr);
 
 // How far around a region the selection must be known for the region's drops to be exact (metres): a
 // region job instantiates its region grown by this, settles, and keeps its own instances.

@@ -219,15 +219,16 @@ bool LiveInstancer::runJob(Job& job, InstanceStats* stats, std::vector<uint64_t>
 void LiveInstancer::settle(bool full, std::vector<uint64_t>* changed) {
     if (!settle_.settings.enabled) {
         last_drops_.reset();
+        history_.clear();
         return;
     }
     auto drops = std::make_shared<SettledDrops>();
     if (full || !last_drops_) {
-        settleAll(settle_, *last_store_, threads_, drops.get());
+        settleAll(settle_, *last_store_, threads_, drops.get(), &history_);
     } else {
         *drops = *last_drops_;
         std::vector<uint64_t> touched;
-        settleUpdate(settle_, *last_store_, *changed, threads_, drops.get(), &touched);
+        settleUpdate(settle_, *last_store_, *changed, threads_, drops.get(), &touched, &history_);
         *changed = sortedUnion(*changed, touched);
     }
     last_drops_ = std::move(drops);

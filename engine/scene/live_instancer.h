@@ -136,6 +136,7 @@ private:
     std::shared_ptr<const InstanceStore> last_store_ = std::make_shared<const InstanceStore>();
     SettleInput settle_;  // the last reset()'s
     std::shared_ptr<const SettledDrops> last_drops_;
+    SettleHistory history_;  // last_drops_'s after each pass: lets an edit settle only what it reaches
 
     std::thread worker_;  // last: starts after everything above is constructed
 };

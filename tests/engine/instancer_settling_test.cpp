@@ -320,6 +320,96 @@ TEST(Settling, UpdateAfterAnEditEqualsSettlingTheNewStore) {
     }
 }
 
+// The history (the drops after each pass) is what settling with fewer passes gives, also past the pass
+// where nothing moves any more.
+TEST(Settling, TheHistoryHoldsTheDropsOfEveryShorterRun) {
+    PileScene scene;
+    const InstanceStore store = scene.instantiate();
+    for (const int passes : {1, 6, 24}) {
+        SettleInput in = scene.settle;
+        in.settings.passes = passes;
+        SettledDrops drops;
+        SettleHistory history;
+        settleAll(in, store, 2, &drops, &history);
+        EXPECT_EQ(history.passes, passes);
+        ASSERT_EQ(history.after_pass.size(), size_t(passes - 1));
+        bool moved_late = false;
+        for (int k = 1; k < passes; ++k) {
+            SettleInput shorter = in;
+            shorter.settings.passes = k;
+            SettledDrops expected;
+            settleAll(shorter, store, 1, &expected);
+            EXPECT_TRUE(history.after_pass[size_t(k - 1)] == expected) << passes << " passes, after pass " << k;
+            if (k + 1 == passes) moved_late = !(expected == drops);
+        }
+        // 24 passes are more than this pile needs: the last ones repeat the drops.
+        if (passes == 24) {
+            EXPECT_FALSE(moved_late);
+        }
+    }
+}
+
+// Fewer passes than the pile is wide (a pass's halo is a tile here): the update computes a part of it and
+// reads the ring around that part from the history.
+class SettlingWithHistory : public ::testing::TestWithParam<int> {};
+
+TEST_P(SettlingWithHistory, AnUpdateReadingTheHistoryEqualsSettlingTheNewStore) {
+    PileScene scene;
+    scene.settle.settings.passes = GetParam();
+    Instantiator inst;
+    std::string error;
+    ASSERT_TRUE(inst.setInput(scene.fx.input, &error)) << error;
+    ASSERT_TRUE(inst.instantiateAll({.threads = 2}, nullptr, &error)) << error;
+    SettledDrops live, without_history;
+    SettleHistory history;
+    settleAll(scene.settle, inst.store(), 2, &live, &history);
+    without_history = live;
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> uni(-0.8f, 0.8f);
+    std::vector<Primitive> prims = {makePoint({0.0f, 0.0f, 0.0f}, 0.9f, 4.0f)};
+    for (int edit = 0; edit < 12; ++edit) {
+        // Add a ball, or take the last one away (an edit that lets the pile above it fall further).
+        Bounds dirty;
+        if (edit % 3 == 2) {
+            dirty = primitiveBounds(prims.back(), nullptr);
+            prims.pop_back();
+        } else {
+            prims.push_back(makePoint({uni(rng), uni(rng), 0.0f}, 0.35f, 3.0f));
+            dirty = primitiveBounds(prims.back(), nullptr);
+        }
+        std::vector<InstanceTypeSettings> types = inst.input().types;
+        types[0].field = InstancerFixture::field(prims);
+        std::vector<uint64_t> changed;
+        ASSERT_TRUE(inst.update(types, std::span<const Bounds>(&dirty, 1), {.threads = 2}, nullptr, &changed, &error))
+            << error;
+        std::vector<uint64_t> touched, touched_without;
+        settleUpdate(scene.settle, inst.store(), changed, 2, &live, &touched, &history);
+        settleUpdate(scene.settle, inst.store(), changed, 1, &without_history, &touched_without);
+        SettledDrops full;
+        SettleHistory full_history;
+        settleAll(scene.settle, inst.store(), 1, &full, &full_history);
+        ASSERT_TRUE(live == full) << "after edit " << edit;
+        ASSERT_EQ(history.passes, scene.settle.settings.passes);
+        ASSERT_TRUE(history.after_pass == full_history.after_pass) << "after edit " << edit;
+        EXPECT_TRUE(without_history == full) << "after edit " << edit;
+        EXPECT_EQ(touched, touched_without);
+    }
+    // A history of another pass count is not read: cleared, and the update is still exact.
+    SettleInput more = scene.settle;
+    more.settings.passes = scene.settle.settings.passes + 2;
+    SettledDrops drops;
+    settleAll(more, inst.store(), 2, &drops);
+    std::vector<uint64_t> all_tiles;
+    for (size_t t = 0; t < inst.store().tileCount(); ++t) all_tiles.push_back(inst.store().tileKey(t));
+    settleUpdate(more, inst.store(), std::span<const uint64_t>(all_tiles.data(), 1), 2, &drops, nullptr, &history);
+    EXPECT_EQ(history.passes, 0);
+    SettledDrops full;
+    settleAll(more, inst.store(), 1, &full);
+    EXPECT_TRUE(drops == full);
+}
+
+INSTANTIATE_TEST_SUITE_P(Passes, SettlingWithHistory, ::testing::Values(1, 2, 3, 6));
+
 // A leaning chain of balls, each 9 cm beside and 1 cm above contact with the one before it: every ball
 // rests (after enough passes) on the one below, so a change at the foot reaches the top, 3.5 m away.
 struct Chain {
@@ -367,8 +457,17 @@ TEST(Settling, AChangeAtTheFootOfALongChainReachesItsTop) {
     settleAll(chain.settle, without_foot, 1, &expected);
     const std::vector<uint64_t> changed = {chain.keys[0].first};
     std::vector<uint64_t> touched;
+    SettledDrops drops_too = drops;
+    SettleHistory history;
+    settleAll(chain.settle, all, 2, &drops_too, &history);
     settleUpdate(chain.settle, without_foot, changed, 1, &drops, &touched);
     EXPECT_TRUE(drops == expected);
+    // The same read from the history: every pass's drops of the chain's upper part change.
+    settleUpdate(chain.settle, without_foot, changed, 2, &drops_too, nullptr, &history);
+    EXPECT_TRUE(drops_too == expected);
+    SettleHistory expected_history;
+    settleAll(chain.settle, without_foot, 1, &expected, &expected_history);
+    EXPECT_TRUE(history.after_pass == expected_history.after_pass);
     // A region job at the top of the chain needs the foot: its halo reaches it.
     const Bounds region{glm::vec3(3.0f, 0.0f, -1.0f), glm::vec3(4.0f, 0.5f, 4.0f)};
     const float halo = settleHaloMetres(chain.settle);
