@@ -112,8 +112,16 @@ void EditorSession::showFreshResults() {
         return std::max(std::chrono::milliseconds(0),
                         std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()));
     };
+    waitForStampUpdate(left());
     showFreshEnvironment(left());
     showFreshStrands(left());
+}
+
+void EditorSession::waitForStampUpdate(std::chrono::milliseconds budget) {
+    if (!scene || pending_stamps.size() <= stamps_before_frame) return;
+    const auto until = Clock::now() + budget;
+    while (scene->doc->live().pending() && Clock::now() < until)
+        std::this_thread::sleep_for(std::chrono::microseconds(250));
 }
 
 void EditorSession::updateStatus() {

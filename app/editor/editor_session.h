@@ -106,14 +106,16 @@ private:
     void fillDocumentResult();
     void writeInteractiveStats();
     void updateStatus();             // the Statistics window's status line and progress bar
-    // After this frame's edits, before it renders: an environment or particle edit's effects or strands are
-    // waited for and shown in this very frame when they make it in time. Rendering the frame without them
-    // would show nothing new, take as long as a frame takes, and on a software renderer take the cores the
-    // worker needs; so the wait lasts up to the previous frame's render time (a fast GPU waits a few ms at
-    // most, llvmpipe the ~50 ms of a footprint), at most kFreshWaitMaxMs, both waits together. (The
-    // instances of a paint stroke are not waited for: their settling, 60-110 ms a stamp on the meadow,
-    // keeps the live instancer busy past each frame of a stroke, so a wait would only hold the frame.)
+    // After this frame's edits, before it renders: a stamp's instances, an environment or particle edit's
+    // effects or strands are waited for and shown in this very frame when they make it in time. Rendering
+    // the frame without them would show nothing new, take as long as a frame takes, and on a software
+    // renderer take the cores the worker needs; so the wait lasts up to the previous frame's render time (a
+    // fast GPU waits a few ms at most, llvmpipe the 30-40 ms of a meadow stamp or the ~50 ms of a
+    // footprint), at most kFreshWaitMaxMs, all waits together. (Stamps were waited for at most 15 ms
+    // while their settling took 60-110 ms; with it at ~30 ms a stroke's stamp shows in its own frame.)
     void showFreshResults();
+    // A stamp made this frame: waits up to `budget` for the live instancer (renderFrame takes its result).
+    void waitForStampUpdate(std::chrono::milliseconds budget);
     static constexpr double kFreshWaitMaxMs = 250.0;
     // ---- session_document.cpp ----
     void startLoad(const std::string& path, bool recover);

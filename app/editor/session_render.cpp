@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <thread>
 
 #include "core/atomic_file.h"
 #include "core/hash.h"
@@ -21,23 +20,9 @@
 
 namespace ug::editor {
 
-namespace {
-// How long a frame that made a stamp may wait for its incremental update before rendering.
-constexpr double kStampWaitBudgetMs = 15.0;
-}  // namespace
-
 bool EditorSession::renderFrame() {
     // ---- render ----
-    // A stamp made this frame: wait a little for its update (an incremental update takes a few ms) so
-    // this frame already shows it, instead of the next one a whole frame later (on llvmpipe a frame is
-    // 30-40 ms; the stamp-to-frame target is 50 ms). Bounded, so a slow update never stalls the UI.
-    if (scene && pending_stamps.size() > stamps_before_frame) {
-        const auto wait_start = Clock::now();
-        while (scene->doc->live().pending() &&
-               std::chrono::duration<double, std::milli>(Clock::now() - wait_start).count() <
-                   kStampWaitBudgetMs)
-            std::this_thread::sleep_for(std::chrono::microseconds(250));
-    }
+    // (A stamp made this frame was waited for in showFreshResults.)
     if (!takeLiveResult()) return false;
     // The camera never goes below the ground, whatever moved it (navigation, a replayed view, framing).
     if (scene) keepEyeAboveGround(&camera, [this](glm::vec2 xy) { return groundZ(xy); });
