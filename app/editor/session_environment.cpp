@@ -100,17 +100,17 @@ void EditorSession::showStaticMeshes() {
     if (scene->env_scene && scene->env_effects)
         env_hidden_drawn =
             envObjectMask(scene->env_scene->desc(), environment_panel.hidden, scene->env_scene->objects().size());
-    if (env_hidden_drawn.empty()) {
-        drawn_static_meshes.clear();
-        renderer->setStaticMeshes(&scene->static_meshes);
-        return;
+    drawn_static_meshes.clear();
+    if (!env_hidden_drawn.empty()) {
+        // The scene's list stays whole (the export writes it); the view draws a copy without the hidden
+        // objects (the meshes are shared, so their levels of detail and buffers are kept).
+        drawn_static_meshes = envMeshInstances(*scene->env_scene, *scene->env_effects, &env_hidden_drawn);
+        for (const MeshInstances& m : scene->static_meshes)
+            if (!isEnvironmentMesh(m)) drawn_static_meshes.push_back(m);
     }
-    // The scene's list stays whole (the export writes it); the view draws a copy without the hidden objects
-    // (the meshes are shared, so their levels of detail are kept).
-    drawn_static_meshes = envMeshInstances(*scene->env_scene, *scene->env_effects, &env_hidden_drawn);
-    for (const MeshInstances& m : scene->static_meshes)
-        if (!isEnvironmentMesh(m)) drawn_static_meshes.push_back(m);
-    renderer->setStaticMeshes(&drawn_static_meshes);
+    renderer->setStaticMeshes(env_hidden_drawn.empty() ? &scene->static_meshes : &drawn_static_meshes);
+    const gl::RenderStats& rs = renderer->stats();
+    result->static_swaps.push_back({rs.static_entries_uploaded, rs.static_entries_kept});
 }
 
 void EditorSession::noteEnvStamp(uint64_t generation_before, int action) {

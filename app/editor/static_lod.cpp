@@ -310,15 +310,22 @@ std::vector<SunCaster> sunCasters(const std::vector<MeshInstances>* meshes) {
     return out;
 }
 
-std::vector<StaticLodMesh> StaticLodCache::levels(const std::vector<std::shared_ptr<const TriangleMesh>>& meshes,
-                                                  const std::vector<bool>& split, int threads, size_t* built) {
+StaticEntryKey staticEntryKey(const MeshInstances& entry) {
+    return {entry.mesh, entry.lod_levels, entry.instances.size(),
+            hashBytes(entry.instances.data(), entry.instances.size() * sizeof(InstanceTransform)),
+            entry.material ? *entry.material : SurfaceMaterial{}, entry.ground_layer};
+}
+
+std::vector<std::shared_ptr<const StaticLodMesh>> StaticLodCache::levels(
+    const std::vector<std::shared_ptr<const TriangleMesh>>& meshes, const std::vector<bool>& split, int threads,
+    size_t* built) {
     assert(split.size() == meshes.size());
     std::map<std::pair<const TriangleMesh*, bool>, size_t> known;
     for (size_t k = 0; k < kept_.size(); ++k) known[{kept_[k].mesh.get(), kept_[k].split}] = k;
     std::vector<const TriangleMesh*> missing;
     std::vector<bool> missing_split;
     std::vector<size_t> missing_at;
-    std::vector<StaticLodMesh> out(meshes.size());
+    std::vector<std::shared_ptr<const StaticLodMesh>> out(meshes.size());
     for (size_t i = 0; i < meshes.size(); ++i) {
         const auto it = known.find({meshes[i].get(), split[i]});
         if (it != known.end()) {
@@ -330,7 +337,7 @@ std::vector<StaticLodMesh> StaticLodCache::levels(const std::vector<std::shared_
         }
     }
     std::vector<StaticLodMesh> fresh = buildStaticLodMeshes(missing, missing_split, threads);
-    for (size_t k = 0; k < fresh.size(); ++k) out[missing_at[k]] = std::move(fresh[k]);
+    for (size_t k = 0; k < fresh.size(); ++k) out[missing_at[k]] = std::make_shared<const StaticLodMesh>(std::move(fresh[k]));
     std::vector<Kept> next;
     next.reserve(meshes.size());
     for (size_t i = 0; i < meshes.size(); ++i) next.push_back(Kept{meshes[i], split[i], out[i]});

@@ -19,6 +19,7 @@
 #include "editor/render_data.h"
 #include "field/bounds.h"
 #include "io/mesh_instances.h"
+#include "material/material.h"
 #include "mesh/triangle_mesh.h"
 
 namespace ug::editor {
@@ -98,15 +99,17 @@ StaticLodMesh authoredStaticLod(const TriangleMesh& mesh, const std::vector<Mesh
 class StaticLodCache {
 public:
     // Every mesh's levels; builds those of meshes (object and split flag) not in the previous call, and
-    // forgets the meshes this call does not name. *built: how many were built.
-    std::vector<StaticLodMesh> levels(const std::vector<std::shared_ptr<const TriangleMesh>>& meshes,
-                                      const std::vector<bool>& split, int threads, size_t* built = nullptr);
+    // forgets the meshes this call does not name. *built: how many were built. Shared, not copied: a
+    // winter street's terrain snow has millions of indices.
+    std::vector<std::shared_ptr<const StaticLodMesh>> levels(const std::vector<std::shared_ptr<const TriangleMesh>>& meshes,
+                                                             const std::vector<bool>& split, int threads,
+                                                             size_t* built = nullptr);
 
 private:
     struct Kept {
         std::shared_ptr<const TriangleMesh> mesh;  // held, so its address names it while kept
         bool split = false;
-        StaticLodMesh levels;
+        std::shared_ptr<const StaticLodMesh> levels;
     };
     std::vector<Kept> kept_;
 };
@@ -129,6 +132,21 @@ struct SunCaster {
 };
 // The casters among `meshes` (null: none), in their order; entries without triangles are not drawn.
 std::vector<SunCaster> sunCasters(const std::vector<MeshInstances>* meshes);
+
+// Everything a static entry's GPU buffers and draw state are made of: the mesh and its authored levels
+// (held, so an address names one mesh while kept), its instances (count and hash), its material and
+// whether it lies on the ground. Equal keys: the buffers uploaded for one serve the other, so a swap
+// uploads only the entries whose key is new (a footprint: the terrain snow chunks it reached).
+struct StaticEntryKey {
+    std::shared_ptr<const TriangleMesh> mesh;
+    std::shared_ptr<const std::vector<MeshLodLevel>> lod_levels;
+    size_t instance_count = 0;
+    uint64_t instances_hash = 0;
+    SurfaceMaterial material;  // the entry's, or the default when it has none
+    bool ground_layer = false;
+    bool operator==(const StaticEntryKey&) const = default;
+};
+StaticEntryKey staticEntryKey(const MeshInstances& entry);
 
 // The level to draw a piece at, -1 for none: with the piece's object-space errors scaled by `scale` (the
 // instances' largest), the coarsest level whose error covers less than kStaticLodErrorPx at `distance_m`;

@@ -134,6 +134,7 @@ json viewerStatsJson(const ViewerResult& r, const LodSettings& lod) {
         {"particles", r.particles},
         {"environment", r.environment},
         {"env_stamp_to_frame_ms", envStampsJson(r.env_stamp_to_frame_ms)},
+        {"static_swaps", r.static_swaps},
         {"window_title", r.window_title}};
 }
 

@@ -86,6 +86,9 @@ struct ViewerResult {
     // Every environment edit (a drag step, a weather stamp): from the edit to the end of the first frame
     // showing its effects, by what made it ("env_move", "footprints", "weather_stroke", "mouse").
     std::map<std::string, std::vector<double>> env_stamp_to_frame_ms;
+    // Every swap of the static meshes (an environment result shown, objects hidden or shown): the entries
+    // uploaded and those whose buffers were kept.
+    std::vector<std::array<uint64_t, 2>> static_swaps;
     double repack_ms_max = 0.0;             // the slowest CPU re-pack of a live result's tiles for the GPU
     double tile_update_ms_max = 0.0;  // the slowest incremental one (changed tiles re-packed and uploaded)
     nlohmann::json actions = nlohmann::json::array();  // per replay action (viewer.cpp, "Statistics")

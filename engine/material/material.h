@@ -66,6 +66,7 @@ struct SurfaceMaterial {
     // linear mean is 1 per channel, so the texture's average linear colour is base_color. Alpha is
     // coverage: 255 except where an alpha_cutout texture cuts (compare with 0.5, as glTF's alphaCutoff).
     std::shared_ptr<const TextureImage> texture;
+    bool operator==(const SurfaceMaterial&) const = default;  // the texture by object
 };
 
 // Every surface of a scene: one per detail look (the project's types in order, then their scatter variants,

@@ -289,15 +289,15 @@ TEST(StaticLod, TheCacheBuildsOnlyNewMeshesAndGivesWhatABuildGives) {
     StaticLodCache cache;
     size_t built = 0;
     auto expectBuilt = [&](const std::vector<std::shared_ptr<const TriangleMesh>>& meshes, const std::vector<bool>& split) {
-        const std::vector<StaticLodMesh> got = cache.levels(meshes, split, 2, &built);
+        const std::vector<std::shared_ptr<const StaticLodMesh>> got = cache.levels(meshes, split, 2, &built);
         std::vector<const TriangleMesh*> raw;
         for (const auto& m : meshes) raw.push_back(m.get());
         const std::vector<StaticLodMesh> want = buildStaticLodMeshes(raw, split, 1);
         ASSERT_EQ(got.size(), want.size());
         for (size_t m = 0; m < got.size(); ++m) {
-            EXPECT_EQ(got[m].indices, want[m].indices) << m;
-            EXPECT_EQ(got[m].split, want[m].split) << m;
-            ASSERT_EQ(got[m].pieces.size(), want[m].pieces.size()) << m;
+            EXPECT_EQ(got[m]->indices, want[m].indices) << m;
+            EXPECT_EQ(got[m]->split, want[m].split) << m;
+            ASSERT_EQ(got[m]->pieces.size(), want[m].pieces.size()) << m;
         }
     };
     expectBuilt({a, b}, {false, false});

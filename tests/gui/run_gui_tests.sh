@@ -505,9 +505,11 @@ else
 fi
 
 # ---- the sun's map kept across swaps that change no caster (a footprint replaces the terrain's snow, which
-# casts nothing; a live result that changed no tile): a bench placed, the street's bench dragged (its old
-# shadow must go) and footprints walked; the picture equals the one drawn with the map redrawn at every
-# swap (UG_SHADOW_REDRAW_ALWAYS), byte for byte.
+# casts nothing; a live result that changed no tile), and the static entries' buffers kept where their mesh,
+# instances and material did not change: a bench placed, the street's bench dragged (its old shadow must
+# go) and footprints walked; the picture equals the one drawn with the map redrawn and every entry uploaded
+# again at every swap (UG_SHADOW_REDRAW_ALWAYS, UG_STATIC_REUPLOAD_ALWAYS), byte for byte, and the swaps
+# after the first upload only some entries (a footprint: the snow it reached).
 shdir="$tmp/shadow-kept"
 mkdir -p "$shdir"
 for mode in kept always; do
@@ -522,13 +524,26 @@ EOF
 done
 street="$root/assets/scenes/street_winter.json"
 if xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$street" --frames 3 --size 960x540 --cache "$cache" \
-     --config "$shdir/config-kept" --replay "$shdir/kept.json" >"$shdir/log" 2>&1 &&
-   UG_SHADOW_REDRAW_ALWAYS=1 xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$street" --frames 3 --size 960x540 \
-     --cache "$cache" --config "$shdir/config-always" --replay "$shdir/always.json" >>"$shdir/log" 2>&1 &&
-   cmp -s "$shdir/kept.png" "$shdir/always.png"; then
-  ok "edit street_winter: the sun's map kept across swaps that change no caster equals it redrawn at every swap (a bench placed and dragged, footprints)"
+     --config "$shdir/config-kept" --replay "$shdir/kept.json" --stats "$shdir/kept-stats.json" >"$shdir/log" 2>&1 &&
+   UG_SHADOW_REDRAW_ALWAYS=1 UG_STATIC_REUPLOAD_ALWAYS=1 xvfb-run -a -s "-screen 0 1280x720x24" "$bin" edit "$street" \
+     --frames 3 --size 960x540 --cache "$cache" --config "$shdir/config-always" --replay "$shdir/always.json" \
+     >>"$shdir/log" 2>&1 &&
+   cmp -s "$shdir/kept.png" "$shdir/always.png" &&
+   swaps="$(python3 - "$shdir/kept-stats.json" <<'PY' 2>&1
+import json, sys
+swaps = json.load(open(sys.argv[1]))["static_swaps"]
+assert len(swaps) >= 3, swaps
+assert swaps[0][1] == 0, swaps  # the first set: nothing to keep
+later = swaps[1:]
+assert all(kept > 0 for _, kept in later), swaps
+uploaded, entries = swaps[-1][0], sum(swaps[-1])
+assert uploaded * 4 <= entries, f"the last footprint uploaded {uploaded} of {entries} entries: {swaps}"
+print(f"{len(swaps)} swaps; the last uploaded {uploaded} of {entries} entries")
+PY
+)"; then
+  ok "edit street_winter: the sun's map and the static buffers kept across swaps equal them redrawn and uploaded at every swap (a bench placed and dragged, footprints; $swaps)"
 else
-  bad "edit street_winter: kept shadow map: $(cmp "$shdir/kept.png" "$shdir/always.png" 2>&1) $(tail -5 "$shdir/log" 2>/dev/null)"
+  bad "edit street_winter: kept shadow map and static buffers: $(cmp "$shdir/kept.png" "$shdir/always.png" 2>&1) ${swaps:-} $(tail -5 "$shdir/log" 2>/dev/null)"
 fi
 
 # ---- the tree's edits (the Environment window's Group, drag onto a group, Make reusable, Instance): the bus

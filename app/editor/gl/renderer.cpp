@@ -23,6 +23,13 @@ bool shadowRedrawnOnEverySwap() {
     return always;
 }
 
+// UG_STATIC_REUPLOAD_ALWAYS=1: every swap uploads every static entry again (the GUI tests compare the
+// pictures with and without).
+bool staticsReuploadedOnEverySwap() {
+    static const bool always = std::getenv("UG_STATIC_REUPLOAD_ALWAYS") != nullptr;
+    return always;
+}
+
 const glm::vec3 kSunDir = glm::normalize(glm::vec3(0.45f, -0.50f, 0.74f));
 
 // What the candidate SSBO holds per candidate (std430: two vec4).
@@ -313,83 +320,123 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
     draws_dirty_ = shadow_draws_dirty_ = shadow_map_dirty_ = true;
 }
 
+void Renderer::releaseStaticBuffers(StaticBuffers* b) {
+    glDeleteVertexArrays(1, &b->vao);
+    GLuint buffers[] = {b->vertex_buffer, b->index_buffer, b->instance_buffer};
+    glDeleteBuffers(3, buffers);
+    *b = StaticBuffers{};
+}
+
 void Renderer::releaseStaticMeshes() {
-    for (StaticBuffers& b : statics_) {
-        glDeleteVertexArrays(1, &b.vao);
-        GLuint buffers[] = {b.vertex_buffer, b.index_buffer, b.instance_buffer};
-        glDeleteBuffers(3, buffers);
-    }
+    for (StaticBuffers& b : statics_) releaseStaticBuffers(&b);
     statics_.clear();
     for (const auto& [img, id] : static_textures_) glDeleteTextures(1, &id);
     static_textures_.clear();
 }
 
+Renderer::StaticBuffers Renderer::uploadStaticEntry(const MeshInstances& entry, StaticLodMesh lods) {
+    const TriangleMesh& mesh = *entry.mesh;
+    StaticBuffers b;
+    if (mesh.normals.size() == mesh.positions.size()) {
+        uploadMesh(mesh.positions, mesh.normals, lods.indices, &b.vao, &b.vertex_buffer, &b.index_buffer);
+    } else {  // MeshInstances allows meshes without normals: computed here, as the exporter does
+        TriangleMesh with_normals = mesh;
+        computeNormals(&with_normals);
+        uploadMesh(with_normals.positions, with_normals.normals, lods.indices, &b.vao, &b.vertex_buffer,
+                   &b.index_buffer);
+    }
+    StaticInstanceChunks chunked = chunkStaticInstances(entry);
+    const std::vector<GpuStaticInstance>& instances = chunked.instances;
+    glBindVertexArray(b.vao);
+    glGenBuffers(1, &b.instance_buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, b.instance_buffer);
+    glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(instances.size() * sizeof(GpuStaticInstance)), instances.data(),
+                 GL_STATIC_DRAW);
+    for (GLuint attribute : {2u, 3u}) {
+        glEnableVertexAttribArray(attribute);
+        glVertexAttribPointer(attribute, 4, GL_FLOAT, GL_FALSE, sizeof(GpuStaticInstance),
+                              reinterpret_cast<void*>(uintptr_t(attribute - 2) * sizeof(glm::vec4)));
+        glVertexAttribDivisor(attribute, 1);
+    }
+    glBindVertexArray(0);
+    b.bounds = chunked.bounds;
+    b.lods.piece_bounds = staticPieceBounds(lods, instances.front());
+    b.lods.lods = std::move(lods);
+    b.lods.chunks = std::move(chunked.chunks);
+    b.material = entry.material ? *entry.material : SurfaceMaterial{};
+    b.color = entry.material ? entry.material->base_color : mesh.base_color;
+    b.texture = uploadTexture(b.material.texture, &static_textures_);
+    b.casts_shadow = castsSunShadow(entry);
+    return b;
+}
+
 void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
-    releaseStaticMeshes();
     // The sun's map is drawn again only when what casts into it changed: a footprint replaces the terrain's
     // snow, which casts nothing (castsSunShadow), and redrawing the map is a third of a winter frame.
     std::vector<SunCaster> casters = sunCasters(meshes);
     if (casters != static_casters_ || shadowRedrawnOnEverySwap()) shadow_map_dirty_ = true;
     static_casters_ = std::move(casters);
-    if (!meshes) return;
-    statics_.reserve(meshes->size());
-    // Levels of detail first, for all entries at once (the pieces of every entry spread over the workers).
+    std::vector<StaticBuffers> old = std::move(statics_);
+    statics_.clear();
+    stats_.static_entries_uploaded = stats_.static_entries_kept = 0;
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<const MeshInstances*> entries;
-    std::vector<std::shared_ptr<const TriangleMesh>> lod_meshes;
-    std::vector<bool> split;
-    std::vector<size_t> simplified;  // entries whose levels meshoptimizer makes (the others bring their own)
-    for (const MeshInstances& entry : *meshes) {
-        if (!entry.mesh || entry.mesh->indices.empty()) continue;
-        entries.push_back(&entry);
-        if (entry.lod_levels) continue;
-        simplified.push_back(entries.size() - 1);
-        lod_meshes.push_back(entry.mesh);
-        split.push_back(splitsStaticEntry(entry.instances.size(), entry.mesh->indices.size() / 3));
-    }
-    // Meshes kept from the previous set (an edit's unchanged snow, the objects' bases) keep their levels.
-    std::vector<StaticLodMesh> built = static_lod_cache_.levels(lod_meshes, split, 0);
-    std::vector<StaticLodMesh> lods(entries.size());
-    for (size_t i = 0; i < simplified.size(); ++i) lods[simplified[i]] = std::move(built[i]);
-    for (size_t e = 0; e < entries.size(); ++e)
-        if (entries[e]->lod_levels) lods[e] = authoredStaticLod(*entries[e]->mesh, *entries[e]->lod_levels);
-    const auto t1 = std::chrono::steady_clock::now();
-    for (size_t e = 0; e < entries.size(); ++e) {
-        const MeshInstances& entry = *entries[e];
-        const TriangleMesh& mesh = *entry.mesh;
-        StaticBuffers b;
-        if (mesh.normals.size() == mesh.positions.size()) {
-            uploadMesh(mesh.positions, mesh.normals, lods[e].indices, &b.vao, &b.vertex_buffer, &b.index_buffer);
-        } else {  // MeshInstances allows meshes without normals: computed here, as the exporter does
-            TriangleMesh with_normals = mesh;
-            computeNormals(&with_normals);
-            uploadMesh(with_normals.positions, with_normals.normals, lods[e].indices, &b.vao, &b.vertex_buffer,
-                       &b.index_buffer);
+    auto t1 = t0;
+    if (meshes) {
+        std::vector<const MeshInstances*> entries;
+        for (const MeshInstances& entry : *meshes)
+            if (entry.mesh && !entry.mesh->indices.empty()) entries.push_back(&entry);
+        // An entry whose key the previous set had keeps its buffers.
+        std::vector<StaticEntryKey> keys(entries.size());
+        std::vector<long> reuse(entries.size(), -1);
+        std::vector<bool> taken(old.size(), false);  // each old one serves one new entry
+        for (size_t e = 0; e < entries.size(); ++e) {
+            keys[e] = staticEntryKey(*entries[e]);
+            if (staticsReuploadedOnEverySwap()) continue;
+            for (size_t k = 0; k < old.size() && reuse[e] < 0; ++k)
+                if (!taken[k] && old[k].key == keys[e]) {
+                    reuse[e] = long(k);
+                    taken[k] = true;
+                }
         }
-        StaticInstanceChunks chunked = chunkStaticInstances(entry);
-        const std::vector<GpuStaticInstance>& instances = chunked.instances;
-        glBindVertexArray(b.vao);
-        glGenBuffers(1, &b.instance_buffer);
-        glBindBuffer(GL_ARRAY_BUFFER, b.instance_buffer);
-        glBufferData(GL_ARRAY_BUFFER, GLsizeiptr(instances.size() * sizeof(GpuStaticInstance)), instances.data(),
-                     GL_STATIC_DRAW);
-        for (GLuint attribute : {2u, 3u}) {
-            glEnableVertexAttribArray(attribute);
-            glVertexAttribPointer(attribute, 4, GL_FLOAT, GL_FALSE, sizeof(GpuStaticInstance),
-                                  reinterpret_cast<void*>(uintptr_t(attribute - 2) * sizeof(glm::vec4)));
-            glVertexAttribDivisor(attribute, 1);
+        // Levels of detail for all simplified entries at once (the pieces of every new one spread over the
+        // workers); naming the kept ones too keeps their levels for a later swap that moves their instances.
+        std::vector<std::shared_ptr<const TriangleMesh>> lod_meshes;
+        std::vector<bool> split;
+        std::vector<long> simplified(entries.size(), -1);  // index into lod_meshes
+        for (size_t e = 0; e < entries.size(); ++e) {
+            if (entries[e]->lod_levels) continue;
+            simplified[e] = long(lod_meshes.size());
+            lod_meshes.push_back(entries[e]->mesh);
+            split.push_back(splitsStaticEntry(entries[e]->instances.size(), entries[e]->mesh->indices.size() / 3));
         }
-        glBindVertexArray(0);
-        b.bounds = chunked.bounds;
-        b.lods.piece_bounds = staticPieceBounds(lods[e], instances.front());
-        b.lods.lods = std::move(lods[e]);
-        b.lods.chunks = std::move(chunked.chunks);
-        b.material = entry.material ? *entry.material : SurfaceMaterial{};
-        b.color = entry.material ? entry.material->base_color : mesh.base_color;
-        b.texture = uploadTexture(b.material.texture, &static_textures_);
-        b.casts_shadow = castsSunShadow(entry);
-        statics_.push_back(std::move(b));
+        const std::vector<std::shared_ptr<const StaticLodMesh>> built = static_lod_cache_.levels(lod_meshes, split, 0);
+        t1 = std::chrono::steady_clock::now();
+        statics_.reserve(entries.size());
+        for (size_t e = 0; e < entries.size(); ++e) {
+            if (reuse[e] >= 0) {
+                StaticBuffers& kept = old[size_t(reuse[e])];
+                statics_.push_back(std::move(kept));
+                kept = StaticBuffers{};  // its GL names now belong to the new entry
+                ++stats_.static_entries_kept;
+                continue;
+            }
+            const MeshInstances& entry = *entries[e];
+            StaticLodMesh lods = simplified[e] >= 0 ? *built[size_t(simplified[e])]
+                                                    : authoredStaticLod(*entry.mesh, *entry.lod_levels);
+            statics_.push_back(uploadStaticEntry(entry, std::move(lods)));
+            statics_.back().key = std::move(keys[e]);
+            ++stats_.static_entries_uploaded;
+        }
     }
+    for (StaticBuffers& b : old)
+        if (b.vao) releaseStaticBuffers(&b);
+    // Textures no entry uses any more go (every one left is named by an image an entry holds).
+    std::erase_if(static_textures_, [&](const std::pair<const TextureImage*, unsigned>& t) {
+        for (const StaticBuffers& b : statics_)
+            if (b.texture == t.second) return false;
+        glDeleteTextures(1, &t.second);
+        return true;
+    });
     const auto t2 = std::chrono::steady_clock::now();
     static_lod_ms_ = stats_.static_lod_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
     static_upload_ms_ = stats_.static_upload_ms = std::chrono::duration<double, std::milli>(t2 - t0).count();

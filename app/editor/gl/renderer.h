@@ -69,9 +69,12 @@ struct RenderStats {
     uint64_t tiles_uploaded = 0;
     uint64_t bytes_uploaded = 0;
     uint64_t tiles_resident = 0;
-    // The latest setStaticMeshes(): its levels of detail built (static_lod.h) and everything uploaded.
+    // The latest setStaticMeshes(): its levels of detail built (static_lod.h) and everything uploaded; the
+    // entries it uploaded and those whose buffers it kept from the previous set (staticEntryKey).
     double static_lod_ms = 0.0;
     double static_upload_ms = 0.0;
+    uint64_t static_entries_uploaded = 0;
+    uint64_t static_entries_kept = 0;
     uint64_t static_triangles = 0;  // static-mesh triangles drawn this frame (part of `triangles`)
 };
 
@@ -207,7 +210,10 @@ private:
         glm::vec3 color{0.6f};
         unsigned texture = 0;  // owned by static_textures_
         bool casts_shadow = true;  // castsSunShadow
+        StaticEntryKey key;        // what they were made of: a later set's equal entry keeps them
     };
+    StaticBuffers uploadStaticEntry(const MeshInstances& entry, StaticLodMesh lods);
+    void releaseStaticBuffers(StaticBuffers* b);
     std::vector<StaticBuffers> statics_;
     std::vector<SunCaster> static_casters_;  // what of statics_ casts into the sun's map
     std::vector<StaticDrawRange> static_draws_;  // scratch, per entry per pass
