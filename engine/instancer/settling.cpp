@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cstdio>
 #include <cmath>
 #include <limits>
 #include <unordered_set>
@@ -69,36 +68,84 @@ struct Window {
     float max_radius = 0.0f;
 };
 
-void addInstance(const SettleInput& in, uint64_t tile_key, uint32_t j, Window* w) {
-    const CandidateSet& c = in.tile->candidates;
-    const DetailModel& m = *in.models[c.type[j]];
-    const glm::vec3 origin = tileOrigin(unpackTile(tile_key), in.tile->settings.tile_size_m) + c.position[j];
+// Every candidate's spheres relative to its origin (rotated and scaled) by ascending height, made the first
+// time a window meets the candidate: the same in every tile, so adding an instance only offsets them (the
+// world centre is origin + offset, the very sum a direct computation makes). An instance's order of
+// spheres by height is what the pair search walks; within equal heights it means nothing.
+class CandidateSpheres {
+public:
+    explicit CandidateSpheres(const SettleInput& in) : in_(in), first_(in.tile->candidates.position.size(), kNone) {}
+    struct Span {
+        const glm::vec3* offset;
+        const float* radius;
+        uint32_t count;
+        float largest;
+    };
+    Span get(uint32_t j) {
+        if (first_[j] == kNone) make(j);
+        const uint32_t f = first_[j];
+        return {offset_.data() + f, radius_.data() + f, count_[j], largest_[j]};
+    }
+    uint32_t sphereCount(uint32_t j) const { return uint32_t(in_.models[in_.tile->candidates.type[j]]->spheres.size()); }
+
+private:
+    static constexpr uint32_t kNone = ~0u;
+    void make(uint32_t j) {
+        const CandidateSet& c = in_.tile->candidates;
+        const DetailModel& m = *in_.models[c.type[j]];
+        if (count_.size() < first_.size()) {
+            count_.resize(first_.size(), 0);
+            largest_.resize(first_.size(), 0.0f);
+        }
+        std::vector<uint32_t> order(m.spheres.size());
+        std::vector<glm::vec3> rel(m.spheres.size());
+        float largest = 0.0f;
+        for (uint32_t k = 0; k < order.size(); ++k) {
+            order[k] = k;
+            rel[k] = c.rotation[j] * (c.scale[j] * m.spheres[k].center);
+            largest = std::max(largest, c.scale[j] * m.spheres[k].radius);
+        }
+        std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return rel[x].z < rel[y].z; });
+        first_[j] = uint32_t(offset_.size());
+        for (uint32_t k : order) {
+            offset_.push_back(rel[k]);
+            radius_.push_back(c.scale[j] * m.spheres[k].radius);
+        }
+        count_[j] = uint32_t(order.size());
+        largest_[j] = largest;
+    }
+    const SettleInput& in_;
+    std::vector<uint32_t> first_, count_;
+    std::vector<float> largest_;
+    std::vector<glm::vec3> offset_;
+    std::vector<float> radius_;
+};
+
+void addInstance(const SettleInput& in, uint64_t tile_key, uint32_t j, CandidateSpheres* spheres, Window* w) {
+    const glm::vec3 origin =
+        tileOrigin(unpackTile(tile_key), in.tile->settings.tile_size_m) + in.tile->candidates.position[j];
     const uint32_t self = uint32_t(w->id.size());
     w->id.push_back({tile_key, j});
-    const size_t first = w->center.size();
-    w->sphere_begin.push_back(uint32_t(first));
-    float largest = 0.0f;
-    for (const Sphere& s : m.spheres) {
-        w->center.push_back(origin + c.rotation[j] * (c.scale[j] * s.center));
-        w->radius.push_back(c.scale[j] * s.radius);
+    w->sphere_begin.push_back(uint32_t(w->center.size()));
+    const CandidateSpheres::Span own = spheres->get(j);
+    for (uint32_t k = 0; k < own.count; ++k) {
+        w->center.push_back(origin + own.offset[k]);
+        w->radius.push_back(own.radius[k]);
         w->owner.push_back(self);
-        largest = std::max(largest, c.scale[j] * s.radius);
     }
-    w->max_radius = std::max(w->max_radius, largest);
-    w->instance_max_radius.push_back(largest);
-    // An instance's spheres by ascending centre height (the pair search walks down from a height and stops
-    // early); their order inside one instance means nothing else.
-    std::vector<uint32_t> order(w->center.size() - first);
-    for (uint32_t k = 0; k < order.size(); ++k) order[k] = uint32_t(first) + k;
-    std::stable_sort(order.begin(), order.end(), [&](uint32_t x, uint32_t y) { return w->center[x].z < w->center[y].z; });
-    std::vector<glm::vec3> centers(order.size());
-    std::vector<float> radii(order.size());
-    for (size_t k = 0; k < order.size(); ++k) {
-        centers[k] = w->center[order[k]];
-        radii[k] = w->radius[order[k]];
-    }
-    std::copy(centers.begin(), centers.end(), w->center.begin() + long(first));
-    std::copy(radii.begin(), radii.end(), w->radius.begin() + long(first));
+    w->max_radius = std::max(w->max_radius, own.largest);
+    w->instance_max_radius.push_back(own.largest);
+}
+
+// Room for `instances` instances of `spheres` spheres in all (a window's arrays hold millions of spheres:
+// growing them by doubling copied and faulted in most of a settling's memory again).
+void reserveWindow(size_t instances, size_t spheres, Window* w) {
+    w->id.reserve(instances);
+    w->sphere_begin.reserve(instances + 1);
+    w->instance_max_radius.reserve(instances);
+    w->center.reserve(spheres);
+    w->radius.reserve(spheres);
+    w->owner.reserve(spheres);
 }
 
 // Sphere e (of instance b) lies below sphere a (of instance a): a fixed order whatever the window.
@@ -328,7 +375,11 @@ void fileByTile(const InstanceStore& store, const std::vector<uint16_t>& values,
 void settleAll(const SettleInput& in, const InstanceStore& store, int threads, SettledDrops* out,
                SettleHistory* history) {
     Window w;
-    store.forEach([&](uint64_t tile, uint32_t j) { addInstance(in, tile, j, &w); });
+    CandidateSpheres spheres(in);
+    size_t sphere_count = 0;
+    store.forEach([&](uint64_t, uint32_t j) { sphere_count += spheres.sphereCount(j); });
+    reserveWindow(store.instanceCount(), sphere_count, &w);
+    store.forEach([&](uint64_t tile, uint32_t j) { addInstance(in, tile, j, &spheres, &w); });
     w.sphere_begin.push_back(uint32_t(w.center.size()));
     std::vector<std::vector<uint16_t>> record;
     fileByTile(store, settleWindow(in, w, threads, {.record = history ? &record : nullptr}), out);
@@ -394,6 +445,7 @@ void settleUpdate(const SettleInput& in, const InstanceStore& store, std::span<c
         return false;
     };
     Window w;
+    CandidateSpheres spheres(in);
     std::vector<uint32_t> ids;
     // Per store tile: -1 keeps its old drops, else where its fresh ones start in the window.
     std::vector<int64_t> fresh(store.tileCount(), -1);
@@ -422,7 +474,7 @@ void settleUpdate(const SettleInput& in, const InstanceStore& store, std::span<c
             }
             fixed.resize(fixed.size() + ids.size(), compute ? 0 : 1);
         }
-        for (uint32_t j : ids) addInstance(in, key, j, &w);
+        for (uint32_t j : ids) addInstance(in, key, j, &spheres, &w);
     }
     w.sphere_begin.push_back(uint32_t(w.center.size()));
     std::vector<std::vector<uint16_t>> record;
