@@ -223,6 +223,7 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
     std::vector<std::vector<Pair>> pairs(n);
     std::vector<std::vector<uint32_t>> beside(n);
     parallelFor(n, threads, 128, [&](size_t b, size_t e, int) {
+        std::vector<uint32_t> near_o;  // scratch: a neighbour's spheres that can meet the instance's
         for (size_t i = b; i < e; ++i) {
             if (isFixed(i)) continue;  // its drops are given: it is only a neighbour here
             // Spheres come by ascending height: once even the largest sphere that high could not reach
@@ -247,6 +248,17 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
                 const float dx = bound_center[i].x - bound_center[o].x, dy = bound_center[i].y - bound_center[o].y;
                 const float far = bound_radius[i] + bound_radius[o] + gap;
                 if (dx * dx + dy * dy >= far * far) return;
+                // o's spheres horizontally within reach of i's bounding sphere, still by height: no other
+                // can meet a sphere of i (|s - i's centre| <= |s - a| + |a - i's centre| < rs + ra + gap +
+                // i's radius - ra; grown a little against rounding). Two stones touching at one face share
+                // a few of their spheres' reaches, not all.
+                near_o.clear();
+                for (uint32_t s = w.sphere_begin[o]; s < w.sphere_begin[o + 1]; ++s) {
+                    const float sx = w.center[s].x - bound_center[i].x, sy = w.center[s].y - bound_center[i].y;
+                    const float reach = (bound_radius[i] + w.radius[s] + gap) * 1.001f + 1e-5f;
+                    if (sx * sx + sy * sy < reach * reach) near_o.push_back(s);
+                }
+                if (near_o.empty()) return;
                 float best = wanted;
                 const float widest_any = w.instance_max_radius[i] + w.instance_max_radius[o] + gap;
                 for (uint32_t a = w.sphere_begin[i]; a < w.sphere_begin[i + 1]; ++a) {
@@ -260,12 +272,12 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
                     if (ax * ax + ay * ay >= near * near || ca.z < zlo[o]) continue;
                     // Down from the highest sphere of o below a: once even the widest pair could not
                     // beat the best clearance found, the lower spheres cannot either.
-                    const uint32_t first = w.sphere_begin[o];
-                    uint32_t top = uint32_t(std::upper_bound(w.center.begin() + first, w.center.begin() + w.sphere_begin[o + 1],
-                                                             ca.z, [](float z, const glm::vec3& c) { return z < c.z; }) -
-                                            w.center.begin());
+                    const size_t top = size_t(std::upper_bound(near_o.begin(), near_o.end(), ca.z,
+                                                               [&](float z, uint32_t t) { return z < w.center[t].z; }) -
+                                              near_o.begin());
                     const float widest = ra + w.instance_max_radius[o] + gap;
-                    for (uint32_t s = top; s-- > first;) {
+                    for (size_t k = top; k-- > 0;) {
+                        const uint32_t s = near_o[k];
                         if (ca.z - w.center[s].z - widest >= best) break;
                         if (!below(w, s, a)) continue;
                         const float reach = ra + w.radius[s] + gap;
@@ -275,7 +287,8 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
                         best = std::min(best, ca.z - w.center[s].z - std::sqrt(reach * reach - h2));
                     }
                     // Spheres at exactly a's height are below it or not by the tie-break.
-                    for (uint32_t s = top; s < w.sphere_begin[o + 1] && w.center[s].z == ca.z; ++s) {
+                    for (size_t k = top; k < near_o.size() && w.center[near_o[k]].z == ca.z; ++k) {
+                        const uint32_t s = near_o[k];
                         if (!below(w, s, a)) continue;
                         const float reach = ra + w.radius[s] + gap;
                         const float hx = ca.x - w.center[s].x, hy = ca.y - w.center[s].y;
