@@ -242,8 +242,7 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
             // it decides whether the instance is held.
             const float wanted = limit < max_drop ? limit : std::nextafter(max_drop, std::numeric_limits<float>::infinity());
             std::vector<Pair>& mine = pairs[i];
-            if (wanted > 0.0f)
-            columns.forEachNear(glm::vec2(bound_center[i]), bound_radius[i] + max_bound + gap, [&](uint32_t o) {
+            auto pairWith = [&](uint32_t o) {
                 if (o == i || zlo[o] > zhi[i]) return;  // no sphere of o lies below one of i
                 const float dx = bound_center[i].x - bound_center[o].x, dy = bound_center[i].y - bound_center[o].y;
                 const float far = bound_radius[i] + bound_radius[o] + gap;
@@ -297,7 +296,8 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
                     }
                 }
                 if (best < wanted) mine.push_back({o, best});
-            });
+            };
+            if (wanted > 0.0f) columns.forEachNear(glm::vec2(bound_center[i]), bound_radius[i] + max_bound + gap, pairWith);
             // Nothing to land on within max_drop where everything still is: the instance is HELD (a
             // stone of a corbelled roof, wedged between its neighbours), never dropped into the open.
             // It moves down with the wall that holds it: as far as the least of its neighbours beside
