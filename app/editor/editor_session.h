@@ -141,6 +141,9 @@ private:
     bool strandsSettled() const;  // the strands on screen are the document's systems'
     // An edit made this frame: its strands shown in this frame if they are grown within `budget`.
     void showFreshStrands(std::chrono::milliseconds budget);
+    // The document's systems submitted when an edit moved their generation (the worker made with the
+    // first system, a cancel request taken); whether they were.
+    bool submitStrands();
     // The Particles window's Cancel: the growth in progress stops and the edit it grows is undone, so
     // the strands on screen are the document's again (only when Ctrl+Z would undo exactly that edit;
     // false when it did nothing).

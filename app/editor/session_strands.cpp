@@ -29,20 +29,26 @@ void EditorSession::startStrands() {
     live_strands->submit(d.particles(), d.particlesGeneration());
 }
 
-void EditorSession::syncStrands() {
+bool EditorSession::submitStrands() {
     // A document without systems gets its worker with the first one (New system).
     if (scene && !live_strands && !scene->doc->particles()->empty())
         live_strands = std::make_unique<LiveStrands>(doc_options.threads);
+    if (!scene || !live_strands) return false;
+    Document& d = *scene->doc;
+    if (std::exchange(particles_panel.cancel_requested, false)) cancelStrands();
+    if (d.particlesGeneration() == strands_submitted) return false;
+    strands_submitted = d.particlesGeneration();
+    live_strands->submit(d.particles(), strands_submitted);
+    return true;
+}
+
+void EditorSession::syncStrands() {
+    submitStrands();
     if (!scene || !live_strands) {
         particles_panel.growing = false;
         return;
     }
     Document& d = *scene->doc;
-    if (std::exchange(particles_panel.cancel_requested, false)) cancelStrands();
-    if (d.particlesGeneration() != strands_submitted) {
-        strands_submitted = d.particlesGeneration();
-        live_strands->submit(d.particles(), strands_submitted);
-    }
     LiveStrandsResult r;
     // A cancelled growth's edit was undone (cancelStrands): its strands never show.
     if (live_strands->poll(&r) && !r.cancelled) {
@@ -70,9 +76,8 @@ void EditorSession::syncStrands() {
 }
 
 void EditorSession::showFreshStrands(std::chrono::milliseconds budget) {
-    if (!scene || scene->doc->particlesGeneration() == strands_submitted) return;
-    syncStrands();  // submits this frame's edit
-    if (live_strands && live_strands->waitForResult(budget)) syncStrands();
+    if (!scene || !submitStrands()) return;
+    if (live_strands->waitForResult(budget)) syncStrands();
 }
 
 bool EditorSession::cancelStrands() {

@@ -300,17 +300,22 @@ StaticLodMesh authoredStaticLod(const TriangleMesh& mesh, const std::vector<Mesh
 }
 
 std::vector<SunCaster> sunCasters(const std::vector<MeshInstances>* meshes) {
-    static_assert(sizeof(InstanceTransform) == 8 * sizeof(float), "instances are hashed as bytes: no padding");
+    std::vector<StaticEntryKey> keys;
+    if (meshes)
+        for (const MeshInstances& entry : *meshes)
+            if (entry.mesh && !entry.mesh->indices.empty()) keys.push_back(staticEntryKey(entry));
+    return sunCasters(keys);
+}
+
+std::vector<SunCaster> sunCasters(const std::vector<StaticEntryKey>& keys) {
     std::vector<SunCaster> out;
-    if (!meshes) return out;
-    for (const MeshInstances& entry : *meshes)
-        if (entry.mesh && !entry.mesh->indices.empty() && castsSunShadow(entry))
-            out.push_back({entry.mesh, entry.lod_levels,
-                           hashBytes(entry.instances.data(), entry.instances.size() * sizeof(InstanceTransform))});
+    for (const StaticEntryKey& key : keys)
+        if (!key.ground_layer) out.push_back({key.mesh, key.lod_levels, key.instances_hash});
     return out;
 }
 
 StaticEntryKey staticEntryKey(const MeshInstances& entry) {
+    static_assert(sizeof(InstanceTransform) == 8 * sizeof(float), "instances are hashed as bytes: no padding");
     return {entry.mesh, entry.lod_levels, entry.instances.size(),
             hashBytes(entry.instances.data(), entry.instances.size() * sizeof(InstanceTransform)),
             entry.material ? *entry.material : SurfaceMaterial{}, entry.ground_layer};

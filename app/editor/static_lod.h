@@ -147,6 +147,9 @@ struct StaticEntryKey {
     bool operator==(const StaticEntryKey&) const = default;
 };
 StaticEntryKey staticEntryKey(const MeshInstances& entry);
+// The casters among drawn entries' keys (castsSunShadow: not a ground layer), in their order: what the
+// renderer derives from the keys it makes anyway, so a swap hashes each entry's instances once.
+std::vector<SunCaster> sunCasters(const std::vector<StaticEntryKey>& keys);
 
 // The level to draw a piece at, -1 for none: with the piece's object-space errors scaled by `scale` (the
 // instances' largest), the coarsest level whose error covers less than kStaticLodErrorPx at `distance_m`;

@@ -371,9 +371,15 @@ Renderer::StaticBuffers Renderer::uploadStaticEntry(const MeshInstances& entry, 
 }
 
 void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
+    std::vector<const MeshInstances*> entries;
+    if (meshes)
+        for (const MeshInstances& entry : *meshes)
+            if (entry.mesh && !entry.mesh->indices.empty()) entries.push_back(&entry);
+    std::vector<StaticEntryKey> keys(entries.size());
+    for (size_t e = 0; e < entries.size(); ++e) keys[e] = staticEntryKey(*entries[e]);
     // The sun's map is drawn again only when what casts into it changed: a footprint replaces the terrain's
     // snow, which casts nothing (castsSunShadow), and redrawing the map is a third of a winter frame.
-    std::vector<SunCaster> casters = sunCasters(meshes);
+    std::vector<SunCaster> casters = sunCasters(keys);
     if (casters != static_casters_ || shadowRedrawnOnEverySwap()) shadow_map_dirty_ = true;
     static_casters_ = std::move(casters);
     std::vector<StaticBuffers> old = std::move(statics_);
@@ -381,16 +387,11 @@ void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
     stats_.static_entries_uploaded = stats_.static_entries_kept = 0;
     const auto t0 = std::chrono::steady_clock::now();
     auto t1 = t0;
-    if (meshes) {
-        std::vector<const MeshInstances*> entries;
-        for (const MeshInstances& entry : *meshes)
-            if (entry.mesh && !entry.mesh->indices.empty()) entries.push_back(&entry);
+    if (!entries.empty()) {
         // An entry whose key the previous set had keeps its buffers.
-        std::vector<StaticEntryKey> keys(entries.size());
         std::vector<long> reuse(entries.size(), -1);
         std::vector<bool> taken(old.size(), false);  // each old one serves one new entry
         for (size_t e = 0; e < entries.size(); ++e) {
-            keys[e] = staticEntryKey(*entries[e]);
             if (staticsReuploadedOnEverySwap()) continue;
             for (size_t k = 0; k < old.size() && reuse[e] < 0; ++k)
                 if (!taken[k] && old[k].key == keys[e]) {
