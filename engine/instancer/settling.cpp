@@ -65,6 +65,7 @@ struct Window {
     std::vector<float> radius;
     std::vector<uint32_t> owner;
     std::vector<float> instance_max_radius;  // per instance: its largest sphere
+    std::vector<glm::vec3> origin;           // per instance: unsettled, world
     float max_radius = 0.0f;
 };
 
@@ -135,6 +136,7 @@ void addInstance(const SettleInput& in, uint64_t tile_key, uint32_t j, Candidate
     }
     w->max_radius = std::max(w->max_radius, own.largest);
     w->instance_max_radius.push_back(own.largest);
+    w->origin.push_back(origin);
 }
 
 // Room for `instances` instances of `spheres` spheres in all (a window's arrays hold millions of spheres:
@@ -143,6 +145,7 @@ void reserveWindow(size_t instances, size_t spheres, Window* w) {
     w->id.reserve(instances);
     w->sphere_begin.reserve(instances + 1);
     w->instance_max_radius.reserve(instances);
+    w->origin.reserve(instances);
     w->center.reserve(spheres);
     w->radius.reserve(spheres);
     w->owner.reserve(spheres);
@@ -178,6 +181,22 @@ float supportTop(const RestSupport& support, glm::vec3 center, float radius) {
 
 float gapOf(const SettleInput& in) { return std::max(0.0f, in.tile->settings.delta_m); }
 
+// How far apart two instances' origins can be and still act on each other in one pass: twice the largest
+// distance from a candidate's origin to the far side of one of its spheres, plus the gap. Every relation a
+// pass reads (a sphere pair, a held instance's neighbour beside it) lies within it, so the update windows
+// and region halos, which are this reach per pass, stay exact.
+float passReachMetres(const SettleInput& in) {
+    float bound = 0.0f;
+    const CandidateSet& c = in.tile->candidates;
+    for (uint32_t t = 0; t < c.typeCount(); ++t) {
+        float scale = 0.0f;
+        for (uint32_t j = c.type_begin[t]; j < c.type_begin[t + 1]; ++j) scale = std::max(scale, c.scale[j]);
+        const DetailModel& m = *in.models[t];
+        for (const Sphere& s : m.spheres) bound = std::max(bound, scale * (glm::length(s.center) + s.radius));
+    }
+    return 2.0f * bound + gapOf(in);
+}
+
 // What a window's passes read and record besides computing drops. fixed (optional): per instance, 1
 // where its drops are given rather than computed (the ring an update reads from a history);
 // given[k][i] its drops after pass k + 1, for every pass, the last included. record (optional):
@@ -198,6 +217,7 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
     auto isFixed = [&](size_t i) { return io.fixed && (*io.fixed)[i] != 0; };
     const float gap = gapOf(in);
     const float max_drop = in.settings.max_drop_m;
+    const float pass_reach = passReachMetres(in);
     // Per instance: a bounding sphere and the height range of its sphere centres (broad phase).
     std::vector<glm::vec3> bound_center(n);
     std::vector<float> bound_radius(n), zlo(n), zhi(n);
@@ -311,7 +331,14 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
                     if (o == i || bound_center[o].z > bound_center[i].z) return;
                     const float reach = bound_radius[i] + bound_radius[o] + gap;
                     const glm::vec3 d = bound_center[i] - bound_center[o];
-                    if (glm::dot(d, d) < reach * reach) beside[i].push_back(o);
+                    if (!(glm::dot(d, d) < reach * reach)) return;
+                    // Boxes around rotated sphere sets can touch with their origins up to ~2.4 bounds apart
+                    // (each box's centre off its origin): beyond one pass reach a neighbour would lie outside
+                    // the halo an update reads, so it does not hold the instance.
+                    const glm::vec3 o_d = w.origin[i] - w.origin[o];
+                    if (glm::dot(glm::vec2(o_d), glm::vec2(o_d)) < pass_reach * pass_reach &&
+                        std::abs(o_d.z) < pass_reach + max_drop)
+                        beside[i].push_back(o);
                 });
                 if (beside[i].empty()) bound[i] = 0.0f;
             }
@@ -352,16 +379,8 @@ std::vector<uint16_t> settleWindow(const SettleInput& in, const Window& w, int t
 
 // Halo of one pass, in tiles: horizontally the pair reach, vertically the reach plus the largest drop.
 glm::ivec3 passHaloTiles(const SettleInput& in) {
-    float bound = 0.0f;
-    const CandidateSet& c = in.tile->candidates;
-    for (uint32_t t = 0; t < c.typeCount(); ++t) {
-        float scale = 0.0f;
-        for (uint32_t j = c.type_begin[t]; j < c.type_begin[t + 1]; ++j) scale = std::max(scale, c.scale[j]);
-        const DetailModel& m = *in.models[t];
-        for (const Sphere& s : m.spheres) bound = std::max(bound, scale * (glm::length(s.center) + s.radius));
-    }
     const float s = in.tile->settings.tile_size_m;
-    const float reach = 2.0f * bound + gapOf(in);
+    const float reach = passReachMetres(in);
     const int xy = int(std::ceil(reach / s));
     const int z = int(std::ceil((reach + in.settings.max_drop_m) / s));
     return glm::ivec3(xy, xy, z);

@@ -15,8 +15,9 @@
 //    such pair, support farther) is HELD (a corbelled roof's stones are held by their neighbours; a
 //    vertical fall would drop them into the room): it moves down with the wall that holds it,
 //        drop_k(A) = min(max_drop, min over B beside A of drop_{k-1}(B)),
-//    B beside A when their bounding spheres (around the box of each one's spheres) come within the gap
-//    and B's bounding centre is not higher than A's; with nothing beside it its drop stays 0. Each pass
+//    B beside A when their bounding spheres (around the box of each one's spheres) come within the gap,
+//    B's bounding centre is not higher than A's, and their origins lie within one pass reach (below); with
+//    nothing beside it its drop stays 0. Each pass
 //    reads only the previous one, so the result is the same for any thread count and any order; passes
 //    stop after `passes` or when nothing moves.
 //  - No two instances end up closer than they were allowed to be: in every pair the upper sphere stops
@@ -24,9 +25,11 @@
 //    instance falls at most max_drop, and all its pairs lie farther below it than that). Drops only
 //    grow from pass to pass, so a pile compacts from the bottom up by one layer per pass.
 //  - Locality: drop_k(A) depends on instances within `reach` horizontally and within max_drop + reach
-//    vertically of A (reach = twice the largest bounding radius + gap), so after K passes on the instances
-//    within K reach of A. A window that far around a changed region gives the exact answer inside it:
-//    that is how edits (settleUpdate) and region jobs (settleHaloMetres) stay equal to the whole.
+//    vertically of A (reach = twice the largest distance from a candidate's origin to the far side of one
+//    of its spheres, + gap; a held instance's neighbours beside it are limited to it), so after K passes
+//    on the instances within K reach of A. A window that far around a changed region gives the exact
+//    answer inside it: that is how edits (settleUpdate) and region jobs (settleHaloMetres) stay equal to
+//    the whole.
 #pragma once
 
 #include <cstdint>

@@ -8,6 +8,8 @@
 #include <map>
 #include <random>
 
+#include <glm/gtc/constants.hpp>
+
 #include "analysis/placed_instances.h"
 #include "analysis/rest_metrics.h"
 #include "instancer/settling.h"
@@ -115,11 +117,24 @@ std::vector<float> bruteForceDrops(const SettleInput& in, const std::vector<test
                 }
         if (!any) limit[i] = -1.0f;
     }
-    // A held instance follows the instances beside it: bounding spheres within the gap, centre not higher.
+    // A held instance follows the instances beside it: bounding spheres within the gap, centre not higher,
+    // origins within one pass reach (twice the farthest any candidate's sphere reaches from its origin, + gap).
+    float bound = 0.0f;
+    for (uint32_t j = 0; j < in.tile->candidates.position.size(); ++j)
+        for (const Sphere& s : in.models[in.tile->candidates.type[j]]->spheres)
+            bound = std::max(bound, in.tile->candidates.scale[j] * (glm::length(s.center) + s.radius));
+    const float pass_reach = 2.0f * bound + gap;
+    auto originOf = [&](size_t i) {
+        return tileOrigin(unpackTile(items[i].tile), in.tile->settings.tile_size_m) + in.tile->candidates.position[items[i].j];
+    };
     std::vector<std::vector<size_t>> beside(n);
     for (size_t i = 0; i < n; ++i)
-        for (size_t o = 0; o < n && limit[i] < 0.0f; ++o)
-            if (o != i && bc[o].z <= bc[i].z && glm::length(bc[i] - bc[o]) < br[i] + br[o] + gap) beside[i].push_back(o);
+        for (size_t o = 0; o < n && limit[i] < 0.0f; ++o) {
+            const glm::vec3 od = originOf(i) - originOf(o);
+            const bool within = glm::length(glm::vec2(od)) < pass_reach && std::abs(od.z) < pass_reach + in.settings.max_drop_m;
+            if (o != i && bc[o].z <= bc[i].z && glm::length(bc[i] - bc[o]) < br[i] + br[o] + gap && within)
+                beside[i].push_back(o);
+        }
     std::vector<float> drop(n, 0.0f), next(n);
     for (int pass = 0; pass < in.settings.passes; ++pass) {
         for (size_t i = 0; i < n; ++i) {
@@ -180,6 +195,38 @@ TEST(Settling, AHeldStoneMovesDownWithTheWallBesideIt) {
     EXPECT_EQ(d[3], 0u);                           // held, nothing beside it
     const std::vector<float> reference = bruteForceDrops(in, test::instancesOf(store));
     for (size_t i = 0; i < 4; ++i) EXPECT_EQ(dropMetres(d[i]), reference[i]) << "stone " << i;
+}
+
+// Boxes around rotated sphere sets touch while their origins lie farther apart than one pass reach: such a
+// neighbour does not hold a stone (an update reads only one pass halo around what it recomputes).
+TEST(Settling, AHeldStoneFollowsOnlyNeighboursWithinOnePassReach) {
+    // One sphere of 4 cm, 10 cm off the origin: a pass reaches 2 x 14 cm. Bounding boxes of two stones
+    // touch within 2 x 6.9 cm of their centres.
+    const DetailModel stone = test::sphereModel("stone", {{glm::vec3(0.10f, 0.0f, 0.0f), 0.04f}});
+    GhostTile tile = handTile({{0.05f, 0.25f, 0.10f},    // 0: its sphere at (0.15, 0.25), 6 cm above the ground
+                               {0.34f, 0.25f, 0.20f},    // 1: turned half round, its sphere at (0.24, 0.25)
+                               {0.05f, 0.34f, 0.20f}});  // 2: its sphere at (0.15, 0.34)
+    tile.candidates.rotation[1] = glm::angleAxis(glm::pi<float>(), glm::vec3(0.0f, 0.0f, 1.0f));
+    InstanceStore store;
+    store.appendTile(packTile(glm::ivec3(0)), std::vector<uint32_t>{0, 1, 2});
+    SettleInput in;
+    in.tile = &tile;
+    in.models = {&stone};
+    in.support.ground_z = 0.0f;
+    in.settings = {.enabled = true, .passes = 4, .max_drop_m = 0.15f};
+    SettledDrops drops;
+    settleAll(in, store, 1, &drops);
+    const std::span<const uint16_t> d = drops.tile(packTile(glm::ivec3(0)));
+    ASSERT_EQ(d.size(), 3u);
+    EXPECT_NEAR(dropMetres(d[0]), 0.06f, 2e-4f);  // onto the ground
+    // Stones 1 and 2 sit 10 cm higher, 9 cm to the side of stone 0 (no sphere pair), 16 cm over the ground:
+    // held. Stone 2's origin is 13 cm from stone 0's: it moves down with it.
+    EXPECT_EQ(d[2], d[0]);
+    // Stone 1's box touches stone 0's and stone 2's, but its origin is 29 and 30 cm from theirs, past the
+    // reach: nothing beside it holds it, and it stays where it was.
+    EXPECT_EQ(d[1], 0u);
+    const std::vector<float> reference = bruteForceDrops(in, test::instancesOf(store));
+    for (size_t i = 0; i < 3; ++i) EXPECT_EQ(dropMetres(d[i]), reference[i]) << "stone " << i;
 }
 
 struct PileScene {
