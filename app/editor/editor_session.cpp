@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <thread>
 
 #include "core/atomic_file.h"
 #include "core/hash.h"
@@ -119,9 +118,7 @@ void EditorSession::showFreshResults() {
 
 void EditorSession::waitForStampUpdate(std::chrono::milliseconds budget) {
     if (!scene || pending_stamps.size() <= stamps_before_frame) return;
-    const auto until = Clock::now() + budget;
-    while (scene->doc->live().pending() && Clock::now() < until)
-        std::this_thread::sleep_for(std::chrono::microseconds(250));
+    scene->doc->live().waitIdleFor(budget);
 }
 
 void EditorSession::updateStatus() {

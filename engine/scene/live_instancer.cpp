@@ -118,6 +118,11 @@ void LiveInstancer::waitIdle() {
     idle_.wait(lock, [&] { return !pending_.valid && !running_; });
 }
 
+bool LiveInstancer::waitIdleFor(std::chrono::milliseconds timeout) {
+    std::unique_lock<std::mutex> lock(mutex_);
+    return idle_.wait_for(lock, timeout, [&] { return !pending_.valid && !running_; });
+}
+
 uint64_t LiveInstancer::generation() const {
     std::lock_guard<std::mutex> lock(mutex_);
     return generation_;

@@ -24,6 +24,7 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -89,6 +90,9 @@ public:
     bool pending() const;
     // Blocks until nothing is queued or running (tests, scripted runs, closing).
     void waitIdle();
+    // The same for at most `timeout`: true when nothing is queued or running (a frame that waits for its
+    // own edit's result within a budget, woken when the result is published).
+    bool waitIdleFor(std::chrono::milliseconds timeout);
     uint64_t generation() const;  // of the latest submission
     // The latest full run's progress in [0, 1] (instantiating 90 %, settling the rest): 0 when it starts,
     // 1 once it is done (a UI's progress bar while a big scene's first result is computed).

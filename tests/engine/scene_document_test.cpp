@@ -568,6 +568,27 @@ TEST(LiveInstancer, PollNeverBlocksWhileTheWorkerRuns) {
     settled(*doc);
 }
 
+// The frame's bounded wait for its own edit: woken by the result, or back at the end of its budget with
+// the work still going (the result comes by a later poll).
+TEST(LiveInstancer, ATimedWaitReturnsOnceTheResultIsPublished) {
+    TempDir dir;
+    auto doc = openDoc(writeProject(dir.path() / "scene.json", projectJson(modelsDir())), optionsFor(dir));
+    ASSERT_TRUE(doc);
+    doc->live().waitIdle();
+    EXPECT_TRUE(doc->live().waitIdleFor(std::chrono::milliseconds(0))) << "idle: nothing to wait for";
+    LiveResult r;
+    doc->live().poll(&r);
+    std::string error;
+    ASSERT_TRUE(doc->setSeed(7, &error)) << error;
+    const uint64_t gen = doc->live().generation();
+    // Not a time limit on the run: a bound far past any run (a missed wake-up would hold the test there).
+    ASSERT_TRUE(doc->live().waitIdleFor(std::chrono::minutes(10)));
+    EXPECT_FALSE(doc->live().pending());
+    ASSERT_TRUE(doc->live().poll(&r));
+    EXPECT_EQ(r.generation, gen);
+    EXPECT_TRUE(*r.store == fullRun(*doc));
+}
+
 // ---- files -------------------------------------------------------------------------------------------------
 
 TEST(Document, SaveAsAndReopenGiveTheSameInstancesWithPathsRebased) {
