@@ -310,7 +310,7 @@ std::vector<SunCaster> sunCasters(const std::vector<MeshInstances>* meshes) {
 std::vector<SunCaster> sunCasters(const std::vector<StaticEntryKey>& keys) {
     std::vector<SunCaster> out;
     for (const StaticEntryKey& key : keys)
-        if (!key.ground_layer) out.push_back({key.mesh, key.lod_levels, key.instances_hash});
+        if (castsSunShadow(key.ground_layer)) out.push_back({key.mesh, key.lod_levels, key.instances_hash});
     return out;
 }
 

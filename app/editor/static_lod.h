@@ -119,7 +119,8 @@ private:
 // shades already; and it is the biggest static mesh of a winter scene, redrawn whenever an edit swaps
 // meshes (about a third of such a frame on llvmpipe). The objects' snow casts: a snowed roof's shadow is
 // the roof's and its snow's.
-inline bool castsSunShadow(const MeshInstances& mesh) { return !mesh.ground_layer; }
+inline bool castsSunShadow(bool ground_layer) { return !ground_layer; }
+inline bool castsSunShadow(const MeshInstances& mesh) { return castsSunShadow(mesh.ground_layer); }
 
 // One static mesh that casts into the sun's map, as far as the map can tell: the mesh and its levels (held,
 // so an address names one mesh while it is kept) and a hash of its instances. Two lists of them equal:
