@@ -17,9 +17,8 @@
 //        drop_k(A) = min(max_drop, min over B beside A of drop_{k-1}(B)),
 //    B beside A when their bounding spheres (around the box of each one's spheres) come within the gap,
 //    B's bounding centre is not higher than A's, and their origins lie within one pass reach (below); with
-//    nothing beside it its drop stays 0. Each pass
-//    reads only the previous one, so the result is the same for any thread count and any order; passes
-//    stop after `passes` or when nothing moves.
+//    nothing beside it its drop stays 0. Each pass reads only the previous one, so the result is the same
+//    for any thread count and any order; passes stop after `passes` or when nothing moves.
 //  - No two instances end up closer than they were allowed to be: in every pair the upper sphere stops
 //    above where the lower one was in the previous pass, and the lower one only goes down (a held
 //    instance falls at most max_drop, and all its pairs lie farther below it than that). Drops only
