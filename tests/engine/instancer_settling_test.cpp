@@ -229,6 +229,52 @@ TEST(Settling, AHeldStoneFollowsOnlyNeighboursWithinOnePassReach) {
     for (size_t i = 0; i < 3; ++i) EXPECT_EQ(dropMetres(d[i]), reference[i]) << "stone " << i;
 }
 
+// Round stones' boxes touch from 1.7 times the pair reach apart (a ball's box has half-diagonal 1.7 r): a
+// row of held stones, each following the one before it, would carry a drop farther in K passes than the K pass
+// halos an update recomputes. Taking the one stone that fell away must leave the row as settling the new
+// store in full does; before the origins were required within one pass reach, the stones beyond the
+// window kept the drop they had followed.
+TEST(Settling, AnUpdateAgreesWithTheWholeAlongARowOfHeldStones) {
+    const DetailModel ball = test::sphereModel("ball", {{glm::vec3(0.0f), 0.04f}});
+    // Tiles of 10 cm; a pass reaches 8 cm, one tile. Stone 0 stands 8 cm over the ground; stones 1-18 in a
+    // row 12 cm apart (no sphere pair), each a millimetre higher than the last from 12 cm over the ground:
+    // held, each beside only the one before it.
+    std::vector<glm::vec3> local;
+    std::map<uint64_t, std::vector<uint32_t>> tiles;
+    uint64_t first_tile = 0;
+    for (uint32_t k = 0; k < 19; ++k) {
+        const glm::vec3 p(0.05f + 0.12f * float(k), 0.05f, k == 0 ? 0.12f : 0.16f + 0.001f * float(k));
+        const glm::ivec3 t(glm::floor(p / 0.1f));
+        local.push_back(p - 0.1f * glm::vec3(t));
+        tiles[packTile(t)].push_back(k);
+        if (k == 0) first_tile = packTile(t);
+    }
+    GhostTile tile = handTile(local);
+    tile.settings.tile_size_m = 0.1f;
+    InstanceStore row, without_first;
+    for (const auto& [key, ids] : tiles) {
+        row.appendTile(key, ids);
+        if (key != first_tile) without_first.appendTile(key, ids);
+    }
+    SettleInput in;
+    in.tile = &tile;
+    in.models = {&ball};
+    in.support.ground_z = 0.0f;
+    in.settings = {.enabled = true, .passes = 16, .max_drop_m = 0.10f};
+    SettledDrops drops;
+    settleAll(in, row, 1, &drops);
+    EXPECT_NEAR(dropMetres(drops.tile(first_tile)[0]), 0.08f, 2e-4f);  // onto the ground
+    const std::vector<uint64_t> changed = {first_tile};
+    settleUpdate(in, without_first, changed, 1, &drops, nullptr);
+    SettledDrops full;
+    settleAll(in, without_first, 1, &full);
+    EXPECT_TRUE(drops == full);
+    for (const auto& [key, ids] : tiles) {
+        if (key == first_tile) continue;
+        EXPECT_EQ(full.tile(key)[0], 0u) << "stone " << ids.front() << ": held, nothing beside it";
+    }
+}
+
 struct PileScene {
     InstancerFixture fx{-0.002f, 220, 60};
     SettleInput settle;
