@@ -299,11 +299,17 @@ StaticLodMesh authoredStaticLod(const TriangleMesh& mesh, const std::vector<Mesh
     return out;
 }
 
-std::vector<SunCaster> sunCasters(const std::vector<MeshInstances>* meshes) {
-    std::vector<StaticEntryKey> keys;
+std::vector<const MeshInstances*> drawnStaticEntries(const std::vector<MeshInstances>* meshes) {
+    std::vector<const MeshInstances*> out;
     if (meshes)
         for (const MeshInstances& entry : *meshes)
-            if (entry.mesh && !entry.mesh->indices.empty()) keys.push_back(staticEntryKey(entry));
+            if (entry.mesh && !entry.mesh->indices.empty()) out.push_back(&entry);
+    return out;
+}
+
+std::vector<SunCaster> sunCasters(const std::vector<MeshInstances>* meshes) {
+    std::vector<StaticEntryKey> keys;
+    for (const MeshInstances* entry : drawnStaticEntries(meshes)) keys.push_back(staticEntryKey(*entry));
     return sunCasters(keys);
 }
 

@@ -131,7 +131,9 @@ struct SunCaster {
     uint64_t instances_hash = 0;
     bool operator==(const SunCaster&) const = default;
 };
-// The casters among `meshes` (null: none), in their order; entries without triangles are not drawn.
+// The entries of `meshes` (null: none) that are drawn, in their order: those with triangles.
+std::vector<const MeshInstances*> drawnStaticEntries(const std::vector<MeshInstances>* meshes);
+// The casters among `meshes`' drawn entries, in their order.
 std::vector<SunCaster> sunCasters(const std::vector<MeshInstances>* meshes);
 
 // Everything a static entry's GPU buffers and draw state are made of: the mesh and its authored levels

@@ -35,6 +35,16 @@ GhostTile handTile(const std::vector<glm::vec3>& positions) {
     return t;
 }
 
+// Settling a one-type hand tile on the ground plane z = 0 (the input keeps pointers to tile and model).
+SettleInput onGroundPlane(const GhostTile& tile, const DetailModel& model, int passes, float max_drop_m) {
+    SettleInput in;
+    in.tile = &tile;
+    in.models = {&model};
+    in.support.ground_z = 0.0f;
+    in.settings = {.enabled = true, .passes = passes, .max_drop_m = max_drop_m};
+    return in;
+}
+
 TEST(Settling, AStackComesToRestOnTheGroundBallByBall) {
     const DetailModel ball = test::sphereModel("ball", {{glm::vec3(0.0f), 0.05f}});
     // In tile (0,0,0): a ball 15 cm above the ground, one 5 cm above it, and one to the side in the air.
@@ -42,11 +52,7 @@ TEST(Settling, AStackComesToRestOnTheGroundBallByBall) {
     InstanceStore store;
     const std::vector<uint32_t> ids = {0, 1, 2};
     store.appendTile(packTile(glm::ivec3(0)), ids);
-    SettleInput in;
-    in.tile = &tile;
-    in.models = {&ball};
-    in.support.ground_z = 0.0f;
-    in.settings = {.enabled = true, .passes = 8, .max_drop_m = 1.0f};
+    SettleInput in = onGroundPlane(tile, ball, 8, 1.0f);
     std::string error;
     ASSERT_TRUE(validateSettleInput(in, &error)) << error;
     SettledDrops drops;
@@ -180,11 +186,7 @@ TEST(Settling, AHeldStoneMovesDownWithTheWallBesideIt) {
                                      {0.25f, 0.45f, 0.40f}});  // 3: alone in the air
     InstanceStore store;
     store.appendTile(packTile(glm::ivec3(0)), std::vector<uint32_t>{0, 1, 2, 3});
-    SettleInput in;
-    in.tile = &tile;
-    in.models = {&stone};
-    in.support.ground_z = 0.0f;
-    in.settings = {.enabled = true, .passes = 8, .max_drop_m = 0.15f};
+    SettleInput in = onGroundPlane(tile, stone, 8, 0.15f);
     SettledDrops drops;
     settleAll(in, store, 1, &drops);
     const std::span<const uint16_t> d = drops.tile(packTile(glm::ivec3(0)));
@@ -209,11 +211,7 @@ TEST(Settling, AHeldStoneFollowsOnlyNeighboursWithinOnePassReach) {
     tile.candidates.rotation[1] = glm::angleAxis(glm::pi<float>(), glm::vec3(0.0f, 0.0f, 1.0f));
     InstanceStore store;
     store.appendTile(packTile(glm::ivec3(0)), std::vector<uint32_t>{0, 1, 2});
-    SettleInput in;
-    in.tile = &tile;
-    in.models = {&stone};
-    in.support.ground_z = 0.0f;
-    in.settings = {.enabled = true, .passes = 4, .max_drop_m = 0.15f};
+    SettleInput in = onGroundPlane(tile, stone, 4, 0.15f);
     SettledDrops drops;
     settleAll(in, store, 1, &drops);
     const std::span<const uint16_t> d = drops.tile(packTile(glm::ivec3(0)));
@@ -256,11 +254,7 @@ TEST(Settling, AnUpdateAgreesWithTheWholeAlongARowOfHeldStones) {
         row.appendTile(key, ids);
         if (key != first_tile) without_first.appendTile(key, ids);
     }
-    SettleInput in;
-    in.tile = &tile;
-    in.models = {&ball};
-    in.support.ground_z = 0.0f;
-    in.settings = {.enabled = true, .passes = 16, .max_drop_m = 0.10f};
+    SettleInput in = onGroundPlane(tile, ball, 16, 0.10f);
     SettledDrops drops;
     settleAll(in, row, 1, &drops);
     EXPECT_NEAR(dropMetres(drops.tile(first_tile)[0]), 0.08f, 2e-4f);  // onto the ground

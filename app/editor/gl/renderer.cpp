@@ -371,10 +371,7 @@ Renderer::StaticBuffers Renderer::uploadStaticEntry(const MeshInstances& entry, 
 }
 
 void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
-    std::vector<const MeshInstances*> entries;
-    if (meshes)
-        for (const MeshInstances& entry : *meshes)
-            if (entry.mesh && !entry.mesh->indices.empty()) entries.push_back(&entry);
+    const std::vector<const MeshInstances*> entries = drawnStaticEntries(meshes);
     std::vector<StaticEntryKey> keys(entries.size());
     for (size_t e = 0; e < entries.size(); ++e) keys[e] = staticEntryKey(*entries[e]);
     // The sun's map is drawn again only when what casts into it changed: a footprint replaces the terrain's
