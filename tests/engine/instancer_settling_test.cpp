@@ -45,6 +45,15 @@ SettleInput onGroundPlane(const GhostTile& tile, const DetailModel& model, int p
     return in;
 }
 
+// Settles the instances `ids` of tile (0, 0, 0) alone, one thread; *store receives them.
+std::vector<uint16_t> settleTileZero(const SettleInput& in, const std::vector<uint32_t>& ids, InstanceStore* store) {
+    store->appendTile(packTile(glm::ivec3(0)), ids);
+    SettledDrops drops;
+    settleAll(in, *store, 1, &drops);
+    const std::span<const uint16_t> d = drops.tile(packTile(glm::ivec3(0)));
+    return {d.begin(), d.end()};
+}
+
 TEST(Settling, AStackComesToRestOnTheGroundBallByBall) {
     const DetailModel ball = test::sphereModel("ball", {{glm::vec3(0.0f), 0.05f}});
     // In tile (0,0,0): a ball 15 cm above the ground, one 5 cm above it, and one to the side in the air.
@@ -184,12 +193,9 @@ TEST(Settling, AHeldStoneMovesDownWithTheWallBesideIt) {
                                      {0.25f, 0.30f, 0.20f},    // 1: beside 0 (10 cm along y: no pair), 17 cm up
                                      {0.25f, 0.30f, 0.27f},    // 2: resting 1 cm above 1
                                      {0.25f, 0.45f, 0.40f}});  // 3: alone in the air
-    InstanceStore store;
-    store.appendTile(packTile(glm::ivec3(0)), std::vector<uint32_t>{0, 1, 2, 3});
     SettleInput in = onGroundPlane(tile, stone, 8, 0.15f);
-    SettledDrops drops;
-    settleAll(in, store, 1, &drops);
-    const std::span<const uint16_t> d = drops.tile(packTile(glm::ivec3(0)));
+    InstanceStore store;
+    const std::vector<uint16_t> d = settleTileZero(in, {0, 1, 2, 3}, &store);
     ASSERT_EQ(d.size(), 4u);
     EXPECT_NEAR(dropMetres(d[0]), 0.10f, 2e-4f);  // onto the ground
     EXPECT_EQ(d[1], d[0]);                         // held, in step with the stone beside it
@@ -209,12 +215,9 @@ TEST(Settling, AHeldStoneFollowsOnlyNeighboursWithinOnePassReach) {
                                {0.34f, 0.25f, 0.20f},    // 1: turned half round, its sphere at (0.24, 0.25)
                                {0.05f, 0.34f, 0.20f}});  // 2: its sphere at (0.15, 0.34)
     tile.candidates.rotation[1] = glm::angleAxis(glm::pi<float>(), glm::vec3(0.0f, 0.0f, 1.0f));
-    InstanceStore store;
-    store.appendTile(packTile(glm::ivec3(0)), std::vector<uint32_t>{0, 1, 2});
     SettleInput in = onGroundPlane(tile, stone, 4, 0.15f);
-    SettledDrops drops;
-    settleAll(in, store, 1, &drops);
-    const std::span<const uint16_t> d = drops.tile(packTile(glm::ivec3(0)));
+    InstanceStore store;
+    const std::vector<uint16_t> d = settleTileZero(in, {0, 1, 2}, &store);
     ASSERT_EQ(d.size(), 3u);
     EXPECT_NEAR(dropMetres(d[0]), 0.06f, 2e-4f);  // onto the ground
     // Stones 1 and 2 sit 10 cm higher, 9 cm to the side of stone 0 (no sphere pair), 16 cm over the ground:
