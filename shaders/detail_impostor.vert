@@ -15,6 +15,10 @@
 // u_upness, u_point_scale (pixels per metre at unit depth), u_to_eye (unit, toward the camera),
 // u_lod_diameter_px, u_impostor_px (the switch, as instanced_detail.vert), plus lighting.glsl's; out
 // v_lit, the display colour.
+// Compiled with SHADOW_CASTER, the same sprites cast the sun's shadow (renderer.cpp shadowPass): u_view_proj
+// is the sun's orthographic view, u_point_scale the shadow map's texels per metre and u_to_eye the direction
+// toward the sun (the silhouette from the sun's elevation); u_eye and u_lod_diameter_px stay the camera's,
+// so exactly the instances the camera draws as sprites cast as sprites. No lighting: depth only.
 layout(location = 3) in uvec2 a_run;  // offset, stride
 
 struct CandidateFrame {
@@ -68,6 +72,11 @@ void main() {
     }
     vec3 world = vec3(tile) * u_tile_size_m + f.position_scale.xyz + rotate(f.rotation, scale * u_center) -
                  vec3(0.0, 0.0, drop);
+#ifdef SHADOW_CASTER
+    // The disc faces the sun; set one radius behind the centre, it shadows what lies beyond the object,
+    // not its neighbours in a flat layer (a disc through a leaf's centre would stand out of the layer).
+    world -= u_to_eye * (u_sprite_radius_m * scale);
+#endif
     gl_Position = u_view_proj * vec4(world, 1.0);
     float px_per_m = u_point_scale / max(gl_Position.w, 1e-4);
     float sprite_px = 2.0 * u_sprite_radius_m * scale * px_per_m;
@@ -81,7 +90,11 @@ void main() {
         return;
     }
     // The silhouette area from this elevation, in pixels.
+#ifdef SHADOW_CASTER
+    vec3 to_eye = u_to_eye;
+#else
     vec3 to_eye = u_eye - world;
+#endif
     float e = clamp(asin(clamp(abs(to_eye.z) / max(length(to_eye), 1e-6), 0.0, 1.0)) / 0.5235988, 0.0, 2.999);
     int k = int(e);
     float cover_m2 = mix(u_coverage_m2[k], u_coverage_m2[k + 1], e - float(k)) * scale * scale;
@@ -101,6 +114,9 @@ void main() {
         v_layer_mix = e - float(k);
         gl_PointSize = min(sprite_px, 255.0);
     }
+#ifdef SHADOW_CASTER
+    v_lit = vec3(0.0);
+#else
     // Lit like its faces on average, not like a flat lawn: the model's +Z (a leaf's face, a tuft's up)
     // weighted by how flat its faces are (u_upness, render_data.h), and four upright faces around it
     // (a tuft's blades, a rock's sides) for the rest; every normal turned toward the eye, as the mesh's
@@ -116,4 +132,5 @@ void main() {
     vec3 upright_lit = 0.5 * (lightSurface(albedo, dot(across, u_to_eye) < 0.0 ? -across : across, visibility) +
                               lightSurface(albedo, dot(along, u_to_eye) < 0.0 ? -along : along, visibility));
     v_lit = toDisplay(hazed(mix(upright_lit, flat_lit, u_upness), world));
+#endif
 }

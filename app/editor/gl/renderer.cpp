@@ -31,6 +31,8 @@ bool staticsReuploadedOnEverySwap() {
 }
 
 const glm::vec3 kSunDir = glm::normalize(glm::vec3(0.45f, -0.50f, 0.74f));
+// The smallest far sprite, in shadow-map texels, that is drawn into the map (Renderer::shadowPass).
+constexpr float kMinCasterTexels = 8.0f;
 
 // What the candidate SSBO holds per candidate (std430: two vec4).
 struct GpuCandidateFrame {
@@ -105,7 +107,7 @@ Renderer::~Renderer() {
     releaseStaticMeshes();
     releaseTargets();
     for (ShaderProgram* p : {&sky_, &terrain_, &detail_, &impostor_, &grid_, &marker_, &hull_, &shadow_detail_,
-                             &ambient_occlusion_, &ao_blur_, &composite_, &static_mesh_, &shadow_static_})
+                             &shadow_impostor_, &ambient_occlusion_, &ao_blur_, &composite_, &static_mesh_, &shadow_static_})
         destroyProgram(p);
     if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
     if (marker_vao_) glDeleteVertexArrays(1, &marker_vao_);
@@ -138,6 +140,12 @@ bool Renderer::init(const std::string& dir, std::string* error) {
                            "u_sprite_radius_m", "u_layer_first", "u_silhouettes", "u_sprite_extent"},
                           true),
                      &impostor_, error) ||
+        // The far sprites cast as sprites (detail_impostor.vert, SHADOW_CASTER).
+        !loadProgram(dir, "detail_impostor.vert", "impostor.frag",
+                     {"u_view_proj", "u_tile_size_m", "u_drop_unit_m", "u_center", "u_coverage_m2", "u_point_scale",
+                      "u_to_eye", "u_eye", "u_lod_diameter_px", "u_impostor_px", "u_sprite_radius_m", "u_layer_first",
+                      "u_silhouettes", "u_sprite_extent"},
+                     &shadow_impostor_, error, {"SHADOW_CASTER"}) ||
         !loadProgram(dir, "ground_grid.vert", "ground_grid.frag",
                      with({"u_view_proj", "u_grid_center", "u_grid_half_m", "u_ground_z", "u_cell_m", "u_fade_m"}, true), &grid_,
                      error) ||
@@ -177,8 +185,8 @@ bool Renderer::init(const std::string& dir, std::string* error) {
 
 void Renderer::releaseScene() {
     for (TypeBuffers& t : types_) {
-        GLuint vaos[] = {t.vao, t.impostor_vao};
-        glDeleteVertexArrays(2, vaos);
+        GLuint vaos[] = {t.vao, t.impostor_vao, t.shadow_impostor_vao};
+        glDeleteVertexArrays(3, vaos);
         GLuint buffers[] = {t.vertex_buffer, t.index_buffer, t.instance_buffer};
         glDeleteBuffers(3, buffers);
     }
@@ -281,13 +289,15 @@ void Renderer::setScene(const Bounds& extent, const TriangleMesh* terrain, const
         glVertexAttribDivisor(2, 1);
         // The impostors read the same buffer as storage, at the instances their command's run picks (a
         // far run draws one in its stride): the run is a per-instance attribute, its command's
-        // baseInstance, from the main pass's runs (a buffer that keeps its name when it grows).
-        glGenVertexArrays(1, &t.impostor_vao);
-        glBindVertexArray(t.impostor_vao);
-        glBindBuffer(GL_ARRAY_BUFFER, indirect_.runs_id);
-        glEnableVertexAttribArray(3);
-        glVertexAttribIPointer(3, 2, GL_UNSIGNED_INT, sizeof(PointRun), nullptr);
-        glVertexAttribDivisor(3, 1);
+        // baseInstance, from the pass's runs (a buffer that keeps its name when it grows).
+        for (auto [vao, runs] : {std::pair{&t.impostor_vao, indirect_.runs_id}, std::pair{&t.shadow_impostor_vao, shadow_indirect_.runs_id}}) {
+            glGenVertexArrays(1, vao);
+            glBindVertexArray(*vao);
+            glBindBuffer(GL_ARRAY_BUFFER, runs);
+            glEnableVertexAttribArray(3);
+            glVertexAttribIPointer(3, 2, GL_UNSIGNED_INT, sizeof(PointRun), nullptr);
+            glVertexAttribDivisor(3, 1);
+        }
         glBindVertexArray(0);
     }
     // The impostors' silhouettes: one R8 array, four layers (elevations) per type, mipmapped (the sprites
@@ -687,6 +697,7 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
             params.view_proj = frame.view_proj;
             params.eye = eye;
             params.pixels_per_radian = float(height) / cam.fov_y_rad;
+            params.point_scale = 1.0f / frame.texel_m;  // orthographic: texels per metre at any depth
             uploadDraws(params, caster_lod, &shadow_draws_, &shadow_indirect_);
             shadow_draws_dirty_ = false;
         }
@@ -696,6 +707,19 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
         glUniform1f(loc(shadow_detail_, "u_drop_unit_m"), tiles_->drop_unit_m);
         glUniform3fv(loc(shadow_detail_, "u_eye"), 1, glm::value_ptr(eye));
         drawMeshLods(shadow_detail_, shadow_draws_, shadow_indirect_, float(height) / cam.fov_y_rad, caster_lod, true);
+        // What the camera draws as sprites casts as sprites facing the sun: without them a hut seen from
+        // afar cast no shadow, and one seen from above only where its nearer tiles were meshes. Only types
+        // whose sprites are kMinCasterTexels across or more: the meadow's 35,000 far grass tufts (7 texels)
+        // cost llvmpipe 55 ms per redraw of the map for shadows the one-tap filter blurs away.
+        glUseProgram(shadow_impostor_.id);
+        glUniformMatrix4fv(loc(shadow_impostor_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(frame.view_proj));
+        glUniform1f(loc(shadow_impostor_, "u_tile_size_m"), tile_size_m_);
+        glUniform1f(loc(shadow_impostor_, "u_drop_unit_m"), tiles_->drop_unit_m);
+        glUniform1f(loc(shadow_impostor_, "u_point_scale"), 1.0f / frame.texel_m);
+        glUniform3fv(loc(shadow_impostor_, "u_to_eye"), 1, glm::value_ptr(kSunDir));
+        glUniform3fv(loc(shadow_impostor_, "u_eye"), 1, glm::value_ptr(eye));
+        drawImpostors(shadow_impostor_, shadow_draws_, shadow_indirect_, float(height) / cam.fov_y_rad, caster_lod, true,
+                      kMinCasterTexels * frame.texel_m);
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
     last_shadow_view_proj_ = frame.view_proj;
@@ -931,43 +955,56 @@ void Renderer::drawDetails(const OrbitCamera& cam, const glm::mat4& view, const 
     // Impostors: one point sprite per instance, straight from the instance buffer (no instancing: on
     // llvmpipe an instanced draw pays a fixed cost per instance, which tiny far objects cannot afford);
     // one multi-draw per type, a command per run of tiles.
-    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, indirect_.id);
     glUseProgram(impostor_.id);
     glUniformMatrix4fv(loc(impostor_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
     glUniform1f(loc(impostor_, "u_tile_size_m"), tile_size_m_);
     glUniform1f(loc(impostor_, "u_drop_unit_m"), tiles_ ? tiles_->drop_unit_m : 0.0f);
     glUniform1f(loc(impostor_, "u_point_scale"), pointScale(cam, height));
-    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, candidate_buffer_);
     const glm::vec3 to_eye(view[0][2], view[1][2], view[2][2]);
     glUniform3fv(loc(impostor_, "u_to_eye"), 1, glm::value_ptr(to_eye));
     setLighting(impostor_, eye, fog_density);
+    drawImpostors(impostor_, draws_, indirect_, pixels_per_radian, lod, false);
+}
+
+void Renderer::drawImpostors(const ShaderProgram& program, const IndirectDraws& draws, const IndirectBuffer& buffer,
+                             float pixels_per_radian, const LodSettings& lod, bool shadow, float min_caster_m) {
+    glBindBuffer(GL_DRAW_INDIRECT_BUFFER, buffer.id);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, candidate_buffer_);
     glActiveTexture(GL_TEXTURE0 + kSilhouetteUnit);
     glBindTexture(GL_TEXTURE_2D_ARRAY, silhouette_array_);
     glActiveTexture(GL_TEXTURE0);
-    glUniform1i(loc(impostor_, "u_silhouettes"), kSilhouetteUnit);
+    glUniform1i(loc(program, "u_silhouettes"), kSilhouetteUnit);
     glEnable(GL_PROGRAM_POINT_SIZE);
-    for (size_t i = 0; i < types_.size() && i < draws_.groups.size(); ++i) {
+    for (size_t i = 0; i < types_.size() && i < draws.groups.size(); ++i) {
         if (!types_[i].visible) continue;
         const DetailLodMesh& m = (*meshes_)[i];
-        const IndirectDraws::Group& g = draws_.groups[i][kImpostorLod];
+        const IndirectDraws::Group& g = draws.groups[i][kImpostorLod];
         if (g.count == 0) continue;
-        glUniform3fv(loc(impostor_, "u_color"), 1, glm::value_ptr(m.color));
-        glUniform1f(loc(impostor_, "u_tint_variation"), m.material.tint_variation);
-        glUniform3fv(loc(impostor_, "u_center"), 1, glm::value_ptr(m.center));
-        glUniform4fv(loc(impostor_, "u_coverage_m2"), 1, m.coverage_m2.data());
-        glUniform1f(loc(impostor_, "u_upness"), m.upness);
-        glUniform1f(loc(impostor_, "u_impostor_px"), m.impostorPx(lod));
+        const float sprite_radius_m = m.silhouettes.radius * m.silhouettes.extent;
+        if (shadow && 2.0f * sprite_radius_m * m.scale_max < min_caster_m) continue;
+        if (!shadow) {
+            glUniform3fv(loc(program, "u_color"), 1, glm::value_ptr(m.color));
+            glUniform1f(loc(program, "u_tint_variation"), m.material.tint_variation);
+            glUniform1f(loc(program, "u_upness"), m.upness);
+        }
+        glUniform3fv(loc(program, "u_center"), 1, glm::value_ptr(m.center));
+        glUniform4fv(loc(program, "u_coverage_m2"), 1, m.coverage_m2.data());
+        glUniform1f(loc(program, "u_impostor_px"), m.impostorPx(lod));
         // The sprite covers the masks' occupied square only (coverage.h extent).
-        glUniform1f(loc(impostor_, "u_sprite_radius_m"), m.silhouettes.radius * m.silhouettes.extent);
-        glUniform1f(loc(impostor_, "u_sprite_extent"), m.silhouettes.extent);
-        glUniform1i(loc(impostor_, "u_layer_first"), silhouette_array_ ? GLint(i * kCoverageElevations) : -1000000);
-        glUniform1f(loc(impostor_, "u_lod_diameter_px"), m.lodDiameterPx(pixels_per_radian));
-        glBindVertexArray(types_[i].impostor_vao);
+        glUniform1f(loc(program, "u_sprite_radius_m"), sprite_radius_m);
+        glUniform1f(loc(program, "u_sprite_extent"), m.silhouettes.extent);
+        glUniform1i(loc(program, "u_layer_first"), silhouette_array_ ? GLint(i * kCoverageElevations) : -1000000);
+        glUniform1f(loc(program, "u_lod_diameter_px"), m.lodDiameterPx(pixels_per_radian));
+        glBindVertexArray(shadow ? types_[i].shadow_impostor_vao : types_[i].impostor_vao);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 1, types_[i].instance_buffer);
         glMultiDrawArraysIndirect(
             GL_POINTS,
-            reinterpret_cast<void*>(indirect_.points_offset + uintptr_t(g.first) * sizeof(DrawArraysIndirectCommand)),
+            reinterpret_cast<void*>(buffer.points_offset + uintptr_t(g.first) * sizeof(DrawArraysIndirectCommand)),
             GLsizei(g.count), 0);
+        if (shadow) {
+            stats_.shadow_points += g.instances;
+            continue;
+        }
         ++stats_.draw_calls;
         stats_.indirect_commands += g.count;
         stats_.points += g.instances;

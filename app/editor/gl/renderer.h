@@ -55,6 +55,7 @@ namespace ug::editor::gl {
 struct RenderStats {
     uint64_t triangles = 0;   // terrain + static meshes + detail meshes (LOD 0-2) drawn this frame; not sky, grid, UI
     uint64_t shadow_triangles = 0;  // drawn again into the shadow map (static meshes + detail meshes)
+    uint64_t shadow_points = 0;     // impostor sprites drawn into the shadow map (the far instances' casters)
     uint64_t static_meshes_drawn = 0;   // static-mesh entries that passed the frustum test this frame
     uint64_t static_meshes_culled = 0;
     uint64_t points = 0;      // impostor point sprites drawn this frame (one per far instance)
@@ -133,7 +134,8 @@ public:
 
 private:
     struct TypeBuffers {
-        unsigned vao = 0, impostor_vao = 0;
+        // The impostors' runs come from the camera's commands or the shadow pass's: one VAO for each.
+        unsigned vao = 0, impostor_vao = 0, shadow_impostor_vao = 0;
         unsigned vertex_buffer = 0, index_buffer = 0, instance_buffer = 0;
         uint32_t instance_capacity = 0;  // elements the GPU buffer holds
         bool visible = true;
@@ -166,13 +168,17 @@ private:
                      int height, const LodSettings& lod, float fog_density);
     void drawMeshLods(const ShaderProgram& program, const IndirectDraws& draws, const IndirectBuffer& buffer,
                       float pixels_per_radian, const LodSettings& lod, bool shadow);
+    // The impostor groups of `draws` as point sprites: lit by `impostor_`, or (shadow) depth only by
+    // `shadow_impostor_` into the sun's map, for the types whose sprites are at least `min_caster_m` across.
+    void drawImpostors(const ShaderProgram& program, const IndirectDraws& draws, const IndirectBuffer& buffer,
+                       float pixels_per_radian, const LodSettings& lod, bool shadow, float min_caster_m = 0.0f);
     void composite(unsigned target_fbo, int width, int height, const OrbitCamera& cam);
     void drawHulls(const glm::mat4& view_proj);
     void drawOverlays(const glm::mat4& view_proj);
     void setLighting(const ShaderProgram& program, const glm::vec3& eye, float fog_density) const;
 
     ShaderProgram sky_, terrain_, detail_, impostor_, grid_, marker_, hull_;
-    ShaderProgram shadow_detail_, ambient_occlusion_, ao_blur_, composite_, static_mesh_, shadow_static_;
+    ShaderProgram shadow_detail_, shadow_impostor_, ambient_occlusion_, ao_blur_, composite_, static_mesh_, shadow_static_;
     ViewportLook look_;
     // The shadow map (a depth texture with compare mode) and its framebuffer; the offscreen scene target.
     unsigned shadow_fbo_ = 0, shadow_depth_ = 0;

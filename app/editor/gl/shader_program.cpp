@@ -36,11 +36,12 @@ bool readText(const fs::path& path, std::string* out, std::string* error) {
     return true;
 }
 
-// Inserts `prelude` after the first line (the #version directive, which must come first in GLSL).
-std::string withPrelude(const std::string& source, const std::string& prelude) {
+// Inserts `defines` and `prelude` after the first line (the #version directive, which must come first in
+// GLSL); #line keeps the driver's messages on the files' own lines.
+std::string withPrelude(const std::string& source, const std::string& defines, const std::string& prelude) {
     const size_t eol = source.find('\n');
-    if (eol == std::string::npos) return source + "\n" + prelude;
-    return source.substr(0, eol + 1) + "#line 1 1\n" + prelude + "\n#line 2 0\n" + source.substr(eol + 1);
+    if (eol == std::string::npos) return source + "\n" + defines + prelude;
+    return source.substr(0, eol + 1) + defines + "#line 1 1\n" + prelude + "\n#line 2 0\n" + source.substr(eol + 1);
 }
 
 GLuint compile(GLenum kind, const std::string& source, const std::string& file, std::string* error) {
@@ -65,15 +66,20 @@ GLuint compile(GLenum kind, const std::string& source, const std::string& file, 
 }  // namespace
 
 bool loadProgram(const std::string& dir, const std::string& vert, const std::string& frag,
-                 const std::vector<const char*>& uniforms, ShaderProgram* out, std::string* error) {
+                 const std::vector<const char*>& uniforms, ShaderProgram* out, std::string* error,
+                 const std::vector<const char*>& defines) {
     std::string vs, fs_text, lighting;
     if (!readText(fs::path(dir) / vert, &vs, error) || !readText(fs::path(dir) / frag, &fs_text, error) ||
         !readText(fs::path(dir) / "lighting.glsl", &lighting, error))
         return false;
-    const std::string name = vert + " + " + frag;
-    GLuint v = compile(GL_VERTEX_SHADER, withPrelude(vs, lighting), (fs::path(dir) / vert).string(), error);
+    std::string name = vert + " + " + frag, define_lines;
+    for (const char* d : defines) {
+        define_lines += "#define " + std::string(d) + " 1\n";
+        name += std::string(" (") + d + ")";
+    }
+    GLuint v = compile(GL_VERTEX_SHADER, withPrelude(vs, define_lines, lighting), (fs::path(dir) / vert).string(), error);
     if (!v) return false;
-    GLuint f = compile(GL_FRAGMENT_SHADER, withPrelude(fs_text, lighting), (fs::path(dir) / frag).string(), error);
+    GLuint f = compile(GL_FRAGMENT_SHADER, withPrelude(fs_text, define_lines, lighting), (fs::path(dir) / frag).string(), error);
     if (!f) {
         glDeleteShader(v);
         return false;

@@ -19,9 +19,11 @@ struct ShaderProgram {
 
 // Compiles and links `vert` and `frag` (file names under `dir`), then checks the program's interface:
 // each name in `uniforms` must be an active uniform (a renamed or optimised-away uniform is a bug that
-// would otherwise draw silently wrong). Errors carry the file and the driver's log.
+// would otherwise draw silently wrong). Errors carry the file and the driver's log. `defines` (e.g.
+// "SHADOW_CASTER") are #defined in both stages: one source serves two passes that must agree.
 bool loadProgram(const std::string& dir, const std::string& vert, const std::string& frag,
-                 const std::vector<const char*>& uniforms, ShaderProgram* out, std::string* error);
+                 const std::vector<const char*>& uniforms, ShaderProgram* out, std::string* error,
+                 const std::vector<const char*>& defines = {});
 void destroyProgram(ShaderProgram* program);
 
 }  // namespace ug::editor::gl
