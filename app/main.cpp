@@ -36,7 +36,7 @@ void printUsage() {
         "      particle system's strands into it\n"
         "  undergrowth environment SCENE --at x,y,z [--at x,y,z ...]\n"
         "      the environment at world points (snow, icicles, leaves, grass, trash, occlusion, humidity,\n"
-        "      temperature and the shelter) as JSON\n"
+        "      temperature, the shelter) and the terrain's height under them as JSON\n"
         "  undergrowth instantiate --plan DIR --task I [--threads N]\n"
         "      one task of a plan: region I, written atomically under DIR/regions (skipped when already complete)\n"
         "  undergrowth plan SCENE --out DIR [--memory-per-job BYTES] [--max-jobs N] [--threads-per-task N]\n"

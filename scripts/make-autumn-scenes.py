@@ -8,7 +8,9 @@ import importlib.util
 import json
 import math
 import os
+import subprocess
 import sys
+import tempfile
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 OUT = os.path.join(HERE, "..", "assets", "scenes")
@@ -180,6 +182,53 @@ def tree_clusters(trees, per_cluster=3):
     return nodes
 
 
+# How far each object's base reaches from its origin across the ground (metres), for setting it down.
+FOOTPRINT_M = {"fountain": 1.05, "bench": 1.0, "pavement_slab": 1.0, "tree": 0.4}
+
+
+def set_on_ground(scene, binary):
+    """Sets every object of the scene's tree down on its terrain: its base at the lowest ground under its
+    footprint (the centre and eight points around it), so nothing floats over a dip and the rest sits a
+    little into the ground, as a paved path or a fountain's basin does. The heights come from the tool
+    (`undergrowth environment --at`, its "ground"), which samples the terrain the scene will have."""
+    placed = []  # (object node, its parent's world translation)
+
+    def walk(nodes, origin):
+        for n in nodes:
+            kind = next(k for k in ("object", "group", "lod", "ref") if k in n)
+            body = n if kind in ("object", "ref") else n[kind]
+            assert not body.get("yaw_deg") or kind == "object", "set_on_ground: a turned group"
+            if kind == "object":
+                placed.append((n, origin))
+            else:
+                at = body.get("at", [0, 0, 0])
+                walk(body.get("children", []), [origin[i] + at[i] for i in range(3)])
+
+    walk(scene["environment"]["tree"], [0.0, 0.0, 0.0])
+    points = []
+    for n, origin in placed:
+        x, y = origin[0] + n["at"][0], origin[1] + n["at"][1]
+        reach = FOOTPRINT_M.get(n["object"], 0.5)
+        points.append([(x, y)] + [(x + reach * math.cos(k * math.pi / 4), y + reach * math.sin(k * math.pi / 4))
+                                  for k in range(8)])
+    # Beside the scenes: the models' paths are relative to the scene's folder.
+    with tempfile.NamedTemporaryFile("w", dir=OUT, prefix=".ground-", suffix=".json", delete=False) as f:
+        json.dump(scene, f)
+    try:
+        args = [binary, "environment", f.name]
+        for footprint in points:
+            for x, y in footprint:
+                args += ["--at", "%.4f,%.4f,0" % (x, y)]
+        run = subprocess.run(args, capture_output=True, text=True)
+    finally:
+        os.remove(f.name)
+    if run.returncode != 0:
+        sys.exit("set_on_ground: %s failed: %s" % (binary, run.stderr.strip()))
+    ground = [p["ground"] for p in json.loads(run.stdout)["points"]]
+    for k, (n, origin) in enumerate(placed):
+        n["at"][2] = r(min(ground[9 * k:9 * k + 9]) - origin[2])
+
+
 def park_autumn():
     """115 x 90 m (Fig. 19, Table 1 "Park"): a lawn crossed by two paved paths, 18 trees shedding their
     leaves on it, benches along the paths (leaves on their seats, none under them), a fountain whose rim
@@ -239,8 +288,14 @@ def road_autumn():
 
 
 def main():
+    binary = os.environ.get("UG_BIN", os.path.join(HERE, "..", "build", "undergrowth"))
+    if not os.access(binary, os.X_OK):
+        sys.exit("make-autumn-scenes: needs the built tool to set objects on the park's terrain: %s "
+                 "(build it, or name it with UG_BIN)" % binary)
     for make in (street_autumn, park_autumn, road_autumn):
         scene = make()
+        if make is park_autumn:
+            set_on_ground(scene, os.path.abspath(binary))
         path = os.path.join(OUT, scene["name"] + ".json")
         with open(path, "w") as f:
             json.dump(scene, f, indent=1)

@@ -23,6 +23,8 @@ shot street_winter street_winter --camera 5,5,0.5,13,-115,32
 shot street_winter_close street_winter --camera 6.6,6.5,1,7,-110,18
 shot montmartre_winter montmartre_winter --camera 0,-20,0.2,14,-90,20
 shot road_winter road_winter --camera 0,6,1,14,-120,22
+shot park_autumn park_autumn                                 # the opening view
+shot park_autumn_fountain park_autumn --camera 0,0,0.5,6,-60,20
 shot meadow_strands meadow_strands --camera -7.2,8.2,0.3,2.6,-100,20
 shot bus_stop_vines bus_stop_vines --camera 0,-0.5,1.2,5.5,-120,15
 shot bus_stop_vines_side bus_stop_vines --camera -1.3,-0.6,1.6,2.4,-170,25

@@ -1,5 +1,6 @@
 // undergrowth environment SCENE --at x,y,z [--at x,y,z ...]: the environment e(p) (the eight channels and
-// the shelter) at world points, as JSON on stdout, for pipelines and tests. Loads only what the
+// the shelter) and the terrain's height under each point (null without a terrain) at world points, as JSON
+// on stdout, for pipelines, scene generators (objects set on the ground) and tests. Loads only what the
 // environment needs (the project, its terrain and the environmental objects), not the Ghost Tile.
 #include <cstdio>
 #include <string>
@@ -24,8 +25,9 @@ int usage(const std::string& why) {
     return 2;
 }
 
-nlohmann::json sampleJson(glm::vec3 p, const EnvSample& e) {
+nlohmann::json sampleJson(glm::vec3 p, const EnvSample& e, const HeightField* terrain) {
     return {{"at", {jsonFloat(p.x), jsonFloat(p.y), jsonFloat(p.z)}},
+            {"ground", terrain ? jsonFloat(terrain->sample(p.x, p.y)) : nlohmann::json(nullptr)},
             {"snow", jsonFloat(e.snow)},
             {"icicles", jsonFloat(e.icicles)},
             {"leaves", jsonFloat(e.leaves)},
@@ -72,7 +74,7 @@ int runEnvironmentCommand(int argc, char** argv) {
     }
     nlohmann::json out = {{"scene", scene}, {"objects", env.objects().size()}, {"fields", env.fields().size()}};
     nlohmann::json samples = nlohmann::json::array();
-    for (glm::vec3 p : points) samples.push_back(sampleJson(p, env.sample(p)));
+    for (glm::vec3 p : points) samples.push_back(sampleJson(p, env.sample(p), terrain.get()));
     out["points"] = samples;
     std::printf("%s\n", out.dump(2).c_str());
     return 0;

@@ -36,6 +36,29 @@ assert p[3]["shelter"] == 0, p[3]                              # under the roof
 assert p[4]["shelter"] == 1, p[4]                              # on top of it
 PY
 
+# The ground under a point: the street's terrain is flat at 0; the stone hut has none (null). The park's
+# objects stand on its rolling terrain (scripts/make-autumn-scenes.py sets each at the lowest ground under its
+# footprint): the fountain's base within 10 cm below the ground at its centre, never above it (at z = 0 it
+# stood 20 cm under the lawn, its basin full of grass, and the paths were buried).
+park="$root/assets/scenes/park_autumn.json"
+fountain_at="$(python3 -c 'import json, sys
+t = json.load(open(sys.argv[1]))["environment"]["tree"]
+print(",".join("%g" % v for v in next(n["at"] for n in t if n.get("object") == "fountain")))' "$park")"
+if "$bin" environment "$street" --at 1,2,0 >"$tmp/g_street.json" 2>&1 &&
+   "$bin" environment "$root/assets/scenes/stone_hut.json" --at 1,2,0 >"$tmp/g_hut.json" 2>&1 &&
+   "$bin" environment "$park" --at "$fountain_at" >"$tmp/g_park.json" 2>&1 &&
+   out="$(python3 - "$tmp/g_street.json" "$tmp/g_hut.json" "$tmp/g_park.json" 2>&1 <<'PY'
+import json, sys
+street, hut, park = (json.load(open(f))["points"][0] for f in sys.argv[1:])
+assert street["ground"] == 0.0, street
+assert hut["ground"] is None, hut
+base, ground = park["at"][2], park["ground"]
+assert ground - 0.1 <= base <= ground and abs(ground) > 0.05, park
+print("the fountain's base %.3f m, the ground %.3f m" % (base, ground))
+PY
+)"; then ok "environment: the ground under a point; the park's fountain on it ($out)"
+else bad "environment ground: $out $(cat "$tmp"/g_*.json)"; fi
+
 # 2. The street exported: statistics, the validator, and every mesh copy counted by an independent reader.
 if "$bin" instantiate "$street" -o "$tmp/street.glb" --stats "$tmp/street.json" >"$tmp/inst.txt" 2>&1; then
   ok "instantiate: winter street"
