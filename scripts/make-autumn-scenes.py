@@ -182,13 +182,14 @@ def tree_clusters(trees, per_cluster=3):
     return nodes
 
 
-# How far each object's base reaches from its origin across the ground (metres), for setting it down.
-FOOTPRINT_M = {"fountain": 1.05, "bench": 1.0, "pavement_slab": 1.0, "tree": 0.4}
+# Each object's base across the ground, half its extent along its own x and y (metres; env_models.h), for
+# setting it down.
+FOOTPRINT_M = {"fountain": (1.05, 1.05), "bench": (0.8, 0.31), "pavement_slab": (1.0, 1.0), "tree": (0.4, 0.4)}
 
 
 def set_on_ground(scene, binary):
     """Sets every object of the scene's tree down on its terrain: its base at the lowest ground under its
-    footprint (the centre and eight points around it), so nothing floats over a dip and the rest sits a
+    footprint (its centre, corners and edges' midpoints), so nothing floats over a dip and the rest sits a
     little into the ground, as a paved path or a fountain's basin does. The heights come from the tool
     (`undergrowth environment --at`, its "ground"), which samples the terrain the scene will have."""
     placed = []  # (object node, its parent's world translation)
@@ -196,8 +197,10 @@ def set_on_ground(scene, binary):
     def walk(nodes, origin):
         for n in nodes:
             kind = next(k for k in ("object", "group", "lod", "ref") if k in n)
-            body = n if kind in ("object", "ref") else n[kind]
-            assert not body.get("yaw_deg") or kind == "object", "set_on_ground: a turned group"
+            assert kind != "ref", "set_on_ground: references are not set down"
+            body = n if kind == "object" else n[kind]
+            assert kind == "object" or not (body.get("yaw_deg") or body.get("scale", 1) != 1), \
+                "set_on_ground: a turned or scaled group"
             if kind == "object":
                 placed.append((n, origin))
             else:
@@ -208,9 +211,10 @@ def set_on_ground(scene, binary):
     points = []
     for n, origin in placed:
         x, y = origin[0] + n["at"][0], origin[1] + n["at"][1]
-        reach = FOOTPRINT_M.get(n["object"], 0.5)
-        points.append([(x, y)] + [(x + reach * math.cos(k * math.pi / 4), y + reach * math.sin(k * math.pi / 4))
-                                  for k in range(8)])
+        hx, hy = (h * n.get("scale", 1) for h in FOOTPRINT_M.get(n["object"], (0.5, 0.5)))
+        c, s = math.cos(math.radians(n.get("yaw_deg", 0))), math.sin(math.radians(n.get("yaw_deg", 0)))
+        points.append([(x + c * u * hx - s * v * hy, y + s * u * hx + c * v * hy)
+                       for u in (-1, 0, 1) for v in (-1, 0, 1)])
     # Beside the scenes: the models' paths are relative to the scene's folder.
     with tempfile.NamedTemporaryFile("w", dir=OUT, prefix=".ground-", suffix=".json", delete=False) as f:
         json.dump(scene, f)
