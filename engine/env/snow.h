@@ -57,7 +57,8 @@ constexpr float kSnowMeltPerDegreeM = 0.02f;
 // The paper's displacement (α·s·g(d) − θ)⁺ with θ as melt: (α·s·g(d) − kSnowMeltPerDegreeM·max(θ, 0))⁺,
 // α being e.openness() (occlusion × shelter); frost adds no snow. Metres along `up`. A NaN input gives
 // NaN (the builders report it instead of hiding it in the clamp). The builders pin border vertices
-// (d = 0) to 0, so the snow never lifts off its base.
+// (d = 0) to 0, so the snow never lifts off its base; geometry snow bridges a narrow joint between two
+// patches of one mesh (snow_geometry.cpp markJoints), which is no border.
 float snowDisplacement(const EnvSample& e, float d_m, float d0_m);
 
 struct SnowCover {

@@ -61,6 +61,8 @@ struct SnowEdge {
     uint32_t n = 1;            // segments
     uint32_t face0 = 0;        // the first extracted face using it
     bool border = false;       // used by one extracted face, or by more than two (non-manifold)
+    bool joint = false;        // a border across a narrow joint from another patch (markJoints): not a
+                               // border for g(d)
     uint32_t inner_first = 0;  // first id of its n-1 inner points
 };
 
@@ -172,6 +174,62 @@ size_t assignPatches(const std::vector<SnowEdge>& edges, std::vector<SnowFace>* 
         (*faces)[f].patch = patch_of_root[r];
     }
     return count;
+}
+
+// Joints: a border edge facing another patch's border edge across a gap of at most kSnowJointGapM, in the
+// same plane (a paving slab's 8 mm joints; the slabs of one model are patches of their own). Snow bridges
+// such a gap, so neither is a border for g(d): the snow keeps its depth up to the joint instead of falling
+// to nothing on both sides, which drew a dark groove two d0 wide around every slab of a snowy pavement.
+constexpr float kSnowJointGapM = 0.02f;
+constexpr float kSnowJointHeightM = 0.005f;
+
+void markJoints(const std::vector<glm::vec3>& welded, const std::vector<SnowFace>& faces, glm::vec3 up,
+                std::vector<SnowEdge>* edges) {
+    struct Side {
+        uint32_t edge;
+        glm::vec3 a, b;
+        glm::vec3 inward;  // across the edge toward its face, square to `up`
+        float lo_x, hi_x;
+    };
+    std::vector<Side> sides;
+    for (uint32_t e = 0; e < edges->size(); ++e) {
+        const SnowEdge& se = (*edges)[e];
+        if (!se.border) continue;
+        const glm::vec3 a = welded[se.lo], b = welded[se.hi], d = b - a;
+        const SnowFace& f = faces[se.face0];
+        const glm::vec3 c = (welded[f.v[0]] + welded[f.v[1]] + welded[f.v[2]]) / 3.0f;
+        glm::vec3 across = (c - a) - d * (glm::dot(c - a, d) / glm::dot(d, d));
+        across -= up * glm::dot(across, up);
+        const float len = glm::length(across);
+        if (!(len > 0.0f)) continue;
+        sides.push_back({e, a, b, across / len, std::min(a.x, b.x), std::max(a.x, b.x)});
+    }
+    // A sweep along x: pairs whose x ranges come within the gap.
+    std::sort(sides.begin(), sides.end(), [](const Side& p, const Side& q) {
+        return p.lo_x != q.lo_x ? p.lo_x < q.lo_x : p.edge < q.edge;
+    });
+    auto facing = [&](const Side& p, const Side& q) {
+        const glm::vec3 dp = p.b - p.a, dq = q.b - q.a;
+        const float lp = glm::length(dp), lq = glm::length(dq);
+        if (std::fabs(glm::dot(dp, dq)) < 0.996f * lp * lq || glm::dot(p.inward, q.inward) > -0.9f) return false;
+        // q's ends beyond p's edge (away from p's face) by at most the gap, in p's plane.
+        for (const glm::vec3 v : {q.a, q.b}) {
+            const float gap = -glm::dot(v - p.a, p.inward);
+            if (gap < -1e-6f || gap > kSnowJointGapM || std::fabs(glm::dot(v - p.a, up)) > kSnowJointHeightM)
+                return false;
+        }
+        // Alongside each other over at least half the shorter edge.
+        const glm::vec3 along = dp / lp;
+        const float t0 = glm::dot(q.a - p.a, along), t1 = glm::dot(q.b - p.a, along);
+        const float overlap = std::min(lp, std::max(t0, t1)) - std::max(0.0f, std::min(t0, t1));
+        return overlap >= 0.5f * std::min(lp, lq);
+    };
+    for (size_t i = 0; i < sides.size(); ++i)
+        for (size_t j = i + 1; j < sides.size() && sides[j].lo_x <= sides[i].hi_x + kSnowJointGapM; ++j) {
+            const Side &p = sides[i], &q = sides[j];
+            if (faces[(*edges)[p.edge].face0].patch == faces[(*edges)[q.edge].face0].patch) continue;
+            if (facing(p, q) && facing(q, p)) (*edges)[p.edge].joint = (*edges)[q.edge].joint = true;
+        }
 }
 
 // Segment counts. A face wants n0 = ceil(longest edge / target); an edge takes the larger n0 of the faces
@@ -307,7 +365,7 @@ Candidates borderCandidates(const std::vector<glm::vec3>& welded, const std::vec
     std::vector<std::pair<uint32_t, uint32_t>> patch_edge;
     for (const SnowFace& f : faces)
         for (int k = 0; k < 3; ++k)
-            if (edges[f.edge[k]].border) patch_edge.emplace_back(f.patch, f.edge[k]);
+            if (edges[f.edge[k]].border && !edges[f.edge[k]].joint) patch_edge.emplace_back(f.patch, f.edge[k]);
     std::sort(patch_edge.begin(), patch_edge.end());
     patch_edge.erase(std::unique(patch_edge.begin(), patch_edge.end()), patch_edge.end());
     std::vector<uint32_t> patch_first(patch_count + 1, 0);
@@ -406,7 +464,7 @@ snow_detail::SnowLayout layOut(const std::vector<glm::vec3>& welded, std::vector
         for (int k = 0; k < 3; ++k)
             corner_face[faces[f].v[k]] = std::min(corner_face[faces[f].v[k]], uint32_t(f));
     for (const SnowEdge& e : edges)
-        if (e.border) corner_border[e.lo] = corner_border[e.hi] = 1;
+        if (e.border && !e.joint) corner_border[e.lo] = corner_border[e.hi] = 1;
     for (size_t v = 0; v < welded.size(); ++v) {
         if (corner_face[v] == UINT32_MAX) continue;
         base_id[v] = uint32_t(out.surface.size());
@@ -420,7 +478,7 @@ snow_detail::SnowLayout layOut(const std::vector<glm::vec3>& welded, std::vector
         for (uint32_t k = 1; k < e.n; ++k) {
             const glm::vec3 p = a + ab * (float(k) / float(e.n));
             out.surface.push_back(p);
-            out.border_distance.push_back(e.border ? 0.0f : dist(p, e.face0));
+            out.border_distance.push_back(e.border && !e.joint ? 0.0f : dist(p, e.face0));
         }
     }
     // Face inner points and triangles.
@@ -493,6 +551,7 @@ bool layOutGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const E
 
     std::vector<SnowEdge> edges = buildEdges(&faces);
     const size_t patches = assignPatches(edges, &faces);
+    markJoints(welded, faces, unitUp(s), &edges);
     const double exact = assignCounts(welded, s, &edges, &faces);
     if (exact > double(kMaxSnowTriangles))
         return fail(error, "snow: uniform subdivision gives " +
