@@ -182,6 +182,9 @@ size_t assignPatches(const std::vector<SnowEdge>& edges, std::vector<SnowFace>* 
 // to nothing on both sides, which drew a dark groove two d0 wide around every slab of a snowy pavement.
 constexpr float kSnowJointGapM = 0.02f;
 constexpr float kSnowJointHeightM = 0.005f;
+// The sweep below looks at pairs whose x ranges meet: a handful per edge in real models, but every pair in
+// a hostile strip of tiny faces along y. Past this many pairs the remaining borders stay borders.
+constexpr uint64_t kMaxJointPairs = 20'000'000;
 
 void markJoints(const std::vector<glm::vec3>& welded, const std::vector<SnowFace>& faces, glm::vec3 up,
                 std::vector<SnowEdge>* edges) {
@@ -224,8 +227,10 @@ void markJoints(const std::vector<glm::vec3>& welded, const std::vector<SnowFace
         const float overlap = std::min(lp, std::max(t0, t1)) - std::max(0.0f, std::min(t0, t1));
         return overlap >= 0.5f * std::min(lp, lq);
     };
+    uint64_t pairs = 0;
     for (size_t i = 0; i < sides.size(); ++i)
         for (size_t j = i + 1; j < sides.size() && sides[j].lo_x <= sides[i].hi_x + kSnowJointGapM; ++j) {
+            if (++pairs > kMaxJointPairs) return;
             const Side &p = sides[i], &q = sides[j];
             if (faces[(*edges)[p.edge].face0].patch == faces[(*edges)[q.edge].face0].patch) continue;
             if (facing(p, q) && facing(q, p)) (*edges)[p.edge].joint = (*edges)[q.edge].joint = true;
