@@ -111,7 +111,7 @@ fi
 hut="$root/assets/scenes/stone_hut.json"
 if render_ok hut_lit "$hut" -o "$tmp/hut_lit.png" --size 320x180 --camera 0,0,1,30,120,25 &&
    render_ok hut_flat "$hut" -o "$tmp/hut_flat.png" --size 320x180 --camera 0,0,1,30,120,25 --no-shadows; then
-  if out="$(python3 - "$tmp/hut_lit.png" "$tmp/hut_flat.png" <<PY
+  if out="$(python3 - "$tmp/hut_lit.png" "$tmp/hut_flat.png" 2>&1 <<PY
 import sys
 sys.path.insert(0, "$root/tests/gui")
 from check_screenshot import decode_png
@@ -122,7 +122,7 @@ darker = sum(1 for x, y in box if lum(flat[y][x]) - lum(lit[y][x]) > 12) / len(b
 assert darker > 0.05, darker
 print("%.1f %% of the pixels around the hut darker by more than 12" % (100 * darker))
 PY
-2>&1)"; then ok "render hut: far sprites cast the sun's shadow ($out)"; else bad "render hut: $out"; fi
+)"; then ok "render hut: far sprites cast the sun's shadow ($out)"; else bad "render hut: $out"; fi
 fi
 
 # The fallback: the default display with a pbuffer (UG_EGL=pbuffer skips the surfaceless platform; Mesa's
