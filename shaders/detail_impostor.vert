@@ -18,7 +18,8 @@
 // Compiled with SHADOW_CASTER, the same sprites cast the sun's shadow (renderer.cpp shadowPass): u_view_proj
 // is the sun's orthographic view, u_point_scale the shadow map's texels per metre and u_to_eye the direction
 // toward the sun (the silhouette from the sun's elevation); u_eye and u_lod_diameter_px stay the camera's,
-// so exactly the instances the camera draws as sprites cast as sprites. No lighting: depth only.
+// so exactly the instances the camera draws as sprites cast as sprites, those u_min_caster_px texels
+// across or more. No lighting: depth only.
 layout(location = 3) in uvec2 a_run;  // offset, stride
 
 struct CandidateFrame {
@@ -42,6 +43,9 @@ uniform float u_lod_diameter_px;
 uniform float u_impostor_px;
 uniform float u_point_scale;
 uniform vec3 u_to_eye;
+#ifdef SHADOW_CASTER
+uniform float u_min_caster_px;
+#endif
 out vec3 v_lit;
 flat out int v_layer;    // the silhouette layer below this elevation (-1: a plain pixel)
 out float v_layer_mix;   // toward the next layer up
@@ -80,6 +84,16 @@ void main() {
     gl_Position = u_view_proj * vec4(world, 1.0);
     float px_per_m = u_point_scale / max(gl_Position.w, 1e-4);
     float sprite_px = 2.0 * u_sprite_radius_m * scale * px_per_m;
+#ifdef SHADOW_CASTER
+    // Sprites under u_min_caster_px texels cast nothing; through a band above it instances stop one by one
+    // (hashed), so a zoom that grows the map's texels fades a type's far shadows instead of cutting them.
+    uint h_band = (h * 2654435761u) >> 22;
+    if (sprite_px < u_min_caster_px * (1.0 + 0.5 * float(h_band) / 1024.0)) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+        gl_PointSize = 1.0;
+        return;
+    }
+#endif
     // A one-pixel point is kept when keep < its area (times the run's stride: it stands for that many).
     float keep = float((h >> 20) & 1023u) / 1024.0 / float(a_run.y);
     float most_m2 = max(max(u_coverage_m2[0], u_coverage_m2[1]), max(u_coverage_m2[2], u_coverage_m2[3]));

@@ -31,7 +31,8 @@ bool staticsReuploadedOnEverySwap() {
 }
 
 const glm::vec3 kSunDir = glm::normalize(glm::vec3(0.45f, -0.50f, 0.74f));
-// The smallest far sprite, in shadow-map texels, that is drawn into the map (Renderer::shadowPass).
+// The smallest far sprite, in shadow-map texels, that is drawn into the map (Renderer::shadowPass); per
+// instance, through a band up to 1.5 times that (detail_impostor.vert).
 constexpr float kMinCasterTexels = 8.0f;
 
 // What the candidate SSBO holds per candidate (std430: two vec4).
@@ -144,7 +145,7 @@ bool Renderer::init(const std::string& dir, std::string* error) {
         !loadProgram(dir, "detail_impostor.vert", "impostor.frag",
                      {"u_view_proj", "u_tile_size_m", "u_drop_unit_m", "u_center", "u_coverage_m2", "u_point_scale",
                       "u_to_eye", "u_eye", "u_lod_diameter_px", "u_impostor_px", "u_sprite_radius_m", "u_layer_first",
-                      "u_silhouettes", "u_sprite_extent"},
+                      "u_silhouettes", "u_sprite_extent", "u_min_caster_px"},
                      &shadow_impostor_, error, {"SHADOW_CASTER"}) ||
         !loadProgram(dir, "ground_grid.vert", "ground_grid.frag",
                      with({"u_view_proj", "u_grid_center", "u_grid_half_m", "u_ground_z", "u_cell_m", "u_fade_m"}, true), &grid_,
@@ -709,8 +710,9 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
         drawMeshLods(shadow_detail_, shadow_draws_, shadow_indirect_, float(height) / cam.fov_y_rad, caster_lod, true);
         // What the camera draws as sprites casts as sprites facing the sun: without them a hut seen from
         // afar cast no shadow, and one seen from above only where its nearer tiles were meshes. Only types
-        // whose sprites are kMinCasterTexels across or more: the meadow's 35,000 far grass tufts (7 texels)
-        // cost llvmpipe 55 ms per redraw of the map for shadows the one-tap filter blurs away.
+        // whose sprites are kMinCasterTexels across or more (a type wholly below is skipped here, the rest
+        // instance by instance in the shader): the meadow's 35,000 far grass tufts (7 texels) cost llvmpipe
+        // 55 ms per redraw of the map for shadows the one-tap filter blurs away.
         glUseProgram(shadow_impostor_.id);
         glUniformMatrix4fv(loc(shadow_impostor_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(frame.view_proj));
         glUniform1f(loc(shadow_impostor_, "u_tile_size_m"), tile_size_m_);
@@ -718,6 +720,7 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
         glUniform1f(loc(shadow_impostor_, "u_point_scale"), 1.0f / frame.texel_m);
         glUniform3fv(loc(shadow_impostor_, "u_to_eye"), 1, glm::value_ptr(kSunDir));
         glUniform3fv(loc(shadow_impostor_, "u_eye"), 1, glm::value_ptr(eye));
+        glUniform1f(loc(shadow_impostor_, "u_min_caster_px"), kMinCasterTexels);
         drawImpostors(shadow_impostor_, shadow_draws_, shadow_indirect_, float(height) / cam.fov_y_rad, caster_lod, true,
                       kMinCasterTexels * frame.texel_m);
     }
