@@ -64,6 +64,9 @@ struct SnowEdge {
     bool joint = false;        // a border across a narrow joint from another patch (markJoints): not a
                                // border for g(d)
     uint32_t inner_first = 0;  // first id of its n-1 inner points
+
+    // g(d) falls to 0 here: the snow's border (d measures the distance to these edges).
+    bool bounds() const { return border && !joint; }
 };
 
 // Faces facing `up` within the angle, non-degenerate, in base order.
@@ -370,7 +373,7 @@ Candidates borderCandidates(const std::vector<glm::vec3>& welded, const std::vec
     std::vector<std::pair<uint32_t, uint32_t>> patch_edge;
     for (const SnowFace& f : faces)
         for (int k = 0; k < 3; ++k)
-            if (edges[f.edge[k]].border && !edges[f.edge[k]].joint) patch_edge.emplace_back(f.patch, f.edge[k]);
+            if (edges[f.edge[k]].bounds()) patch_edge.emplace_back(f.patch, f.edge[k]);
     std::sort(patch_edge.begin(), patch_edge.end());
     patch_edge.erase(std::unique(patch_edge.begin(), patch_edge.end()), patch_edge.end());
     std::vector<uint32_t> patch_first(patch_count + 1, 0);
@@ -469,7 +472,7 @@ snow_detail::SnowLayout layOut(const std::vector<glm::vec3>& welded, std::vector
         for (int k = 0; k < 3; ++k)
             corner_face[faces[f].v[k]] = std::min(corner_face[faces[f].v[k]], uint32_t(f));
     for (const SnowEdge& e : edges)
-        if (e.border && !e.joint) corner_border[e.lo] = corner_border[e.hi] = 1;
+        if (e.bounds()) corner_border[e.lo] = corner_border[e.hi] = 1;
     for (size_t v = 0; v < welded.size(); ++v) {
         if (corner_face[v] == UINT32_MAX) continue;
         base_id[v] = uint32_t(out.surface.size());
@@ -483,7 +486,7 @@ snow_detail::SnowLayout layOut(const std::vector<glm::vec3>& welded, std::vector
         for (uint32_t k = 1; k < e.n; ++k) {
             const glm::vec3 p = a + ab * (float(k) / float(e.n));
             out.surface.push_back(p);
-            out.border_distance.push_back(e.border && !e.joint ? 0.0f : dist(p, e.face0));
+            out.border_distance.push_back(e.bounds() ? 0.0f : dist(p, e.face0));
         }
     }
     // Face inner points and triangles.

@@ -692,13 +692,15 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
         LodSettings caster_lod = lod;
         caster_lod.lod1_px *= 2.0f;
         caster_lod.lod2_px *= 2.0f;
+        // The impostors' point scale in the map: orthographic, so texels per metre at any depth.
+        const float texels_per_m = 1.0f / frame.texel_m;
         if (shadow_draws_dirty_ || frame.view_proj != last_shadow_view_proj_ || lod.lod1_px != last_lod_.lod1_px ||
             lod.lod2_px != last_lod_.lod2_px || lod.impostor_px != last_lod_.impostor_px) {
             ViewParams params;
             params.view_proj = frame.view_proj;
             params.eye = eye;
             params.pixels_per_radian = float(height) / cam.fov_y_rad;
-            params.point_scale = 1.0f / frame.texel_m;  // orthographic: texels per metre at any depth
+            params.point_scale = texels_per_m;
             uploadDraws(params, caster_lod, &shadow_draws_, &shadow_indirect_);
             shadow_draws_dirty_ = false;
         }
@@ -717,7 +719,7 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
         glUniformMatrix4fv(loc(shadow_impostor_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(frame.view_proj));
         glUniform1f(loc(shadow_impostor_, "u_tile_size_m"), tile_size_m_);
         glUniform1f(loc(shadow_impostor_, "u_drop_unit_m"), tiles_->drop_unit_m);
-        glUniform1f(loc(shadow_impostor_, "u_point_scale"), 1.0f / frame.texel_m);
+        glUniform1f(loc(shadow_impostor_, "u_point_scale"), texels_per_m);
         glUniform3fv(loc(shadow_impostor_, "u_to_eye"), 1, glm::value_ptr(kSunDir));
         glUniform3fv(loc(shadow_impostor_, "u_eye"), 1, glm::value_ptr(eye));
         glUniform1f(loc(shadow_impostor_, "u_min_caster_px"), kMinCasterTexels);
