@@ -7,6 +7,7 @@
 #include "core/hash.h"
 #include "core/parallel.h"
 #include "env/snow.h"
+#include "env/snow_joints.h"
 
 namespace ug {
 
@@ -115,8 +116,8 @@ float distance2(const Signature& a, const Signature& b) {
 bool inRegion(const EnvEffectsOptions& opt, glm::vec3 p) { return !opt.region || contains(*opt.region, p); }
 
 // Greedy clustering in tree order (the same for the whole scene and every region).
-void formClasses(const EnvScene& scene, const std::vector<Signature>& sig, const EnvEffectsOptions& opt,
-                 EnvEffects* out) {
+void formClasses(const EnvScene& scene, const std::vector<Signature>& sig,
+                 const std::vector<std::vector<SnowSegment>>& joints, const EnvEffectsOptions& opt, EnvEffects* out) {
     const auto& objects = scene.objects();
     const float threshold = scene.desc().sharing_threshold;
     const bool vertical = scene.desc().snow_direction == glm::vec3(0.0f, 0.0f, -1.0f);
@@ -131,7 +132,7 @@ void formClasses(const EnvScene& scene, const std::vector<Signature>& sig, const
                 const bool same_turn = vertical || (first.placement.c == objects[o].placement.c &&
                                                     first.placement.s == objects[o].placement.s);
                 if (sameSettings(first, objects[o]) && first.placement.scale == objects[o].placement.scale && same_turn &&
-                    distance2(sig[out->classes[c].first], sig[o]) <= threshold) {
+                    joints[out->classes[c].first] == joints[o] && distance2(sig[out->classes[c].first], sig[o]) <= threshold) {
                     found = c;
                     break;
                 }
@@ -151,23 +152,22 @@ void formClasses(const EnvScene& scene, const std::vector<Signature>& sig, const
 
 // ---- one class's effects --------------------------------------------------------------------------------
 
-bool classSnow(const EnvScene& scene, const EnvObject& o, const EnvQuery& env, TriangleMesh* out, std::string* error) {
+bool classSnow(const EnvScene& scene, const EnvObject& o, std::vector<SnowSegment> bridged, const EnvQuery& env,
+               TriangleMesh* out, std::string* error) {
     const EnvObjectType& type = scene.types()[o.type];
-    SnowSettings s;
-    // Faces take snow when they face back along the snowfall, turned into the object's space.
-    const glm::vec3 up = -scene.desc().snow_direction;
-    s.up = glm::normalize(glm::vec3(o.placement.c * up.x + o.placement.s * up.y,
-                                    -o.placement.s * up.x + o.placement.c * up.y, up.z));
-    s.max_face_angle_deg = o.snow.max_face_angle_deg;
-    s.d0_m = o.snow.d0_m / o.placement.scale;
-    s.target_edge_m = o.snow.target_edge_m / o.placement.scale;
+    SnowSettings s = objectSnowSettings(scene, o);
+    s.bridged_borders = std::move(bridged);
     SnowCover cover;
     const Bounds3& b = type.bounds;
     bool ok = true;
     switch (o.snow.mode) {
     case SnowMode::None: return true;
     case SnowMode::Geometry: ok = buildGeometrySnow(*type.mesh, s, env, &cover, error); break;
-    case SnowMode::Box: ok = buildBoxSnow((b.min + b.max) * 0.5f, (b.max - b.min) * 0.5f, s, env, &cover, error); break;
+    case SnowMode::Box: {
+        const SnowBox box = snowBoxOf(type);
+        ok = buildBoxSnow(box.center, box.half_extents, s, env, &cover, error);
+        break;
+    }
     case SnowMode::Cylinder:
         ok = buildCylinderSnow(glm::vec3((b.min.x + b.max.x) * 0.5f, (b.min.y + b.max.y) * 0.5f, b.min.z),
                                0.5f * std::max(b.max.x - b.min.x, b.max.y - b.min.y), b.max.z - b.min.z, s, env,
@@ -262,17 +262,20 @@ bool run(const EnvScene& scene, const EnvEffectsOptions& opt, const Reuse& reuse
     if (reuse.previous)
         for (uint32_t c = 0; c < reuse.previous->classes.size(); ++c)
             if (reuse.previous->classes[c].computed) old_classes.emplace(objectKey(reuse.previous->classes[c].source), c);
+    const std::vector<std::vector<SnowSegment>> joints = findSnowJoints(scene, opt.threads);
     auto previousOf = [&](uint32_t o) -> const EffectClass* {
         if (!reuse.previous || meetsAny(column(scene, objects[o].bounds), *reuse.dirty)) return nullptr;
         auto [a, b] = old_classes.equal_range(objectKey(objects[o]));
-        for (auto it = a; it != b; ++it)
-            if (sameObject(reuse.previous->classes[it->second].source, objects[o])) return &reuse.previous->classes[it->second];
+        for (auto it = a; it != b; ++it) {
+            const EffectClass& old = reuse.previous->classes[it->second];
+            if (sameObject(old.source, objects[o]) && old.snow_joints == joints[o]) return &old;
+        }
         return nullptr;
     };
     parallelFor(objects.size(), opt.threads, 64, [&](size_t b, size_t e, int) {
         for (size_t o = b; o < e; ++o) sig[o] = signatureOf(scene, o);
     });
-    formClasses(scene, sig, opt, &fx);
+    formClasses(scene, sig, joints, opt, &fx);
     // Each class with members: reuse when its first object is unchanged and undisturbed, else compute.
     std::vector<std::string> errors(fx.classes.size());
     std::vector<char> failed(fx.classes.size(), 0);
@@ -282,6 +285,7 @@ bool run(const EnvScene& scene, const EnvEffectsOptions& opt, const Reuse& reuse
             if (cls.members.empty()) continue;
             cls.computed = true;
             cls.source = objects[cls.first];
+            cls.snow_joints = joints[cls.first];
             if (const EffectClass* old = previousOf(cls.first)) {
                 cls.snow = old->snow;
                 cls.icicles = old->icicles;
@@ -291,7 +295,7 @@ bool run(const EnvScene& scene, const EnvEffectsOptions& opt, const Reuse& reuse
             const EnvObject& first = objects[cls.first];
             const EnvQuery env = scene.objectQuery(cls.first);
             auto snow = std::make_shared<TriangleMesh>();
-            if (!classSnow(scene, first, env, snow.get(), &errors[c])) {
+            if (!classSnow(scene, first, cls.snow_joints, env, snow.get(), &errors[c])) {
                 failed[c] = 1;
                 continue;
             }

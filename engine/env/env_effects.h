@@ -11,8 +11,8 @@
 //
 // Effect instancing (§6.2): every object's environment is sampled at fixed points of its type's bounds
 // (kSignaturePoints); objects of one type with the same effect settings and scale whose samples are within
-// `sharing_threshold` (mean squared difference) of a class's first object join that class, in tree
-// order; a class's effects are computed once, from its first object, in object space, and placed at every
+// `sharing_threshold` (mean squared difference) of a class's first object join that class when their snow
+// is bridged across the same borders to neighbouring objects (findSnowJoints), in tree order; a class's effects are computed once, from its first object, in object space, and placed at every
 // member. The classes are always formed over the whole scene, so a region's job computes the same classes
 // (those with a member in the region) as the whole scene's, and the union of the regions is the whole.
 //
@@ -28,6 +28,7 @@
 
 #include "env/env_scene.h"
 #include "env/icicles.h"
+#include "env/snow.h"
 #include "field/bounds.h"
 #include "mesh/triangle_mesh.h"
 
@@ -46,6 +47,8 @@ struct EffectClass {
     uint32_t type = 0;
     uint32_t first = 0;                 // the object it is computed from
     EnvObject source;                   // a copy of that object (what a later update compares against)
+    std::vector<SnowSegment> snow_joints;  // its borders another object's snow continues beyond (snow_joints.h):
+                                           // every member has the same
     std::vector<uint32_t> members;      // objects placed with it, ascending (in the region when there is one)
     std::shared_ptr<const TriangleMesh> snow;   // object space; null or empty: no snow
     std::vector<IcicleInstance> icicles;        // object space

@@ -32,6 +32,12 @@ namespace ug {
 // (about 1.8 GiB of mesh and per-vertex data).
 constexpr size_t kMaxSnowTriangles = 50'000'000;
 
+struct SnowSegment {
+    glm::vec3 a{0.0f}, b{0.0f};
+    float gap_m = 0.0f;  // the width of the joint beyond it (object space): the snow reaches half way across
+    bool operator==(const SnowSegment&) const = default;
+};
+
 struct SnowSettings {
     glm::vec3 up{0, 0, 1};          // object space: the displacement direction v (minus the snowfall
                                     // direction); unit length (within 1e-3; used normalised)
@@ -42,6 +48,12 @@ struct SnowSettings {
     float min_open = 0.5f;          // snow only where shelter >= this, in [0, 1]: a base face is tested at
                                     // its centroid (geometry snow), a vertex of procedural or terrain snow
                                     // at itself (a vertex below it gets no snow)
+    // Geometry and box snow: border edges of the base (object space, endpoints exactly as in the mesh or
+    // snowBoxSides, either order) across which another object's snow goes on (findSnowJoints, env/snow_joints.h): like a joint
+    // within the mesh they are no border for g(d), so snow keeps its depth over the seam between two road
+    // segments or paving pieces, and its points on them move half way across the joint. An entry that is
+    // no border edge of the extracted faces is ignored.
+    std::vector<SnowSegment> bridged_borders;
 };
 
 // Checks every field of `s` (finite, in range, `up` unit). Returns false with a reason otherwise.
@@ -69,7 +81,8 @@ struct SnowCover {
                                  // shapes and the terrain when any snow lies there, else 0)
     size_t patch_count = 0;      // connected snow patches extracted (geometry snow), else 1 or 0
     // Per vertex of `mesh` (same order and size as mesh.positions):
-    std::vector<glm::vec3> surface_positions;  // the point on the base surface before displacement
+    std::vector<glm::vec3> surface_positions;  // the point on the base surface before displacement (half
+                                               // way across a joint for the points on its edges)
     std::vector<float> displacement_m;         // metres moved along `up` (0 on the border)
     std::vector<float> border_distance_m;      // d(p) used by g: 0 on the border; +inf where the point is
                                                // farther than d0 from any border (or has none: terrain)
@@ -99,6 +112,35 @@ struct SnowCover {
 bool buildGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const EnvQuery& env, SnowCover* out,
                        std::string* error);
 
+// Joints. Snow bridges a gap of at most kSnowJointGapM between two border edges in one plane (within
+// kSnowJointHeightM along `up`) that face each other: a paving slab's 8 mm joints within a model, the seam
+// between two road segments. Placed objects may also overlap by up to kSnowJointOverlapM (positions rounded
+// in a scene file).
+constexpr float kSnowJointGapM = 0.02f;
+constexpr float kSnowJointHeightM = 0.005f;
+constexpr float kSnowJointOverlapM = 0.002f;
+
+// A border edge of a base mesh's up-facing faces: its ends, the unit direction across it toward its face
+// (square to `up`) and that face's centroid (where the builder tests shelter).
+struct SnowBorderSide {
+    glm::vec3 a{0.0f}, b{0.0f}, inward{0.0f}, face_centroid{0.0f};
+};
+
+// The border edges of the faces buildGeometrySnow extracts from `base` with `s`, before shelter (the
+// extraction's geometric part: faces within max_face_angle of up, vertices welded), in edge order, leaving
+// out those whose ends differ in height by more than 2 kSnowJointHeightM (they never meet another). Empty
+// for an invalid mesh or settings.
+std::vector<SnowBorderSide> snowBorderSides(const TriangleMesh& base, const SnowSettings& s);
+
+// The width of the joint from p to q: how far q's ends lie beyond p's edge, on average (0 where they
+// overlap). Snow on both sides reaches half way across it, so the two covers meet over the joint.
+float snowJointGap(const SnowBorderSide& p, const SnowBorderSide& q);
+
+// Whether p and q face each other across a joint: parallel (within 5 degrees), inward directions opposed,
+// q's ends beyond p's edge by -overlap_m to kSnowJointGapM and within kSnowJointHeightM of p's plane along
+// `up` (unit), alongside each other over at least half the shorter edge; and the same from q's side.
+bool snowSidesMeet(const SnowBorderSide& p, const SnowBorderSide& q, glm::vec3 up, float overlap_m);
+
 // Procedural snow (§5.1 "black box" effects), generated directly at the target edge length. The shapes are
 // given in object space with their top towards +Z; the snow lies on the top when `up` is within
 // max_face_angle of +Z (otherwise the cover is empty and the call succeeds) and is displaced along `up`.
@@ -114,6 +156,10 @@ bool buildGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const En
 // kMaxSnowTriangles (counted before allocating).
 bool buildBoxSnow(glm::vec3 center, glm::vec3 half_extents, const SnowSettings& s, const EnvQuery& env,
                   SnowCover* out, std::string* error);
+// The box top's four sides (-y, +x, +y, -x; face_centroid the top's centre) for the joint search; a side
+// of them in s.bridged_borders is no rim for buildBoxSnow (d ignores it, the grid reaches half way across
+// its joint). Empty when the top takes no snow or the input is invalid.
+std::vector<SnowBorderSide> snowBoxSides(glm::vec3 center, glm::vec3 half_extents, const SnowSettings& s);
 bool buildCylinderSnow(glm::vec3 base_center, float radius, float height, const SnowSettings& s,
                        const EnvQuery& env, SnowCover* out, std::string* error);
 bool buildSphereSnow(glm::vec3 center, float radius, const SnowSettings& s, const EnvQuery& env,

@@ -2,6 +2,7 @@
 // into patches, and the refinement of every face by uniform subdivision with shared edges split
 // identically (vertices welded by construction: an edge owns its inner points, a face its inner points).
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -63,6 +64,7 @@ struct SnowEdge {
     bool border = false;       // used by one extracted face, or by more than two (non-manifold)
     bool joint = false;        // a border across a narrow joint from another patch (markJoints): not a
                                // border for g(d)
+    glm::vec3 joint_shift{0.0f};  // a joint's points move by this: half way across it
     uint32_t inner_first = 0;  // first id of its n-1 inner points
 
     // g(d) falls to 0 here: the snow's border (d measures the distance to these edges).
@@ -179,65 +181,101 @@ size_t assignPatches(const std::vector<SnowEdge>& edges, std::vector<SnowFace>* 
     return count;
 }
 
-// Joints: a border edge facing another patch's border edge across a gap of at most kSnowJointGapM, in the
-// same plane (a paving slab's 8 mm joints; the slabs of one model are patches of their own). Snow bridges
-// such a gap, so neither is a border for g(d): the snow keeps its depth up to the joint instead of falling
-// to nothing on both sides, which drew a dark groove two d0 wide around every slab of a snowy pavement.
-constexpr float kSnowJointGapM = 0.02f;
-constexpr float kSnowJointHeightM = 0.005f;
-// The sweep below looks at pairs whose x ranges meet: a handful per edge in real models, but every pair in
-// a hostile strip of tiny faces along y. Past this many pairs the remaining borders stay borders.
-constexpr uint64_t kMaxJointPairs = 20'000'000;
+// One border edge's side, for the joint search: its edge id and the side's geometry.
+struct Side {
+    uint32_t edge;
+    SnowBorderSide geo;
+    float lo_x, hi_x;
+};
 
-void markJoints(const std::vector<glm::vec3>& welded, const std::vector<SnowFace>& faces, glm::vec3 up,
-                std::vector<SnowEdge>* edges) {
-    struct Side {
-        uint32_t edge;
-        glm::vec3 a, b;
-        glm::vec3 inward;  // across the edge toward its face, square to `up`
-        float lo_x, hi_x;
-    };
+// The sides of the border edges (edge order), each with the direction across it toward its face.
+std::vector<Side> borderSides(const std::vector<glm::vec3>& welded, const std::vector<SnowFace>& faces,
+                              const std::vector<SnowEdge>& edges, glm::vec3 up) {
     std::vector<Side> sides;
-    for (uint32_t e = 0; e < edges->size(); ++e) {
-        const SnowEdge& se = (*edges)[e];
+    for (uint32_t e = 0; e < edges.size(); ++e) {
+        const SnowEdge& se = edges[e];
         if (!se.border) continue;
         const glm::vec3 a = welded[se.lo], b = welded[se.hi], d = b - a;
+        // Ends further apart in height than this never meet another side (snowSidesMeet): a tree's
+        // branches have thousands of such edges.
+        if (std::fabs(glm::dot(d, up)) > 2.0f * kSnowJointHeightM) continue;
         const SnowFace& f = faces[se.face0];
         const glm::vec3 c = (welded[f.v[0]] + welded[f.v[1]] + welded[f.v[2]]) / 3.0f;
         glm::vec3 across = (c - a) - d * (glm::dot(c - a, d) / glm::dot(d, d));
         across -= up * glm::dot(across, up);
         const float len = glm::length(across);
         if (!(len > 0.0f)) continue;
-        sides.push_back({e, a, b, across / len, std::min(a.x, b.x), std::max(a.x, b.x)});
+        sides.push_back({e, {a, b, across / len, c}, std::min(a.x, b.x), std::max(a.x, b.x)});
     }
-    // A sweep along x: pairs whose x ranges come within the gap.
-    std::sort(sides.begin(), sides.end(), [](const Side& p, const Side& q) {
-        return p.lo_x != q.lo_x ? p.lo_x < q.lo_x : p.edge < q.edge;
-    });
-    auto facing = [&](const Side& p, const Side& q) {
-        const glm::vec3 dp = p.b - p.a, dq = q.b - q.a;
-        const float lp = glm::length(dp), lq = glm::length(dq);
-        if (std::fabs(glm::dot(dp, dq)) < 0.996f * lp * lq || glm::dot(p.inward, q.inward) > -0.9f) return false;
-        // q's ends beyond p's edge (away from p's face) by at most the gap, in p's plane.
-        for (const glm::vec3 v : {q.a, q.b}) {
-            const float gap = -glm::dot(v - p.a, p.inward);
-            if (gap < -1e-6f || gap > kSnowJointGapM || std::fabs(glm::dot(v - p.a, up)) > kSnowJointHeightM)
-                return false;
-        }
-        // Alongside each other over at least half the shorter edge.
-        const glm::vec3 along = dp / lp;
-        const float t0 = glm::dot(q.a - p.a, along), t1 = glm::dot(q.b - p.a, along);
-        const float overlap = std::min(lp, std::max(t0, t1)) - std::max(0.0f, std::min(t0, t1));
-        return overlap >= 0.5f * std::min(lp, lq);
+    return sides;
+}
+
+// Joints within the mesh: a border edge facing another patch's border edge (snowSidesMeet; a paving
+// slab's 8 mm joints, the slabs of one model being patches of their own). Snow bridges such a gap, so
+// neither is a border for g(d): the snow keeps its depth up to the joint instead of falling to nothing on
+// both sides, which drew a dark groove two d0 wide around every slab of a snowy pavement. Then the
+// border edges the caller says another object's snow continues beyond (SnowSettings::bridged_borders).
+// The sweep below looks at pairs whose x ranges meet: a handful per edge in real models, but every pair in
+// a hostile strip of tiny faces along y. Past this many pairs the remaining borders stay borders.
+constexpr uint64_t kMaxJointPairs = 20'000'000;
+
+bool lessPoint(glm::vec3 p, glm::vec3 q) {
+    if (p.x != q.x) return p.x < q.x;
+    if (p.y != q.y) return p.y < q.y;
+    return p.z < q.z;
+}
+
+// A joint edge's points move half way across the gap (the widest of its joints).
+void setShift(SnowEdge* e, const SnowBorderSide& side, float gap) {
+    const glm::vec3 shift = -side.inward * (0.5f * gap);
+    if (glm::dot(shift, shift) > glm::dot(e->joint_shift, e->joint_shift)) e->joint_shift = shift;
+    e->joint = true;
+}
+
+void markBridged(const std::vector<glm::vec3>& welded, const std::vector<Side>& sides,
+                 const std::vector<SnowSegment>& bridged, std::vector<SnowEdge>* edges) {
+    if (bridged.empty()) return;
+    using Key = std::pair<glm::vec3, glm::vec3>;
+    auto ordered = [](glm::vec3 a, glm::vec3 b) { return lessPoint(b, a) ? Key(b, a) : Key(a, b); };
+    auto less = [](const Key& x, const Key& y) {
+        return lessPoint(x.first, y.first) || (x.first == y.first && lessPoint(x.second, y.second));
     };
+    std::vector<std::pair<Key, float>> keys;  // (ends, gap)
+    keys.reserve(bridged.size());
+    for (const SnowSegment& g : bridged) keys.emplace_back(ordered(g.a, g.b), g.gap_m);
+    std::sort(keys.begin(), keys.end(), [&](const auto& x, const auto& y) {
+        return less(x.first, y.first) || (!less(y.first, x.first) && x.second < y.second);
+    });
+    for (const Side& side : sides) {
+        SnowEdge& e = (*edges)[side.edge];
+        const Key k = ordered(welded[e.lo], welded[e.hi]);
+        auto it = std::lower_bound(keys.begin(), keys.end(), k,
+                                   [&](const std::pair<Key, float>& x, const Key& y) { return less(x.first, y); });
+        for (; it != keys.end() && !less(k, it->first); ++it) setShift(&e, side.geo, std::max(0.0f, it->second));
+    }
+}
+
+void markJoints(const std::vector<glm::vec3>& welded, const std::vector<SnowFace>& faces, const SnowSettings& s,
+                std::vector<SnowEdge>* edges) {
+    const glm::vec3 up = snow_detail::unitUp(s);
+    std::vector<Side> sides = borderSides(welded, faces, *edges, up);
+    // A sweep along x: pairs whose x ranges come within the gap.
+    std::vector<uint32_t> order(sides.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::sort(order.begin(), order.end(), [&](uint32_t p, uint32_t q) {
+        return sides[p].lo_x != sides[q].lo_x ? sides[p].lo_x < sides[q].lo_x : sides[p].edge < sides[q].edge;
+    });
     uint64_t pairs = 0;
-    for (size_t i = 0; i < sides.size(); ++i)
-        for (size_t j = i + 1; j < sides.size() && sides[j].lo_x <= sides[i].hi_x + kSnowJointGapM; ++j) {
-            if (++pairs > kMaxJointPairs) return;
-            const Side &p = sides[i], &q = sides[j];
+    for (size_t i = 0; i < order.size() && pairs <= kMaxJointPairs; ++i)
+        for (size_t j = i + 1; j < order.size() && sides[order[j]].lo_x <= sides[order[i]].hi_x + kSnowJointGapM; ++j) {
+            if (++pairs > kMaxJointPairs) break;
+            const Side &p = sides[order[i]], &q = sides[order[j]];
             if (faces[(*edges)[p.edge].face0].patch == faces[(*edges)[q.edge].face0].patch) continue;
-            if (facing(p, q) && facing(q, p)) (*edges)[p.edge].joint = (*edges)[q.edge].joint = true;
+            if (!snowSidesMeet(p.geo, q.geo, up, 1e-6f)) continue;
+            setShift(&(*edges)[p.edge], p.geo, snowJointGap(p.geo, q.geo));
+            setShift(&(*edges)[q.edge], q.geo, snowJointGap(q.geo, p.geo));
         }
+    markBridged(welded, sides, s.bridged_borders, edges);
 }
 
 // Segment counts. A face wants n0 = ceil(longest edge / target); an edge takes the larger n0 of the faces
@@ -448,6 +486,27 @@ uint32_t edgeNode(const SnowFace& f, int k, uint32_t m, const std::vector<SnowEd
     return e.inner_first + uint32_t(kk - 1);
 }
 
+// How far each base corner moves across the joints it lies on: the sum of its joint edges' shifts, each
+// direction counted once (a corner in the middle of a side lies on two edges of one joint; where four
+// slabs meet it moves diagonally, to the middle of the crossing).
+std::vector<glm::vec3> cornerShifts(size_t corners, const std::vector<SnowEdge>& edges) {
+    std::vector<glm::vec3> shift(corners, glm::vec3(0.0f));
+    std::vector<std::array<glm::vec3, 2>> seen(corners);  // the (at most two) directions already counted
+    std::vector<uint8_t> count(corners, 0);
+    for (const SnowEdge& e : edges) {
+        if (!e.joint || e.joint_shift == glm::vec3(0.0f)) continue;
+        const glm::vec3 dir = glm::normalize(e.joint_shift);
+        for (uint32_t v : {e.lo, e.hi}) {
+            bool counted = false;
+            for (uint8_t k = 0; k < count[v]; ++k) counted = counted || glm::dot(seen[v][k], dir) > 0.9f;
+            if (counted || count[v] == 2) continue;
+            seen[v][count[v]++] = dir;
+            shift[v] += e.joint_shift;
+        }
+    }
+    return shift;
+}
+
 // Lays out every snow vertex (base corners, edge points, face-inner points; each computed once by its
 // owner) with its border distance, then every face's sub-triangles.
 snow_detail::SnowLayout layOut(const std::vector<glm::vec3>& welded, std::vector<SnowEdge>& edges,
@@ -473,10 +532,11 @@ snow_detail::SnowLayout layOut(const std::vector<glm::vec3>& welded, std::vector
             corner_face[faces[f].v[k]] = std::min(corner_face[faces[f].v[k]], uint32_t(f));
     for (const SnowEdge& e : edges)
         if (e.bounds()) corner_border[e.lo] = corner_border[e.hi] = 1;
+    const std::vector<glm::vec3> corner_shift = cornerShifts(welded.size(), edges);
     for (size_t v = 0; v < welded.size(); ++v) {
         if (corner_face[v] == UINT32_MAX) continue;
         base_id[v] = uint32_t(out.surface.size());
-        out.surface.push_back(welded[v]);
+        out.surface.push_back(welded[v] + corner_shift[v]);
         out.border_distance.push_back(corner_border[v] ? 0.0f : dist(welded[v], corner_face[v]));
     }
     // Edge inner points, lo -> hi.
@@ -485,7 +545,7 @@ snow_detail::SnowLayout layOut(const std::vector<glm::vec3>& welded, std::vector
         const glm::vec3 a = welded[e.lo], ab = welded[e.hi] - welded[e.lo];
         for (uint32_t k = 1; k < e.n; ++k) {
             const glm::vec3 p = a + ab * (float(k) / float(e.n));
-            out.surface.push_back(p);
+            out.surface.push_back(p + e.joint_shift);
             out.border_distance.push_back(e.bounds() ? 0.0f : dist(p, e.face0));
         }
     }
@@ -559,7 +619,7 @@ bool layOutGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const E
 
     std::vector<SnowEdge> edges = buildEdges(&faces);
     const size_t patches = assignPatches(edges, &faces);
-    markJoints(welded, faces, unitUp(s), &edges);
+    markJoints(welded, faces, s, &edges);
     const double exact = assignCounts(welded, s, &edges, &faces);
     if (exact > double(kMaxSnowTriangles))
         return fail(error, "snow: uniform subdivision gives " +
@@ -576,6 +636,48 @@ bool layOutGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const E
 }
 
 }  // namespace snow_detail
+
+float snowJointGap(const SnowBorderSide& p, const SnowBorderSide& q) {
+    return std::max(0.0f, -0.5f * (glm::dot(q.a - p.a, p.inward) + glm::dot(q.b - p.a, p.inward)));
+}
+
+std::vector<SnowBorderSide> snowBorderSides(const TriangleMesh& base, const SnowSettings& s) {
+    if (!validateMesh(base, nullptr) || !validateSnowSettings(s, nullptr)) return {};
+    std::vector<uint32_t> weld;
+    std::vector<glm::vec3> welded;
+    weldVertices(base, &weld, &welded);
+    std::vector<SnowFace> faces = upFacingFaces(base, weld, s);
+    const std::vector<SnowEdge> edges = buildEdges(&faces);
+    std::vector<SnowBorderSide> out;
+    for (const Side& side : borderSides(welded, faces, edges, snow_detail::unitUp(s))) out.push_back(side.geo);
+    return out;
+}
+
+namespace {
+
+// q's ends beyond p's edge (away from p's face) by -overlap_m to the gap, in p's plane, and alongside p
+// over at least half the shorter edge.
+bool facing(const SnowBorderSide& p, const SnowBorderSide& q, glm::vec3 up, float overlap_m) {
+    const glm::vec3 dp = p.b - p.a, dq = q.b - q.a;
+    const float lp = glm::length(dp), lq = glm::length(dq);
+    if (!(lp > 0.0f && lq > 0.0f)) return false;
+    if (std::fabs(glm::dot(dp, dq)) < 0.996f * lp * lq || glm::dot(p.inward, q.inward) > -0.9f) return false;
+    for (const glm::vec3 v : {q.a, q.b}) {
+        const float gap = -glm::dot(v - p.a, p.inward);
+        if (gap < -overlap_m || gap > kSnowJointGapM || std::fabs(glm::dot(v - p.a, up)) > kSnowJointHeightM)
+            return false;
+    }
+    const glm::vec3 along = dp / lp;
+    const float t0 = glm::dot(q.a - p.a, along), t1 = glm::dot(q.b - p.a, along);
+    const float overlap = std::min(lp, std::max(t0, t1)) - std::max(0.0f, std::min(t0, t1));
+    return overlap >= 0.5f * std::min(lp, lq);
+}
+
+}  // namespace
+
+bool snowSidesMeet(const SnowBorderSide& p, const SnowBorderSide& q, glm::vec3 up, float overlap_m) {
+    return facing(p, q, up, overlap_m) && facing(q, p, up, overlap_m);
+}
 
 bool buildGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const EnvQuery& env, SnowCover* out,
                        std::string* error) {

@@ -95,6 +95,17 @@ snow_detail::SnowLayout ringDisc(uint32_t K, Point point) {
 
 }  // namespace
 
+std::vector<SnowBorderSide> snowBoxSides(glm::vec3 center, glm::vec3 half_extents, const SnowSettings& s) {
+    if (!validateSnowSettings(s, nullptr) || !finite3(center) || !finite3(half_extents) || !topTakesSnow(s))
+        return {};
+    const float x0 = center.x - half_extents.x, x1 = center.x + half_extents.x;
+    const float y0 = center.y - half_extents.y, y1 = center.y + half_extents.y;
+    const float z = center.z + half_extents.z;
+    const glm::vec3 top(center.x, center.y, z);
+    return {SnowBorderSide{{x0, y0, z}, {x1, y0, z}, {0, 1, 0}, top}, SnowBorderSide{{x1, y0, z}, {x1, y1, z}, {-1, 0, 0}, top},
+            SnowBorderSide{{x0, y1, z}, {x1, y1, z}, {0, -1, 0}, top}, SnowBorderSide{{x0, y0, z}, {x0, y1, z}, {1, 0, 0}, top}};
+}
+
 bool buildBoxSnow(glm::vec3 center, glm::vec3 half_extents, const SnowSettings& s, const EnvQuery& env,
                   SnowCover* out, std::string* error) {
     if (!validateSnowSettings(s, error)) return false;
@@ -104,16 +115,29 @@ bool buildBoxSnow(glm::vec3 center, glm::vec3 half_extents, const SnowSettings& 
     if (!env) return fail(error, "snow: no environment query");
     if (!topTakesSnow(s)) return emptyCover(out);
 
+    // The sides another object's snow continues beyond (-y, +x, +y, -x: snowBoxSides' order) are no rim:
+    // the cover reaches half way across their joint.
+    const std::vector<SnowBorderSide> sides = snowBoxSides(center, half_extents, s);
+    float gap[4] = {-1.0f, -1.0f, -1.0f, -1.0f};  // < 0: a rim
+    for (const SnowSegment& g : s.bridged_borders)
+        for (int k = 0; k < 4; ++k)
+            if ((g.a == sides[size_t(k)].a && g.b == sides[size_t(k)].b) || (g.a == sides[size_t(k)].b && g.b == sides[size_t(k)].a))
+                gap[k] = std::max(gap[k], std::max(0.0f, g.gap_m));
+    const float x0 = center.x - half_extents.x - 0.5f * std::max(0.0f, gap[3]);
+    const float x1 = center.x + half_extents.x + 0.5f * std::max(0.0f, gap[1]);
+    const float y0 = center.y - half_extents.y - 0.5f * std::max(0.0f, gap[0]);
+    const float y1 = center.y + half_extents.y + 0.5f * std::max(0.0f, gap[2]);
+    const float z = center.z + half_extents.z;
+
     // Square-ish cells whose diagonal is <= target.
     const double cell = double(s.target_edge_m) / std::sqrt(2.0);
-    const double nxd = std::max(1.0, std::ceil(2.0 * double(half_extents.x) / cell));
-    const double nyd = std::max(1.0, std::ceil(2.0 * double(half_extents.y) / cell));
+    const double wx = 2.0 * double(half_extents.x) + 0.5 * double(std::max(0.0f, gap[1]) + std::max(0.0f, gap[3]));
+    const double wy = 2.0 * double(half_extents.y) + 0.5 * double(std::max(0.0f, gap[0]) + std::max(0.0f, gap[2]));
+    const double nxd = std::max(1.0, std::ceil(wx / cell));
+    const double nyd = std::max(1.0, std::ceil(wy / cell));
     if (tooMany(2.0 * nxd * nyd, "box top", error)) return false;
     const uint32_t nx = uint32_t(nxd), ny = uint32_t(nyd);
 
-    const float x0 = center.x - half_extents.x, x1 = center.x + half_extents.x;
-    const float y0 = center.y - half_extents.y, y1 = center.y + half_extents.y;
-    const float z = center.z + half_extents.z;
     snow_detail::SnowLayout layout;
     layout.surface.reserve(size_t(nx + 1) * (ny + 1));
     layout.border_distance.reserve(size_t(nx + 1) * (ny + 1));
@@ -122,8 +146,15 @@ bool buildBoxSnow(glm::vec3 center, glm::vec3 half_extents, const SnowSettings& 
         const float y = j == ny ? y1 : y0 + (y1 - y0) * (float(j) / float(ny));
         for (uint32_t i = 0; i <= nx; ++i) {
             const float x = i == nx ? x1 : x0 + (x1 - x0) * (float(i) / float(nx));
-            const bool rim = i == 0 || j == 0 || i == nx || j == ny;
-            const float d = rim ? 0.0f : std::min(std::min(x - x0, x1 - x), std::min(y - y0, y1 - y));
+            // The distance to the nearest rim side (bridged sides are none).
+            float d = kInf;
+            if (gap[3] < 0.0f) d = std::min(d, x - x0);
+            if (gap[1] < 0.0f) d = std::min(d, x1 - x);
+            if (gap[0] < 0.0f) d = std::min(d, y - y0);
+            if (gap[2] < 0.0f) d = std::min(d, y1 - y);
+            const bool rim = (i == 0 && gap[3] < 0.0f) || (i == nx && gap[1] < 0.0f) || (j == 0 && gap[0] < 0.0f) ||
+                             (j == ny && gap[2] < 0.0f);
+            if (rim) d = 0.0f;
             layout.surface.emplace_back(x, y, z);
             layout.border_distance.push_back(d < s.d0_m ? d : kInf);
         }

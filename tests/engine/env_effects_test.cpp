@@ -1,6 +1,6 @@
 // Snow cover and icicles for whole environmental-object scenes (engine/env/env_effects.h): where snow and
-// icicles go (up-facing, open faces; frost and ice; the open air below an edge), that shared effects equal
-// the individually computed ones, that an incremental update equals a full one after random edits, and that
+// icicles go (up-facing, open faces; frost and ice; the open air below an edge), that snow runs on across
+// the seam between two objects (snow_joints.h), that shared effects equal the individually computed ones, that an incremental update equals a full one after random edits, and that
 // threads and regions do not change the result.
 #include <gtest/gtest.h>
 
@@ -24,8 +24,8 @@ std::string modelPath(const std::string& name) {
 
 std::string types() {
     std::string s = R"("types": [)";
-    const char* names[] = {"bench", "bus_shelter", "pavement_slab", "trash_can", "facade"};
-    for (int i = 0; i < 5; ++i)
+    const char* names[] = {"bench", "bus_shelter", "pavement_slab", "trash_can", "facade", "road_segment"};
+    for (int i = 0; i < 6; ++i)
         s += std::string(i ? "," : "") + R"({"name": ")" + names[i] + R"(", "mesh": ")" + modelPath(names[i]) +
              R"(", "snow": {"target_edge_m": 0.05}, "icicles": {"spacing_m": 0.08}})";
     return s + "]";
@@ -282,6 +282,124 @@ TEST(EnvEffects, SameForAnyThreadCountAndRegionSplit) {
     for (size_t o = 0; o < seen.size(); ++o) EXPECT_EQ(seen[o], 1) << env.objects()[o].where;
     EXPECT_EQ(chunks, one.terrain_snow.size());
     EXPECT_EQ(triangles, one.stats.snow_triangles);
+}
+
+// The world-space snow of object o whose x lies within 1e-4 of x.
+std::vector<glm::vec3> snowAtX(const EnvScene& env, const EnvEffects& fx, size_t o, float x) {
+    std::vector<glm::vec3> out;
+    for (glm::vec3 p : worldSnow(env, fx, o))
+        if (std::fabs(p.x - x) <= 1e-4f) out.push_back(p);
+    return out;
+}
+
+// Road segments 4 m square, 0.1 m thick; 0.1 m of snow everywhere; their own geometry snow, or box snow
+// over their bounds (the same top).
+TEST(EnvEffects, SnowRunsOnAcrossTheSeamBetweenTwoObjects) {
+    for (const std::string mode : {"geometry", "box"}) {
+        SCOPED_TRACE(mode);
+        const std::string snow = R"(, "snow": {"mode": ")" + mode + R"("}})";
+        EnvScene env;
+        std::string error;
+        ASSERT_TRUE(compileEnv(R"("tree": [{"object": "road_segment")" + snow + R"(, {"object": "road_segment", "at": [4, 0, 0])" +
+                                   snow + R"(, {"object": "road_segment", "at": [20, 0, 0])" + snow +
+                                   R"(], "global_fields": [)" + kCold + "]",
+                               &env, &error))
+            << error;
+        EnvEffects fx;
+        ASSERT_TRUE(computeEnvEffects(env, {}, &fx, &error)) << error;
+        // Over the seam at x = 2 both segments' snow keeps its full depth (the road's top is at 0.1 m)
+        // beyond d0 = 5 cm of the outer edges at y = -2 and 2...
+        for (size_t o : {0, 1}) {
+            const std::vector<glm::vec3> seam = snowAtX(env, fx, o, 2.0f);
+            ASSERT_GT(seam.size(), 40u) << o;
+            for (glm::vec3 p : seam) {
+                if (std::fabs(p.y) < 2.0f - 0.05f) {
+                    EXPECT_NEAR(p.z, 0.2f, 1e-4f) << o << ": " << p.x << " " << p.y;
+                }
+            }
+        }
+        // ...while every outer edge, and every edge of the segment alone, falls to the road (d = 0).
+        for (auto [o, x] : {std::pair{0, -2.0f}, std::pair{1, 6.0f}, std::pair{2, 18.0f}, std::pair{2, 22.0f}}) {
+            const std::vector<glm::vec3> edge = snowAtX(env, fx, size_t(o), x);
+            ASSERT_GT(edge.size(), 40u) << o << " " << x;
+            for (glm::vec3 p : edge) EXPECT_NEAR(p.z, 0.1f, 1e-5f) << o << ": " << p.x << " " << p.y;
+        }
+        // So the three share no snow mesh, although their environments are the same.
+        EXPECT_NE(fx.class_of[0], fx.class_of[1]);
+        EXPECT_NE(fx.class_of[0], fx.class_of[2]);
+        EXPECT_NE(fx.class_of[1], fx.class_of[2]);
+    }
+}
+
+// Two pavement pieces (2 m long along x) with a joint between them: narrow, each cover reaches its middle;
+// 3 cm wide, both end at their own edge. Geometry snow (slabs at 0.12 m, the kerb at 0.15 m) or box snow
+// (the bounds' top, 0.15 m).
+TEST(EnvEffects, CoversOfTwoObjectsMeetHalfWayAcrossANarrowJoint) {
+    for (const std::string mode : {"geometry", "box"})
+        for (const auto& [at, bridged] : {std::pair{"2.01", true}, std::pair{"2.03", false}}) {
+            SCOPED_TRACE(mode + " " + at);
+            const std::string snow = R"(, "snow": {"mode": ")" + mode + R"("}})";
+            EnvScene env;
+            std::string error;
+            ASSERT_TRUE(compileEnv(R"("tree": [{"object": "pavement_slab")" + snow + R"(, {"object": "pavement_slab", "at": [)" +
+                                       at + ", 0, 0]" + snow + R"(], "global_fields": [)" + kCold + "]",
+                                   &env, &error))
+                << error;
+            EnvEffects fx;
+            ASSERT_TRUE(computeEnvEffects(env, {}, &fx, &error)) << error;
+            float right_of_first = -INFINITY, left_of_second = INFINITY;
+            for (glm::vec3 p : worldSnow(env, fx, 0)) right_of_first = std::max(right_of_first, p.x);
+            for (glm::vec3 p : worldSnow(env, fx, 1)) left_of_second = std::min(left_of_second, p.x);
+            const float edge = 1.0f, far_edge = std::stof(at) - 1.0f;
+            if (bridged) {
+                EXPECT_NEAR(right_of_first, 0.5f * (edge + far_edge), 1e-4f);
+                EXPECT_NEAR(left_of_second, 0.5f * (edge + far_edge), 1e-4f);
+                // Full depth there, beyond d0 = 5 cm of the outer edges (y = -1 and 1; for geometry snow
+                // the slabs end at 0.846, where the kerb rises 3 cm: a step, no joint).
+                const float top = mode == "box" ? 0.15f : 0.12f, y_end = mode == "box" ? 1.0f : 0.846f;
+                size_t deep = 0;
+                for (glm::vec3 p : snowAtX(env, fx, 0, right_of_first)) {
+                    if (p.y > -1.0f + 0.05f && p.y < y_end - 0.05f) {
+                        EXPECT_NEAR(p.z, top + 0.1f, 1e-4f) << p.y;
+                        ++deep;
+                    }
+                }
+                EXPECT_GT(deep, 10u);
+            } else {
+                EXPECT_NEAR(right_of_first, edge, 1e-4f);
+                EXPECT_NEAR(left_of_second, far_edge, 1e-4f);
+                for (glm::vec3 p : snowAtX(env, fx, 0, edge)) EXPECT_LE(p.z, 0.15f + 1e-5f) << p.y;
+            }
+        }
+}
+
+// Moving one of two abutting segments away: the update recomputes the other (its seam is a border now)
+// and equals a full computation; moving it back restores the bridged snow.
+TEST(EnvEffects, AnUpdateFollowsTheSeamsWhenANeighbourMoves) {
+    const auto scene = [](const char* at) {
+        return std::string(R"("tree": [{"object": "road_segment"}, {"object": "road_segment", "at": [)") + at +
+               R"(, 0, 0]}], "global_fields": [)" + kCold + "]";
+    };
+    std::string error;
+    EnvScene joined, apart, back;
+    ASSERT_TRUE(compileEnv(scene("4"), &joined, &error)) << error;
+    ASSERT_TRUE(compileEnv(scene("7"), &apart, &error)) << error;
+    ASSERT_TRUE(compileEnv(scene("4"), &back, &error)) << error;
+    EnvEffects fx_joined, fx_apart, fx_back, full_apart, full_back;
+    ASSERT_TRUE(computeEnvEffects(joined, {}, &fx_joined, &error)) << error;
+    ASSERT_TRUE(updateEnvEffects(apart, fx_joined, envDirtyRegion(joined, apart), {}, &fx_apart, &error)) << error;
+    ASSERT_TRUE(computeEnvEffects(apart, {}, &full_apart, &error)) << error;
+    EXPECT_TRUE(sameEffects(apart, fx_apart, full_apart));
+    for (glm::vec3 p : snowAtX(apart, fx_apart, 0, 2.0f)) EXPECT_NEAR(p.z, 0.1f, 1e-5f) << p.y;
+    ASSERT_TRUE(updateEnvEffects(back, fx_apart, envDirtyRegion(apart, back), {}, &fx_back, &error)) << error;
+    ASSERT_TRUE(computeEnvEffects(back, {}, &full_back, &error)) << error;
+    EXPECT_TRUE(sameEffects(back, fx_back, full_back));
+    EXPECT_TRUE(sameEffects(back, fx_back, fx_joined));
+    for (glm::vec3 p : snowAtX(back, fx_back, 0, 2.0f)) {
+        if (std::fabs(p.y) < 2.0f - 0.05f) {
+            EXPECT_NEAR(p.z, 0.2f, 1e-4f) << p.y;
+        }
+    }
 }
 
 }  // namespace

@@ -412,8 +412,8 @@ TEST(SnowGeometry, PatchesAndBordersMatchOpenMesh) {
 }
 
 // Two 0.5 m slabs side by side along x, the second `gap` m beyond the first and `step` m higher: the snow
-// layout's border distances along the middle of their facing edges (x = 0.5 and 0.5 + gap, y = 0.25).
-std::pair<float, float> facingEdgeDistances(float gap, float step) {
+// layout's points along the middle of their facing edges (y = 0.25, x from 0.5 to 0.5 + gap), as (x, d).
+std::vector<std::pair<float, float>> facingEdgePoints(float gap, float step) {
     TriangleMesh m = gridQuad(0.0f, 0.5f, 0.0f, 0.5f, 0.0f, 4);
     gridQuad(0.5f + gap, 1.0f + gap, 0.0f, 0.5f, step, 4, &m);
     const EnvQuery env = [](const glm::vec3*, size_t k, EnvSample* out) {
@@ -424,27 +424,32 @@ std::pair<float, float> facingEdgeDistances(float gap, float step) {
     std::string error;
     EXPECT_TRUE(snow_detail::layOutGeometrySnow(m, fineSettings(), env, &layout, &faces, &patches, &error)) << error;
     EXPECT_EQ(patches, 2u);
-    float left = -1.0f, right = -1.0f;
+    std::vector<std::pair<float, float>> out;
     for (size_t v = 0; v < layout.surface.size(); ++v) {
         const glm::vec3 p = layout.surface[v];
-        if (std::fabs(p.y - 0.25f) > 1e-6f) continue;
-        if (p.x == 0.5f) left = layout.border_distance[v];
-        if (p.x == 0.5f + gap) right = layout.border_distance[v];
+        if (std::fabs(p.y - 0.25f) <= 1e-6f && p.x >= 0.5f - 1e-6f && p.x <= 0.5f + gap + 1e-6f)
+            out.emplace_back(p.x, layout.border_distance[v]);
     }
-    return {left, right};
+    std::sort(out.begin(), out.end());
+    return out;
 }
 
 TEST(SnowGeometry, SnowBridgesANarrowJointBetweenSlabs) {
     // 8 mm apart at the same height (a paving slab's joint): the facing edges are no border, the snow keeps
-    // its depth there (the outer borders are 0.25 m away, beyond d0 = 5 cm: d is infinite).
-    const auto joint = facingEdgeDistances(0.008f, 0.0f);
-    EXPECT_EQ(joint.first, INFINITY);
-    EXPECT_EQ(joint.second, INFINITY);
-    // 5 cm apart, or 1 cm higher: two borders, pinned to the slabs (d = 0).
+    // its depth there (the outer borders are 0.25 m away, beyond d0 = 5 cm: d is infinite), and both
+    // covers reach the middle of the joint, so no groove shows between them.
+    const auto joint = facingEdgePoints(0.008f, 0.0f);
+    ASSERT_EQ(joint.size(), 2u);
+    for (const auto& [x, d] : joint) {
+        EXPECT_NEAR(x, 0.504f, 1e-6f);
+        EXPECT_EQ(d, INFINITY);
+    }
+    // 5 cm apart, or 1 cm higher: two borders, pinned to the slabs' edges (d = 0).
     for (const auto& [gap, step] : {std::pair{0.05f, 0.0f}, std::pair{0.008f, 0.01f}}) {
-        const auto apart = facingEdgeDistances(gap, step);
-        EXPECT_EQ(apart.first, 0.0f) << gap << " " << step;
-        EXPECT_EQ(apart.second, 0.0f) << gap << " " << step;
+        const auto apart = facingEdgePoints(gap, step);
+        ASSERT_EQ(apart.size(), 2u) << gap << " " << step;
+        EXPECT_EQ(apart[0], std::make_pair(0.5f, 0.0f)) << gap << " " << step;
+        EXPECT_EQ(apart[1], std::make_pair(0.5f + gap, 0.0f)) << gap << " " << step;
     }
 }
 
