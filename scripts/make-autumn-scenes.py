@@ -115,6 +115,9 @@ def head(name, extent, tile=0.5, settle=True):
     take minutes to settle (settling's speed is not yet that of the instantiation)."""
     p = W.head(name, extent)
     p["ghost_tile"]["tile_size_m"] = tile
+    # Four tile variants chosen per tile by a hash: with one, the leaves and the grass repeat every tile
+    # and read as stripes running into the distance (the park's warm corner, seen from 7 m).
+    p["ghost_tile"]["variants"] = 4
     p["settling"] = {"enabled": True, "passes": 8, "max_drop_m": 0.1} if settle else {"enabled": False}
     return p
 

@@ -25,6 +25,8 @@ shot montmartre_winter montmartre_winter --camera 0,-20,0.2,14,-90,20
 shot road_winter road_winter --camera 0,6,1,14,-120,22
 shot park_autumn park_autumn                                 # the opening view
 shot park_autumn_fountain park_autumn --camera 0,0,0.5,6,-60,20
+shot park_autumn_close park_autumn --camera -30,-31,0.3,4,-90,14   # under a tree
+shot park_autumn_dry park_autumn --camera 45.5,-33,0.3,7,-90,12    # the warm corner
 shot meadow_strands meadow_strands --camera -7.2,8.2,0.3,2.6,-100,20
 shot bus_stop_vines bus_stop_vines --camera 0,-0.5,1.2,5.5,-120,15
 shot bus_stop_vines_side bus_stop_vines --camera -1.3,-0.6,1.6,2.4,-170,25
