@@ -16,9 +16,10 @@
 // member. The classes are always formed over the whole scene, so a region's job computes the same classes
 // (those with a member in the region) as the whole scene's, and the union of the regions is the whole.
 //
-// Incremental: a class's result is reused when its first object is the same (type, placement, settings)
-// and the vertical column over its bounds meets no dirty box (shelter and icicle clearance look up and
-// down the column, fields are queried inside the bounds); a terrain chunk's when its column meets none.
+// Incremental: a class's result is reused when its first object is the same (type, placement, settings),
+// its snow is bridged across the same borders (a neighbour that moved away changes them), and the vertical
+// column over its bounds meets no dirty box (shelter and icicle clearance look up and down the column,
+// fields are queried inside the bounds); a terrain chunk's when its column meets none.
 #pragma once
 
 #include <cstdint>
