@@ -154,9 +154,11 @@ std::vector<std::pair<uint32_t, uint32_t>> meetingSides(const std::vector<WorldS
         *y0 = int64_t(std::floor((ylo - reach) / kCellM)), *y1 = int64_t(std::floor((yhi + reach) / kCellM));
     };
     std::vector<CellEntry> entries;
+    std::vector<std::pair<int64_t, int64_t>> first_cell(sides.size());  // each side's lowest (ix, iy)
     for (uint32_t k = 0; k < sides.size(); ++k) {
         int64_t x0, x1, y0, y1;
         cellRange(sides[k], &x0, &x1, &y0, &y1);
+        first_cell[k] = {x0, y0};
         if (double(x1 - x0 + 1) * double(y1 - y0 + 1) + double(entries.size()) > double(kMaxCellEntries)) continue;
         for (int64_t iy = y0; iy <= y1; ++iy)
             for (int64_t ix = x0; ix <= x1; ++ix) entries.push_back({sides[k].layer, ix, iy, k});
@@ -175,10 +177,9 @@ std::vector<std::pair<uint32_t, uint32_t>> meetingSides(const std::vector<WorldS
     auto test = [&](uint32_t i, uint32_t j, int64_t ix, int64_t iy) {
         const WorldSide &p = sides[i], &q = sides[j];
         if (p.object == q.object || q.lo_x > p.hi_x + reach || p.lo_x > q.hi_x + reach) return;
-        int64_t px0, px1, py0, py1, qx0, qx1, qy0, qy1;
-        cellRange(p, &px0, &px1, &py0, &py1);
-        cellRange(q, &qx0, &qx1, &qy0, &qy1);
-        if (ix != std::max(px0, qx0) || iy != std::max(py0, qy0)) return;  // met in an earlier cell
+        if (ix != std::max(first_cell[i].first, first_cell[j].first) ||
+            iy != std::max(first_cell[i].second, first_cell[j].second))
+            return;  // met in an earlier cell
         if (snowSidesMeet(p.geo, q.geo, up, kSnowJointOverlapM)) meeting.emplace_back(std::min(i, j), std::max(i, j));
     };
     for (size_t b = 0; b < entries.size() && pairs <= kMaxSidePairs;) {
