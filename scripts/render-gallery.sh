@@ -23,10 +23,18 @@ shot street_winter street_winter --camera 5,5,0.5,13,-115,32
 shot street_winter_close street_winter --camera 6.6,6.5,1,7,-110,18
 shot montmartre_winter montmartre_winter --camera 0,-20,0.2,14,-90,20
 shot road_winter road_winter --camera 0,6,1,14,-120,22
+shot street_autumn street_autumn --camera 5,6.2,0.8,9.5,-80,24
+shot street_autumn_bench street_autumn --camera 6.6,7.2,0.4,2.6,-80,12
+shot street_autumn_litter street_autumn --camera 8.3,5.6,0.2,2.4,-60,32
+shot street_autumn_puddle street_autumn --camera 6.2,2.2,0.05,2.6,-100,32
+shot street_autumn_pile street_autumn --camera 7.6,4.9,0.15,2.6,-140,22
 shot park_autumn park_autumn                                 # the opening view
 shot park_autumn_fountain park_autumn --camera 0,0,0.5,6,-60,20
 shot park_autumn_close park_autumn --camera -30,-31,0.3,4,-90,14   # under a tree
 shot park_autumn_dry park_autumn --camera 45.5,-33,0.3,7,-90,12    # the warm corner
+shot road_autumn road_autumn --camera 0,0,0.5,22,-110,25
+shot road_autumn_close road_autumn --camera 7.8,-4.5,0.3,4,-170,10       # along the fence, over the pavers
+shot road_autumn_verge road_autumn --camera -8,-13,0.1,2.2,-120,18       # tufts and leaves on the verge
 shot meadow_strands meadow_strands --camera -7.2,8.2,0.3,2.6,-100,20
 shot bus_stop_vines bus_stop_vines --camera 0,-0.5,1.2,5.5,-120,15
 shot bus_stop_vines_side bus_stop_vines --camera -1.3,-0.6,1.6,2.4,-170,25
