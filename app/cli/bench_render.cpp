@@ -14,6 +14,8 @@
 // footprints, each an occlusion field), each timed from the edit to the end of the first frame showing the
 // snow computed for it; editor.env.move_object_to_frame_p95_ms: the street's bench dragged 3 m in 12 steps,
 // the same way (issue 13: both <= 50 ms). Window only, as the stamp rows.
+// render.meadow.orbit_frame_ms: the meadow's default view turned 1 degree about its target every frame (an
+// orbit drag), offscreen: what a still view keeps from frame to frame (the sun's shadow map) is redone.
 // render.fur.frame_ms: the fur_ball particle sample (6,000 strands of 32 steps as 3-sided tubes) grown
 // into the default scene, 15 cm above the ground, filling a third of a 1280 x 720 view; offscreen.
 #include <array>
@@ -40,6 +42,7 @@ struct ViewMeasure {
     std::array<uint64_t, editor::kLodCount> lod_instances{};
     std::string renderer;
     std::string path;  // "window" or "offscreen (EGL ...)"
+    int shadow_map_draws = 0;  // offscreen: frames that drew the sun's map
 };
 
 enum class Measured { Ok, Unavailable, Failed };
@@ -84,7 +87,8 @@ Measured renderOffscreen(const editor::OffscreenRenderOptions& options, ViewMeas
         case editor::OffscreenRenderStatus::Failed: return Measured::Failed;
     }
     *m = ViewMeasure{editor::percentile(r.frame_ms, 0.5), int(r.frame_ms.size()), r.instances, r.triangles,
-                     r.draw_calls, r.lod_instances, r.renderer, "offscreen " + r.platform + ", render + glFinish"};
+                     r.draw_calls, r.lod_instances, r.renderer, "offscreen " + r.platform + ", render + glFinish",
+                     r.shadow_map_draws};
     return Measured::Ok;
 }
 
@@ -201,6 +205,20 @@ bool benchRender(const BenchContext& ctx, std::vector<BenchRow>* rows, std::stri
             return true;
         }
         addViewRows(s.name, m, s.triangle_bar, rows);
+    }
+    {
+        editor::OffscreenRenderOptions options =
+            offscreenOptions(ctx, ctx.assets_dir + "/scenes/meadow.json", ctx.quick ? 20 : 60);
+        options.orbit_deg_per_frame = 1.0f;
+        ViewMeasure m;
+        const Measured got = renderOffscreen(options, &m, error);
+        if (got == Measured::Failed) return false;
+        if (got == Measured::Ok)
+            rows->push_back({"render.meadow.orbit_frame_ms", m.frame_ms, "ms", "<= 40", std::nullopt,
+                             "median of " + std::to_string(m.frames) + " frames, the view turned 1 deg a frame, " +
+                                 "the sun's map drawn in " + std::to_string(m.shadow_map_draws) + " of them; " +
+                                 m.renderer + "; " + m.path});
+        error->clear();
     }
     {
         ViewMeasure m;

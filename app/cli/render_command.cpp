@@ -29,13 +29,15 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: undergrowth render SCENE.json -o PICTURE.png [--camera tx,ty,tz,distance,yaw_deg,pitch_deg]\n"
-    "       [--size WxH] [--threads N] [--cache DIR] [--no-shadows] [--no-ao] [--frames N]\n"
+    "       [--size WxH] [--threads N] [--cache DIR] [--no-shadows] [--no-ao] [--frames N] [--orbit DEG]\n"
     "       [--particles PARTICLES.json]   (a particle system's strands drawn into the scene)\n"
     "  --size: each side in [16, 16384], at most 67,108,864 pixels (8192 x 8192); default 1280x720\n"
     "  --camera: orbit target (metres), distance (metres, > 0), yaw (degrees; -90 looks from -Y) and\n"
     "            pitch (degrees above the horizon, in [-89, 89]); default: the editor's opening view\n"
     "  --no-shadows, --no-ao: leave out the sun's shadows, the ambient occlusion (faster on llvmpipe)\n"
-    "  --frames N: render N frames (1-1000) and report their median time; the picture is the last";
+    "  --frames N: render N frames (1-1000) and report their median time; the picture is the last\n"
+    "  --orbit DEG: with --frames, turn the camera DEG degrees about its target each frame (-45 to 45),\n"
+    "               as an orbit drag does";
 constexpr long kMaxSide = 16384;
 constexpr long kMaxPixels = 8192L * 8192L;  // 256 MiB of RGBA: beyond this a picture is a mistake
 
@@ -100,7 +102,7 @@ int runRenderCommand(int argc, char** argv) {
     Args args;
     std::string error;
     if (!parseArgs(argc, argv, 2,
-                   {"-o", "--out", "--camera", "--size", "--threads", "--cache", "--frames", "--particles"},
+                   {"-o", "--out", "--camera", "--size", "--threads", "--cache", "--frames", "--orbit", "--particles"},
                    {"--no-shadows", "--no-ao"}, &args, &error))
         return usageError(error);
     if (args.positional.size() != 1)
@@ -132,6 +134,13 @@ int runRenderCommand(int argc, char** argv) {
         if (!parseInt("--frames", args.get("--frames"), 1, 1000, &f, &error)) return usageError(error);
         options.frames = int(f);
     }
+    if (args.has("--orbit")) {
+        std::vector<double> deg;
+        if (!parseNumberList("--orbit", args.get("--orbit"), &deg, &error)) return usageError(error);
+        if (deg.size() != 1 || !(std::fabs(deg[0]) <= 45.0))
+            return usageError("--orbit: expected one number of degrees in [-45, 45], got '" + args.get("--orbit") + "'");
+        options.orbit_deg_per_frame = float(deg[0]);
+    }
     if (args.has("--camera")) {
         editor::OrbitCamera camera;
         if (!parseCamera(args.get("--camera"), &camera, &error)) return usageError(error);
@@ -162,10 +171,13 @@ int runRenderCommand(int argc, char** argv) {
     std::fprintf(stderr,
                  "render: %llu instances; loaded in %.2f s, instantiated and settled in %.2f s; frame %.1f ms "
                  "(median of %zu), %llu triangles (%s, %s)\n"
+                 "render: the sun's shadow map drawn in %d of %zu frames (%llu triangles, %llu sprites)\n"
                  "render: camera %.3f,%.3f,%.3f,%.3f,%.2f,%.2f\n",
                  (unsigned long long)result.instances, result.load_seconds, result.instantiate_seconds,
                  medianMs(result.frame_ms), result.frame_ms.size(), (unsigned long long)result.triangles,
-                 result.renderer.c_str(), result.platform.c_str(), c.target.x, c.target.y, c.target.z,
+                 result.renderer.c_str(), result.platform.c_str(), result.shadow_map_draws, result.frame_ms.size(),
+                 (unsigned long long)result.shadow_triangles, (unsigned long long)result.shadow_points,
+                 c.target.x, c.target.y, c.target.z,
                  c.distance_m, glm::degrees(c.yaw_rad), glm::degrees(c.pitch_rad));
     std::printf("wrote %s (%dx%d)\n", out.c_str(), result.width, result.height);
     return 0;

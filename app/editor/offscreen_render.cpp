@@ -49,15 +49,22 @@ OffscreenRenderStatus renderSceneOffscreen(const OffscreenRenderOptions& options
     const float aspect = float(options.width) / float(options.height);
     OrbitCamera camera = options.camera ? *options.camera : defaultView(snap.framing(), aspect);
     camera.aspect = aspect;
-    result->camera = camera;
     for (int frame = 0; frame < options.frames; ++frame) {
+        if (frame > 0) camera.yaw_rad += glm::radians(options.orbit_deg_per_frame);
         const auto t0 = std::chrono::steady_clock::now();
         target.bind();
         renderer.render(camera, options.width, options.height, options.lod);
         context.finish();
         result->frame_ms.push_back(
             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+        const gl::RenderStats& frame_stats = renderer.stats();
+        if (frame_stats.shadow_map_draws > 0) {
+            ++result->shadow_map_draws;
+            result->shadow_triangles = frame_stats.shadow_triangles;
+            result->shadow_points = frame_stats.shadow_points;
+        }
     }
+    result->camera = camera;  // the last frame's: the picture's
     const gl::RenderStats& rs = renderer.stats();
     result->triangles = rs.triangles;
     result->points = rs.points;

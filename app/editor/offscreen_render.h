@@ -27,6 +27,9 @@ struct OffscreenRenderOptions {
     int height = 720;
     std::optional<OrbitCamera> camera;  // none: the default view (default_view.h); its aspect is replaced
     int frames = 1;  // frames rendered and timed (each ends with glFinish); the picture is the last one's
+    // Each frame after the first turns the camera this far about its target (yaw): an orbit drag, whose
+    // frames cannot reuse what a still view keeps (the bench's orbit row).
+    float orbit_deg_per_frame = 0.0f;
     LodSettings lod;
     ViewportLook look;
     // Drawn with the scene's own static meshes (`render --particles`: strand tubes), names unique.
@@ -45,6 +48,8 @@ struct OffscreenRenderResult {
     double load_seconds = 0.0;         // the document: models, Ghost Tile, terrain mesh, LODs
     double instantiate_seconds = 0.0;  // the settled instantiation, packed
     std::vector<double> frame_ms;      // per frame: render + glFinish (no UI, no swap)
+    int shadow_map_draws = 0;          // frames that drew the sun's shadow map (the others kept it)
+    uint64_t shadow_triangles = 0, shadow_points = 0;  // what the last of those drew into it
     std::string gl_version, renderer, platform;  // platform: "EGL surfaceless" or "EGL pbuffer"
 };
 

@@ -10,7 +10,8 @@ namespace ug::editor {
 
 float shadowDistance(const OrbitCamera& camera) { return std::max(3.0f * camera.distance_m, 1.0f); }
 
-ShadowFrame fitShadowFrame(const OrbitCamera& camera, const Bounds& extent, const glm::vec3& sun_dir, int map_px) {
+ShadowFrame fitShadowFrame(const OrbitCamera& camera, const Bounds& extent, const glm::vec3& sun_dir, int map_px,
+                           float margin) {
     ShadowFrame out;
     if (map_px <= 0 || !(extent.hi.x >= extent.lo.x && extent.hi.y >= extent.lo.y && extent.hi.z >= extent.lo.z))
         return out;
@@ -49,7 +50,7 @@ ShadowFrame fitShadowFrame(const OrbitCamera& camera, const Bounds& extent, cons
     if (!(hi.x > lo.x && hi.y > lo.y)) return out;
     // A square map: the larger side sets the texel; snapping both corners to it keeps texels fixed in
     // the world while the box slides.
-    const float side = std::max(hi.x - lo.x, hi.y - lo.y) * 1.02f;
+    const float side = std::max(hi.x - lo.x, hi.y - lo.y) * 1.02f * (1.0f + 2.0f * std::max(margin, 0.0f));
     out.texel_m = side / float(map_px);
     const glm::vec2 mid = 0.5f * (lo + hi);
     lo = glm::floor((mid - 0.5f * side) / out.texel_m) * out.texel_m;
@@ -60,8 +61,16 @@ ShadowFrame fitShadowFrame(const OrbitCamera& camera, const Bounds& extent, cons
     out.view_proj = proj * light_view;
     const glm::mat4 to_unit = glm::translate(glm::mat4(1.0f), glm::vec3(0.5f)) * glm::scale(glm::mat4(1.0f), glm::vec3(0.5f));
     out.texture = to_unit * out.view_proj;
+    out.lo = lo;
+    out.hi = hi;
     out.valid = true;
     return out;
+}
+
+bool shadowFrameHolds(const ShadowFrame& held, const ShadowFrame& wanted) {
+    if (!held.valid || !wanted.valid) return false;
+    return held.lo.x <= wanted.lo.x && held.lo.y <= wanted.lo.y && held.hi.x >= wanted.hi.x &&
+           held.hi.y >= wanted.hi.y && held.texel_m <= kHeldTexelRatio * wanted.texel_m;
 }
 
 }  // namespace ug::editor

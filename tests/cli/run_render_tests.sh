@@ -125,6 +125,36 @@ PY
 )"; then ok "render hut: far sprites cast the sun's shadow ($out)"; else bad "render hut: $out"; fi
 fi
 
+# An orbit drag (--orbit): the sun's map drawn for one frame serves the next ones while it covers their view
+# (shadow_frame.h), so 4 frames turning 2 degrees each draw it fewer than 4 times, and the last picture,
+# shadowed from a held map, shows the shadows of the still view of the same camera (before, every moving
+# frame drew the map again).
+cam="0.2,-0.1,0.25,1.4"
+if render_ok orbit "$pile" -o "$tmp/orbit.png" --size 320x180 --camera "$cam,-76,38" --frames 4 --orbit 2 &&
+   render_ok orbit_still "$pile" -o "$tmp/orbit_still.png" --size 320x180 --camera "$cam,-70,38" &&
+   render_ok orbit_flat "$pile" -o "$tmp/orbit_flat.png" --size 320x180 --camera "$cam,-70,38" --no-shadows; then
+  draws=$(sed -n 's/.*shadow map drawn in \([0-9]*\) of 4 frames.*/\1/p' "$tmp/orbit.log")
+  if [ -n "$draws" ] && [ "$draws" -ge 1 ] && [ "$draws" -lt 4 ]; then ok "render --orbit: the sun's map drawn in $draws of 4 frames"
+  else bad "render --orbit: the sun's map drawn in '${draws}' of 4 frames: $(cat "$tmp/orbit.log")"; fi
+  grep -q "camera 0.200,-0.100,0.250,1.400,-70.00,38.00" "$tmp/orbit.log" && ok "render --orbit: the last frame's camera reported" ||
+    bad "render --orbit: camera line: $(grep camera "$tmp/orbit.log")"
+  if out="$(python3 - "$tmp/orbit.png" "$tmp/orbit_still.png" "$tmp/orbit_flat.png" 2>&1 <<PY
+import sys
+sys.path.insert(0, "$root/tests/gui")
+from check_screenshot import decode_png
+from check_edit import mean_abs_diff
+(w, h, orbit), (_, _, still), (_, _, flat) = (decode_png(p) for p in sys.argv[1:4])
+held = mean_abs_diff(orbit, still, 0, w, 0, h)
+shadows = mean_abs_diff(still, flat, 0, w, 0, h)
+assert shadows > 3.0, "the still view's shadows change the picture by only %.2f" % shadows
+assert held < 0.1 * shadows, "from the held map: %.3f off the still view (its shadows: %.2f)" % (held, shadows)
+print("mean |diff| from the still view %.3f, the shadows themselves %.2f" % (held, shadows))
+PY
+)"; then ok "render --orbit: $out"; else bad "render --orbit: $out"; fi
+fi
+expect_fail "orbit: out of range" 2 "--orbit: expected one number of degrees in [-45, 45]" -- \
+  nodisplay "$bin" render "$pile" -o "$tmp/x.png" --orbit 90
+
 # The fallback: the default display with a pbuffer (UG_EGL=pbuffer skips the surfaceless platform; Mesa's
 # default display is made surfaceless by EGL_PLATFORM, having no X server to reach), the same picture. With
 # no platform that works (the default display is X11 and there is no DISPLAY): one message, exit 1.

@@ -1,6 +1,7 @@
 // The sun's shadow view (shadow_frame.h): what the camera sees of the extent, up to the shadow distance,
 // lies inside the map; along the sun's rays the map keeps the order of depth; a view that misses the
-// scene has no map.
+// scene has no map; a map fit while moving serves the next frames of a slow orbit, and only while it
+// covers everything they see.
 #include <cmath>
 #include <random>
 
@@ -70,6 +71,80 @@ TEST(ShadowFrame, CastersOutsideTheViewButTowardTheSunAreInTheMapsDepthRange) {
     EXPECT_LT(b.z, a.z);
     EXPECT_GE(b.z, 0.0f);
     EXPECT_LE(a.z, 1.0f);
+}
+
+// How many of `samples` random extent points `cam` sees within `frame`'s shadow distance, and how many of
+// those lie outside `map` (a map drawn for an earlier frame).
+struct Coverage {
+    int seen = 0, outside = 0;
+};
+Coverage seenOutside(const OrbitCamera& cam, const ShadowFrame& frame, const ShadowFrame& map, const Bounds& extent,
+                     int samples) {
+    const glm::mat4 vp = cam.viewProjection();
+    const glm::vec3 eye = cam.eye(), forward = glm::normalize(cam.target - eye);
+    std::mt19937 rng(11);
+    std::uniform_real_distribution<float> u(0.0f, 1.0f);
+    Coverage c;
+    for (int i = 0; i < samples; ++i) {
+        const glm::vec3 p = extent.lo + glm::vec3(u(rng), u(rng), u(rng)) * (extent.hi - extent.lo);
+        const glm::vec4 q = vp * glm::vec4(p, 1.0f);
+        if (!(q.w > 0.0f && std::abs(q.x) <= q.w && std::abs(q.y) <= q.w)) continue;
+        if (glm::dot(p - eye, forward) > frame.distance_m) continue;
+        ++c.seen;
+        const glm::vec4 t = map.texture * glm::vec4(p, 1.0f);
+        if (t.x < 0.0f || t.x > 1.0f || t.y < 0.0f || t.y > 1.0f) ++c.outside;
+    }
+    return c;
+}
+
+TEST(ShadowFrame, AMapFitWhileMovingServesTheNextFramesOfASlowOrbitWhileItCoversThem) {
+    const Bounds extent{glm::vec3(-20.0f, -20.0f, -0.5f), glm::vec3(20.0f, 20.0f, 1.5f)};
+    const OrbitCamera start = closeCamera();
+    const ShadowFrame tight = fitShadowFrame(start, extent, kSun, 2048);
+    const ShadowFrame held = fitShadowFrame(start, extent, kSun, 2048, kMovingShadowMargin);
+    ASSERT_TRUE(tight.valid && held.valid);
+    // The margin costs texels as wide as it widens the square, and the wider map holds the tight one.
+    EXPECT_NEAR(held.texel_m / tight.texel_m, 1.0f + 2.0f * kMovingShadowMargin, 0.01f);
+    EXPECT_TRUE(shadowFrameHolds(held, tight));
+    EXPECT_FALSE(shadowFrameHolds(tight, held));
+    int held_steps = 0;
+    for (int deg = 1; deg <= 90; ++deg) {
+        OrbitCamera cam = start;
+        cam.yaw_rad += glm::radians(float(deg));
+        const ShadowFrame wanted = fitShadowFrame(cam, extent, kSun, 2048);
+        ASSERT_TRUE(wanted.valid);
+        if (!shadowFrameHolds(held, wanted)) continue;
+        ++held_steps;
+        // Held means covered: nothing this frame sees lies outside the earlier map.
+        const Coverage c = seenOutside(cam, wanted, held, extent, 4000);
+        EXPECT_GT(c.seen, 100) << deg << " deg";
+        EXPECT_EQ(c.outside, 0) << deg << " deg";
+    }
+    // A drag of a degree or two a frame redraws every few frames, not every frame; a quarter turn redraws.
+    OrbitCamera one = start, quarter = start;
+    one.yaw_rad += glm::radians(1.0f);
+    quarter.yaw_rad += glm::radians(90.0f);
+    EXPECT_TRUE(shadowFrameHolds(held, fitShadowFrame(one, extent, kSun, 2048)));
+    EXPECT_FALSE(shadowFrameHolds(held, fitShadowFrame(quarter, extent, kSun, 2048)));
+    EXPECT_GE(held_steps, 3);
+    EXPECT_LT(held_steps, 90);
+}
+
+TEST(ShadowFrame, AHeldMapDoesNotServeAZoomThatWouldBlurItsShadows) {
+    const Bounds extent{glm::vec3(-20.0f, -20.0f, -0.5f), glm::vec3(20.0f, 20.0f, 1.5f)};
+    const OrbitCamera start = closeCamera();
+    const ShadowFrame held = fitShadowFrame(start, extent, kSun, 2048, kMovingShadowMargin);
+    OrbitCamera closer = start;
+    closer.distance_m *= 0.5f;
+    const ShadowFrame wanted = fitShadowFrame(closer, extent, kSun, 2048);
+    ASSERT_TRUE(wanted.valid);
+    // Covered, but with texels more than kHeldTexelRatio times as wide as the close view's own.
+    EXPECT_EQ(seenOutside(closer, wanted, held, extent, 4000).outside, 0);
+    EXPECT_GT(held.texel_m, kHeldTexelRatio * wanted.texel_m);
+    EXPECT_FALSE(shadowFrameHolds(held, wanted));
+    // An invalid frame neither holds nor is held.
+    EXPECT_FALSE(shadowFrameHolds(ShadowFrame{}, wanted));
+    EXPECT_FALSE(shadowFrameHolds(held, ShadowFrame{}));
 }
 
 TEST(ShadowFrame, AViewThatMissesTheSceneHasNoMap) {

@@ -641,8 +641,11 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
 
 void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int height, const LodSettings& lod) {
     const int px = std::clamp(look_.shadow_map_px, 256, 8192);
-    const ShadowFrame frame = fitShadowFrame(cam, extent_, kSunDir, px);
-    if (!frame.valid) return;
+    const ShadowFrame tight = fitShadowFrame(cam, extent_, kSunDir, px);
+    const bool moving = has_previous_eye_ && eye != previous_eye_;
+    previous_eye_ = eye;
+    has_previous_eye_ = true;
+    if (!tight.valid) return;
     if (shadow_px_ != px) {
         if (!shadow_fbo_) glGenFramebuffers(1, &shadow_fbo_);
         if (shadow_depth_) glDeleteTextures(1, &shadow_depth_);
@@ -660,13 +663,25 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
         shadow_px_ = px;
         shadow_map_dirty_ = true;
     }
+    const bool same_lod = lod.lod1_px == last_lod_.lod1_px && lod.lod2_px == last_lod_.lod2_px &&
+                          lod.impostor_px == last_lod_.impostor_px;
+    // While the camera moves (an orbit drag, a pan), the map drawn for an earlier frame serves as long as
+    // it covers this frame's view: redrawing it every frame cost an orbiting meadow a third of its frame
+    // time. Its casters keep the mesh or sprite the eye of that frame gave them until the next redraw.
+    if (moving && !shadow_map_dirty_ && same_lod && shadowFrameHolds(held_shadow_, tight)) {
+        shadow_texture_ = held_shadow_.texture;
+        shadow_offset_m_ = 1.5f * held_shadow_.texel_m;
+        shadow_valid_ = true;
+        return;
+    }
+    // Moving, the new map gets a margin so that the next frames fit in it; a still view gets its own,
+    // tight frame back (the first still frame after a drag redraws once).
+    const ShadowFrame frame = moving ? fitShadowFrame(cam, extent_, kSunDir, px, kMovingShadowMargin) : tight;
     shadow_texture_ = frame.texture;
     shadow_offset_m_ = 1.5f * frame.texel_m;
     shadow_valid_ = true;
     // A still view of an unchanged scene keeps last frame's map: the sun does not move. (The eye and the
     // LOD settings choose which instances are meshes, hence casters.)
-    const bool same_lod = lod.lod1_px == last_lod_.lod1_px && lod.lod2_px == last_lod_.lod2_px &&
-                          lod.impostor_px == last_lod_.impostor_px;
     if (!shadow_map_dirty_ && same_lod && eye == last_shadow_eye_ && frame.view_proj == last_shadow_view_proj_) return;
     glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
     glViewport(0, 0, px, px);
@@ -729,6 +744,8 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
     glDisable(GL_POLYGON_OFFSET_FILL);
     last_shadow_view_proj_ = frame.view_proj;
     last_shadow_eye_ = eye;
+    held_shadow_ = frame;
+    stats_.shadow_map_draws = 1;
     shadow_map_dirty_ = false;
 }
 

@@ -44,6 +44,7 @@
 #include "editor/markers.h"
 #include "editor/orbit_camera.h"
 #include "editor/render_data.h"
+#include "editor/shadow_frame.h"
 #include "editor/static_lod.h"
 #include "field/bounds.h"
 #include "material/material.h"
@@ -56,6 +57,7 @@ struct RenderStats {
     uint64_t triangles = 0;   // terrain + static meshes + detail meshes (LOD 0-2) drawn this frame; not sky, grid, UI
     uint64_t shadow_triangles = 0;  // drawn again into the shadow map (static meshes + detail meshes)
     uint64_t shadow_points = 0;     // impostor sprites drawn into the shadow map (the far instances' casters)
+    uint64_t shadow_map_draws = 0;  // 1 when this frame drew the sun's map (0: kept from an earlier frame)
     uint64_t static_meshes_drawn = 0;   // static-mesh entries that passed the frustum test this frame
     uint64_t static_meshes_culled = 0;
     uint64_t points = 0;      // impostor point sprites drawn this frame (one per far instance)
@@ -194,6 +196,9 @@ private:
     IndirectBuffer indirect_, shadow_indirect_;
     glm::mat4 last_shadow_view_proj_{0.0f};
     glm::vec3 last_shadow_eye_{NAN};
+    ShadowFrame held_shadow_;          // the frame the map was last drawn for
+    glm::vec3 previous_eye_{0.0f};     // the eye of the previous frame: whether the camera is moving
+    bool has_previous_eye_ = false;
     bool shadow_draws_dirty_ = true;
     bool shadow_map_dirty_ = true;  // the casters changed since the map was drawn
     unsigned marker_vao_ = 0, marker_buffer_ = 0;
