@@ -427,6 +427,18 @@ bool boxOutside(const std::array<glm::vec4, 6>& planes, const glm::vec3& lo, con
     return false;
 }
 
+// The box swept along `sweep` (every p + t sweep, t in [0, 1]) is outside when even its farthest point
+// along a plane's normal is: the farthest corner, moved along the sweep if that goes further.
+bool sweptBoxOutside(const std::array<glm::vec4, 6>& planes, const glm::vec3& lo, const glm::vec3& hi,
+                     const glm::vec3& sweep) {
+    for (const glm::vec4& p : planes) {
+        const glm::vec3 c(p.x >= 0.0f ? hi.x : lo.x, p.y >= 0.0f ? hi.y : lo.y, p.z >= 0.0f ? hi.z : lo.z);
+        const float along = p.x * sweep.x + p.y * sweep.y + p.z * sweep.z;
+        if (p.x * c.x + p.y * c.y + p.z * c.z + p.w + std::max(along, 0.0f) < 0.0f) return true;
+    }
+    return false;
+}
+
 }  // namespace
 
 uint32_t instanceHash(PackedInstance packed) {
@@ -476,6 +488,7 @@ void buildIndirectDraws(const ResidentTiles& in, const std::vector<DetailLodMesh
     out->tiles_visible = 0;
     out->tiles_culled = 0;
     const auto planes = frustumPlanes(view.view_proj);
+    const auto receiver = frustumPlanes(view.receiver_view_proj);
     float reach = 0.0f;  // how far an object can stick out of the cell that holds its origin
     std::vector<float> diameter_px_at_1m(types);
     for (uint32_t i = 0; i < types; ++i) {
@@ -493,7 +506,8 @@ void buildIndirectDraws(const ResidentTiles& in, const std::vector<DetailLodMesh
     out->tile_point_px.resize(tile_count);
     for (size_t t = 0; t < tile_count; ++t) {
         const glm::vec3 lo = tileOrigin(in.tile_coord[t], s);
-        if (boxOutside(planes, lo - reach, lo + s + reach)) {
+        if (boxOutside(planes, lo - reach, lo + s + reach) ||
+            (view.cull_by_receiver && sweptBoxOutside(receiver, lo - reach, lo + s + reach, view.shadow_sweep))) {
             out->tile_distance[t] = -1.0f;
             ++out->tiles_culled;
             continue;

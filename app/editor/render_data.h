@@ -214,6 +214,13 @@ struct ViewParams {
     // Pixels per metre at unit depth (detail_impostor.vert's u_point_scale): with it, far tiles whose
     // points are all one pixel draw a share of them (pointStride); 0 draws every point.
     float point_scale = 0.0f;
+    // Shadow casters (the sun's view): with cull_by_receiver, a cell is kept only when its shadow, the cell
+    // swept along shadow_sweep (down the sun's rays, to the bottom of the scene), can reach the camera's
+    // view `receiver_view_proj`. The sun's square covers the whole box around what the camera sees; the
+    // casters in its corners throw their shadows off screen.
+    bool cull_by_receiver = false;
+    glm::mat4 receiver_view_proj{1.0f};
+    glm::vec3 shadow_sweep{0.0f};
 };
 
 // The GL indirect command layouts (GL 4.3 "DrawElementsIndirectCommand", "DrawArraysIndirectCommand").

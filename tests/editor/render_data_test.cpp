@@ -376,6 +376,75 @@ TEST(IndirectDraws, EveryVisibleInstanceOnceAndCulledTilesAbsent) {
     EXPECT_GT(in_both, 0u) << "no tile is drawn in both representations: the band is missing";
 }
 
+// Whether any of a grid of points on the box, swept along `sweep`, projects inside the view (clip space).
+bool sweptBoxSeen(const glm::mat4& view_proj, const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& sweep) {
+    const int n = 4, steps = 24;
+    for (int i = 0; i <= n; ++i)
+        for (int j = 0; j <= n; ++j)
+            for (int k = 0; k <= n; ++k)
+                for (int t = 0; t <= steps; ++t) {
+                    const glm::vec3 f(float(i) / n, float(j) / n, float(k) / n);
+                    const glm::vec3 p = lo + f * (hi - lo) + sweep * (float(t) / steps);
+                    const glm::vec4 c = view_proj * glm::vec4(p, 1.0f);
+                    if (c.w > 0.0f && std::abs(c.x) <= c.w && std::abs(c.y) <= c.w && std::abs(c.z) <= c.w)
+                        return true;
+                }
+    return false;
+}
+
+TEST(IndirectDraws, ShadowCastersAreDroppedOnlyWhereTheirShadowCannotReachTheView) {
+    const CandidateSet c = twoTypeCandidates();
+    const std::vector<DetailLodMesh> meshes = testMeshes();
+    std::mt19937 rng(21);
+    const TileMap m = randomField(20, 2, &rng);
+    const InstanceStore store = makeStore(m);
+    ResidentTiles r;
+    TileUploads up;
+    std::string error;
+    ASSERT_TRUE(rebuildResidentTiles(store, nullptr, c, 0.5f, 0.0f, &r, &up, &error)) << error;
+
+    // The sun's square over the whole 20 m field; the camera near its south edge, looking north-east.
+    const glm::vec3 sun = glm::normalize(glm::vec3(0.45f, -0.50f, 0.74f));
+    ViewParams caster;
+    caster.view_proj = glm::ortho(-20.0f, 20.0f, -20.0f, 20.0f, 0.0f, 100.0f) *
+                       glm::lookAt(sun * 50.0f, glm::vec3(0.0f), glm::vec3(0, 0, 1));
+    caster.eye = glm::vec3(-2.0f, -6.0f, 1.5f);
+    caster.pixels_per_radian = 720.0f / glm::radians(50.0f);
+    caster.receiver_view_proj = glm::perspective(glm::radians(50.0f), 16.0f / 9.0f, 0.05f, 200.0f) *
+                                glm::lookAt(caster.eye, glm::vec3(3.0f, 2.0f, 0.0f), glm::vec3(0, 0, 1));
+    caster.cull_by_receiver = true;
+    caster.shadow_sweep = -sun * (2.0f / sun.z);  // casters up to 2 m above the ground
+    const LodSettings lod{.lod1_px = 90.0f, .lod2_px = 30.0f, .impostor_px = 20.0f};
+    IndirectDraws culled, all;
+    buildIndirectDraws(r, meshes, caster, lod, &culled);
+    ViewParams whole = caster;
+    whole.cull_by_receiver = false;
+    buildIndirectDraws(r, meshes, whole, lod, &all);
+    ASSERT_EQ(all.tiles_culled, 0u) << "the sun's square holds the whole field";
+
+    // Each object sticks out of its cell by its radius (0.1 m); the cell's casters reach 2 m down the rays.
+    const float reach = 0.1f;
+    size_t dropped = 0, kept = 0;
+    for (size_t t = 0; t < r.tileCount(); ++t) {
+        const glm::vec3 lo = glm::vec3(r.tile_coord[t]) * 0.5f;
+        const bool seen = sweptBoxSeen(caster.receiver_view_proj, lo - reach, lo + 0.5f + reach, caster.shadow_sweep);
+        const bool drawn = culled.tile_distance[t] >= 0.0f;
+        if (seen) {
+            EXPECT_TRUE(drawn) << "a caster whose shadow reaches the view is dropped: tile " << r.tile_coord[t].x << ","
+                               << r.tile_coord[t].y;
+        }
+        dropped += !drawn;
+        kept += drawn;
+        // What is drawn is drawn as without the receiver test: same distance, hence the same LOD.
+        if (drawn) {
+            EXPECT_EQ(culled.tile_distance[t], all.tile_distance[t]);
+        }
+    }
+    // Behind the camera and beside the view, shadows cannot reach it: a good part of the square is dropped.
+    EXPECT_GT(dropped, r.tileCount() / 4);
+    EXPECT_GT(kept, r.tileCount() / 8);
+}
+
 TEST(PointStride, ThinsOnlyOnePixelPointsAndNeverPastOnePixelOfArea) {
     DetailLodMesh m;
     m.scale_max = 1.0f;

@@ -668,7 +668,7 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
     // While the camera moves (an orbit drag, a pan), the map drawn for an earlier frame serves as long as
     // it covers this frame's view: redrawing it every frame cost an orbiting meadow a third of its frame
     // time. Its casters keep the mesh or sprite the eye of that frame gave them until the next redraw.
-    if (moving && !shadow_map_dirty_ && same_lod && shadowFrameHolds(held_shadow_, tight)) {
+    if (moving && held_shadow_complete_ && !shadow_map_dirty_ && same_lod && shadowFrameHolds(held_shadow_, tight)) {
         shadow_texture_ = held_shadow_.texture;
         shadow_offset_m_ = 1.5f * held_shadow_.texel_m;
         shadow_valid_ = true;
@@ -680,9 +680,15 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
     shadow_texture_ = frame.texture;
     shadow_offset_m_ = 1.5f * frame.texel_m;
     shadow_valid_ = true;
+    // A still view draws only the casters whose shadow can fall in it (the map is drawn for this view
+    // alone); a moving one draws the whole square, so that the next frames can use the map.
+    const bool complete = moving;
+    const glm::mat4 receiver = cam.viewProjection();
     // A still view of an unchanged scene keeps last frame's map: the sun does not move. (The eye and the
     // LOD settings choose which instances are meshes, hence casters.)
-    if (!shadow_map_dirty_ && same_lod && eye == last_shadow_eye_ && frame.view_proj == last_shadow_view_proj_) return;
+    if (!shadow_map_dirty_ && same_lod && eye == last_shadow_eye_ && frame.view_proj == last_shadow_view_proj_ &&
+        (held_shadow_complete_ || receiver == shadow_receiver_))
+        return;
     glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
     glViewport(0, 0, px, px);
     glClear(GL_DEPTH_BUFFER_BIT);
@@ -710,12 +716,17 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
         // The impostors' point scale in the map: orthographic, so texels per metre at any depth.
         const float texels_per_m = 1.0f / frame.texel_m;
         if (shadow_draws_dirty_ || frame.view_proj != last_shadow_view_proj_ || lod.lod1_px != last_lod_.lod1_px ||
-            lod.lod2_px != last_lod_.lod2_px || lod.impostor_px != last_lod_.impostor_px) {
+            lod.lod2_px != last_lod_.lod2_px || lod.impostor_px != last_lod_.impostor_px ||
+            complete != held_shadow_complete_ || (!complete && receiver != shadow_receiver_)) {
             ViewParams params;
             params.view_proj = frame.view_proj;
             params.eye = eye;
             params.pixels_per_radian = float(height) / cam.fov_y_rad;
             params.point_scale = texels_per_m;
+            params.cull_by_receiver = !complete;
+            params.receiver_view_proj = receiver;
+            // Down the sun's rays from the top of the scene to its bottom (kSunDir points at the sun).
+            params.shadow_sweep = -kSunDir * ((extent_.hi.z - extent_.lo.z) / kSunDir.z);
             uploadDraws(params, caster_lod, &shadow_draws_, &shadow_indirect_);
             shadow_draws_dirty_ = false;
         }
@@ -745,6 +756,8 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
     last_shadow_view_proj_ = frame.view_proj;
     last_shadow_eye_ = eye;
     held_shadow_ = frame;
+    held_shadow_complete_ = complete;
+    shadow_receiver_ = receiver;
     stats_.shadow_map_draws = 1;
     shadow_map_dirty_ = false;
 }

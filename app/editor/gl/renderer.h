@@ -197,6 +197,10 @@ private:
     glm::mat4 last_shadow_view_proj_{0.0f};
     glm::vec3 last_shadow_eye_{NAN};
     ShadowFrame held_shadow_;          // the frame the map was last drawn for
+    // Whether that map holds every caster of its square (drawn while moving), or only those whose shadow
+    // reaches the view it was drawn for, `shadow_receiver_` (a still view): only the former is held.
+    bool held_shadow_complete_ = false;
+    glm::mat4 shadow_receiver_{0.0f};
     glm::vec3 previous_eye_{0.0f};     // the eye of the previous frame: whether the camera is moving
     bool has_previous_eye_ = false;
     bool shadow_draws_dirty_ = true;
