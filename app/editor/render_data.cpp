@@ -506,8 +506,11 @@ void buildIndirectDraws(const ResidentTiles& in, const std::vector<DetailLodMesh
     out->tile_point_px.resize(tile_count);
     for (size_t t = 0; t < tile_count; ++t) {
         const glm::vec3 lo = tileOrigin(in.tile_coord[t], s);
+        // A caster's shadow starts where the caster is, settled drop included (the cell's instances may sit
+        // up to drop_max below it).
         if (boxOutside(planes, lo - reach, lo + s + reach) ||
-            (view.cull_by_receiver && sweptBoxOutside(receiver, lo - reach, lo + s + reach, view.shadow_sweep))) {
+            (view.cull_by_receiver &&
+             sweptBoxOutside(receiver, lo - reach - drop_max, lo + s + reach, view.shadow_sweep))) {
             out->tile_distance[t] = -1.0f;
             ++out->tiles_culled;
             continue;
