@@ -668,25 +668,23 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
     // While the camera moves (an orbit drag, a pan), the map drawn for an earlier frame serves as long as
     // it covers this frame's view: redrawing it every frame cost an orbiting meadow a third of its frame
     // time. Its casters keep the mesh or sprite the eye of that frame gave them until the next redraw.
-    if (moving && held_shadow_complete_ && !shadow_map_dirty_ && same_lod && shadowFrameHolds(held_shadow_, tight)) {
-        shadow_texture_ = held_shadow_.texture;
-        shadow_offset_m_ = 1.5f * held_shadow_.texel_m;
-        shadow_valid_ = true;
-        return;
-    }
-    // Moving, the new map gets a margin so that the next frames fit in it; a still view gets its own,
+    const bool held =
+        moving && held_shadow_complete_ && !shadow_map_dirty_ && same_lod && shadowFrameHolds(held_shadow_, tight);
+    // Moving, a new map gets a margin so that the next frames fit in it; a still view gets its own,
     // tight frame back (the first still frame after a drag redraws once).
-    const ShadowFrame frame = moving ? fitShadowFrame(cam, extent_, kSunDir, px, kMovingShadowMargin) : tight;
+    const ShadowFrame frame =
+        held ? held_shadow_ : (moving ? fitShadowFrame(cam, extent_, kSunDir, px, kMovingShadowMargin) : tight);
     shadow_texture_ = frame.texture;
     shadow_offset_m_ = 1.5f * frame.texel_m;
     shadow_valid_ = true;
+    if (held) return;
     // A still view draws only the casters whose shadow can fall in it (the map is drawn for this view
     // alone); a moving one draws the whole square, so that the next frames can use the map.
     const bool complete = moving;
     const glm::mat4 receiver = cam.viewProjection();
     // A still view of an unchanged scene keeps last frame's map: the sun does not move. (The eye and the
     // LOD settings choose which instances are meshes, hence casters.)
-    if (!shadow_map_dirty_ && same_lod && eye == last_shadow_eye_ && frame.view_proj == last_shadow_view_proj_ &&
+    if (!shadow_map_dirty_ && same_lod && eye == last_shadow_eye_ && frame.view_proj == held_shadow_.view_proj &&
         (held_shadow_complete_ || receiver == shadow_receiver_))
         return;
     glBindFramebuffer(GL_FRAMEBUFFER, shadow_fbo_);
@@ -715,7 +713,7 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
         caster_lod.lod2_px *= 2.0f;
         // The impostors' point scale in the map: orthographic, so texels per metre at any depth.
         const float texels_per_m = 1.0f / frame.texel_m;
-        if (shadow_draws_dirty_ || frame.view_proj != last_shadow_view_proj_ || lod.lod1_px != last_lod_.lod1_px ||
+        if (shadow_draws_dirty_ || frame.view_proj != held_shadow_.view_proj || lod.lod1_px != last_lod_.lod1_px ||
             lod.lod2_px != last_lod_.lod2_px || lod.impostor_px != last_lod_.impostor_px ||
             complete != held_shadow_complete_ || (!complete && receiver != shadow_receiver_)) {
             ViewParams params;
@@ -753,7 +751,6 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
                       kMinCasterTexels * frame.texel_m);
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
-    last_shadow_view_proj_ = frame.view_proj;
     last_shadow_eye_ = eye;
     held_shadow_ = frame;
     held_shadow_complete_ = complete;

@@ -194,9 +194,8 @@ private:
     float ao_radius_m_ = 0.1f;
     IndirectDraws shadow_draws_;
     IndirectBuffer indirect_, shadow_indirect_;
-    glm::mat4 last_shadow_view_proj_{0.0f};
     glm::vec3 last_shadow_eye_{NAN};
-    ShadowFrame held_shadow_;          // the frame the map was last drawn for
+    ShadowFrame held_shadow_;          // the frame the map was last drawn for (its view_proj: the casters' view)
     // Whether that map holds every caster of its square (drawn while moving), or only those whose shadow
     // reaches the view it was drawn for, `shadow_receiver_` (a still view): only the former is held.
     bool held_shadow_complete_ = false;
