@@ -13,6 +13,9 @@
 // uniform over the rest of the cell.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -49,5 +52,37 @@ glm::quat turnFrameTo(const glm::quat& from, glm::vec3 d);
 glm::vec3 coneDirection(float cone_rad, float u, float v);
 // The same from the cone's cosine (the walk's inner loop computes it once).
 glm::vec3 coneDirectionCos(float cos_cone, float u, float v);
+
+// cos(2πt) and sin(2πt) for t in [0, 1), within 2 units in the last place of float: the angle is
+// reduced to an eighth of a turn around the nearest quarter and the Taylor series taken to the 10th
+// (cosine) and 9th (sine) power, below float's rounding there. No library call, so loops of it vectorise,
+// and the same bits wherever no multiply-add is fused (strand_growth.cpp is built with -ffp-contract=off).
+inline void cosSinOfTurns(float t, float* c, float* s) {
+    const int quarter = int(4.0f * t + 0.5f);  // 0..4, t >= 0
+    const float x = (t - 0.25f * float(quarter)) * 6.28318530717958648f;  // in [-π/4, π/4]
+    const float x2 = x * x;
+    const float sx = x * (1.0f + x2 * (-1.0f / 6.0f + x2 * (1.0f / 120.0f + x2 * (-1.0f / 5040.0f + x2 * (1.0f / 362880.0f)))));
+    const float cx = 1.0f + x2 * (-0.5f + x2 * (1.0f / 24.0f + x2 * (-1.0f / 720.0f + x2 * (1.0f / 40320.0f + x2 * (-1.0f / 3628800.0f)))));
+    // A quarter turn maps (cos, sin) to (-sin, cos).
+    const int q = quarter & 3;
+    *c = q == 0 ? cx : q == 1 ? -sx : q == 2 ? -cx : sx;
+    *s = q == 0 ? sx : q == 1 ? cx : q == 2 ? -sx : -cx;
+}
+
+// coneDirectionCos for n pairs (u[i], v[i]) at once, into x, y, z: the random walk's trials. The turn
+// about the axis takes its cosine and sine from cosSinOfTurns, not the C library's, so the loop runs
+// several trials at a time (with -fno-math-errno, the square root is an instruction); the directions
+// differ from coneDirectionCos's in the last bit or two.
+inline void coneDirectionsCos(float cos_cone, size_t n, const float* u, const float* v, float* x, float* y, float* z) {
+    for (size_t i = 0; i < n; ++i) {
+        const float cos_t = 1.0f - u[i] * (1.0f - cos_cone);
+        const float sin_t = std::sqrt(std::max(0.0f, 1.0f - cos_t * cos_t));
+        float c, s;
+        cosSinOfTurns(v[i], &c, &s);
+        x[i] = sin_t * c;
+        y[i] = sin_t * s;
+        z[i] = cos_t;
+    }
+}
 
 }  // namespace ug

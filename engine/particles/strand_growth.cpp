@@ -288,30 +288,49 @@ void Growth::propose(size_t k, uint32_t step) {
     const glm::vec3 p0 = points_.pos[strands_.last[s]];
     // The frame as a matrix once per move: a trial is then 9 multiply-adds, not a quaternion product.
     const glm::mat3 frame = glm::mat3_cast(strands_.frame[s]);
-    glm::vec3 best_dir(0.0f, 0.0f, 1.0f);
-    float best_f = 0.0f;
-    uint32_t best_t = 0;
-    // Keeping distance or retrying, every trial is kept, to take the fittest that is not refused.
-    const bool choosy = choosy_;
-    std::array<float, 256> trial_f;
-    std::array<glm::vec3, 256> trial_dir;
+    const uint32_t n = walk_.trials;
+    const float step_m = walk_.step_length_m;
+    // The trials as arrays of floats, each loop below over all of them: the compiler runs four or more
+    // at a time (the hashes, in 64-bit words, stay one at a time).
+    alignas(32) std::array<float, 256> u, v, x, y, z, f;
     const uint64_t move_hash = hashFirstWords(walk_.seed, kTrialTag + strands_.key[s], step);
-    for (uint32_t t = 0; t < walk_.trials; ++t) {
+    for (uint32_t t = 0; t < n; ++t) {
         const uint64_t h = hashLastWord(move_hash, t);
-        const glm::vec3 dir = frame * coneDirectionCos(cos_cone_, unitFloat(h), unitFloat(mix64(h)));
-        const glm::vec3 p = p0 + dir * walk_.step_length_m;
-        float f = 0.0f;
-        for (size_t a = 0; a < scene_.attractors.size(); ++a) f += attractorTerm(scene_.attractors[a], charge_[a], p);
-        if (choosy) {
-            trial_f[t] = f;
-            trial_dir[t] = dir;
-        }
-        if (t == 0 || f < best_f) {  // ties keep the lower trial
-            best_f = f;
-            best_dir = dir;
-            best_t = t;
+        u[t] = unitFloat(h);
+        v[t] = unitFloat(mix64(h));
+    }
+    coneDirectionsCos(cos_cone_, n, u.data(), v.data(), x.data(), y.data(), z.data());
+    // The directions into the world (the frame's columns), in place; f starts at 0.
+    for (uint32_t t = 0; t < n; ++t) {
+        const float lx = x[t], ly = y[t], lz = z[t];
+        x[t] = frame[0][0] * lx + frame[1][0] * ly + frame[2][0] * lz;
+        y[t] = frame[0][1] * lx + frame[1][1] * ly + frame[2][1] * lz;
+        z[t] = frame[0][2] * lx + frame[1][2] * ly + frame[2][2] * lz;
+        f[t] = 0.0f;
+    }
+    // f = Σ a_i·d_i at each trial's end, the attractors in order (one attractor's terms over all trials).
+    for (size_t a = 0; a < scene_.attractors.size(); ++a) {
+        const Attractor& attractor = scene_.attractors[a];
+        const float charge = charge_[a];
+        if (attractor.kind == AttractorKind::Point) {  // attractorTerm's, written out
+            const glm::vec3 a_m = attractor.a_m;
+            const float reach = attractor.influence_m > 0.0f ? attractor.influence_m : INFINITY;
+            for (uint32_t t = 0; t < n; ++t) {
+                const float ex = (p0.x + x[t] * step_m) - a_m.x, ey = (p0.y + y[t] * step_m) - a_m.y,
+                            ez = (p0.z + z[t] * step_m) - a_m.z;
+                const float d = std::sqrt(ex * ex + ey * ey + ez * ez);
+                f[t] += charge * (d > reach ? reach : d);
+            }
+        } else {
+            for (uint32_t t = 0; t < n; ++t) f[t] += attractorTerm(attractor, charge, p0 + glm::vec3(x[t], y[t], z[t]) * step_m);
         }
     }
+    uint32_t best_t = 0;  // ties keep the lower trial
+    for (uint32_t t = 1; t < n; ++t)
+        if (f[t] < f[best_t]) best_t = t;
+    const glm::vec3 best_dir(x[best_t], y[best_t], z[best_t]);
+    // Keeping distance or retrying, every trial is kept, to take the fittest that is not refused.
+    const bool choosy = choosy_;
     place(k, p0, best_dir);
     if (!choosy) return;
     const uint8_t fittest_verdict = refusal(k);
@@ -319,12 +338,12 @@ void Growth::propose(size_t k, uint32_t step) {
     // The other trials, fittest first (ties: the lower trial), until one is not refused.
     std::array<uint8_t, 256> tried{};
     tried[best_t] = 1;
-    for (uint32_t n = 1; n < walk_.trials; ++n) {
-        uint32_t next = walk_.trials;
-        for (uint32_t t = 0; t < walk_.trials; ++t)
-            if (!tried[t] && (next == walk_.trials || trial_f[t] < trial_f[next])) next = t;
+    for (uint32_t i = 1; i < n; ++i) {
+        uint32_t next = n;
+        for (uint32_t t = 0; t < n; ++t)
+            if (!tried[t] && (next == n || f[t] < f[next])) next = t;
         tried[next] = 1;
-        place(k, p0, trial_dir[next]);
+        place(k, p0, glm::vec3(x[next], y[next], z[next]));
         if (refusal(k) == 0) return;
     }
     // Every trial refused: the fittest's verdict. A crowded strand stays where it is (on_distance).

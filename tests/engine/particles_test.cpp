@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <set>
@@ -185,6 +186,47 @@ TEST(ParticleSeeding, EqualStrataAreEqualAreasOnTheSphere) {
     size_t cap = 0;
     for (const glm::vec3& p : seeds.positions) cap += p.z > 0.5f;
     EXPECT_NEAR(double(cap), 2500.0, 60.0);
+}
+
+TEST(ParticleTrials, CosSinOfTurnsStaysWithinTwoUnitsInTheLastPlace) {
+    // Against the double-precision library on a fine sweep and at the quarter-reduction's seams.
+    std::vector<float> turns;
+    for (int i = 0; i < (1 << 16); ++i) turns.push_back(float(i) / float(1 << 16));
+    for (float seam : {0.125f, 0.375f, 0.625f, 0.875f, 1.0f})
+        for (float t : {std::nextafter(seam, 0.0f), seam, std::nextafter(seam, 2.0f)})
+            if (t < 1.0f) turns.push_back(t);
+    turns.push_back(std::nextafter(1.0f, 0.0f));
+    double worst = 0.0;
+    for (float t : turns) {
+        float c, s;
+        cosSinOfTurns(t, &c, &s);
+        const double angle = 2.0 * M_PI * double(t);
+        worst = std::max({worst, std::abs(double(c) - std::cos(angle)), std::abs(double(s) - std::sin(angle))});
+    }
+    EXPECT_LT(worst, 2.0 * 1.2e-7) << "float's unit in the last place at 1 is 1.2e-7";
+}
+
+TEST(ParticleTrials, BatchedConeDirectionsAreTheConesDirections) {
+    // The walk's batched trials against the one-at-a-time construction (the C library's cosine and sine):
+    // the same unit directions in the cap, to float's rounding, for every quarter of the turn.
+    const float cos_cone = std::cos(glm::radians(25.0f));
+    std::vector<float> u, v;
+    for (uint64_t i = 0; i < 4096; ++i) {
+        const uint64_t h = hashWords(3, i);
+        u.push_back(unitFloat(h));
+        v.push_back(unitFloat(mix64(h)));
+    }
+    std::vector<float> x(u.size()), y(u.size()), z(u.size());
+    coneDirectionsCos(cos_cone, u.size(), u.data(), v.data(), x.data(), y.data(), z.data());
+    std::array<int, 4> quarters{};
+    for (size_t i = 0; i < u.size(); ++i) {
+        const glm::vec3 batched(x[i], y[i], z[i]), one = coneDirectionCos(cos_cone, u[i], v[i]);
+        ASSERT_LT(glm::length(batched - one), 1e-6f) << "trial " << i;
+        EXPECT_NEAR(glm::length(batched), 1.0f, 1e-6f);
+        EXPECT_GE(batched.z, cos_cone - 1e-6f);
+        ++quarters[size_t(std::min(3.0f, 4.0f * v[i]))];
+    }
+    for (int q : quarters) EXPECT_GT(q, 900) << "every quarter of the turn is covered";
 }
 
 TEST(ParticleAttractors, PositiveChargePullsAndNegativePushes) {
