@@ -139,6 +139,8 @@ int runRenderCommand(int argc, char** argv) {
         if (!parseNumberList("--orbit", args.get("--orbit"), &deg, &error)) return usageError(error);
         if (deg.size() != 1 || !(std::fabs(deg[0]) <= 45.0))
             return usageError("--orbit: expected one number of degrees in [-45, 45], got '" + args.get("--orbit") + "'");
+        // One frame never turns: the flag would be ignored without a word.
+        if (options.frames < 2) return usageError("--orbit: turns the camera between frames: give --frames 2 or more");
         options.orbit_deg_per_frame = float(deg[0]);
     }
     if (args.has("--camera")) {

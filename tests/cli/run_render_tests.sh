@@ -153,7 +153,9 @@ PY
 )"; then ok "render --orbit: $out"; else bad "render --orbit: $out"; fi
 fi
 expect_fail "orbit: out of range" 2 "--orbit: expected one number of degrees in [-45, 45]" -- \
-  nodisplay "$bin" render "$pile" -o "$tmp/x.png" --orbit 90
+  nodisplay "$bin" render "$pile" -o "$tmp/x.png" --orbit 90 --frames 4
+expect_fail "orbit: without frames" 2 "--orbit: turns the camera between frames: give --frames 2 or more" -- \
+  nodisplay "$bin" render "$pile" -o "$tmp/x.png" --orbit 2
 
 # The fallback: the default display with a pbuffer (UG_EGL=pbuffer skips the surfaceless platform; Mesa's
 # default display is made surfaceless by EGL_PLATFORM, having no X server to reach), the same picture. With
