@@ -292,10 +292,13 @@ std::shared_ptr<const std::vector<glm::vec3>> meshAttractorPoints(std::shared_pt
 // The attractor's term of the fitness, a·min(d, influence) (§5.1 with the radius of influence the paper
 // suggests). Clamping keeps f continuous: a term that dropped to 0 beyond the radius would make a
 // positive attractor's border a cliff that pushes particles out.
+// The term from the distance d: the random walk's trials compute a point's distances several at a time.
+inline float attractorTermAt(const Attractor& a, float charge, float d) {
+    return charge * (a.influence_m > 0.0f && d > a.influence_m ? a.influence_m : d);
+}
 inline float attractorTerm(const Attractor& a, float charge, glm::vec3 p) {
     // The point, the commonest kind, inline: this runs for every trial of every move.
-    const float d = a.kind == AttractorKind::Point ? glm::length(p - a.a_m) : attractorDistance(a, p);
-    return charge * (a.influence_m > 0.0f && d > a.influence_m ? a.influence_m : d);
+    return attractorTermAt(a, charge, a.kind == AttractorKind::Point ? glm::length(p - a.a_m) : attractorDistance(a, p));
 }
 
 // g(p) of the cutter (see CutterKind).

@@ -312,14 +312,12 @@ void Growth::propose(size_t k, uint32_t step) {
     for (size_t a = 0; a < scene_.attractors.size(); ++a) {
         const Attractor& attractor = scene_.attractors[a];
         const float charge = charge_[a];
-        if (attractor.kind == AttractorKind::Point) {  // attractorTerm's, written out
+        if (attractor.kind == AttractorKind::Point) {  // attractorTerm's distance, written out per coordinate
             const glm::vec3 a_m = attractor.a_m;
-            const float reach = attractor.influence_m > 0.0f ? attractor.influence_m : INFINITY;
             for (uint32_t t = 0; t < n; ++t) {
                 const float ex = (p0.x + x[t] * step_m) - a_m.x, ey = (p0.y + y[t] * step_m) - a_m.y,
                             ez = (p0.z + z[t] * step_m) - a_m.z;
-                const float d = std::sqrt(ex * ex + ey * ey + ez * ez);
-                f[t] += charge * (d > reach ? reach : d);
+                f[t] += attractorTermAt(attractor, charge, std::sqrt(ex * ex + ey * ey + ez * ez));
             }
         } else {
             for (uint32_t t = 0; t < n; ++t) f[t] += attractorTerm(attractor, charge, p0 + glm::vec3(x[t], y[t], z[t]) * step_m);
