@@ -14,9 +14,21 @@
 
 namespace ug {
 
+// Makes sure `array` has room for n entries: if it has not, gives it room for a quarter more (so that
+// sizes that vary a little from one growth to the next do not make it grow again each time), written
+// once so that its pages are in memory before a growth fills them (not faulted in one by one as it
+// does), and empties it. An array with room already is left as it is.
+template <typename Array>
+void warmArray(Array& array, size_t n) {
+    if (array.capacity() >= n) return;
+    array.clear();
+    array.resize(n + n / 4);
+    array.clear();
+}
+
 struct GrowthRecord {
     // Points, as the growth placed them: a strand is the chain of prev links (kNoPoint at a root).
-    LargeVector<glm::vec3> point_pos;  // moved from the growth's own arrays (large_pages.h)
+    LargeVector<glm::vec3> point_pos;  // swapped with the growth's own arrays (large_pages.h)
     LargeVector<uint32_t> point_prev, point_strand;
     std::vector<uint32_t> step_points;  // [t]: the first point placed at step t (t = 0: the seeds); one past the last step ends it
     // Strands: the parent (-1 for a root) and the first of a split's children (kNoPoint if none; they
@@ -26,11 +38,12 @@ struct GrowthRecord {
     std::vector<uint32_t> step_strands;  // [t]: the first strand born at step t (t = 0: the roots)
     // Moves of step t: entries [step_moves[t], step_moves[t + 1]), one per strand active at t, by id.
     std::vector<uint32_t> step_moves;
-    std::vector<uint32_t> move_strand;
-    std::vector<uint32_t> move_from;  // the point the move leaves
-    std::vector<glm::vec3> move_pos, move_dir;
-    std::vector<int32_t> move_cutter;
-    std::vector<uint8_t> move_blocked, move_still;
+    // A fur ball's are tens of megabytes each, as the points' (large_pages.h).
+    LargeVector<uint32_t> move_strand;
+    LargeVector<uint32_t> move_from;  // the point the move leaves
+    LargeVector<glm::vec3> move_pos, move_dir;
+    LargeVector<int32_t> move_cutter;
+    LargeVector<uint8_t> move_blocked, move_still;
 
     static constexpr uint32_t kNoPoint = 0xffffffffu;
 
@@ -39,6 +52,28 @@ struct GrowthRecord {
         const auto clearAll = [](auto&... arrays) { (arrays.clear(), ...); };
         clearAll(point_pos, point_prev, point_strand, step_points, strand_parent, strand_first_child, step_strands,
                  step_moves, move_strand, move_from, move_pos, move_dir, move_cutter, move_blocked, move_still);
+    }
+    // Gives every array room for as many entries as `other`'s, the points' for `point_room` (warmArray);
+    // empties the record. A growth appends to the steps' and the moves' arrays; the points' and the
+    // strands' are swapped with its workspace's, which the growth after it fills.
+    void warmLike(const GrowthRecord& other, size_t point_room) {
+        clear();
+        const auto warm = [](auto& array, const auto& like) { warmArray(array, like.size()); };
+        warmArray(point_pos, point_room);
+        warmArray(point_prev, point_room);
+        warmArray(point_strand, point_room);
+        warm(step_points, other.step_points);
+        warm(strand_parent, other.strand_parent);
+        warm(strand_first_child, other.strand_first_child);
+        warm(step_strands, other.step_strands);
+        warm(step_moves, other.step_moves);
+        warm(move_strand, other.move_strand);
+        warm(move_from, other.move_from);
+        warm(move_pos, other.move_pos);
+        warm(move_dir, other.move_dir);
+        warm(move_cutter, other.move_cutter);
+        warm(move_blocked, other.move_blocked);
+        warm(move_still, other.move_still);
     }
 
     // Range helpers that read past the recorded steps as empty (the growth ended early: no active strand).

@@ -72,6 +72,11 @@ public:
 
     // Forgets every segment; keeps the cell size and the memory.
     void clear();
+    // Forgets every segment and takes a new reach; keeps the memory.
+    void reset(float reach_m) {
+        cells_ = GridCells(reach_m);
+        clear();
+    }
     // Files segment `id` (ids are the caller's, dense from 0) with its midpoint and a tag of the caller's
     // (the strand) kept beside it, so a query rejects most segments without touching the caller's data.
     void insert(uint32_t id, glm::vec3 midpoint, uint32_t tag);
@@ -137,6 +142,8 @@ private:
 class StepSegmentGrid {
 public:
     explicit StepSegmentGrid(float reach_m = 1.0f) : cells_(reach_m) {}
+    // Takes a new reach for the next build.
+    void reset(float reach_m) { cells_ = GridCells(reach_m); }
 
     // Replaces the grid's segments by the batch's (ids need not be dense), on up to `threads` threads;
     // keeps the memory.

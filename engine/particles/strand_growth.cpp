@@ -30,6 +30,11 @@ constexpr uint32_t kDistanceState = 0x10000;
 
 enum class StrandState : uint8_t { Active, Stopped, Killed };
 
+// The points a growth reserves room for: each seed's and one per step (splits may need more).
+size_t expectedPoints(size_t seeds, const WalkSettings& walk) {
+    return std::min<uint64_t>(walk.max_points, seeds * (uint64_t(walk.steps) + 1));
+}
+
 // Every point of every strand, in the order they were placed (steps, then strand ids). A strand is the
 // chain of prev links from its last point back to its first; a split's children start at their parent's
 // last point, which they share (that shared id is what exempts them from colliding with it).
@@ -37,6 +42,12 @@ struct PointStore {
     LargeVector<glm::vec3> pos;
     LargeVector<uint32_t> prev;    // the previous point of the strand, kNone at a root
     LargeVector<uint32_t> strand;  // the strand that placed it
+
+    void clear() {
+        pos.clear();
+        prev.clear();
+        strand.clear();
+    }
 };
 
 // Per-strand state, one array per field.
@@ -64,6 +75,11 @@ struct StrandStore {
     std::vector<glm::vec3> solid_normal;
 
     size_t size() const { return first.size(); }
+    void clear() {
+        const auto clearAll = [](auto&... arrays) { (arrays.clear(), ...); };
+        clearAll(key, first_child, recorded, first, last, npoints, frame, parent, root, depth, state, age, countdown,
+                 countdown_stops, cut_mask, solid_normal);
+    }
     void add(uint64_t k, uint32_t point, glm::quat q, int32_t parent_id, uint8_t d, uint32_t mask, uint32_t rec) {
         key.push_back(k);
         first_child.push_back(kNone);
@@ -116,6 +132,14 @@ float cutParameter(const Cutter& c, glm::vec3 p0, glm::vec3 p1) {
     return lo;
 }
 
+// A replay's arrays, kept in the growths' workspace between re-growths.
+struct ReplayMemory {
+    std::vector<uint8_t> parted;
+    SegmentGrid changed_segments, changed_moves;
+    std::vector<uint32_t> entry;
+    std::vector<uint8_t> same, proposed, entry_same;
+};
+
 // Re-growing from a record (StrandRegrower): which strands may reuse their recorded move at this step,
 // and the changed geometry that makes a recorded move stale. A strand reuses its recorded proposal when
 // it is identical to its recorded strand so far and no changed attractor reaches its trials; it reuses its
@@ -126,25 +150,62 @@ struct Replay {
     const GrowthRecord& record;
     AttractorEdit edit;
     CutterEdit cutter_edit;
-    std::vector<uint8_t> parted;    // per recorded strand: the new growth no longer has an identical one
-    SegmentGrid changed_segments;   // changed segments of earlier steps, new and recorded
-    SegmentGrid changed_moves;      // changed moves of this step, new and recorded
-    uint32_t changed_ids = 0;       // ids for the changed grids (only their presence is asked)
-    std::vector<uint32_t> entry;    // per active strand: its recorded move at this step, or kNone
-    std::vector<uint8_t> same;      // per active strand: its proposal and first verdict equal the record's
-    std::vector<uint8_t> proposed;  // per active strand: its proposal was computed again
-    std::vector<uint8_t> entry_same;  // per recorded move of this step: its strand's `same`
+    std::vector<uint8_t>& parted;    // per recorded strand: the new growth no longer has an identical one
+    SegmentGrid& changed_segments;   // changed segments of earlier steps, new and recorded
+    SegmentGrid& changed_moves;      // changed moves of this step, new and recorded
+    // Ids for the changed grids, dense in each (only their presence is asked): the segments' over the
+    // whole growth, the moves' over one step.
+    uint32_t changed_segment_ids = 0, changed_move_ids = 0;
+    std::vector<uint32_t>& entry;    // per active strand: its recorded move at this step, or kNone
+    std::vector<uint8_t>& same;      // per active strand: its proposal and first verdict equal the record's
+    std::vector<uint8_t>& proposed;  // per active strand: its proposal was computed again
+    std::vector<uint8_t>& entry_same;  // per recorded move of this step: its strand's `same`
     uint64_t reused = 0, recomputed = 0;
 
-    Replay(const GrowthRecord& r, const ParticleScene& before, const ParticleScene& after, float reach)
+    Replay(const GrowthRecord& r, const ParticleScene& before, const ParticleScene& after, float reach,
+           ReplayMemory* memory)
         : record(r), edit(before.attractors, after.attractors, after.walk.step_length_m),
           cutter_edit(before.cutters, after.cutters, after.walk.step_length_m),
-          parted(r.strand_parent.size(), 0), changed_segments(reach), changed_moves(reach) {}
+          parted(memory->parted), changed_segments(memory->changed_segments), changed_moves(memory->changed_moves),
+          entry(memory->entry), same(memory->same), proposed(memory->proposed), entry_same(memory->entry_same) {
+        parted.assign(r.strand_parent.size(), 0);
+        changed_segments.reset(reach);
+        changed_moves.reset(reach);
+    }
 };
+
+}  // namespace
+
+// What a growth writes step by step, kept by a StrandRegrower from one growth to the next: a re-growth
+// then writes into memory the process already holds. Fresh, its pages fault in one by one: the first
+// re-growth after a full growth took as long as the full growth did (docs/particles.md).
+struct GrowthWorkspace {
+    PointStore points;
+    StrandStore strands;
+    SegmentGrid grid;
+    StepSegmentGrid step_grid;
+    std::vector<SegmentGrid::Filed> filing;
+    std::vector<uint32_t> point_at, active;
+    Moves moves;
+    ReplayMemory replay;
+
+    // Room for a growth like the one `record` holds, in the arrays that keepRecord swaps with a record's
+    // (warmArray): `point_room` points, as many strands as the record's.
+    void warmLike(const GrowthRecord& record, size_t point_room) {
+        warmArray(points.pos, point_room);
+        warmArray(points.prev, point_room);
+        warmArray(points.strand, point_room);
+        warmArray(strands.parent, record.strand_parent.size());
+        warmArray(strands.first_child, record.strand_first_child.size());
+    }
+};
+
+namespace {
 
 class Growth {
 public:
-    Growth(const ParticleScene& scene, const GrowOptions& options)
+    // Grows into `memory`'s arrays (emptied first; their capacity is kept).
+    Growth(const ParticleScene& scene, const GrowOptions& options, GrowthWorkspace* memory)
         : scene_(scene), walk_(scene.walk), threads_(options.threads), cancel_(options.cancel),
           steps_done_(options.steps_done),
           cone_(glm::radians(walk_.cone_deg)), cos_cone_(std::cos(cone_)),
@@ -161,8 +222,19 @@ public:
           reach_(proposal_reads_segments_
                      ? 1.001f * (2.0f * walk_.step_length_m + std::max(walk_.keep_distance_m, 2.0f * walk_.strand_radius_m))
                      : walk_.step_length_m * 1.001f + 2.0f * walk_.strand_radius_m * 1.001f),
-          grid_(reach_),
-          step_grid_(reach_) {
+          points_(memory->points),
+          strands_(memory->strands),
+          grid_(memory->grid),
+          step_grid_(memory->step_grid),
+          filing_(memory->filing),
+          point_at_(memory->point_at),
+          active_(memory->active),
+          moves_(memory->moves),
+          replay_memory_(memory->replay) {
+        points_.clear();
+        strands_.clear();
+        grid_.reset(reach_);
+        step_grid_.reset(reach_);
         if (!walk_.solids) return;
         // The surfaces objects and details generators gather are among the obstacles already.
         for (const ParticleGenerator& g : scene_.generators)
@@ -174,9 +246,9 @@ public:
 
     // Grow again from `record`, a growth of `before` (regrowable(before, scene_)).
     void replayFrom(const GrowthRecord& record, const ParticleScene& before) {
-        replay_.emplace(record, before, scene_, reach_);
+        replay_.emplace(record, before, scene_, reach_, &replay_memory_);
     }
-    // Keep what a later replayFrom needs in *record (moved out when run returns).
+    // Keep what a later replayFrom needs in *record (swapped in when run returns).
     void recordInto(GrowthRecord* record) { record_ = record; }
     RegrowReport report() const {
         return {replay_.has_value(), replay_ ? replay_->recomputed : proposals_, replay_ ? replay_->reused : 0};
@@ -229,15 +301,17 @@ private:
     bool proposal_reads_segments_;
     bool choosy_;  // a move is chosen among every trial that is not refused (keeping distance, retrying)
     float reach_;
-    PointStore points_;
-    StrandStore strands_;
-    SegmentGrid grid_;       // segments of earlier steps, by their end point's id
-    StepSegmentGrid step_grid_;  // this step's moves, by their index in active_
-    std::vector<SegmentGrid::Filed> filing_;  // what a step files in either grid, in id order
-    std::vector<uint32_t> point_at_;  // per active strand: the id of the point its move places (placePoints)
-    std::vector<uint32_t> active_;
+    // The workspace's arrays.
+    PointStore& points_;
+    StrandStore& strands_;
+    SegmentGrid& grid_;       // segments of earlier steps, by their end point's id
+    StepSegmentGrid& step_grid_;  // this step's moves, by their index in active_
+    std::vector<SegmentGrid::Filed>& filing_;  // what a step files in either grid, in id order
+    std::vector<uint32_t>& point_at_;  // per active strand: the id of the point its move places (placePoints)
+    std::vector<uint32_t>& active_;
+    Moves& moves_;
+    ReplayMemory& replay_memory_;
     std::vector<float> charge_;  // a_i(t) of this step
-    Moves moves_;
     StrandStats stats_;
     void addSolid(const ParticleObstacle& placement, bool obstacle);
     bool insideObstacle(glm::vec3 p) const;
@@ -263,7 +337,7 @@ void Growth::seed() {
         on_solid.resize(seeds.positions.size(),
                         walk_.solids && seedsOnMesh(scene_.generators[g]) ? 1 : 0);
     }
-    const size_t expected = std::min<uint64_t>(walk_.max_points, seeds.positions.size() * (uint64_t(walk_.steps) + 1));
+    const size_t expected = expectedPoints(seeds.positions.size(), walk_);
     points_.pos.reserve(expected);
     points_.prev.reserve(expected);
     points_.strand.reserve(expected);
@@ -691,11 +765,12 @@ void Growth::testLowerMoves(uint32_t step) {
         for (size_t k = 0; k < active_.size(); ++k)
             if (rp.entry[k] != kNone) rp.entry_same[rp.entry[k] - begin] = rp.same[k];
         rp.changed_moves.clear();
+        rp.changed_move_ids = 0;
         for (size_t k = 0; k < active_.size(); ++k)
-            if (!rp.same[k] && filed(k)) rp.changed_moves.insert(rp.changed_ids++, moveMidpoint(k), 0);
+            if (!rp.same[k] && filed(k)) rp.changed_moves.insert(rp.changed_move_ids++, moveMidpoint(k), 0);
         for (uint32_t j = begin; j < end; ++j)
             if (!rp.entry_same[j - begin] && !r.move_still[j] && (r.move_blocked[j] == 0 || r.move_blocked[j] == 2))
-                rp.changed_moves.insert(rp.changed_ids++, 0.5f * (r.point_pos[r.move_from[j]] + r.move_pos[j]), 0);
+                rp.changed_moves.insert(rp.changed_move_ids++, 0.5f * (r.point_pos[r.move_from[j]] + r.move_pos[j]), 0);
     }
     parallelFor(active_.size(), threads_, 512, [&](size_t begin, size_t end, int) {
         for (size_t k = begin; k < end; ++k) {
@@ -718,7 +793,7 @@ void Growth::partFromRecord(uint32_t step) {
     if (!files_segments_) return;
     for (uint32_t p = r.stepBegin(r.step_points, step); p < r.stepEnd(r.step_points, step); ++p)
         if (rp.parted[r.point_strand[p]])
-            rp.changed_segments.insert(rp.changed_ids++, 0.5f * (r.point_pos[r.point_prev[p]] + r.point_pos[p]), 0);
+            rp.changed_segments.insert(rp.changed_segment_ids++, 0.5f * (r.point_pos[r.point_prev[p]] + r.point_pos[p]), 0);
 }
 
 // Appends the points of this step's accepted moves in id order and lists their segments for the grid
@@ -841,7 +916,7 @@ bool Growth::run(Strands* out, std::string* error) {
                 // The segment it placed (placePoints) is changed geometry once the strand has parted.
                 if (files_segments_ && movedTo(k) && strands_.recorded[s] == kNone) {
                     const glm::vec3 mid = segmentMidpoint(strands_.last[s]);
-                    replay_->changed_segments.insert(replay_->changed_ids++, mid, 0);
+                    replay_->changed_segments.insert(replay_->changed_segment_ids++, mid, 0);
                 }
             }
             const bool counting = strands_.countdown[s] >= 0;
@@ -879,21 +954,22 @@ bool Growth::run(Strands* out, std::string* error) {
     return true;
 }
 
-// Moves the growth's points and strands into the record (after emit, the last reader).
+// Swaps the growth's points and strands into the record (after emit, the last reader); the workspace gets
+// the record's old arrays, whose memory the next growth reuses.
 void Growth::keepRecord() {
     GrowthRecord& r = *record_;
     r.step_moves.push_back(uint32_t(r.move_strand.size()));
     r.step_points.push_back(uint32_t(points_.pos.size()));
     r.step_strands.push_back(uint32_t(strands_.size()));
-    r.point_pos = std::move(points_.pos);
-    r.point_prev = std::move(points_.prev);
-    r.point_strand = std::move(points_.strand);
-    r.strand_parent = std::move(strands_.parent);
-    r.strand_first_child = std::move(strands_.first_child);
+    std::swap(r.point_pos, points_.pos);
+    std::swap(r.point_prev, points_.prev);
+    std::swap(r.point_strand, points_.strand);
+    std::swap(r.strand_parent, strands_.parent);
+    std::swap(r.strand_first_child, strands_.first_child);
 }
 
 void Growth::emit(Strands* out) const {
-    *out = Strands{};
+    out->clear();  // its memory kept: a re-growth writes where the last growth's strands were
     out->stats = stats_;
     out->stats.strands = strands_.size();
     // Which strands come out and where their points go, serially (a parent always precedes its children
@@ -910,6 +986,7 @@ void Growth::emit(Strands* out) const {
         out->parent.push_back(strands_.parent[s] >= 0 ? index[size_t(strands_.parent[s])] : -1);
         out->particle.push_back(s);
     }
+    warmArray(out->points, out->offsets.back());  // a re-growth's strands may have a few more points
     out->points.resize(out->offsets.back());
     parallelFor(out->particle.size(), threads_, 1024, [&](size_t begin, size_t end, int) {
         for (size_t i = begin; i < end; ++i) {
@@ -922,6 +999,7 @@ void Growth::emit(Strands* out) const {
             assert(at == out->offsets[i]);
         }
     });
+    warmArray(out->radii, out->points.size());
     out->radii.assign(out->points.size(), walk_.strand_radius_m);
 }
 
@@ -961,7 +1039,8 @@ bool placedInAProject(const ParticleScene& scene, std::string* error) {
 
 bool growStrands(const ParticleScene& scene, const GrowOptions& options, Strands* out, std::string* error) {
     if (!validateParticleScene(scene, error) || !placedInAProject(scene, error)) return false;
-    Growth growth(scene, options);
+    GrowthWorkspace memory;
+    Growth growth(scene, options, &memory);
     return growth.run(out, error);
 }
 
@@ -979,7 +1058,8 @@ bool StrandRegrower::grow(const ParticleScene& scene, const GrowOptions& options
         return false;
     }
     if (!next_) next_ = std::make_unique<GrowthRecord>();
-    Growth growth(scene, options);
+    if (!memory_) memory_ = std::make_unique<GrowthWorkspace>();
+    Growth growth(scene, options, memory_.get());
     if (record_ && regrowable(scene_, scene)) growth.replayFrom(*record_, scene_);
     growth.recordInto(next_.get());
     if (!growth.run(out, error)) {
@@ -992,6 +1072,16 @@ bool StrandRegrower::grow(const ParticleScene& scene, const GrowOptions& options
     // The new record replaces the old, whose memory the next growth reuses.
     std::swap(record_, next_);
     scene_ = scene;
+    // The next growth writes a record into next_ and points into the workspace. Where their memory is
+    // new (after the first growth), its pages are brought in now: faulted in by the first edit, they
+    // made it as slow as the full growth (docs/particles.md).
+    // Its point arrays come to the workspace after that growth, for the one after it: they are warmed
+    // too, so that the first edits' growths find all three sets of points in memory.
+    if (!next_) next_ = std::make_unique<GrowthRecord>();
+    const size_t seeds = record_->step_points.size() > 1 ? record_->step_points[1] : 0;
+    const size_t point_room = std::max(expectedPoints(seeds, scene.walk), record_->point_pos.size());
+    next_->warmLike(*record_, point_room);
+    memory_->warmLike(*record_, point_room);
     return true;
 }
 

@@ -52,6 +52,15 @@ struct Strands {
     StrandStats stats;
 
     size_t size() const { return parent.size(); }
+    // Empties it, keeping its memory.
+    void clear() {
+        points.clear();
+        radii.clear();
+        offsets.assign(1, 0);
+        parent.clear();
+        particle.clear();
+        stats = {};
+    }
 };
 
 struct GrowOptions {
@@ -79,12 +88,14 @@ struct RegrowReport {
     uint64_t reused = 0;       // moves taken from the record
 };
 
+struct GrowthWorkspace;
+
 // Grows a scene again as it is edited (the editor's live strands, a sculpting session): each grow()
 // keeps a record of its growth, and the next one, when the edit touched only the attractors (their place,
 // shape and charges, at the same radius of influence), re-grows from it only the strands the edit
 // reaches, directly or through strands it reached (docs/particles.md "Incremental re-growth"). The result
 // is the full growth's, bit for bit; any other edit grows in full. Holds the record (about 40 bytes a
-// move) between calls.
+// move) and the growth's working arrays (about as much again) between calls.
 class StrandRegrower {
 public:
     StrandRegrower();
@@ -101,6 +112,7 @@ public:
 private:
     ParticleScene scene_;
     std::unique_ptr<GrowthRecord> record_, next_;
+    std::unique_ptr<GrowthWorkspace> memory_;  // the growths' working arrays, kept for the next one
     RegrowReport report_;
 };
 

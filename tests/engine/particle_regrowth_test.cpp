@@ -8,6 +8,7 @@
 #include <cstring>
 #include <random>
 
+#include "particles/growth_record.h"
 #include "particles/strand_growth.h"
 
 namespace ug {
@@ -375,6 +376,50 @@ TEST(ParticleRegrowth, OtherEditsGrowInFullAndFailuresDropTheRecord) {
     ASSERT_TRUE(regrower.grow(scene, {.threads = 2}, &out, &error)) << error;
     EXPECT_FALSE(regrower.lastReport().incremental);
     expectIdentical(out, fullGrowth(scene), "after a refused scene");
+}
+
+// A regrower keeps its working arrays from one growth to the next (the first edit finds them in memory).
+// Nothing of one scene may leak into the next: a patch grown after a coarser and a finer one, and edited,
+// is a fresh growth's, bit for bit.
+TEST(ParticleRegrowth, WorkingMemoryCarriesNothingFromOneSceneToTheNext) {
+    const ParticleScene crowded = crowdedSplittingGrass();
+    ParticleScene coarse = crowded;  // thicker strands, longer steps: the grids' cells are wider
+    coarse.walk.step_length_m = 0.03f;
+    coarse.walk.strand_radius_m = 0.01f;
+    coarse.generators[0].count = 3000;
+    ParticleScene fine = crowded;  // a sparser, finer patch: every array shorter
+    fine.walk.step_length_m = 0.006f;
+    fine.walk.strand_radius_m = 0.002f;
+    fine.generators[0].count = 400;
+    StrandRegrower regrower;
+    Strands out;
+    std::string error;
+    for (const ParticleScene* scene : std::vector<const ParticleScene*>{&crowded, &coarse, &crowded, &fine, &crowded}) {
+        ASSERT_TRUE(regrower.grow(*scene, {.threads = 2}, &out, &error)) << error;
+        EXPECT_FALSE(regrower.lastReport().incremental);
+        expectIdentical(out, fullGrowth(*scene), "step " + std::to_string(scene->walk.step_length_m));
+    }
+    ParticleScene edited = crowded;
+    edited.attractors[1].a_m.x -= 0.1f;
+    ASSERT_TRUE(regrower.grow(edited, {.threads = 2}, &out, &error)) << error;
+    EXPECT_TRUE(regrower.lastReport().incremental);
+    expectIdentical(out, fullGrowth(edited), "edited after the other scenes");
+}
+
+TEST(ParticleRegrowth, WarmArrayGivesRoomOnceAndThenLeavesTheArrayAlone) {
+    std::vector<uint32_t> a{7, 8, 9};
+    warmArray(a, 100);
+    EXPECT_TRUE(a.empty());
+    EXPECT_GE(a.capacity(), 125u);  // a quarter more than asked, against small growths
+    const uint32_t* memory = a.data();
+    for (uint32_t i = 0; i < 120; ++i) a.push_back(i);
+    EXPECT_EQ(a.data(), memory);  // filled without growing again
+    warmArray(a, 110);  // room enough: left alone, contents and all
+    EXPECT_EQ(a.size(), 120u);
+    EXPECT_EQ(a.data(), memory);
+    warmArray(a, 1000);
+    EXPECT_TRUE(a.empty());
+    EXPECT_GE(a.capacity(), 1000u);
 }
 
 }  // namespace
