@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <mutex>
 #include <thread>
@@ -21,9 +22,28 @@ namespace {
 // (the pool is busy with the outer loop).
 thread_local bool t_in_loop = false;
 
+// Spins until ready() holds or about `micros` microseconds have passed; returns ready().
+template <typename Ready>
+bool spinFor(int micros, Ready&& ready) {
+    const auto until = std::chrono::steady_clock::now() + std::chrono::microseconds(micros);
+    for (;;) {
+        for (int i = 0; i < 64; ++i) {
+            if (ready()) return true;
+            std::this_thread::yield();
+        }
+        if (std::chrono::steady_clock::now() >= until) return ready();
+    }
+}
+
 // Threads kept between loops. Starting and joining threads cost ~100 µs a loop, which a growth of
 // 10,000 strands pays ~150 times (several loops a step); a kept thread waits on a condition instead.
 // One loop at a time: a caller that finds the pool busy (another thread's loop) starts threads of its own.
+//
+// Waking a thread asleep on a condition takes tens of microseconds on the virtual machines we run on,
+// as long as many of a growth's loops (a step of a 10,000-strand patch runs seven, most under 200 µs):
+// the caller ran them nearly alone, and two threads re-grew the patch barely faster than one. So a
+// worker that finishes a loop, and a caller that waits for its workers, first spin briefly (yielding)
+// on the generation and the pending count, and sleep only when nothing came.
 class WorkerPool {
 public:
     static WorkerPool& instance() {
@@ -53,43 +73,53 @@ public:
             }
             job_ = &run;
             wanted_ = workers;
-            pending_ = workers - 1;
-            ++generation_;
+            pending_.store(workers - 1, std::memory_order_relaxed);
+            generation_.fetch_add(1, std::memory_order_release);
         }
         wake_.notify_all();
         run(0);
-        std::unique_lock<std::mutex> lock(mutex_);
-        done_.wait(lock, [this] { return pending_ == 0; });
+        if (!spinFor(kSpinMicros, [this] { return pending_.load(std::memory_order_acquire) == 0; })) {
+            std::unique_lock<std::mutex> lock(mutex_);
+            done_.wait(lock, [this] { return pending_.load(std::memory_order_acquire) == 0; });
+        }
+        std::lock_guard<std::mutex> lock(mutex_);
         job_ = nullptr;
         return true;
     }
 
 private:
+    static constexpr int kSpinMicros = 200;
+
     WorkerPool() = default;
 
     void serve(int id) {
         uint64_t seen = 0;
-        std::unique_lock<std::mutex> lock(mutex_);
         for (;;) {
-            wake_.wait(lock, [&] { return stop_ || (generation_ != seen && id < wanted_); });
+            spinFor(kSpinMicros, [&] { return generation_.load(std::memory_order_acquire) != seen; });
+            std::unique_lock<std::mutex> lock(mutex_);
+            wake_.wait(lock, [&] { return stop_ || (generation_.load(std::memory_order_relaxed) != seen && id < wanted_); });
             if (stop_) return;
-            seen = generation_;
+            seen = generation_.load(std::memory_order_relaxed);
             const std::function<void(int)>* job = job_;
             lock.unlock();
             (*job)(id);
-            lock.lock();
-            if (--pending_ == 0) done_.notify_one();
+            // The last worker to finish wakes the caller if it went to sleep; the lock orders that
+            // notification after the caller's check of the count.
+            if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) {
+                std::lock_guard<std::mutex> done_lock(mutex_);
+                done_.notify_one();
+            }
         }
     }
 
     std::mutex busy_;   // held by the caller whose loop the pool runs
-    std::mutex mutex_;  // guards what follows
+    std::mutex mutex_;  // guards what follows (the atomics are written under it too, but read without)
     std::condition_variable wake_, done_;
     std::vector<std::thread> threads_;  // thread i serves worker i + 1
     const std::function<void(int)>* job_ = nullptr;
-    int wanted_ = 0;   // workers 1 .. wanted_ - 1 take part in the current loop
-    int pending_ = 0;  // of those, the ones not finished
-    uint64_t generation_ = 0;
+    int wanted_ = 0;                     // workers 1 .. wanted_ - 1 take part in the current loop
+    std::atomic<int> pending_{0};        // of those, the ones not finished
+    std::atomic<uint64_t> generation_{0};
     bool stop_ = false;
 };
 

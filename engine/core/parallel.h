@@ -1,8 +1,9 @@
 // A minimal fork-join parallel loop over std::thread. Work is split into contiguous chunks taken from an
 // atomic counter, so uneven chunks balance themselves; results must never depend on which worker ran a
 // chunk (callers write into per-index slots or per-worker scratch that is merged in a fixed order).
-// Threads are kept between loops (a growth runs hundreds of short ones); a loop started while the kept
-// threads run another (from another thread, or nested in a loop's body) starts threads of its own.
+// Threads are kept between loops (a growth runs hundreds of short ones) and spin for up to 200 µs,
+// yielding, before they sleep; a loop started while the kept threads run another (from another thread,
+// or nested in a loop's body) starts threads of its own.
 #pragma once
 
 #include <cstddef>
