@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -24,6 +25,13 @@ void warmArray(Array& array, size_t n) {
     array.clear();
     array.resize(n + n / 4);
     array.clear();
+}
+
+// warmArray(array, like.size()) for each pair (array, like) of the arguments.
+template <typename Array, typename Like, typename... Rest>
+void warmEachLike(Array& array, const Like& like, Rest&&... rest) {
+    warmArray(array, like.size());
+    if constexpr (sizeof...(rest) > 0) warmEachLike(std::forward<Rest>(rest)...);
 }
 
 struct GrowthRecord {
@@ -58,22 +66,14 @@ struct GrowthRecord {
     // strands' are swapped with its workspace's, which the growth after it fills.
     void warmLike(const GrowthRecord& other, size_t point_room) {
         clear();
-        const auto warm = [](auto& array, const auto& like) { warmArray(array, like.size()); };
         warmArray(point_pos, point_room);
         warmArray(point_prev, point_room);
         warmArray(point_strand, point_room);
-        warm(step_points, other.step_points);
-        warm(strand_parent, other.strand_parent);
-        warm(strand_first_child, other.strand_first_child);
-        warm(step_strands, other.step_strands);
-        warm(step_moves, other.step_moves);
-        warm(move_strand, other.move_strand);
-        warm(move_from, other.move_from);
-        warm(move_pos, other.move_pos);
-        warm(move_dir, other.move_dir);
-        warm(move_cutter, other.move_cutter);
-        warm(move_blocked, other.move_blocked);
-        warm(move_still, other.move_still);
+        warmEachLike(step_points, other.step_points, strand_parent, other.strand_parent, strand_first_child,
+                     other.strand_first_child, step_strands, other.step_strands, step_moves, other.step_moves,
+                     move_strand, other.move_strand, move_from, other.move_from, move_pos, other.move_pos, move_dir,
+                     other.move_dir, move_cutter, other.move_cutter, move_blocked, other.move_blocked, move_still,
+                     other.move_still);
     }
 
     // Range helpers that read past the recorded steps as empty (the growth ended early: no active strand).
