@@ -15,16 +15,22 @@
 
 namespace ug {
 
-// Makes sure `array` has room for n entries: if it has not, gives it room for a quarter more (so that
-// sizes that vary a little from one growth to the next do not make it grow again each time), written
-// once so that its pages are in memory before a growth fills them (not faulted in one by one as it
-// does), and empties it. An array with room already is left as it is.
+// Gives `array` room for exactly n entries if it has less, written once so that its pages are in memory
+// before a growth fills them (not faulted in one by one as it does), and empties it. An array with room
+// already is left as it is.
 template <typename Array>
-void warmArray(Array& array, size_t n) {
+void warmArrayExactly(Array& array, size_t n) {
     if (array.capacity() >= n) return;
     array.clear();
-    array.resize(n + n / 4);
+    array.resize(n);
     array.clear();
+}
+
+// As warmArrayExactly, for arrays whose size varies a little from one growth to the next: an array
+// without room for n gets room for a quarter more, so that it does not grow again each time.
+template <typename Array>
+void warmArray(Array& array, size_t n) {
+    if (array.capacity() < n) warmArrayExactly(array, n + n / 4);
 }
 
 // warmArray(array, like.size()) for each pair (array, like) of the arguments.
@@ -61,14 +67,15 @@ struct GrowthRecord {
         clearAll(point_pos, point_prev, point_strand, step_points, strand_parent, strand_first_child, step_strands,
                  step_moves, move_strand, move_from, move_pos, move_dir, move_cutter, move_blocked, move_still);
     }
-    // Gives every array room for as many entries as `other`'s, the points' for `point_room` (warmArray);
+    // Gives every array room for as many entries as `other`'s (warmArray), the points' for exactly
+    // `point_room` (a growth reserves that much before it places any);
     // empties the record. A growth appends to the steps' and the moves' arrays; the points' and the
     // strands' are swapped with its workspace's, which the growth after it fills.
     void warmLike(const GrowthRecord& other, size_t point_room) {
         clear();
-        warmArray(point_pos, point_room);
-        warmArray(point_prev, point_room);
-        warmArray(point_strand, point_room);
+        warmArrayExactly(point_pos, point_room);
+        warmArrayExactly(point_prev, point_room);
+        warmArrayExactly(point_strand, point_room);
         warmEachLike(step_points, other.step_points, strand_parent, other.strand_parent, strand_first_child,
                      other.strand_first_child, step_strands, other.step_strands, step_moves, other.step_moves,
                      move_strand, other.move_strand, move_from, other.move_from, move_pos, other.move_pos, move_dir,

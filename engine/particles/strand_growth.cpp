@@ -30,11 +30,6 @@ constexpr uint32_t kDistanceState = 0x10000;
 
 enum class StrandState : uint8_t { Active, Stopped, Killed };
 
-// The points a growth reserves room for: each seed's and one per step (splits may need more).
-size_t expectedPoints(size_t seeds, const WalkSettings& walk) {
-    return std::min<uint64_t>(walk.max_points, seeds * (uint64_t(walk.steps) + 1));
-}
-
 // Every point of every strand, in the order they were placed (steps, then strand ids). A strand is the
 // chain of prev links from its last point back to its first; a split's children start at their parent's
 // last point, which they share (that shared id is what exempts them from colliding with it).
@@ -153,9 +148,6 @@ struct Replay {
     std::vector<uint8_t>& parted;    // per recorded strand: the new growth no longer has an identical one
     SegmentGrid& changed_segments;   // changed segments of earlier steps, new and recorded
     SegmentGrid& changed_moves;      // changed moves of this step, new and recorded
-    // Ids for the changed grids, dense in each (only their presence is asked): the segments' over the
-    // whole growth, the moves' over one step.
-    uint32_t changed_segment_ids = 0, changed_move_ids = 0;
     std::vector<uint32_t>& entry;    // per active strand: its recorded move at this step, or kNone
     std::vector<uint8_t>& same;      // per active strand: its proposal and first verdict equal the record's
     std::vector<uint8_t>& proposed;  // per active strand: its proposal was computed again
@@ -172,6 +164,9 @@ struct Replay {
         changed_segments.reset(reach);
         changed_moves.reset(reach);
     }
+
+    // Files changed geometry; only its presence is asked, so its id is just the next one.
+    static void fileChanged(SegmentGrid* grid, glm::vec3 midpoint) { grid->insert(uint32_t(grid->size()), midpoint, 0); }
 };
 
 }  // namespace
@@ -189,12 +184,12 @@ struct GrowthWorkspace {
     Moves moves;
     ReplayMemory replay;
 
-    // Room for a growth like the one `record` holds, in the arrays that keepRecord swaps with a record's
-    // (warmArray): `point_room` points, as many strands as the record's.
+    // Room for a growth like the one `record` holds, in the arrays that keepRecord swaps with a record's:
+    // `point_room` points exactly (warmArrayExactly), as many strands as the record's (warmArray).
     void warmLike(const GrowthRecord& record, size_t point_room) {
-        warmArray(points.pos, point_room);
-        warmArray(points.prev, point_room);
-        warmArray(points.strand, point_room);
+        warmArrayExactly(points.pos, point_room);
+        warmArrayExactly(points.prev, point_room);
+        warmArrayExactly(points.strand, point_room);
         warmArray(strands.parent, record.strand_parent.size());
         warmArray(strands.first_child, record.strand_first_child.size());
     }
@@ -337,7 +332,7 @@ void Growth::seed() {
         on_solid.resize(seeds.positions.size(),
                         walk_.solids && seedsOnMesh(scene_.generators[g]) ? 1 : 0);
     }
-    const size_t expected = expectedPoints(seeds.positions.size(), walk_);
+    const size_t expected = std::min<uint64_t>(walk_.max_points, seeds.positions.size() * (uint64_t(walk_.steps) + 1));
     points_.pos.reserve(expected);
     points_.prev.reserve(expected);
     points_.strand.reserve(expected);
@@ -765,12 +760,11 @@ void Growth::testLowerMoves(uint32_t step) {
         for (size_t k = 0; k < active_.size(); ++k)
             if (rp.entry[k] != kNone) rp.entry_same[rp.entry[k] - begin] = rp.same[k];
         rp.changed_moves.clear();
-        rp.changed_move_ids = 0;
         for (size_t k = 0; k < active_.size(); ++k)
-            if (!rp.same[k] && filed(k)) rp.changed_moves.insert(rp.changed_move_ids++, moveMidpoint(k), 0);
+            if (!rp.same[k] && filed(k)) Replay::fileChanged(&rp.changed_moves, moveMidpoint(k));
         for (uint32_t j = begin; j < end; ++j)
             if (!rp.entry_same[j - begin] && !r.move_still[j] && (r.move_blocked[j] == 0 || r.move_blocked[j] == 2))
-                rp.changed_moves.insert(rp.changed_move_ids++, 0.5f * (r.point_pos[r.move_from[j]] + r.move_pos[j]), 0);
+                Replay::fileChanged(&rp.changed_moves, 0.5f * (r.point_pos[r.move_from[j]] + r.move_pos[j]));
     }
     parallelFor(active_.size(), threads_, 512, [&](size_t begin, size_t end, int) {
         for (size_t k = begin; k < end; ++k) {
@@ -793,7 +787,7 @@ void Growth::partFromRecord(uint32_t step) {
     if (!files_segments_) return;
     for (uint32_t p = r.stepBegin(r.step_points, step); p < r.stepEnd(r.step_points, step); ++p)
         if (rp.parted[r.point_strand[p]])
-            rp.changed_segments.insert(rp.changed_segment_ids++, 0.5f * (r.point_pos[r.point_prev[p]] + r.point_pos[p]), 0);
+            Replay::fileChanged(&rp.changed_segments, 0.5f * (r.point_pos[r.point_prev[p]] + r.point_pos[p]));
 }
 
 // Appends the points of this step's accepted moves in id order and lists their segments for the grid
@@ -916,7 +910,7 @@ bool Growth::run(Strands* out, std::string* error) {
                 // The segment it placed (placePoints) is changed geometry once the strand has parted.
                 if (files_segments_ && movedTo(k) && strands_.recorded[s] == kNone) {
                     const glm::vec3 mid = segmentMidpoint(strands_.last[s]);
-                    replay_->changed_segments.insert(replay_->changed_segment_ids++, mid, 0);
+                    Replay::fileChanged(&replay_->changed_segments, mid);
                 }
             }
             const bool counting = strands_.countdown[s] >= 0;
@@ -1077,9 +1071,9 @@ bool StrandRegrower::grow(const ParticleScene& scene, const GrowOptions& options
     // made it as slow as the full growth (docs/particles.md).
     // Its point arrays come to the workspace after that growth, for the one after it: they are warmed
     // too, so that the first edits' growths find all three sets of points in memory.
+    // The record's points were the workspace's, reserved by the growth (seed): that room, no more.
     if (!next_) next_ = std::make_unique<GrowthRecord>();
-    const size_t seeds = record_->step_points.size() > 1 ? record_->step_points[1] : 0;
-    const size_t point_room = std::max(expectedPoints(seeds, scene.walk), record_->point_pos.size());
+    const size_t point_room = record_->point_pos.capacity();
     next_->warmLike(*record_, point_room);
     memory_->warmLike(*record_, point_room);
     return true;
