@@ -118,16 +118,21 @@ bool HeightSpanMap::coveredAlong(glm::vec3 p, glm::vec2 slope, float eps, float 
     const double steps = std::ceil(double(hi_z - lo_z) / double(dz)) + 1.0;
     const long n = long(std::min(steps, 1.0e6));
     for (long k = 0; k < n; ++k) {
-        const float z0 = lo_z + float(double(k - 1) * double(dz)), z1 = z0 + dz;
-        const glm::vec2 mid = glm::vec2(p.x, p.y) + slope * (0.5f * (z0 + z1) - p.z);
+        // Each step clipped to the ray's heights: a step reaching below lo_z (the first one does) would
+        // look inside the part the point lies on (a slab's top face at its own height is "inside" a few
+        // millimetres down), and a half-cell step rises more than 2 eps when the drift is under ~12°.
+        const float z0 = std::max(lo_z, lo_z + float(double(k - 1) * double(dz)));
+        const float z1 = std::min(hi_z, lo_z + float(double(k) * double(dz)));
+        const float z_mid = 0.5f * (z0 + z1);
+        const glm::vec2 mid = glm::vec2(p.x, p.y) + slope * (z_mid - p.z);
         const long c = cellOf(mid.x, mid.y);
         if (c < 0) continue;
         const float* first = z_.data() + first_[size_t(c)];
         const float* last = z_.data() + first_[size_t(c) + 1];
-        const float* it = std::lower_bound(first, last, std::max(z0, p.z + eps));
+        const float* it = std::lower_bound(first, last, z0);
         if (it != last && *it <= z1) return true;
         // Inside a part (a wall seen edge-on by the vertical lines: its faces cross none of them).
-        if (insideSolid(c, 0.5f * (z0 + z1))) return true;
+        if (insideSolid(c, z_mid)) return true;
     }
     return false;
 }

@@ -26,12 +26,33 @@ std::string boxObj(glm::vec3 lo, glm::vec3 hi) {
     return s;
 }
 
+// Boxes (lo, hi pairs) as one Z-up OBJ.
+std::string boxesObj(std::initializer_list<std::pair<glm::vec3, glm::vec3>> boxes) {
+    std::string s;
+    int base = 0;
+    for (const auto& [lo, hi] : boxes) {
+        for (int k = 0; k < 8; ++k)
+            s += "v " + std::to_string((k & 1) ? hi.x : lo.x) + " " + std::to_string((k & 2) ? hi.y : lo.y) + " " +
+                 std::to_string((k & 4) ? hi.z : lo.z) + "\n";
+        const auto f = [&](int a, int b, int c, int d) {
+            s += "f " + std::to_string(base + a) + " " + std::to_string(base + b) + " " + std::to_string(base + c) +
+                 " " + std::to_string(base + d) + "\n";
+        };
+        f(1, 3, 4, 2), f(5, 6, 8, 7), f(1, 2, 6, 5), f(3, 7, 8, 4), f(1, 5, 7, 3), f(2, 4, 8, 6);
+        base += 8;
+    }
+    return s;
+}
+
 struct EnvFixture {
     test::TempDir dir{"ug_env_scene_"};
     EnvFixture() {
         std::ofstream(dir.path() / "cube.obj") << boxObj({-0.5f, -0.5f, 0.0f}, {0.5f, 0.5f, 1.0f});
         std::ofstream(dir.path() / "roof.obj") << boxObj({-1.0f, -1.0f, 2.0f}, {1.0f, 1.0f, 2.1f});
         std::ofstream(dir.path() / "wall.obj") << boxObj({-0.1f, -1.0f, 0.0f}, {0.1f, 1.0f, 3.0f});
+        // A paving slab 12 cm thick with a 30 cm kerb along its +Y edge (taller than the shelter's 3 cm).
+        std::ofstream(dir.path() / "kerbed_slab.obj")
+            << boxesObj({{{-1.0f, -1.0f, 0.0f}, {1.0f, 0.85f, 0.12f}}, {{-1.0f, 0.85f, 0.0f}, {1.0f, 1.0f, 0.3f}}});
     }
     // A project with `env` as its environment; false with the error.
     bool load(const std::string& env, Project* p, std::string* error) {
@@ -54,7 +75,8 @@ const std::string kTypes = R"("types": [
     {"name": "cube", "mesh": "cube.obj", "y_up": false,
      "fields": [{"channel": "temperature", "value": 2, "shape": {"point": {"center": [0, 0, 1], "radius": 1}}}]},
     {"name": "roof", "mesh": "roof.obj", "y_up": false},
-    {"name": "wall", "mesh": "wall.obj", "y_up": false}])";
+    {"name": "wall", "mesh": "wall.obj", "y_up": false},
+    {"name": "kerbed_slab", "mesh": "kerbed_slab.obj", "y_up": false}])";
 
 TEST(EnvScene, ChannelsSumAndOcclusionMultiplies) {
     EnvFixture f;
@@ -271,6 +293,32 @@ TEST(EnvScene, ShelterLooksBackAlongSlantingSnow) {
     EXPECT_NE(error.find("/environment/snow_direction: must point down"), std::string::npos) << error;
     EXPECT_FALSE(f.load(R"({"snow_direction": [0, 0, 0], )" + kTypes + "}", &p, &error));
     EXPECT_NE(error.find("/environment/snow_direction: must not be zero"), std::string::npos) << error;
+}
+
+// A point on an object's own up-facing face is open to snow that slants a little (Montmartre's 10° wind):
+// the ray's first half-cell step rises more than twice the 3 cm margin, and a step that reached below the
+// margin looked inside the slab under the point, so every paving slab and stair tread of a part taller
+// than the margin (a kerb) stayed bare.
+TEST(EnvScene, AFaceIsOpenToGentlySlantingSnowOnItsOwnHeight) {
+    EnvFixture f;
+    std::string error;
+    const std::string tree = R"(, "tree": [{"object": "kerbed_slab", "yaw_deg": 90}]})";
+    for (const char* direction : {"[0.176, 0, -1]", "[0, 0.1, -1]", "[-0.05, 0.05, -1]", "[1, 0, -1]"}) {
+        SCOPED_TRACE(direction);
+        EnvScene env;
+        ASSERT_TRUE(f.compile(std::string(R"({"snow_direction": )") + direction + ", " + kTypes + tree, &env, &error))
+            << error;
+        // The slab's top (turned: the kerb runs along -X), on and just above its face, well clear of the kerb.
+        for (const float x : {0.0f, 0.3f, 0.6f})
+            for (const float z : {0.12f, 0.1201f}) {
+                EXPECT_EQ(env.shelter({x, -0.4f, z}), 1.0f) << "x " << x << ", z " << z;
+                EXPECT_EQ(env.shelter({x, 0.4f, z}), 1.0f) << "x " << x << ", z " << z;
+            }
+        // The kerb still shelters what lies just downwind of it at its foot when the snow comes over it.
+        if (std::string(direction) == "[1, 0, -1]") {
+            EXPECT_EQ(env.shelter({-0.8f, 0.0f, 0.12f}), 0.0f);
+        }
+    }
 }
 
 TEST(EnvScene, BadTreesAreRefusedWithThePlace) {
