@@ -112,8 +112,8 @@ struct SnowCover {
 bool buildGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const EnvQuery& env, SnowCover* out,
                        std::string* error);
 
-// Joints. Snow bridges a gap of at most kSnowJointGapM between two border edges in one plane (within
-// kSnowJointHeightM along `up`) that face each other: a paving slab's 8 mm joints within a model, the seam
+// Joints. Snow bridges a gap of at most kSnowJointGapM between two border edges at one height (within
+// kSnowJointHeightM vertically, whatever the wind) that face each other: a paving slab's 8 mm joints within a model, the seam
 // between two road segments. Placed objects may also overlap by up to kSnowJointOverlapM (positions rounded
 // in a scene file).
 constexpr float kSnowJointGapM = 0.02f;
@@ -128,7 +128,7 @@ struct SnowBorderSide {
 
 // The border edges of the faces buildGeometrySnow extracts from `base` with `s`, before shelter (the
 // extraction's geometric part: faces within max_face_angle of up, vertices welded), in edge order, leaving
-// out those whose ends differ in height by more than 2 kSnowJointHeightM (they never meet another). Empty
+// out those whose ends differ in height (Z) by more than 2 kSnowJointHeightM (they never meet another). Empty
 // for an invalid mesh or settings.
 std::vector<SnowBorderSide> snowBorderSides(const TriangleMesh& base, const SnowSettings& s);
 
@@ -137,9 +137,9 @@ std::vector<SnowBorderSide> snowBorderSides(const TriangleMesh& base, const Snow
 float snowJointGap(const SnowBorderSide& p, const SnowBorderSide& q);
 
 // Whether p and q face each other across a joint: parallel (within 5 degrees), inward directions opposed,
-// q's ends beyond p's edge by -overlap_m to kSnowJointGapM and within kSnowJointHeightM of p's plane along
-// `up` (unit), alongside each other over at least half the shorter edge; and the same from q's side.
-bool snowSidesMeet(const SnowBorderSide& p, const SnowBorderSide& q, glm::vec3 up, float overlap_m);
+// q's ends beyond p's edge line by -overlap_m to kSnowJointGapM and within kSnowJointHeightM of its height
+// (Z), alongside each other over at least half the shorter edge; and the same from q's side.
+bool snowSidesMeet(const SnowBorderSide& p, const SnowBorderSide& q, float overlap_m);
 
 // Procedural snow (§5.1 "black box" effects), generated directly at the target edge length. The shapes are
 // given in object space with their top towards +Z; the snow lies on the top when `up` is within

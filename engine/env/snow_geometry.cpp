@@ -197,8 +197,8 @@ std::vector<Side> borderSides(const std::vector<glm::vec3>& welded, const std::v
         if (!se.border) continue;
         const glm::vec3 a = welded[se.lo], b = welded[se.hi], d = b - a;
         // Ends further apart in height than this never meet another side (snowSidesMeet): a tree's
-        // branches have thousands of such edges.
-        if (std::fabs(glm::dot(d, up)) > 2.0f * kSnowJointHeightM) continue;
+        // branches have thousands of such edges. Vertical height, as snowSidesMeet measures it.
+        if (std::fabs(d.z) > 2.0f * kSnowJointHeightM) continue;
         const SnowFace& f = faces[se.face0];
         const glm::vec3 c = (welded[f.v[0]] + welded[f.v[1]] + welded[f.v[2]]) / 3.0f;
         glm::vec3 across = (c - a) - d * (glm::dot(c - a, d) / glm::dot(d, d));
@@ -271,7 +271,7 @@ void markJoints(const std::vector<glm::vec3>& welded, const std::vector<SnowFace
             if (++pairs > kMaxJointPairs) break;
             const Side &p = sides[order[i]], &q = sides[order[j]];
             if (faces[(*edges)[p.edge].face0].patch == faces[(*edges)[q.edge].face0].patch) continue;
-            if (!snowSidesMeet(p.geo, q.geo, up, 1e-6f)) continue;
+            if (!snowSidesMeet(p.geo, q.geo, 1e-6f)) continue;
             setShift(&(*edges)[p.edge], p.geo, snowJointGap(p.geo, q.geo));
             setShift(&(*edges)[q.edge], q.geo, snowJointGap(q.geo, p.geo));
         }
@@ -637,8 +637,21 @@ bool layOutGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const E
 
 }  // namespace snow_detail
 
+namespace {
+
+// v's offset from p's edge line (square to it).
+glm::vec3 offsetFromEdge(const SnowBorderSide& p, glm::vec3 v) {
+    const glm::vec3 d = p.b - p.a, off = v - p.a;
+    const float dd = glm::dot(d, d);
+    return dd > 0.0f ? off - d * (glm::dot(off, d) / dd) : off;
+}
+
+}  // namespace
+
 float snowJointGap(const SnowBorderSide& p, const SnowBorderSide& q) {
-    return std::max(0.0f, -0.5f * (glm::dot(q.a - p.a, p.inward) + glm::dot(q.b - p.a, p.inward)));
+    // From the edge line: a wind leans `inward` along the edge, so a plain offset from p.a would add the
+    // length along the edge times that lean.
+    return std::max(0.0f, -0.5f * (glm::dot(offsetFromEdge(p, q.a), p.inward) + glm::dot(offsetFromEdge(p, q.b), p.inward)));
 }
 
 std::vector<SnowBorderSide> snowBorderSides(const TriangleMesh& base, const SnowSettings& s) {
@@ -655,17 +668,21 @@ std::vector<SnowBorderSide> snowBorderSides(const TriangleMesh& base, const Snow
 
 namespace {
 
-// q's ends beyond p's edge (away from p's face) by -overlap_m to the gap, in p's plane, and alongside p
-// over at least half the shorter edge.
-bool facing(const SnowBorderSide& p, const SnowBorderSide& q, glm::vec3 up, float overlap_m) {
+// q's ends beyond p's edge (away from p's face) by -overlap_m to the gap, at the height of p's edge line,
+// and alongside p over at least half the shorter edge.
+bool facing(const SnowBorderSide& p, const SnowBorderSide& q, float overlap_m) {
     const glm::vec3 dp = p.b - p.a, dq = q.b - q.a;
     const float lp = glm::length(dp), lq = glm::length(dq);
     if (!(lp > 0.0f && lq > 0.0f)) return false;
     if (std::fabs(glm::dot(dp, dq)) < 0.996f * lp * lq || glm::dot(p.inward, q.inward) > -0.9f) return false;
     for (const glm::vec3 v : {q.a, q.b}) {
-        const float gap = -glm::dot(v - p.a, p.inward);
-        if (gap < -overlap_m || gap > kSnowJointGapM || std::fabs(glm::dot(v - p.a, up)) > kSnowJointHeightM)
-            return false;
+        // Heights are vertical (objects turn only about Z) and taken from p's edge line, not from its end
+        // along the snow's `up`: with a wind, `up` leans along every horizontal edge that runs across it,
+        // and q's ends, a paving stone's length along that edge, seemed centimetres higher or lower (the
+        // cobbles' rows were never bridged: a groove down to the stone between every two rows).
+        const glm::vec3 across = offsetFromEdge(p, v);
+        const float gap = -glm::dot(across, p.inward);
+        if (gap < -overlap_m || gap > kSnowJointGapM || std::fabs(across.z) > kSnowJointHeightM) return false;
     }
     const glm::vec3 along = dp / lp;
     const float t0 = glm::dot(q.a - p.a, along), t1 = glm::dot(q.b - p.a, along);
@@ -675,8 +692,8 @@ bool facing(const SnowBorderSide& p, const SnowBorderSide& q, glm::vec3 up, floa
 
 }  // namespace
 
-bool snowSidesMeet(const SnowBorderSide& p, const SnowBorderSide& q, glm::vec3 up, float overlap_m) {
-    return facing(p, q, up, overlap_m) && facing(q, p, up, overlap_m);
+bool snowSidesMeet(const SnowBorderSide& p, const SnowBorderSide& q, float overlap_m) {
+    return facing(p, q, overlap_m) && facing(q, p, overlap_m);
 }
 
 bool buildGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const EnvQuery& env, SnowCover* out,

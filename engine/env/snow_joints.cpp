@@ -103,7 +103,7 @@ struct WorldSide {
 
 // The sides of objects with neighbours, in world space, that come near one of those neighbours.
 std::vector<WorldSide> sidesNearNeighbours(const EnvScene& scene, const TypeSides& ts,
-                                           const std::vector<std::vector<uint32_t>>& near, glm::vec3 up) {
+                                           const std::vector<std::vector<uint32_t>>& near) {
     const auto& objects = scene.objects();
     std::vector<WorldSide> out;
     for (uint32_t o = 0; o < objects.size(); ++o) {
@@ -120,7 +120,9 @@ std::vector<WorldSide> sidesNearNeighbours(const EnvScene& scene, const TypeSide
             for (uint32_t n : near[o]) meets = meets || overlaps(box, objects[n].bounds);
             if (!meets) continue;
             if (out.size() >= kMaxSides) return out;
-            const double layer = std::floor(double(glm::dot(w.geo.a, up)) / kLayerM);
+            // By vertical height, as snowSidesMeet compares them (not along a wind's slanting `up`, which
+            // would put the two ends of one cobble joint layers apart).
+            const double layer = std::floor(double(w.geo.a.z) / kLayerM);
             if (!(std::fabs(layer) < 1e15)) continue;  // a non-finite placement meets nothing
             w.layer = int64_t(layer);
             w.lo_x = std::min(w.geo.a.x, w.geo.b.x);
@@ -146,7 +148,7 @@ struct CellEntry {
     }
 };
 
-std::vector<std::pair<uint32_t, uint32_t>> meetingSides(const std::vector<WorldSide>& sides, glm::vec3 up) {
+std::vector<std::pair<uint32_t, uint32_t>> meetingSides(const std::vector<WorldSide>& sides) {
     const float reach = kSnowJointGapM + kSnowJointOverlapM;
     auto cellRange = [&](const WorldSide& w, int64_t* x0, int64_t* x1, int64_t* y0, int64_t* y1) {
         const float ylo = std::min(w.geo.a.y, w.geo.b.y), yhi = std::max(w.geo.a.y, w.geo.b.y);
@@ -180,7 +182,7 @@ std::vector<std::pair<uint32_t, uint32_t>> meetingSides(const std::vector<WorldS
         if (ix != std::max(first_cell[i].first, first_cell[j].first) ||
             iy != std::max(first_cell[i].second, first_cell[j].second))
             return;  // met in an earlier cell
-        if (snowSidesMeet(p.geo, q.geo, up, kSnowJointOverlapM)) meeting.emplace_back(std::min(i, j), std::max(i, j));
+        if (snowSidesMeet(p.geo, q.geo, kSnowJointOverlapM)) meeting.emplace_back(std::min(i, j), std::max(i, j));
     };
     for (size_t b = 0; b < entries.size() && pairs <= kMaxSidePairs;) {
         size_t e = b;
@@ -222,9 +224,8 @@ std::vector<std::vector<SnowSegment>> findSnowJoints(const EnvScene& scene, int 
     const auto& objects = scene.objects();
     std::vector<std::vector<SnowSegment>> out(objects.size());
     const TypeSides ts = typeSides(scene, threads);
-    const glm::vec3 up = -scene.desc().snow_direction;
-    std::vector<WorldSide> sides = sidesNearNeighbours(scene, ts, nearObjects(scene, ts), up);
-    const std::vector<std::pair<uint32_t, uint32_t>> meeting = meetingSides(sides, up);
+    std::vector<WorldSide> sides = sidesNearNeighbours(scene, ts, nearObjects(scene, ts));
+    const std::vector<std::pair<uint32_t, uint32_t>> meeting = meetingSides(sides);
     // Both faces must take snow: open at their centroid, as the builder tests them (one query per object).
     std::vector<uint32_t> involved;
     for (auto [i, j] : meeting) involved.insert(involved.end(), {i, j});
