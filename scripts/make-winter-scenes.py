@@ -47,8 +47,10 @@ def twigs(center, radius, weight=0.6):
     }]
 
 
-def env_type(name, snow=None, icicles=None, fields=None, material=None):
+def env_type(name, snow=None, icicles=None, fields=None, material=None, shelters=True):
     t = {"name": name, "mesh": "../env_models/%s.glb" % name}
+    if not shelters:
+        t["shelters"] = False
     if snow:
         t["snow"] = snow
     if icicles:
@@ -99,8 +101,12 @@ TYPES = [
     env_type("trash_can", snow={"target_edge_m": 0.02, "d0_m": 0.03}, icicles={"spacing_m": 0.05, "max_length_m": 0.1}),
     env_type("bus_shelter", snow={"target_edge_m": 0.04}, icicles={"spacing_m": 0.07, "max_length_m": 0.3}),
     env_type("fence_segment", snow={"target_edge_m": 0.015, "d0_m": 0.01}, icicles={"spacing_m": 0.05, "max_length_m": 0.12}),
+    # A bare tree's branches do not keep snow off the ground in their own shape: flakes drift around
+    # twigs metres above it. As a shelter they drew each branch as a trough in the snow, and left the
+    # ground bare where branches crowd over the trunk's foot; the crown's occlusion field thins it instead.
     env_type("tree", snow={"target_edge_m": 0.03, "d0_m": 0.02, "max_face_angle_deg": 70},
-             icicles={"enabled": False}, fields=[field("occlusion", 0.5, point([0, 0, 3.5], 2.5))]),
+             icicles={"enabled": False}, fields=[field("occlusion", 0.5, point([0, 0, 3.5], 2.5))],
+             shelters=False),
     env_type("fountain", snow={"target_edge_m": 0.03}, icicles={"spacing_m": 0.05, "max_length_m": 0.25}),
     env_type("facade", snow={"target_edge_m": 0.04, "d0_m": 0.03}, icicles={"spacing_m": 0.1, "max_length_m": 0.2},
              material={"base_color": [0.72, 0.66, 0.56], "roughness": 0.9}),
