@@ -33,7 +33,8 @@ constexpr const char* kUsage =
     "       [--particles PARTICLES.json]   (a particle system's strands drawn into the scene)\n"
     "  --size: each side in [16, 16384], at most 67,108,864 pixels (8192 x 8192); default 1280x720\n"
     "  --camera: orbit target (metres), distance (metres, > 0), yaw (degrees; -90 looks from -Y) and\n"
-    "            pitch (degrees above the horizon, in [-89, 89]); default: the editor's opening view\n"
+    "            pitch (degrees above the horizon, in [-89, 89]); default: the editor's opening view;\n"
+    "            an eye under the ground is raised above it (the pitch, then the target), as in the editor\n"
     "  --no-shadows, --no-ao: leave out the sun's shadows, the ambient occlusion (faster on llvmpipe)\n"
     "  --frames N: render N frames (1-1000) and report their median time; the picture is the last\n"
     "  --orbit DEG: with --frames, turn the camera DEG degrees about its target each frame (-45 to 45),\n"
@@ -181,6 +182,11 @@ int runRenderCommand(int argc, char** argv) {
                  (unsigned long long)result.shadow_triangles, (unsigned long long)result.shadow_points,
                  c.target.x, c.target.y, c.target.z,
                  c.distance_m, glm::degrees(c.yaw_rad), glm::degrees(c.pitch_rad));
+    if (result.eye_raised_frames > 0)
+        std::fprintf(stderr,
+                     "render: the eye was under the ground in %d of %zu frames and was raised above it, as the "
+                     "editor does (the camera above is the last frame's)\n",
+                     result.eye_raised_frames, result.frame_ms.size());
     std::printf("wrote %s (%dx%d)\n", out.c_str(), result.width, result.height);
     return 0;
 }

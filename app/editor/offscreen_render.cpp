@@ -7,6 +7,7 @@
 #include "editor/gl/renderer.h"
 #include "editor/gl/shader_program.h"
 #include "editor/scene_snapshot.h"
+#include "editor/tools.h"
 
 namespace ug::editor {
 
@@ -49,8 +50,12 @@ OffscreenRenderStatus renderSceneOffscreen(const OffscreenRenderOptions& options
     const float aspect = float(options.width) / float(options.height);
     OrbitCamera camera = options.camera ? *options.camera : defaultView(snap.framing(), aspect);
     camera.aspect = aspect;
+    // As in the editor, the eye never goes below the ground (a --camera given low over a hill, or an orbit
+    // turning it behind one): from under the terrain the picture is the sky seen through its underside.
+    const auto ground = [&snap](glm::vec2 xy) { return groundHeightAt(*snap.scene.doc, xy); };
     for (int frame = 0; frame < options.frames; ++frame) {
         if (frame > 0) camera.yaw_rad += glm::radians(options.orbit_deg_per_frame);
+        if (keepEyeAboveGround(&camera, ground)) ++result->eye_raised_frames;
         const auto t0 = std::chrono::steady_clock::now();
         target.bind();
         renderer.render(camera, options.width, options.height, options.lod);

@@ -40,6 +40,7 @@ struct OffscreenRenderResult {
     std::vector<uint8_t> rgba;  // width x height RGBA8, rows top-down
     int width = 0, height = 0;
     OrbitCamera camera;         // the camera used
+    int eye_raised_frames = 0;  // frames whose eye was under the ground and was raised above it (keepEyeAboveGround)
     uint64_t instances = 0;
     uint64_t triangles = 0;     // the last frame's (terrain + static meshes + detail meshes)
     uint64_t points = 0;        // the last frame's impostor point sprites

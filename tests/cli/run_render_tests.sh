@@ -152,6 +152,19 @@ print("mean |diff| from the still view %.3f, the shadows themselves %.2f" % (hel
 PY
 )"; then ok "render --orbit: $out"; else bad "render --orbit: $out"; fi
 fi
+# A camera under the ground (looking up at the pile from 0.7 m below its floor) is raised above it, as the
+# editor keeps its eye: the pitch goes up until the eye is 5 cm over the floor (asin(-0.25 / 2) = -7.18°),
+# and the run says so; a camera above the ground is left as given.
+if render_ok under "$pile" -o "$tmp/under.png" --size 160x90 --camera 0,0,0.3,2,-90,-30; then
+  pitch=$(sed -n 's/^render: camera [^,]*,[^,]*,[^,]*,[^,]*,[^,]*,\([-0-9.]*\)$/\1/p' "$tmp/under.log")
+  if grep -q "the eye was under the ground in 1 of 1 frames" "$tmp/under.log" &&
+     awk -v p="$pitch" 'BEGIN { exit !(p > -7.3 && p < -7.0) }'; then
+    ok "render: an eye under the ground is raised above it (pitch -30 -> $pitch)"
+  else bad "render: eye under the ground: pitch '$pitch': $(cat "$tmp/under.log")"; fi
+fi
+if grep -q "under the ground" "$tmp/orbit.log" "$tmp/pile.log" 2>/dev/null; then
+  bad "render: a camera above the ground was reported as raised: $(grep -h "under the ground" "$tmp/orbit.log" "$tmp/pile.log")"
+else ok "render: cameras above the ground are left as given"; fi
 expect_fail "orbit: out of range" 2 "--orbit: expected one number of degrees in [-45, 45]" -- \
   nodisplay "$bin" render "$pile" -o "$tmp/x.png" --orbit 90 --frames 4
 expect_fail "orbit: without frames" 2 "--orbit: turns the camera between frames: give --frames 2 or more" -- \
