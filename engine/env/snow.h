@@ -113,9 +113,9 @@ bool buildGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const En
                        std::string* error);
 
 // Joints. Snow bridges a gap of at most kSnowJointGapM between two border edges at one height (within
-// kSnowJointHeightM vertically, whatever the wind) that face each other: a paving slab's 8 mm joints within a model, the seam
-// between two road segments. Placed objects may also overlap by up to kSnowJointOverlapM (positions rounded
-// in a scene file).
+// kSnowJointHeightM vertically, whatever the wind) that face each other: a paving slab's 8 mm joints within
+// a model, the seam between two road segments. Placed objects may also overlap by up to kSnowJointOverlapM
+// (positions rounded in a scene file).
 constexpr float kSnowJointGapM = 0.02f;
 constexpr float kSnowJointHeightM = 0.005f;
 constexpr float kSnowJointOverlapM = 0.002f;

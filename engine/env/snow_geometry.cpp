@@ -651,7 +651,9 @@ glm::vec3 offsetFromEdge(const SnowBorderSide& p, glm::vec3 v) {
 float snowJointGap(const SnowBorderSide& p, const SnowBorderSide& q) {
     // From the edge line: a wind leans `inward` along the edge, so a plain offset from p.a would add the
     // length along the edge times that lean.
-    return std::max(0.0f, -0.5f * (glm::dot(offsetFromEdge(p, q.a), p.inward) + glm::dot(offsetFromEdge(p, q.b), p.inward)));
+    const float beyond_a = glm::dot(offsetFromEdge(p, q.a), p.inward);
+    const float beyond_b = glm::dot(offsetFromEdge(p, q.b), p.inward);
+    return std::max(0.0f, -0.5f * (beyond_a + beyond_b));
 }
 
 std::vector<SnowBorderSide> snowBorderSides(const TriangleMesh& base, const SnowSettings& s) {
@@ -677,9 +679,9 @@ bool facing(const SnowBorderSide& p, const SnowBorderSide& q, float overlap_m) {
     if (std::fabs(glm::dot(dp, dq)) < 0.996f * lp * lq || glm::dot(p.inward, q.inward) > -0.9f) return false;
     for (const glm::vec3 v : {q.a, q.b}) {
         // Heights are vertical (objects turn only about Z) and taken from p's edge line, not from its end
-        // along the snow's `up`: with a wind, `up` leans along every horizontal edge that runs across it,
-        // and q's ends, a paving stone's length along that edge, seemed centimetres higher or lower (the
-        // cobbles' rows were never bridged: a groove down to the stone between every two rows).
+        // along the snow's `up`: with a wind, `up` leans along every horizontal edge that runs with the
+        // wind, and q's ends, a paving stone's length along that edge, seemed centimetres higher or lower
+        // (the cobbles' rows were never bridged: a groove down to the stone between every two rows).
         const glm::vec3 across = offsetFromEdge(p, v);
         const float gap = -glm::dot(across, p.inward);
         if (gap < -overlap_m || gap > kSnowJointGapM || std::fabs(across.z) > kSnowJointHeightM) return false;

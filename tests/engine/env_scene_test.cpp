@@ -16,17 +16,7 @@
 namespace ug {
 namespace {
 
-// An axis-aligned box as a Z-up OBJ (outward faces).
-std::string boxObj(glm::vec3 lo, glm::vec3 hi) {
-    std::string s;
-    for (int k = 0; k < 8; ++k)
-        s += "v " + std::to_string((k & 1) ? hi.x : lo.x) + " " + std::to_string((k & 2) ? hi.y : lo.y) + " " +
-             std::to_string((k & 4) ? hi.z : lo.z) + "\n";
-    s += "f 1 3 4 2\nf 5 6 8 7\nf 1 2 6 5\nf 3 7 8 4\nf 1 5 7 3\nf 2 4 8 6\n";
-    return s;
-}
-
-// Boxes (lo, hi pairs) as one Z-up OBJ.
+// Axis-aligned boxes (lo, hi pairs) as one Z-up OBJ (outward faces).
 std::string boxesObj(std::initializer_list<std::pair<glm::vec3, glm::vec3>> boxes) {
     std::string s;
     int base = 0;
@@ -43,6 +33,8 @@ std::string boxesObj(std::initializer_list<std::pair<glm::vec3, glm::vec3>> boxe
     }
     return s;
 }
+
+std::string boxObj(glm::vec3 lo, glm::vec3 hi) { return boxesObj({{lo, hi}}); }
 
 struct EnvFixture {
     test::TempDir dir{"ug_env_scene_"};
