@@ -639,11 +639,10 @@ bool layOutGeometrySnow(const TriangleMesh& base, const SnowSettings& s, const E
 
 namespace {
 
-// v's offset from p's edge line (square to it).
-glm::vec3 offsetFromEdge(const SnowBorderSide& p, glm::vec3 v) {
-    const glm::vec3 d = p.b - p.a, off = v - p.a;
-    const float dd = glm::dot(d, d);
-    return dd > 0.0f ? off - d * (glm::dot(off, d) / dd) : off;
+// v's offset from the line through `a` along the unit `along` (square to it).
+glm::vec3 offsetFromLine(glm::vec3 a, glm::vec3 along, glm::vec3 v) {
+    const glm::vec3 off = v - a;
+    return off - along * glm::dot(off, along);
 }
 
 }  // namespace
@@ -651,8 +650,11 @@ glm::vec3 offsetFromEdge(const SnowBorderSide& p, glm::vec3 v) {
 float snowJointGap(const SnowBorderSide& p, const SnowBorderSide& q) {
     // From the edge line: a wind leans `inward` along the edge, so a plain offset from p.a would add the
     // length along the edge times that lean.
-    const float beyond_a = glm::dot(offsetFromEdge(p, q.a), p.inward);
-    const float beyond_b = glm::dot(offsetFromEdge(p, q.b), p.inward);
+    const glm::vec3 d = p.b - p.a;
+    const float len = glm::length(d);
+    const glm::vec3 along = len > 0.0f ? d / len : glm::vec3(0.0f);
+    const float beyond_a = glm::dot(offsetFromLine(p.a, along, q.a), p.inward);
+    const float beyond_b = glm::dot(offsetFromLine(p.a, along, q.b), p.inward);
     return std::max(0.0f, -0.5f * (beyond_a + beyond_b));
 }
 
@@ -677,16 +679,16 @@ bool facing(const SnowBorderSide& p, const SnowBorderSide& q, float overlap_m) {
     const float lp = glm::length(dp), lq = glm::length(dq);
     if (!(lp > 0.0f && lq > 0.0f)) return false;
     if (std::fabs(glm::dot(dp, dq)) < 0.996f * lp * lq || glm::dot(p.inward, q.inward) > -0.9f) return false;
+    const glm::vec3 along = dp / lp;
     for (const glm::vec3 v : {q.a, q.b}) {
         // Heights are vertical (objects turn only about Z) and taken from p's edge line, not from its end
         // along the snow's `up`: with a wind, `up` leans along every horizontal edge that runs with the
         // wind, and q's ends, a paving stone's length along that edge, seemed centimetres higher or lower
         // (the cobbles' rows were never bridged: a groove down to the stone between every two rows).
-        const glm::vec3 across = offsetFromEdge(p, v);
+        const glm::vec3 across = offsetFromLine(p.a, along, v);
         const float gap = -glm::dot(across, p.inward);
         if (gap < -overlap_m || gap > kSnowJointGapM || std::fabs(across.z) > kSnowJointHeightM) return false;
     }
-    const glm::vec3 along = dp / lp;
     const float t0 = glm::dot(q.a - p.a, along), t1 = glm::dot(q.b - p.a, along);
     const float overlap = std::min(lp, std::max(t0, t1)) - std::max(0.0f, std::min(t0, t1));
     return overlap >= 0.5f * std::min(lp, lq);
