@@ -693,6 +693,7 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
     // Slope-scaled offset in the map plus a normal offset at lookup (lighting.glsl) keep lit faces free of
     // acne without detaching the shadow from the object's foot.
     glEnable(GL_POLYGON_OFFSET_FILL);
+    glEnable(GL_POLYGON_OFFSET_LINE);  // the nearest casters' edges (drawMeshLods)
     glPolygonOffset(1.5f, 2.0f);
     // The terrain receives shadows but casts none: on llvmpipe its triangles would fill every texel of
     // the map each time it is drawn, and the sun term already darkens slopes turned away from it. The
@@ -751,6 +752,7 @@ void Renderer::shadowPass(const OrbitCamera& cam, const glm::vec3& eye, int heig
                       kMinCasterTexels * frame.texel_m);
     }
     glDisable(GL_POLYGON_OFFSET_FILL);
+    glDisable(GL_POLYGON_OFFSET_LINE);
     last_shadow_eye_ = eye;
     held_shadow_ = frame;
     held_shadow_complete_ = complete;
@@ -938,11 +940,23 @@ void Renderer::drawMeshLods(const ShaderProgram& program, const IndirectDraws& d
         for (int level = 0; level < kMeshLodCount; ++level) {
             const IndirectDraws::Group& g = draws.groups[i][size_t(level)];
             if (g.count == 0) continue;
-            glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
-                                        reinterpret_cast<void*>(uintptr_t(g.first) * sizeof(DrawElementsIndirectCommand)),
-                                        GLsizei(g.count), 0);
+            const auto draw = [&g] {
+                glMultiDrawElementsIndirect(GL_TRIANGLES, GL_UNSIGNED_INT,
+                                            reinterpret_cast<void*>(uintptr_t(g.first) * sizeof(DrawElementsIndirectCommand)),
+                                            GLsizei(g.count), 0);
+            };
+            draw();
             if (shadow) {
                 stats_.shadow_triangles += g.instances * m.triangles(level);
+                // The nearest level's blades and leaf edges are often narrower than a texel of the map, and
+                // a filled triangle that covers no texel centre writes nothing: their shadows fell apart
+                // into dotted runs. Its edges drawn again as lines write every texel they cross (the
+                // diamond rule), so a thin caster's shadow stays connected, at most a texel wider.
+                if (level == 0) {
+                    glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+                    draw();
+                    glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+                }
                 continue;
             }
             ++stats_.draw_calls;
