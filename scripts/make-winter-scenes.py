@@ -91,7 +91,8 @@ WINTER = [field("snow", 0.12), field("icicles", 1.0), field("temperature", -3.0)
 
 TYPES = [
     env_type("road_segment", snow={"target_edge_m": 0.06, "d0_m": 0.01}, icicles={"enabled": False},
-             material={"base_color": [0.09, 0.09, 0.10], "roughness": 0.9}),
+             material={"base_color": [0.10, 0.10, 0.11], "roughness": 0.9, "texture": "ground",
+                       "texture_scale_m": 0.4}),
     env_type("pavement_slab", snow={"target_edge_m": 0.05, "d0_m": 0.01}, icicles={"enabled": False},
              material={"base_color": [0.45, 0.43, 0.40], "roughness": 0.9, "texture": "rock", "texture_scale_m": 0.5}),
     env_type("bench", snow={"target_edge_m": 0.02, "d0_m": 0.02}, icicles={"spacing_m": 0.05, "max_length_m": 0.08}),
