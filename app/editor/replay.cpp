@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <iterator>
+#include <string>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
@@ -101,6 +103,39 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
     return parseReplayScript(text, path, out, error);
 }
 
+namespace {
+
+// Every key an action may carry (some only for some actions). A key outside it is refused: a script
+// that said "yaw" for "yaw_deg" used to run from the default camera and silently screenshot the wrong view.
+constexpr const char* kReplayKeys[] = {
+    "a_m", "action", "at", "attractor", "brush", "cancel", "channel", "charge", "chunk", "count", "delta",
+    "distance", "falloff", "frame", "from", "from_camera", "group", "handle", "height", "influence", "layer",
+    "model", "model_scale", "name", "node", "offset_m", "on_surface", "op", "open", "orientation", "overlays",
+    "path", "pitch_deg", "plain_nodes", "points", "radius", "scale", "seed", "size", "snap", "steps",
+    "strategy", "strength", "subtract", "surface", "surfaces", "system", "target", "tile_size", "to", "type",
+    "types", "ui", "value", "visible", "window", "yaw_deg"};
+
+// The first key of `a` no action reads, with a hint when a known key starts with it or it with one
+// ("yaw" -> "yaw_deg"); empty when every key is known.
+std::string unknownReplayKey(const json& a) {
+    for (const auto& [key, value] : a.items()) {
+        (void)value;
+        if (std::find(std::begin(kReplayKeys), std::end(kReplayKeys), key) != std::end(kReplayKeys)) continue;
+        std::string why = "unknown key \"" + key + "\"";
+        for (const char* known : kReplayKeys) {
+            const std::string k = known;
+            if (!key.empty() && (k.rfind(key, 0) == 0 || key.rfind(k, 0) == 0)) {
+                why += " (did you mean \"" + k + "\"?)";
+                break;
+            }
+        }
+        return why;
+    }
+    return {};
+}
+
+}  // namespace
+
 bool parseReplayScript(const std::string& text, const std::string& path, std::vector<ReplayAction>* out,
                        std::string* error) {
     const json j = json::parse(text, nullptr, false);
@@ -127,6 +162,7 @@ bool parseReplayScript(const std::string& text, const std::string& path, std::ve
                 known = true;
             }
         if (!known) return fail("unknown action '" + name + "'");
+        if (const std::string why = unknownReplayKey(a); !why.empty()) return fail(why);
         try {
             r.frame = a.value("frame", -1);
             r.radius_m = a.value("radius", r.radius_m);

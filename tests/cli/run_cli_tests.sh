@@ -84,6 +84,10 @@ expect_fail "object larger than the tile" 1 "does not fit in the tile" -- "$bin"
 expect_fail "unknown option" 2 "unknown option --frobnicate" -- "$bin" run --frobnicate
 expect_fail "bad thread count" 2 "--threads: expected an integer" -- "$bin" bench --threads lots
 expect_fail "unknown command" 2 "unknown command 'fly'" -- "$bin" fly
+# A replay's misspelt key is refused before any window opens (no display needed), naming the action.
+printf '[{"action": "view", "target": [0, 0], "yaw": 30}]' >"$tmp/typo_replay.json"
+expect_fail "replay: unknown key" 1 'typo_replay.json: action 0: unknown key "yaw" (did you mean "yaw_deg"?)' -- \
+  "$bin" edit "$root/assets/scenes/default.json" --replay "$tmp/typo_replay.json"
 # A parent that is a file cannot be written even by root (CI runs as root, so chmod would not do).
 expect_fail "unwritable stats path" 1 "$tmp/trunc.json/s.json" -- \
   "$bin" build-tile "$root/assets/scenes/default.json" --cache "$tmp/c" --stats "$tmp/trunc.json/s.json"
