@@ -103,6 +103,9 @@ def autumn_types():
             # A large spherical leaf field around the crown (Fig. 20), and the shade under it.
             t["fields"] = [field("leaves", 1.5, point([0, 0, 3.2], 8.5)), field("occlusion", 0.3, point([0, 0, 3.5], 2.5))]
         types.append(t)
+    # The fountain's water, an object of its own (a material of its own): leaves float on it.
+    types.append(W.env_type("fountain_water", material={"base_color": [0.04, 0.09, 0.10], "roughness": 0.1}))
+    types[-1]["receives"] = LEAVES
     return types
 
 
@@ -187,7 +190,7 @@ def tree_clusters(trees, per_cluster=3):
 
 # Each object's base across the ground, half its extent along its own x and y (metres; env_models.h), for
 # setting it down.
-FOOTPRINT_M = {"fountain": (1.05, 1.05), "bench": (0.8, 0.31), "pavement_slab": (1.0, 1.0), "tree": (0.4, 0.4)}
+FOOTPRINT_M = {"fountain": (1.05, 1.05), "fountain_water": (1.05, 1.05), "bench": (0.8, 0.31), "pavement_slab": (1.0, 1.0), "tree": (0.4, 0.4)}
 
 
 def set_on_ground(scene, binary):
@@ -253,6 +256,7 @@ def park_autumn():
         if abs(j) > 1:
             tree.append(obj("pavement_slab", [0, 2 * j + 1, 0], yaw=90))
     tree.append(obj("fountain", [0, 0, 0]))
+    tree.append(obj("fountain_water", [0, 0, 0]))  # set down with the fountain's footprint: the same height
     trees = [(-40, 20), (-25, 28), (-10, 22), (12, 24), (28, 30), (44, 18), (-45, -15), (-30, -28),
              (-14, -20), (15, -26), (30, -18), (46, -30), (-20, 8), (22, 9), (-35, 5), (38, -5),
              (8, -12), (-8, 36)]

@@ -21,6 +21,7 @@ TriangleMesh makeTree(uint64_t seed);
 TriangleMesh makeFountain(uint64_t seed);
 TriangleMesh makeFacade(uint64_t seed);
 TriangleMesh makeSteps(uint64_t seed);
+TriangleMesh makeFountainWater(uint64_t seed);
 
 // The bench's parts, its footprint centred on `at` (x along the seat, facing +Y); the bus shelter
 // reuses it.

@@ -10,7 +10,7 @@ namespace ug {
 const std::vector<std::string>& envStarterNames() {
     static const std::vector<std::string> names = {
         "bench",        "lamppost", "trash_can", "bus_shelter", "fence_segment", "pavement_slab",
-        "road_segment", "tree",     "fountain",  "facade",      "steps"};
+        "road_segment", "tree",     "fountain",  "facade",      "steps",         "fountain_water"};
     return names;
 }
 
@@ -26,7 +26,8 @@ bool makeEnvStarterModel(const std::string& name, uint64_t seed, TriangleMesh* o
                                                            {"tree", envmodels::makeTree},
                                                            {"fountain", envmodels::makeFountain},
                                                            {"facade", envmodels::makeFacade},
-                                                           {"steps", envmodels::makeSteps}};
+                                                           {"steps", envmodels::makeSteps},
+                                                           {"fountain_water", envmodels::makeFountainWater}};
     for (const auto& [n, make] : makers)
         if (name == n) {
             *out = make(seed);

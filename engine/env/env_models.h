@@ -1,5 +1,5 @@
 // Procedural starter environmental objects: architecture-scale base meshes (street furniture, ground
-// pieces, a bare tree, a fountain, a facade) for the environmental-objects effects (snow cover from
+// pieces, a bare tree, a fountain and its water, a facade) for the environmental-objects effects (snow cover from
 // up-facing faces, icicles from drip edges; Grosbellet et al. 2016), so a fresh install has something to
 // cover. The detail starter set is mesh/procedural_models.h; these follow its conventions.
 //
@@ -40,6 +40,8 @@
 //                  railing to z = 3.95).
 //   steps          four steps 1.5 m wide, 0.3 m treads and 0.16 m risers, climbing towards -Y (the
 //                  lowest step at the front).
+//   fountain_water the fountain's water: a disc of radius 0.86 m from the ground to z = 0.38 (4 cm under
+//                  the basin wall's lip), placed at the fountain's origin.
 #pragma once
 
 #include <cstdint>
@@ -51,7 +53,7 @@
 namespace ug {
 
 // The set, in a fixed order: bench, lamppost, trash_can, bus_shelter, fence_segment, pavement_slab,
-// road_segment, tree, fountain, facade, steps.
+// road_segment, tree, fountain, facade, steps, fountain_water.
 const std::vector<std::string>& envStarterNames();
 
 // The generator for `name` (one of envStarterNames()); false (out untouched) for an unknown name.

@@ -124,4 +124,14 @@ TriangleMesh makeFountain(uint64_t) {
     return b.finish({0.62f, 0.60f, 0.56f});
 }
 
+TriangleMesh makeFountainWater(uint64_t) {
+    // The basin's water: a disc whose top, 0.38 m up, lies 4 cm under the wall's inner lip, reaching 1 cm
+    // into the wall (parts may overlap). It stands on the ground like every model (z = 0 is the ground),
+    // the part below the basin floor hidden in the fountain. A separate object, so that the water has a
+    // material of its own and a fountain can stand dry.
+    MeshBuilder b;
+    addLathe(&b, {0, 0, 0}, {{0.0f, 0.0f}, {0.86f, 0.0f}, {0.86f, 0.38f}, {0.0f, 0.38f}}, 48);
+    return b.finish({0.05f, 0.11f, 0.12f});
+}
+
 }  // namespace ug::envmodels

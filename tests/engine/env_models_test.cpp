@@ -57,7 +57,8 @@ const std::map<std::string, Extents>& expectedExtents() {
         {"tree", {{1.0f, 1.0f, 4.5f}, {6.0f, 6.0f, 5.5f}}},
         {"fountain", {{2.0f, 2.0f, 1.2f}, {2.2f, 2.2f, 2.0f}}},
         {"facade", {{3.95f, 0.4f, 5.95f}, {4.05f, 1.2f, 6.05f}}},
-        {"steps", {{1.45f, 0.9f, 0.45f}, {1.55f, 1.6f, 0.7f}}}};
+        {"steps", {{1.45f, 0.9f, 0.45f}, {1.55f, 1.6f, 0.7f}}},
+        {"fountain_water", {{1.7f, 1.7f, 0.37f}, {1.75f, 1.75f, 0.39f}}}};
     return e;
 }
 
@@ -66,7 +67,7 @@ const std::map<std::string, Extents>& expectedExtents() {
 TEST(EnvModels, NamesInTheDocumentedOrderAndUnknownNamesRefused) {
     const std::vector<std::string> expected = {
         "bench",        "lamppost", "trash_can", "bus_shelter", "fence_segment", "pavement_slab",
-        "road_segment", "tree",     "fountain",  "facade",      "steps"};
+        "road_segment", "tree",     "fountain",  "facade",      "steps",         "fountain_water"};
     EXPECT_EQ(envStarterNames(), expected);
     TriangleMesh m;
     m.base_color = {0.1f, 0.2f, 0.3f};
