@@ -107,6 +107,10 @@ TYPES = [
     # ground bare where branches crowd over the trunk's foot; the crown's occlusion field thins it instead.
     env_type("tree", snow={"target_edge_m": 0.03, "d0_m": 0.02, "max_face_angle_deg": 70},
              icicles={"enabled": False}, fields=[field("occlusion", 0.5, point([0, 0, 3.5], 2.5))],
+             # Bark's fibres run along u, which the box projection lays across an upright trunk: a quarter
+             # turn stands them up.
+             material={"base_color": [0.13, 0.11, 0.09], "roughness": 0.9, "texture": "bark", "texture_scale_m": 0.4,
+                       "texture_rotation_deg": 90},
              shelters=False),
     env_type("fountain", snow={"target_edge_m": 0.03}, icicles={"spacing_m": 0.05, "max_length_m": 0.25},
              material={"base_color": [0.60, 0.58, 0.54], "roughness": 0.9, "texture": "rock", "texture_scale_m": 0.5}),

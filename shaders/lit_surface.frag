@@ -3,9 +3,11 @@
 // A textured material (material.h: the image is the final colour, sRGB, sampled as linear) replaces the
 // flat colour: texture x the instance's tint. Its coordinates are material/uv_projection.h's box
 // projection of the model-space position, by the face's dominant axis (ties to Z, then X), divided by the
-// texture's scale, as the exporter writes TEXCOORD_0; or, for the terrain, world X and Y over the scale.
+// texture's scale, as the exporter writes TEXCOORD_0; or, for the terrain, world X and Y over the scale;
+// then turned by the material's texture_rotation_deg (u_texture_turn = its cos and sin).
 // Interface: v_world, v_normal, v_color (linear RGB), v_model, v_tint from the vertex stage; u_albedo,
-// u_texture_mode (0: none, 1: box projection of v_model, 2: world XY), u_texture_scale_m, u_alpha_cutout.
+// u_texture_mode (0: none, 1: box projection of v_model, 2: world XY), u_texture_scale_m, u_texture_turn,
+// u_alpha_cutout.
 in vec3 v_world;
 in vec3 v_normal;
 in vec3 v_color;
@@ -14,14 +16,20 @@ in vec3 v_tint;
 uniform sampler2D u_albedo;
 uniform int u_texture_mode;
 uniform float u_texture_scale_m;
+uniform vec2 u_texture_turn;
 uniform int u_alpha_cutout;
 out vec4 o_color;
 
 vec2 textureCoordinates() {
-    if (u_texture_mode == 2) return v_model.xy / u_texture_scale_m;
-    vec3 a = abs(cross(dFdx(v_model), dFdy(v_model)));
-    vec2 uv = (a.z >= a.x && a.z >= a.y) ? v_model.xy : (a.x >= a.y ? v_model.yz : v_model.xz);
-    return uv / u_texture_scale_m;
+    vec2 uv;
+    if (u_texture_mode == 2) {
+        uv = v_model.xy;
+    } else {
+        vec3 a = abs(cross(dFdx(v_model), dFdy(v_model)));
+        uv = (a.z >= a.x && a.z >= a.y) ? v_model.xy : (a.x >= a.y ? v_model.yz : v_model.xz);
+    }
+    uv /= u_texture_scale_m;
+    return vec2(u_texture_turn.x * uv.x - u_texture_turn.y * uv.y, u_texture_turn.y * uv.x + u_texture_turn.x * uv.y);
 }
 
 void main() {

@@ -130,6 +130,10 @@ bool validMaterial(const SurfaceMaterial& m, std::string* why) {
             *why = "texture_scale_m must be finite and > 0 (got " + formatFloat(m.texture_scale_m) + ")";
             return false;
         }
+        if (!(std::abs(m.texture_rotation_deg) <= kMaxTextureRotationDeg)) {
+            *why = "texture_rotation_deg must be in [-360, 360] (got " + formatFloat(m.texture_rotation_deg) + ")";
+            return false;
+        }
         const TextureImage& t = *m.texture;
         if (t.width < 1 || t.height < 1 || t.width > 16384 || t.height > 16384 ||
             t.rgba.size() != size_t(t.width) * size_t(t.height) * 4) {
@@ -381,6 +385,7 @@ class GltfBuilder {
                 uvs.reserve(source->positions.size());
                 for (const glm::vec3& p : source->positions) uvs.push_back(planarXyUv(p, material->texture_scale_m));
             }
+            for (glm::vec2& uv : uvs) uv = rotateTextureUv(uv, material->texture_rotation_deg);
         }
         std::vector<glm::vec3> positions(source->positions.size()), normals(source->normals.size());
         for (size_t i = 0; i < positions.size(); ++i) positions[i] = toYUp(source->positions[i]);
@@ -448,6 +453,8 @@ class GltfBuilder {
             mat["extras"] = {{"texture", textureKindName(material->texture_kind)},
                              {"texture_scale_m", material->texture_scale_m},
                              {"tint_variation", material->tint_variation}};
+            if (material->texture_rotation_deg != 0.0f)
+                mat["extras"]["texture_rotation_deg"] = material->texture_rotation_deg;
             materials.push_back(std::move(mat));
         }
 

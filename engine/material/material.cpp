@@ -46,6 +46,7 @@ SurfaceMaterial resolveMaterial(const Material& m, glm::vec3 surface_color) {
     s.roughness = m.roughness;
     s.texture_kind = m.texture;
     s.texture_scale_m = m.texture_scale_m;
+    s.texture_rotation_deg = m.texture_rotation_deg;
     s.tint_variation = m.tint_variation;
     s.alpha_cutout = m.alpha_cutout;
     if (m.texture != TextureKind::None)

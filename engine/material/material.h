@@ -3,7 +3,7 @@
 // renderer and the glTF exporter read the same values, so the viewport and the export match.
 //
 // Scene JSON (scene/material_json.h): "material": {"base_color": [r, g, b], "roughness", "texture",
-// "texture_scale_m", "tint_variation", "alpha_cutout"}, every key optional.
+// "texture_scale_m", "texture_rotation_deg", "tint_variation", "alpha_cutout"}, every key optional.
 #pragma once
 
 #include <cstdint>
@@ -30,6 +30,7 @@ constexpr float kMinTextureScaleM = 1e-3f;  // one repeat per millimetre: finer 
 constexpr float kMaxTextureScaleM = 1e3f;
 constexpr float kDefaultRoughness = 0.9f;   // what exports used before materials existed
 constexpr float kDefaultTextureScaleM = 0.2f;
+constexpr float kMaxTextureRotationDeg = 360.0f;  // |rotation|: a full turn either way
 
 // As the user sets it. The defaults reproduce the look before materials existed: the model's own
 // base colour (the terrain's kTerrainColor), roughness 0.9, no texture.
@@ -38,6 +39,10 @@ struct Material {
     float roughness = kDefaultRoughness;     // [0, 1]
     TextureKind texture = TextureKind::None;
     float texture_scale_m = kDefaultTextureScaleM;  // metres per texture repeat, [kMin, kMax]TextureScaleM
+    // The texture turned in its uv plane (rotateTextureUv, uv_projection.h), degrees in
+    // [-kMax, kMax]TextureRotationDeg. Bark's fibres run along u, which the box projection lays
+    // horizontally on an upright trunk; 90 stands them up.
+    float texture_rotation_deg = 0.0f;
     float tint_variation = 0.0f;             // [0, 1]: per-instance spread of brightness and hue
     bool alpha_cutout = false;               // the texture's alpha cuts the surface (glTF alphaMode MASK)
 
@@ -59,6 +64,7 @@ struct SurfaceMaterial {
     float roughness = kDefaultRoughness;
     TextureKind texture_kind = TextureKind::None;
     float texture_scale_m = kDefaultTextureScaleM;
+    float texture_rotation_deg = 0.0f;
     float tint_variation = 0.0f;
     bool alpha_cutout = false;
     // Null when texture_kind is None. Otherwise the FINAL colour, sRGB-encoded (upload as

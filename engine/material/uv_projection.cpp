@@ -24,6 +24,27 @@ glm::vec2 planarXyUv(glm::vec3 p, float texture_scale_m) {
     return glm::vec2(p.x, p.y) / texture_scale_m;
 }
 
+glm::vec2 textureRotationCosSin(float degrees) {
+    // Quarter turns exactly: cos(pi / 2) in float is -4.4e-8, not 0, and would smear a pure swap.
+    const float turns = degrees / 90.0f;
+    if (std::abs(turns) <= 4.0f && turns == std::floor(turns)) {
+        switch (((int64_t(turns) % 4) + 4) % 4) {
+            case 0: return {1.0f, 0.0f};
+            case 1: return {0.0f, 1.0f};
+            case 2: return {-1.0f, 0.0f};
+            default: return {0.0f, -1.0f};
+        }
+    }
+    const double r = double(degrees) * 3.14159265358979323846 / 180.0;
+    return {float(std::cos(r)), float(std::sin(r))};
+}
+
+glm::vec2 rotateTextureUv(glm::vec2 uv, float degrees) {
+    if (degrees == 0.0f) return uv;
+    const glm::vec2 cs = textureRotationCosSin(degrees);
+    return {cs.x * uv.x - cs.y * uv.y, cs.y * uv.x + cs.x * uv.y};
+}
+
 void boxProjectMesh(const TriangleMesh& mesh, float texture_scale_m, TriangleMesh* out, std::vector<glm::vec2>* uvs) {
     TriangleMesh result;
     result.base_color = mesh.base_color;

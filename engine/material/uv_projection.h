@@ -10,7 +10,9 @@
 //   else:                                  uv = (p.x, p.z) / s
 // so on the sides v follows Z (grass blades run up the model) and u follows X on the sides facing Y
 // and Z (bark fibres run along a branch modelled along X). The terrain always takes
-// uv = (world x, world y) / s. No flip: v = 0 is the image's first row in glTF and, uploading the rows
+// uv = (world x, world y) / s. Then a material's texture_rotation_deg r turns uv about the origin,
+// counter-clockwise: uv' = (cos r * u - sin r * v, sin r * u + cos r * v) (rotateTextureUv; r = 0 keeps
+// uv bit for bit, r = 90 gives (-v, u): fibres along v', up an upright trunk). No flip: v = 0 is the image's first row in glTF and, uploading the rows
 // in memory order, t = 0 in GL.
 #pragma once
 
@@ -30,6 +32,12 @@ glm::vec2 boxProjectUv(glm::vec3 p, glm::vec3 n, float texture_scale_m);
 
 // The terrain's uv of world point p.
 glm::vec2 planarXyUv(glm::vec3 p, float texture_scale_m);
+
+// uv turned by `degrees` (rule above). Multiples of 90 are exact (no rounding of cos and sin), so a
+// quarter turn moves texels and does not resample them.
+glm::vec2 rotateTextureUv(glm::vec2 uv, float degrees);
+// (cos, sin) of `degrees` as rotateTextureUv uses them: the renderer's uniform.
+glm::vec2 textureRotationCosSin(float degrees);
 
 // `mesh` with uvs by the box rule per triangle: a vertex shared by triangles that project along
 // different axes is split (one copy per axis, normals kept), so each triangle's uvs follow its own

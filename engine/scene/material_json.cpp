@@ -17,7 +17,8 @@ bool scaleIsPositive(JsonReader& r, const std::string& p, const Material& m) {
 
 bool readMaterial(JsonReader& r, const json& j, const std::string& p, Material* out) {
     if (!r.expectObject(j, p) ||
-        !r.onlyKeys(j, p, {"base_color", "roughness", "texture", "texture_scale_m", "tint_variation", "alpha_cutout"}))
+        !r.onlyKeys(j, p, {"base_color", "roughness", "texture", "texture_scale_m", "texture_rotation_deg", "tint_variation",
+                              "alpha_cutout"}))
         return false;
     Material m = *out;
     if (auto it = j.find("base_color"); it != j.end()) {
@@ -42,6 +43,7 @@ bool readMaterial(JsonReader& r, const json& j, const std::string& p, Material* 
     if (!r.number(j, p, "roughness", &m.roughness, 0.0, 1.0) ||
         !r.number(j, p, "texture_scale_m", &m.texture_scale_m, 1e-3, 1e3) ||  // kMin/kMaxTextureScaleM
         !scaleIsPositive(r, p, m) ||
+        !r.number(j, p, "texture_rotation_deg", &m.texture_rotation_deg, -kMaxTextureRotationDeg, kMaxTextureRotationDeg) ||
         !r.number(j, p, "tint_variation", &m.tint_variation, 0.0, 1.0) ||
         !r.boolean(j, p, "alpha_cutout", &m.alpha_cutout))
         return false;
@@ -60,6 +62,7 @@ json materialToJson(const Material& m) {
     out["roughness"] = jsonFloat(m.roughness);
     out["texture"] = textureKindName(m.texture);
     out["texture_scale_m"] = jsonFloat(m.texture_scale_m);
+    if (m.texture_rotation_deg != 0.0f) out["texture_rotation_deg"] = jsonFloat(m.texture_rotation_deg);
     out["tint_variation"] = jsonFloat(m.tint_variation);
     out["alpha_cutout"] = m.alpha_cutout;
     return out;

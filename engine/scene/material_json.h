@@ -4,6 +4,7 @@
 //                "roughness": 0.9,           [0, 1]
 //                "texture": "rock",          none | rock | leaf | bark | grass | ground | hay
 //                "texture_scale_m": 0.2,     metres per texture repeat, [0.001, 1000]
+//                "texture_rotation_deg": 0,  the texture turned in its uv plane, [-360, 360]
 //                "tint_variation": 0.3,      [0, 1], per-instance spread of brightness and hue
 //                "alpha_cutout": false}      the texture's alpha cuts the surface
 // Every key is optional (the defaults of Material); unknown keys, wrong types, NaN and values out of
@@ -22,7 +23,8 @@ namespace ug {
 // Reads the object at `pointer` into *out (absent keys keep *out's values).
 bool readMaterial(JsonReader& r, const nlohmann::json& j, const std::string& pointer, Material* out);
 
-// Every setting explicitly, except base_color when it is not set. parseMaterial(materialToJson(m)) == m.
+// Every setting explicitly, except base_color when it is not set and texture_rotation_deg when it is 0
+// (files written before it existed stay byte for byte). parseMaterial(materialToJson(m)) == m.
 nlohmann::json materialToJson(const Material& m);
 
 }  // namespace ug

@@ -5,8 +5,10 @@
 #include <gtest/gtest.h>
 #include <tiny_gltf.h>
 
+#include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -66,7 +68,10 @@ protected:
                      resolveMaterial(make({0.4f, 0.35f, 0.3f}, TextureKind::Rock, 0.04f, false), meshes_[2].base_color)};
         terrain_.positions = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0.2f}, {-1, 1, 0}};
         terrain_.indices = {0, 1, 2, 0, 2, 3};
+        // Turned textures: the pebble a quarter turn (exact), the terrain by 30 degrees.
+        surfaces_[2].texture_rotation_deg = 90.0f;
         terrain_look_ = resolveMaterial(make({0.3f, 0.25f, 0.2f}, TextureKind::Ground, 0.5f, false), kTerrainColor);
+        terrain_look_.texture_rotation_deg = 30.0f;
     }
     SceneExport scene(bool with_materials) const {
         SceneExport s;
@@ -126,12 +131,19 @@ TEST_F(MaterialExport, TexturesUvsAndCutoutsReadBackExactly) {
                 EXPECT_EQ(mat.alphaCutoff, 0.5);
             }
             EXPECT_EQ(mat.doubleSided, m == 1);
+            // The turn is in the extras only where there is one (pebble 90, terrain 30).
+            const float turn = m == 2 ? 90.0f : m == 3 ? 30.0f : 0.0f;
+            EXPECT_EQ(mat.extras.Has("texture_rotation_deg"), turn != 0.0f) << m;
+            if (turn != 0.0f) {
+                EXPECT_EQ(mat.extras.Get("texture_rotation_deg").GetNumberAsDouble(), double(turn));
+            }
         }
         EXPECT_EQ(model.materials[0].pbrMetallicRoughness.baseColorTexture.index,
                   model.materials[2].pbrMetallicRoughness.baseColorTexture.index);
 
         // Every vertex's uv is the box rule on its triangles' common axis (detail types, positions back
-        // in engine Z up: (x, y, z) file -> (x, -z, y)), or world XY for the terrain.
+        // in engine Z up: (x, y, z) file -> (x, -z, y)), or world XY for the terrain, then turned: the
+        // pebble's quarter turn is (u, v) -> (-v, u) exactly; the terrain's 30 degrees within rounding.
         for (size_t k = 0; k < model.meshes.size(); ++k) {
             const tinygltf::Primitive& prim = model.meshes[k].primitives.at(0);
             ASSERT_TRUE(prim.attributes.count("TEXCOORD_0")) << model.meshes[k].name;
@@ -149,10 +161,18 @@ TEST_F(MaterialExport, TexturesUvsAndCutoutsReadBackExactly) {
                 const glm::vec3 n = glm::cross(b - a, c - a);
                 for (int j = 0; j < 3; ++j) {
                     const size_t v = indices[t + size_t(j)];
-                    const glm::vec2 want = terrain ? planarXyUv(engine(v), scale) : boxProjectUv(engine(v), n, scale);
+                    const glm::vec2 flat = terrain ? planarXyUv(engine(v), scale) : boxProjectUv(engine(v), n, scale);
+                    const glm::vec2 got(uv[v * 2], uv[v * 2 + 1]);
+                    if (terrain) {
+                        const double cos30 = std::sqrt(3.0) / 2.0, sin30 = 0.5;
+                        EXPECT_NEAR(got.x, cos30 * flat.x - sin30 * flat.y, 1e-5) << "terrain vertex " << v;
+                        EXPECT_NEAR(got.y, sin30 * flat.x + cos30 * flat.y, 1e-5) << "terrain vertex " << v;
+                        continue;
+                    }
+                    const glm::vec2 want = k == 2 ? glm::vec2(-flat.y, flat.x) : flat;
                     // The Y-up conversion only permutes and negates components: positions, and with them
                     // each triangle's axis, come back exactly, so the uvs must match exactly.
-                    EXPECT_EQ(glm::vec2(uv[v * 2], uv[v * 2 + 1]), want) << model.meshes[k].name << " vertex " << v;
+                    EXPECT_EQ(got, want) << model.meshes[k].name << " vertex " << v;
                 }
             }
         }
@@ -202,6 +222,10 @@ TEST_F(MaterialExport, BadMaterialsAreRefusedNamingTheType) {
     s.types[1].material = &bad;
     EXPECT_FALSE(writeSceneGltf(path, s, &error));
     EXPECT_NE(error.find("material: texture is 256 x 256 with 10 bytes"), std::string::npos) << error;
+    bad = surfaces_[0];
+    bad.texture_rotation_deg = std::numeric_limits<float>::quiet_NaN();
+    EXPECT_FALSE(writeSceneGltf(path, s, &error));
+    EXPECT_NE(error.find("material: texture_rotation_deg must be in [-360, 360] (got nan)"), std::string::npos) << error;
     bad = surfaces_[0];
     bad.texture_scale_m = 0.0f;
     s.types[1].material = nullptr;

@@ -14,6 +14,7 @@
 #include "material/procedural_texture.h"
 #include "material/uv_projection.h"
 #include "mesh/terrain_mesh.h"
+#include "scene/material_json.h"
 #include "scene/project.h"
 #include "scene/scene_compile.h"
 #include "scene_test_util.h"
@@ -61,6 +62,10 @@ TEST(MaterialFormat, ErrorsNameTheJsonPointerAndTheReason) {
          "s.json: /detail_types/0/material/texture_scale_m: 0 is out of range [0.001, 1000]"},
         {sceneWith(R"({"texture_scale_m": 5000})"),
          "s.json: /detail_types/0/material/texture_scale_m: 5000 is out of range [0.001, 1000]"},
+        {sceneWith(R"({"texture_rotation_deg": 361})"),
+         "s.json: /detail_types/0/material/texture_rotation_deg: 361 is out of range [-360, 360]"},
+        {sceneWith(R"({"texture_rotation_deg": "up"})"),
+         "s.json: /detail_types/0/material/texture_rotation_deg: expected a number, got a string"},
         {sceneWith(R"({"tint_variation": 2})"),
          "s.json: /detail_types/0/material/tint_variation: 2 is out of range [0, 1]"},
         {sceneWith(R"({"alpha_cutout": 1})"),
@@ -116,7 +121,7 @@ TEST(MaterialFormat, AbsentMeansTheLookBeforeMaterials) {
 TEST(MaterialFormat, SaveAndLoadGiveTheMaterialsBack) {
     const std::string text =
         sceneWith(R"({"base_color": [0.42, 0.36, 0.3], "roughness": 0.75, "texture": "rock", "texture_scale_m": 0.12,
-                      "tint_variation": 0.35, "alpha_cutout": true})",
+                      "texture_rotation_deg": -30, "tint_variation": 0.35, "alpha_cutout": true})",
                   R"("terrain": {"procedural": {"width": 9, "height": 9},
                                  "material": {"texture": "ground", "texture_scale_m": 0.6, "roughness": 1}}, )");
     Project p;
@@ -128,10 +133,15 @@ TEST(MaterialFormat, SaveAndLoadGiveTheMaterialsBack) {
     EXPECT_EQ(m.roughness, 0.75f);
     EXPECT_EQ(m.texture, TextureKind::Rock);
     EXPECT_EQ(m.texture_scale_m, 0.12f);
+    EXPECT_EQ(m.texture_rotation_deg, -30.0f);
     EXPECT_EQ(m.tint_variation, 0.35f);
     EXPECT_TRUE(m.alpha_cutout);
     EXPECT_EQ(p.terrain.material.texture, TextureKind::Ground);
     EXPECT_FALSE(p.terrain.material.base_color.has_value());
+    EXPECT_EQ(p.terrain.material.texture_rotation_deg, 0.0f);
+    // A rotation of 0 is not written, so files saved before the key existed are saved unchanged.
+    EXPECT_FALSE(materialToJson(p.terrain.material).contains("texture_rotation_deg"));
+    EXPECT_EQ(materialToJson(m)["texture_rotation_deg"], -30.0);
 
     test::TempDir dir("ug_material_");
     const std::string path = (dir.path() / "m.json").string();
@@ -333,6 +343,28 @@ TEST(UvProjection, DominantAxisRuleOnExactPoints) {
     EXPECT_EQ(dominantAxis(glm::vec3(0.3f, -0.31f, 0.2f)), 1);
     EXPECT_EQ(dominantAxis(glm::vec3(0.0f)), 2);  // degenerate: Z
     EXPECT_EQ(planarXyUv(p * 10.0f, 2.0f), glm::vec2(0.5f, 1.0f));
+}
+
+TEST(UvProjection, RotationTurnsCoordinatesCounterClockwise) {
+    const glm::vec2 uv(2.0f, 3.0f);
+    EXPECT_EQ(rotateTextureUv(uv, 0.0f), uv);
+    // Quarter turns are exact swaps and sign changes: (u, v) -> (-v, u) -> (-u, -v) -> (v, -u).
+    EXPECT_EQ(rotateTextureUv(uv, 90.0f), glm::vec2(-3.0f, 2.0f));
+    EXPECT_EQ(rotateTextureUv(uv, 180.0f), glm::vec2(-2.0f, -3.0f));
+    EXPECT_EQ(rotateTextureUv(uv, -90.0f), glm::vec2(3.0f, -2.0f));
+    EXPECT_EQ(rotateTextureUv(uv, 270.0f), glm::vec2(3.0f, -2.0f));
+    EXPECT_EQ(rotateTextureUv(uv, 360.0f), uv);
+    EXPECT_EQ(textureRotationCosSin(90.0f), glm::vec2(0.0f, 1.0f));
+    // Any other angle: (1, 0) goes to (cos, sin) of it, and lengths are kept.
+    const glm::vec2 r = rotateTextureUv(glm::vec2(1.0f, 0.0f), 30.0f);
+    EXPECT_NEAR(r.x, std::sqrt(3.0f) / 2.0f, 1e-6f);
+    EXPECT_NEAR(r.y, 0.5f, 1e-6f);
+    EXPECT_NEAR(glm::length(rotateTextureUv(uv, -137.5f)), glm::length(uv), 1e-5f);
+    // An upright trunk's side: v follows Z before the turn, u' follows Z after a quarter turn (bark
+    // fibres run along u).
+    const glm::vec2 low = rotateTextureUv(boxProjectUv({0.3f, 0.0f, 0.0f}, {1, 0, 0}, 1.0f), 90.0f);
+    const glm::vec2 high = rotateTextureUv(boxProjectUv({0.3f, 0.0f, 1.0f}, {1, 0, 0}, 1.0f), 90.0f);
+    EXPECT_EQ(high - low, glm::vec2(-1.0f, 0.0f));
 }
 
 TEST(UvProjection, MeshVerticesAreSplitWhereTheAxisChanges) {

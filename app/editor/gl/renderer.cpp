@@ -11,6 +11,7 @@
 #include <glm/gtc/type_ptr.hpp>
 
 #include "editor/shadow_frame.h"
+#include "material/uv_projection.h"
 
 namespace ug::editor::gl {
 
@@ -242,6 +243,8 @@ void Renderer::bindMaterial(const ShaderProgram& p, const SurfaceMaterial& m, un
     glUniform1i(loc(p, "u_albedo"), 0);
     glUniform1i(loc(p, "u_texture_mode"), texture ? mode : 0);
     glUniform1f(loc(p, "u_texture_scale_m"), m.texture_scale_m);
+    const glm::vec2 turn = textureRotationCosSin(m.texture_rotation_deg);
+    glUniform2f(loc(p, "u_texture_turn"), turn.x, turn.y);
     glUniform1i(loc(p, "u_alpha_cutout"), texture && m.alpha_cutout ? 1 : 0);
     glUniform1f(loc(p, "u_tint_variation"), m.tint_variation);
 }
