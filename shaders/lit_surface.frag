@@ -5,6 +5,9 @@
 // projection of the model-space position, by the face's dominant axis (ties to Z, then X), divided by the
 // texture's scale, as the exporter writes TEXCOORD_0; or, for the terrain, world X and Y over the scale;
 // then turned by the material's texture_rotation_deg (u_texture_turn = its cos and sin).
+// A smooth material (u_gloss > 0: roughness below material.h's kGlossyRoughness) also mirrors the sky,
+// weighted by Schlick's Fresnel term for water (F0 = 0.02): dark looking down, the sky's colour at grazing
+// angles, and the sun's glint where the sky holds it. Rough materials skip it, so they shade as before.
 // Interface: v_world, v_normal, v_color (linear RGB), v_model, v_tint from the vertex stage; u_albedo,
 // u_texture_mode (0: none, 1: box projection of v_model, 2: world XY), u_texture_scale_m, u_texture_turn,
 // u_alpha_cutout.
@@ -18,6 +21,7 @@ uniform int u_texture_mode;
 uniform float u_texture_scale_m;
 uniform vec2 u_texture_turn;
 uniform int u_alpha_cutout;
+uniform float u_gloss;
 out vec4 o_color;
 
 vec2 textureCoordinates() {
@@ -48,7 +52,19 @@ void main() {
     vec3 n = normalize(v_normal);
     // Thin sheets (leaves, blades) are seen from both sides: light the side that faces the viewer.
     if (!gl_FrontFacing) n = -n;
-    vec3 lit = shadeSurface(albedo, n, v_world);
+    vec3 lit;
+    if (u_gloss > 0.0) {
+        float visibility = dot(n, u_sun_dir) > 0.0 ? sunVisibility(v_world, n) : 0.0;
+        vec3 view = normalize(v_world - u_eye);
+        float c = 1.0 - clamp(-dot(view, n), 0.0, 1.0);
+        float c2 = c * c;
+        float fresnel = 0.02 + 0.98 * c2 * c2 * c;
+        // The glint is the sky's sun disc: dimmed where the surface is in shadow.
+        vec3 mirrored = skyColor(reflect(view, n)) * mix(0.6, 1.0, visibility);
+        lit = hazed(mix(lightSurface(albedo, n, visibility), mirrored, fresnel * u_gloss), v_world);
+    } else {
+        lit = shadeSurface(albedo, n, v_world);
+    }
     // Alpha carries the ambient share to the ambient occlusion pass (composite.frag).
     o_color = vec4(toDisplay(lit), g_ambient_share);
 }

@@ -40,6 +40,11 @@ std::string textureKindNames() {
     return out;
 }
 
+float materialGloss(float roughness) {
+    if (!(roughness < kGlossyRoughness)) return 0.0f;  // NaN too
+    return std::clamp(1.0f - roughness / kGlossyRoughness, 0.0f, 1.0f);
+}
+
 SurfaceMaterial resolveMaterial(const Material& m, glm::vec3 surface_color) {
     SurfaceMaterial s;
     s.base_color = glm::clamp(m.base_color.value_or(surface_color), 0.0f, 1.0f);

@@ -82,6 +82,13 @@ struct SceneMaterials {
     SurfaceMaterial terrain;
 };
 
+// How much of the sky a surface mirrors in the viewport, from its roughness: 1 - roughness /
+// kGlossyRoughness, clamped to [0, 1]. Water (0.1) mirrors three quarters; rough surfaces (every material
+// at or above kGlossyRoughness, the default 0.9 among them) none, so they shade as they did before
+// roughness was drawn. The export writes roughness as glTF's roughnessFactor, for any PBR viewer.
+constexpr float kGlossyRoughness = 0.4f;
+float materialGloss(float roughness);
+
 // Resolves `m` for a surface whose own colour is `surface_color` (the model's base colour, or
 // kTerrainColor) and bakes its texture (bakeMaterialTexture, procedural_texture.h).
 SurfaceMaterial resolveMaterial(const Material& m, glm::vec3 surface_color);

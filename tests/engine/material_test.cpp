@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -343,6 +344,17 @@ TEST(UvProjection, DominantAxisRuleOnExactPoints) {
     EXPECT_EQ(dominantAxis(glm::vec3(0.3f, -0.31f, 0.2f)), 1);
     EXPECT_EQ(dominantAxis(glm::vec3(0.0f)), 2);  // degenerate: Z
     EXPECT_EQ(planarXyUv(p * 10.0f, 2.0f), glm::vec2(0.5f, 1.0f));
+}
+
+TEST(MaterialLook, OnlySmoothMaterialsMirrorTheSky) {
+    EXPECT_EQ(materialGloss(0.0f), 1.0f);
+    EXPECT_FLOAT_EQ(materialGloss(0.1f), 0.75f);  // the fountain's water
+    EXPECT_FLOAT_EQ(materialGloss(0.2f), 0.5f);
+    // At and above the threshold nothing is mirrored: every rough sample material shades as before.
+    EXPECT_EQ(materialGloss(kGlossyRoughness), 0.0f);
+    EXPECT_EQ(materialGloss(kDefaultRoughness), 0.0f);
+    EXPECT_EQ(materialGloss(1.0f), 0.0f);
+    EXPECT_EQ(materialGloss(std::numeric_limits<float>::quiet_NaN()), 0.0f);
 }
 
 TEST(UvProjection, RotationTurnsCoordinatesCounterClockwise) {

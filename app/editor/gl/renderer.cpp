@@ -245,6 +245,7 @@ void Renderer::bindMaterial(const ShaderProgram& p, const SurfaceMaterial& m, un
     glUniform1f(loc(p, "u_texture_scale_m"), m.texture_scale_m);
     const glm::vec2 turn = textureRotationCosSin(m.texture_rotation_deg);
     glUniform2f(loc(p, "u_texture_turn"), turn.x, turn.y);
+    glUniform1f(loc(p, "u_gloss"), materialGloss(m.roughness));
     glUniform1i(loc(p, "u_alpha_cutout"), texture && m.alpha_cutout ? 1 : 0);
     glUniform1f(loc(p, "u_tint_variation"), m.tint_variation);
 }
