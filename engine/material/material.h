@@ -85,7 +85,9 @@ struct SceneMaterials {
 // How much of the sky a surface mirrors in the viewport, from its roughness: 1 - roughness /
 // kGlossyRoughness, clamped to [0, 1]. Water (0.1) mirrors three quarters; rough surfaces (every material
 // at or above kGlossyRoughness, the default 0.9 among them) none, so they shade as they did before
-// roughness was drawn. The export writes roughness as glTF's roughnessFactor, for any PBR viewer.
+// roughness was drawn. Only environmental objects are drawn glossy (their own shader variant); detail
+// types and the terrain stay matte whatever their roughness. The export writes roughness as glTF's
+// roughnessFactor, for any PBR viewer.
 constexpr float kGlossyRoughness = 0.4f;
 float materialGloss(float roughness);
 

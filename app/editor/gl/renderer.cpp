@@ -109,7 +109,8 @@ Renderer::~Renderer() {
     releaseStaticMeshes();
     releaseTargets();
     for (ShaderProgram* p : {&sky_, &terrain_, &detail_, &impostor_, &grid_, &marker_, &hull_, &shadow_detail_,
-                             &shadow_impostor_, &ambient_occlusion_, &ao_blur_, &composite_, &static_mesh_, &shadow_static_})
+                             &shadow_impostor_, &ambient_occlusion_, &ao_blur_, &composite_, &static_mesh_, &shadow_static_,
+                             &static_glossy_})
         destroyProgram(p);
     if (empty_vao_) glDeleteVertexArrays(1, &empty_vao_);
     if (marker_vao_) glDeleteVertexArrays(1, &marker_vao_);
@@ -162,6 +163,8 @@ bool Renderer::init(const std::string& dir, std::string* error) {
         !loadProgram(dir, "screen_pass.vert", "composite.frag", {"u_color", "u_ao"}, &composite_, error) ||
         !loadProgram(dir, "static_mesh.vert", "lit_surface.frag", with({"u_view_proj", "u_color"}, true), &static_mesh_,
                      error) ||
+        !loadProgram(dir, "static_mesh.vert", "lit_surface.frag", with({"u_view_proj", "u_color", "u_gloss"}, true),
+                     &static_glossy_, error, {"GLOSSY"}) ||
         !loadProgram(dir, "static_mesh.vert", "shadow_depth.frag", {"u_view_proj"}, &shadow_static_, error))
         return false;
     for (IndirectBuffer* b : {&indirect_, &shadow_indirect_}) {
@@ -245,7 +248,7 @@ void Renderer::bindMaterial(const ShaderProgram& p, const SurfaceMaterial& m, un
     glUniform1f(loc(p, "u_texture_scale_m"), m.texture_scale_m);
     const glm::vec2 turn = textureRotationCosSin(m.texture_rotation_deg);
     glUniform2f(loc(p, "u_texture_turn"), turn.x, turn.y);
-    glUniform1f(loc(p, "u_gloss"), materialGloss(m.roughness));
+    glUniform1f(loc(p, "u_gloss"), materialGloss(m.roughness));  // read by the GLOSSY program only
     glUniform1i(loc(p, "u_alpha_cutout"), texture && m.alpha_cutout ? 1 : 0);
     glUniform1f(loc(p, "u_tint_variation"), m.tint_variation);
 }
@@ -456,9 +459,11 @@ void Renderer::setStaticMeshes(const std::vector<MeshInstances>* meshes) {
 }
 
 void Renderer::drawStaticMeshes(const ShaderProgram& program, const glm::mat4& view_proj, const glm::vec3& eye,
-                                float pixels_per_radian, bool shadow) {
+                                float pixels_per_radian, bool shadow, StaticSubset subset) {
     for (const StaticBuffers& b : statics_) {
         if (shadow && !b.casts_shadow) continue;
+        if (subset != StaticSubset::All && (materialGloss(b.material.roughness) > 0.0f) != (subset == StaticSubset::Glossy))
+            continue;
         if (!boxInFrustum(view_proj, b.bounds)) {
             if (!shadow) ++stats_.static_meshes_culled;
             continue;
@@ -614,10 +619,13 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
     }
 
     if (has_scene_ && !statics_.empty()) {
-        glUseProgram(static_mesh_.id);
-        glUniformMatrix4fv(loc(static_mesh_, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
-        setLighting(static_mesh_, eye, fog_density);
-        drawStaticMeshes(static_mesh_, view_proj, eye, float(height) / cam.fov_y_rad, false);
+        for (const ShaderProgram* p : {&static_mesh_, &static_glossy_}) {
+            glUseProgram(p->id);
+            glUniformMatrix4fv(loc(*p, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
+            setLighting(*p, eye, fog_density);
+            drawStaticMeshes(*p, view_proj, eye, float(height) / cam.fov_y_rad, false,
+                             p == &static_glossy_ ? StaticSubset::Glossy : StaticSubset::Matte);
+        }
     }
     if (tiles_ && meshes_) drawDetails(cam, view, view_proj, eye, height, lod, fog_density);
 

@@ -149,10 +149,13 @@ private:
     unsigned uploadTexture(const std::shared_ptr<const TextureImage>& image, TextureCache* cache);
     void releaseScene();
     void releaseStaticMeshes();
-    // The static meshes in the frustum of `view_proj`, each piece or chunk at the level chosen from `eye`
-    // (static_lod.h; the shadow pass makes the same choice): lit (shadow false) or depth only.
+    // Which static meshes a pass draws: all (the shadow pass), or the matte or the glossy ones (each lit by
+    // its own program, lit_surface.frag's GLOSSY).
+    enum class StaticSubset { All, Matte, Glossy };
+    // The static meshes of `subset` in the frustum of `view_proj`, each piece or chunk at the level chosen
+    // from `eye` (static_lod.h; the shadow pass makes the same choice): lit (shadow false) or depth only.
     void drawStaticMeshes(const ShaderProgram& program, const glm::mat4& view_proj, const glm::vec3& eye,
-                          float pixels_per_radian, bool shadow);
+                          float pixels_per_radian, bool shadow, StaticSubset subset = StaticSubset::All);
     void releaseTargets();
     // (Re)builds the commands of `draws` when its view, the LOD settings or the tiles changed.
     struct IndirectBuffer {
@@ -181,6 +184,7 @@ private:
 
     ShaderProgram sky_, terrain_, detail_, impostor_, grid_, marker_, hull_;
     ShaderProgram shadow_detail_, shadow_impostor_, ambient_occlusion_, ao_blur_, composite_, static_mesh_, shadow_static_;
+    ShaderProgram static_glossy_;  // static_mesh_ with lit_surface.frag's GLOSSY: smooth materials only
     ViewportLook look_;
     // The shadow map (a depth texture with compare mode) and its framebuffer; the offscreen scene target.
     unsigned shadow_fbo_ = 0, shadow_depth_ = 0;
