@@ -23,7 +23,8 @@
 //     (which already holds base colour x detail, sRGB), the primitive gets TEXCOORD_0 (float VEC2, the box
 //     projection of material/uv_projection.h in engine model space, so vertices on edges between
 //     projection axes are split, then turned by texture_rotation_deg), and the material's extras hold
-//     {"texture", "texture_scale_m", "tint_variation"} and "texture_rotation_deg" when it is not 0; alpha_cutout adds alphaMode MASK, alphaCutoff 0.5 and doubleSided. The terrain
+//     {"texture", "texture_scale_m", "tint_variation"} and "texture_rotation_deg" when it is not 0;
+//     alpha_cutout adds alphaMode MASK, alphaCutoff 0.5 and doubleSided. The terrain
 //     likewise, with uv = world (x, y) / texture_scale_m; a static mesh like a detail type (box projection in
 //     its object space). A static mesh's extras are its extras_json (none when empty); the terrain has none.
 //   - textures: each distinct image (same size and bytes) is written once, as a PNG in its own buffer

@@ -12,8 +12,8 @@
 // and Z (bark fibres run along a branch modelled along X). The terrain always takes
 // uv = (world x, world y) / s. Then a material's texture_rotation_deg r turns uv about the origin,
 // counter-clockwise: uv' = (cos r * u - sin r * v, sin r * u + cos r * v) (rotateTextureUv; r = 0 keeps
-// uv bit for bit, r = 90 gives (-v, u): fibres along v', up an upright trunk). No flip: v = 0 is the image's first row in glTF and, uploading the rows
-// in memory order, t = 0 in GL.
+// uv bit for bit, r = 90 gives (-v, u): bark's fibres, along u', then run up an upright trunk). No flip:
+// v = 0 is the image's first row in glTF and, uploading the rows in memory order, t = 0 in GL.
 #pragma once
 
 #include <vector>

@@ -17,8 +17,8 @@ bool scaleIsPositive(JsonReader& r, const std::string& p, const Material& m) {
 
 bool readMaterial(JsonReader& r, const json& j, const std::string& p, Material* out) {
     if (!r.expectObject(j, p) ||
-        !r.onlyKeys(j, p, {"base_color", "roughness", "texture", "texture_scale_m", "texture_rotation_deg", "tint_variation",
-                              "alpha_cutout"}))
+        !r.onlyKeys(j, p, {"base_color", "roughness", "texture", "texture_scale_m", "texture_rotation_deg",
+                           "tint_variation", "alpha_cutout"}))
         return false;
     Material m = *out;
     if (auto it = j.find("base_color"); it != j.end()) {

@@ -51,7 +51,8 @@
 // <material> is {"base_color": [r, g, b] (linear, each in [0, 1]; absent: the model's own colour),
 //   "roughness": 0..1 (0.9), "texture": "none" | "rock" | "leaf" | "bark" | "grass" | "ground" | "hay"
 //   ("none"), "texture_scale_m": metres per repeat in [0.001, 1000] (0.2), "texture_rotation_deg":
-//   -360..360 (0), "tint_variation": 0..1 (0), "alpha_cutout": false}, every key optional (scene/material_json.h, material/material.h).
+//   -360..360 (0), "tint_variation": 0..1 (0), "alpha_cutout": false}, every key optional
+//   (scene/material_json.h, material/material.h).
 //
 // An orientation or size object switches that constraint on. "gradient" means the gradient of the
 // type's own compiled density (Ghost Tile Fig. 17 right); a size ramp maps its field's values
