@@ -385,6 +385,7 @@ Renderer::StaticBuffers Renderer::uploadStaticEntry(const MeshInstances& entry, 
     b.color = entry.material ? entry.material->base_color : mesh.base_color;
     b.texture = uploadTexture(b.material.texture, &static_textures_);
     b.casts_shadow = castsSunShadow(entry);
+    b.glossy = materialGloss(b.material.roughness) > 0.0f;
     return b;
 }
 
@@ -462,8 +463,7 @@ void Renderer::drawStaticMeshes(const ShaderProgram& program, const glm::mat4& v
                                 float pixels_per_radian, bool shadow, StaticSubset subset) {
     for (const StaticBuffers& b : statics_) {
         if (shadow && !b.casts_shadow) continue;
-        if (subset != StaticSubset::All && (materialGloss(b.material.roughness) > 0.0f) != (subset == StaticSubset::Glossy))
-            continue;
+        if (subset != StaticSubset::All && b.glossy != (subset == StaticSubset::Glossy)) continue;
         if (!boxInFrustum(view_proj, b.bounds)) {
             if (!shadow) ++stats_.static_meshes_culled;
             continue;
@@ -619,7 +619,10 @@ void Renderer::render(const OrbitCamera& camera, int width, int height, const Lo
     }
 
     if (has_scene_ && !statics_.empty()) {
+        const bool any_glossy =
+            std::any_of(statics_.begin(), statics_.end(), [](const StaticBuffers& b) { return b.glossy; });
         for (const ShaderProgram* p : {&static_mesh_, &static_glossy_}) {
+            if (p == &static_glossy_ && !any_glossy) break;  // most scenes: no second program's setup
             glUseProgram(p->id);
             glUniformMatrix4fv(loc(*p, "u_view_proj"), 1, GL_FALSE, glm::value_ptr(view_proj));
             setLighting(*p, eye, fog_density);

@@ -228,6 +228,7 @@ private:
         glm::vec3 color{0.6f};
         unsigned texture = 0;  // owned by static_textures_
         bool casts_shadow = true;  // castsSunShadow
+        bool glossy = false;       // materialGloss > 0: drawn by static_glossy_
         StaticEntryKey key;        // what they were made of: a later set's equal entry keeps them
     };
     StaticBuffers uploadStaticEntry(const MeshInstances& entry, StaticLodMesh lods);
