@@ -8,12 +8,15 @@ chord() { xdotool keydown "$1"; sleep 0.1; key "$2"; xdotool keyup "$1"; sleep "
 # Dear ImGui 1.86 reads the mouse once a frame: a press must last a frame where the pointer already is,
 # and a frame takes up to a second here, so presses are held a second before anything else moves.
 click() { xdotool mousemove "$1" "$2"; sleep 1; xdotool mousedown 1; sleep 1; xdotool mouseup 1; sleep 1; }
-# drag X0 Y0 X1 Y1: the left button held from one point to the other in 10 moves.
+# drag X0 Y0 X1 Y1: the left button held from one point to the other in 10 moves. The button is held a
+# second at the end too: the backend polls the pointer once a frame, so a release sooner than a frame
+# after the last move ends the drag wherever the last frame saw the pointer, part of the way there (a CI
+# run ended an a(t) key drag at a third of its way down).
 drag() {
   xdotool mousemove "$1" "$2"; sleep 1
   xdotool mousedown 1; sleep 1
   for k in $(seq 1 10); do xdotool mousemove $(($1 + ($3 - $1) * k / 10)) $(($2 + ($4 - $2) * k / 10)); sleep 0.15; done
-  sleep 0.3
+  sleep 1.2
   xdotool mouseup 1; sleep 0.5
 }
 undo() { xdotool keydown ctrl; sleep 0.2; xdotool keydown z; sleep 1; xdotool keyup z; sleep 0.2; xdotool keyup ctrl; sleep 1; }
