@@ -251,14 +251,16 @@ def montmartre_winter():
     for i in range(8):
         tree.append(obj("bench", [-8.8, -42 + 12 * i, 0.12], yaw=-90))
         tree.append(obj("trash_can", [8.8, -38 + 12 * i, 0.12]))
+    # A walker's steps, 0.8 m apart, left and right of a line down the east pavement.
     steps = []
-    for k in range(40):
-        y = -48 + k * 2.4
-        steps.append(field("occlusion", 0.85, point([-7.2 + (0.12 if k % 2 else -0.12), y, 0.12], 0.13)))
+    for k in range(32):
+        y = -30 + k * 0.8
+        steps.append(field("occlusion", 0.85, point([6.9 + (0.12 if k % 2 else -0.12), r(y), 0.12], 0.13)))
     tracks = [field("occlusion", 0.9, segment([x, -50, 0.0], [x, 50, 0.0], 0.18)) for x in (-1.8, 1.8)]
     p["environment"] = {
         # A wind from the west: the snow falls 10 degrees off vertical onto the east row's windward sills
-        # and balconies; the west row's stay sheltered under their cornices, and its pavement in its lee.
+        # and balconies; the west row's stay sheltered under their cornices, and its pavement in its lee
+        # (so the footprints walk the east pavement, where there is snow to keep them).
         "snow_direction": [0.176, 0, -1],
         "types": TYPES,
         "groups": groups,

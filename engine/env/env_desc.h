@@ -135,12 +135,18 @@ struct TerrainEffectsDesc {
 // The steepest snowfall the shelter term follows: beyond it the marching through the height-span maps
 // gets long and wind-driven snow is better modelled by other means.
 constexpr float kMaxSnowTiltDeg = 45.0f;
+// The widest spread of snowfall directions around snow_direction (flakes swirl: a lee fades out over
+// metres behind a tall building instead of ending at one line).
+constexpr float kMaxSnowSpreadDeg = 20.0f;
 
 struct EnvironmentDesc {
     // The direction snow falls in, world space, unit, at most kMaxSnowTiltDeg from straight down: faces
     // take snow when they face against it, and shelter looks back along it (wind-driven snow reaches
     // the windward sills under a cornice).
     glm::vec3 snow_direction{0.0f, 0.0f, -1.0f};
+    // Half-angle in degrees, in [0, kMaxSnowSpreadDeg], of the cone of directions the shelter's rays take
+    // around snow_direction; 0: every ray follows it (the paper's single direction).
+    float snow_spread_deg = 0.0f;
     std::vector<EnvTypeDesc> types;
     std::vector<NamedEnvGroup> groups;  // instanced by references; not part of the scene by themselves
     std::vector<EnvNode> roots;         // the tree's top level

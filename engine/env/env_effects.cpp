@@ -63,7 +63,7 @@ uint64_t fieldKey(const EnvWorldField& f) {
 // widened by the drift up to the scene's top) and icicle clearance down it.
 Bounds column(const EnvScene& scene, const Bounds& b) {
     const float rise = std::max(0.0f, scene.objectBounds().hi.z - b.lo.z);
-    const float pad = 2.0f * kShelterCellM + glm::length(scene.snowSlope()) * (std::isfinite(rise) ? rise : 0.0f);
+    const float pad = 2.0f * kShelterCellM + scene.shelterDrift() * (std::isfinite(rise) ? rise : 0.0f);
     return Bounds{glm::vec3(b.lo.x - pad, b.lo.y - pad, -INFINITY), glm::vec3(b.hi.x + pad, b.hi.y + pad, INFINITY)};
 }
 
@@ -115,24 +115,92 @@ float distance2(const Signature& a, const Signature& b) {
 
 bool inRegion(const EnvEffectsOptions& opt, glm::vec3 p) { return !opt.region || contains(*opt.region, p); }
 
+// A local field placed by something else (a footprint, a lamp's warmth) that reaches into an object's
+// bounds while being too small for the signature to see: its 18 points lie 0.4 of the bounds apart, so
+// a field narrower than 0.6 of them across (the gaps' diagonal) can fall between them, and the object
+// took the snow of one without it (Montmartre's footprints vanished from the pavement). Wider fields (a
+// wheel track down the street) meet a point wherever they lie. Fields of the snow's own channels only
+// (leaves, grass and trash feed the scattered effects); an object's own fields (a lamppost's warmth on
+// itself) are alike in every copy. Kept as the field seen from the object, so two objects touched alike
+// (lampposts standing where their facades repeat) still share.
+struct SmallFieldTouch {
+    EnvChannel channel;
+    float value;
+    Primitive shape;                  // in the owner's space
+    glm::vec3 local_a, local_b;       // the shape's centre and end in the object's space
+    float turn_deg, scale;            // the owner's yaw and scale relative to the object's
+};
+
+constexpr float kTouchSameM = 1e-4f;  // where two objects see a field within this, they see the same
+
+bool sameTouch(const SmallFieldTouch& a, const SmallFieldTouch& b) {
+    const Primitive &p = a.shape, &q = b.shape;
+    return a.channel == b.channel && a.value == b.value && a.turn_deg == b.turn_deg && a.scale == b.scale &&
+           p.kind == q.kind && p.weight == q.weight && p.radius_m == q.radius_m && p.end_radius_m == q.end_radius_m &&
+           p.normal == q.normal && p.disc_radius_m == q.disc_radius_m && p.half_extents_m == q.half_extents_m &&
+           glm::length(a.local_a - b.local_a) <= kTouchSameM && glm::length(a.local_b - b.local_b) <= kTouchSameM;
+}
+
+bool sameTouches(const std::vector<SmallFieldTouch>& a, const std::vector<SmallFieldTouch>& b) {
+    if (a.size() != b.size()) return false;
+    for (size_t k = 0; k < a.size(); ++k)
+        if (!sameTouch(a[k], b[k])) return false;
+    return true;
+}
+
+// Per object, the small fields of others touching it, in field order.
+std::vector<std::vector<SmallFieldTouch>> smallFieldTouches(const EnvScene& scene) {
+    std::vector<std::vector<SmallFieldTouch>> touches(scene.objects().size());
+    std::vector<uint32_t> last_field(scene.objects().size(), UINT32_MAX);  // the grid may list an object twice
+    for (uint32_t fi = 0; fi < scene.fields().size(); ++fi) {
+        const EnvWorldField& f = scene.fields()[fi];
+        if (f.everywhere || f.channel == EnvChannel::Leaves || f.channel == EnvChannel::Grass ||
+            f.channel == EnvChannel::Trash)
+            continue;
+        const glm::vec3 field_size = f.bounds.hi - f.bounds.lo;
+        scene.forObjectsNearXY(f.bounds, [&](uint32_t o) {
+            const EnvObject& obj = scene.objects()[o];
+            if (last_field[o] == fi || f.owner_object == o || !overlaps(f.bounds, obj.bounds)) return;
+            const glm::vec3 size = obj.bounds.hi - obj.bounds.lo;
+            if (!(field_size.x < 0.6f * size.x || field_size.y < 0.6f * size.y)) return;
+            last_field[o] = fi;
+            const glm::vec3 a = obj.placement.toLocal(f.owner.toWorld(f.shape.center_m));
+            const glm::vec3 b = obj.placement.toLocal(f.owner.toWorld(f.shape.end_m));
+            touches[o].push_back({f.channel, f.value, f.shape, a, b, f.owner.yaw_deg - obj.placement.yaw_deg,
+                                  f.owner.scale / obj.placement.scale});
+        });
+    }
+    return touches;
+}
+
 // Greedy clustering in tree order (the same for the whole scene and every region).
 void formClasses(const EnvScene& scene, const std::vector<Signature>& sig,
                  const std::vector<std::vector<SnowSegment>>& joints, const EnvEffectsOptions& opt, EnvEffects* out) {
+    const std::vector<std::vector<SmallFieldTouch>> touches = smallFieldTouches(scene);
     const auto& objects = scene.objects();
     const float threshold = scene.desc().sharing_threshold;
-    const bool vertical = scene.desc().snow_direction == glm::vec3(0.0f, 0.0f, -1.0f);
+    // Shelter rays fanned about the snowfall turn with the object as the offsets on their grid do not.
+    // Their shelter steps by ninths anywhere over metres, which no signature certifies: a jointed object
+    // then gets its own snow (one sharing another's met its neighbour at a step across their joint, a
+    // crack; Montmartre's cobbles showed dashes of them). Others share as with one direction: their
+    // snow meets no one's.
+    const bool fanned = scene.desc().snow_spread_deg > 0.0f;
+    const bool vertical = scene.desc().snow_direction == glm::vec3(0.0f, 0.0f, -1.0f) && !fanned;
     out->class_of.assign(objects.size(), UINT32_MAX);
     std::vector<std::vector<uint32_t>> by_type(scene.types().size());  // class ids per type
     for (uint32_t o = 0; o < objects.size(); ++o) {
         uint32_t found = UINT32_MAX;
-        if (threshold >= 0.0f)
+        // Its own class, which no one else joins either.
+        const bool alone = threshold < 0.0f || (fanned && !joints[o].empty());
+        if (!alone)
             for (uint32_t c : by_type[objects[o].type]) {
                 const EnvObject& first = objects[out->classes[c].first];
                 // With slanting snow an object's effects depend on its turn too.
                 const bool same_turn = vertical || (first.placement.c == objects[o].placement.c &&
                                                     first.placement.s == objects[o].placement.s);
                 if (sameSettings(first, objects[o]) && first.placement.scale == objects[o].placement.scale && same_turn &&
-                    joints[out->classes[c].first] == joints[o] && distance2(sig[out->classes[c].first], sig[o]) <= threshold) {
+                    joints[out->classes[c].first] == joints[o] && sameTouches(touches[out->classes[c].first], touches[o]) &&
+                    distance2(sig[out->classes[c].first], sig[o]) <= threshold) {
                     found = c;
                     break;
                 }
@@ -143,7 +211,7 @@ void formClasses(const EnvScene& scene, const std::vector<Signature>& sig,
             c.type = objects[o].type;
             c.first = o;
             out->classes.push_back(std::move(c));
-            by_type[objects[o].type].push_back(found);
+            if (!alone) by_type[objects[o].type].push_back(found);
         }
         out->class_of[o] = found;
         if (inRegion(opt, objects[o].placement.t)) out->classes[found].members.push_back(o);
@@ -334,6 +402,7 @@ bool run(const EnvScene& scene, const EnvEffectsOptions& opt, const Reuse& reuse
                         }
                 if (ch.reused) continue;
                 SnowSettings s;
+                s.min_open = scene.snowMinOpen();
                 SnowCover cover;
                 if (!buildTerrainSnow(hf, box, scene.desc().terrain.snow_cell_m, s, world, &cover, &chunk_errors[k])) {
                     chunk_failed[k] = 1;
@@ -384,6 +453,10 @@ bool updateEnvEffects(const EnvScene& scene, const EnvEffects& previous, const s
 
 std::vector<Bounds> envDirtyRegion(const EnvScene& before, const EnvScene& after) {
     std::vector<Bounds> dirty;
+    // Another snowfall changes the shelter everywhere.
+    if (before.desc().snow_direction != after.desc().snow_direction ||
+        before.desc().snow_spread_deg != after.desc().snow_spread_deg)
+        return {Bounds::everything()};
     auto diffObjects = [&](const EnvScene& a, const EnvScene& b) {
         std::unordered_multimap<uint64_t, uint32_t> keys;
         for (uint32_t o = 0; o < b.objects().size(); ++o) keys.emplace(objectKey(b.objects()[o]), o);

@@ -88,7 +88,8 @@ bool updateEnvEffects(const EnvScene& scene, const EnvEffects& previous, const s
                       const EnvEffectsOptions& options, EnvEffects* out, std::string* error);
 
 // Where an edit can change effects: the bounds of every object and field found in only one of the two
-// scenes (matched by content: type, placement and settings; channel, value, shape and owner).
+// scenes (matched by content: type, placement and settings; channel, value, shape and owner); everything
+// when the snowfall (direction or spread) differs.
 std::vector<Bounds> envDirtyRegion(const EnvScene& before, const EnvScene& after);
 
 }  // namespace ug

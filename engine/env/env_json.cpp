@@ -319,7 +319,7 @@ json nodeJson(const EnvNode& n, const EnvironmentDesc& env) {
 bool readEnvironment(JsonReader& r, const json& j, const std::string& p, EnvironmentDesc* out) {
     if (!r.expectObject(j, p) ||
         !r.onlyKeys(j, p, {"types", "groups", "tree", "global_fields", "terrain", "use_lod_nodes", "sharing_threshold",
-                           "snow_direction"}))
+                           "snow_direction", "snow_spread_deg"}))
         return false;
     EnvironmentDesc env;
     if (j.contains("snow_direction")) {
@@ -369,7 +369,8 @@ bool readEnvironment(JsonReader& r, const json& j, const std::string& p, Environ
             !positive(r, *it, tp, "snow_cell_m", &env.terrain.snow_cell_m, 100.0))
             return false;
     }
-    if (!r.boolean(j, p, "use_lod_nodes", &env.use_lod_nodes) ||
+    if (!r.number(j, p, "snow_spread_deg", &env.snow_spread_deg, 0.0, kMaxSnowSpreadDeg) ||
+        !r.boolean(j, p, "use_lod_nodes", &env.use_lod_nodes) ||
         !r.number(j, p, "sharing_threshold", &env.sharing_threshold, -1.0, 1e6))
         return false;
     *out = std::move(env);
@@ -379,6 +380,7 @@ bool readEnvironment(JsonReader& r, const json& j, const std::string& p, Environ
 json environmentToJson(const EnvironmentDesc& env) {
     json j = json::object();
     if (env.snow_direction != glm::vec3(0.0f, 0.0f, -1.0f)) j["snow_direction"] = vec3Json(env.snow_direction);
+    if (env.snow_spread_deg != 0.0f) j["snow_spread_deg"] = jsonFloat(env.snow_spread_deg);
     json types = json::array();
     for (const EnvTypeDesc& t : env.types) {
         json jt = {{"name", t.name}, {"mesh", t.mesh_path}, {"scale", jsonFloat(t.scale)}, {"y_up", t.y_up}};

@@ -16,6 +16,7 @@
 //     "terrain": {"snow": true, "snow_cell_m": 0.1, "receives": [...]},   (receives: default all three)
 //     "use_lod_nodes": true,
 //     "snow_direction": [0, 0, -1],                       (unit after reading; at most 45 degrees from down)
+//     "snow_spread_deg": 0,                               (the shelter rays' cone around it, at most 20)
 //     "sharing_threshold": 0.0001                          (negative: never share effects)
 //   }
 //   <node>  = {"object": "<type name>", <placement>, "fields": [...], "snow": {...}, "icicles": {...}}

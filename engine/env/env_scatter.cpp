@@ -180,7 +180,7 @@ uint32_t scatterVariantAt(const EnvScene& env, std::span<const ScatterCondition>
 
 std::vector<Bounds> scatterDirtyRegion(const EnvScene& before, const EnvScene& after) {
     std::vector<Bounds> boxes = envDirtyRegion(before, after);
-    const float drift = std::max(glm::length(before.snowSlope()), glm::length(after.snowSlope()));
+    const float drift = std::max(before.shelterDrift(), after.shelterDrift());
     // The lowest point a ray can start from: under the objects, or down in the terrain's lowest valley.
     float bottom = std::min(before.objectBounds().empty() ? 0.0f : before.objectBounds().lo.z,
                             after.objectBounds().empty() ? 0.0f : after.objectBounds().lo.z);

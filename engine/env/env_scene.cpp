@@ -151,7 +151,7 @@ public:
             o.bounds = placedBounds(Bounds{type.bounds.min, type.bounds.max}, o.placement);
             o.where = where;
             objects_->push_back(std::move(o));
-            if (!parent.under_lod) addFields(type.desc.fields, st.placement);
+            if (!parent.under_lod) addFields(type.desc.fields, st.placement, uint32_t(objects_->size() - 1));
             return;
         }
         case EnvNodeKind::Reference:
@@ -177,7 +177,7 @@ private:
             if (g.name == name) return &g;
         return nullptr;
     }
-    void addFields(const std::vector<EnvFieldDesc>& fields, const EnvPlacement& owner) {
+    void addFields(const std::vector<EnvFieldDesc>& fields, const EnvPlacement& owner, uint32_t owner_object = UINT32_MAX) {
         for (const EnvFieldDesc& f : fields) {
             EnvWorldField w;
             w.channel = f.channel;
@@ -185,6 +185,7 @@ private:
             w.value = f.value;
             w.shape = f.shape;
             w.owner = owner;
+            w.owner_object = owner_object;
             w.bounds = f.everywhere ? Bounds::everything() : placedBounds(primitiveBounds(f.shape, nullptr), owner);
             fields_->push_back(w);
         }
@@ -255,11 +256,41 @@ glm::vec3 EnvPlacement::toLocal(glm::vec3 p) const {
     return glm::vec3(c * d.x + s * d.y, -s * d.x + c * d.y, d.z) / scale;
 }
 
+namespace {
+
+// The shelter rays' drifts per metre of rise: the snowfall's for the centre ray (4); the other 8 about
+// the cone of half-angle spread_deg around it (drift offsets of tan(spread), exact for snow falling
+// straight down), as four opposite pairs on two rings (radius 1 and 0.55 of the cone's, 45 degrees
+// apart, turned 11.25 degrees off the axes). Opposite pairs keep the set centred on the snowfall, and
+// no two rays share a drift across or along a wall on the axes: a lee fades in nine steps, not three.
+std::array<glm::vec2, 9> shelterRaySlopes(glm::vec2 slope, float spread_deg) {
+    std::array<glm::vec2, 9> out;
+    out.fill(slope);
+    if (!(spread_deg > 0.0f)) return out;
+    const float radius = std::tan(glm::radians(spread_deg));
+    int m = 0;
+    for (int k = 0; k < 9; ++k) {
+        if (k == 4) continue;
+        const float a = glm::radians(11.25f + 45.0f * float(m));
+        out[size_t(k)] = slope + radius * (m % 2 ? 0.55f : 1.0f) * glm::vec2(std::cos(a), std::sin(a));
+        ++m;
+    }
+    return out;
+}
+
+}  // namespace
+
 bool compileEnvScene(const EnvironmentDesc& desc, const std::string& base_dir, const std::string& name,
                      std::shared_ptr<const HeightField> terrain, EnvScene* out, std::string* error,
                      const EnvScene* previous) {
+    if (!(desc.snow_spread_deg >= 0.0f && desc.snow_spread_deg <= kMaxSnowSpreadDeg))
+        return *error = name + ": /environment/snow_spread_deg: must be in [0, " +
+                        std::to_string(int(kMaxSnowSpreadDeg)) + "]",
+               false;
     EnvScene scene;
     scene.desc_ = desc;
+    scene.ray_slopes_ = shelterRaySlopes(scene.snowSlope(), desc.snow_spread_deg);
+    for (glm::vec2 s : scene.ray_slopes_) scene.shelter_drift_ = std::max(scene.shelter_drift_, glm::length(s));
     scene.terrain_ = std::move(terrain);
     scene.types_.resize(desc.types.size());
     for (size_t t = 0; t < desc.types.size(); ++t) {
@@ -491,26 +522,35 @@ EnvSample EnvScene::channels(glm::vec3 p) const {
     return accumulate(p, ids.data(), ids.size());
 }
 
-float EnvScene::shelterRays(glm::vec3 p, bool centre_only) const {
-    // The 9 rays start within kShelterCellM of p on each axis (the grid pads every object by that much) and
-    // drift by `slope` per metre of rise: the candidates are the objects of the grid cells along the
-    // drift's path, up to the top of the scene.
-    bool covered[9] = {};
-    const int rays = centre_only ? 1 : 9;
-    int open = rays;
-    const glm::vec2 slope = snowSlope();
-    const float drift = glm::length(slope);
-    thread_local std::vector<uint32_t> candidates;
-    candidates.clear();
+void EnvScene::shelterCandidates(glm::vec3 p, glm::vec2 slope, std::vector<uint32_t>* out) const {
+    // The objects of the grid cells along the ray's drift, up to the top of the scene.
     const float rise = std::max(0.0f, object_bounds_.hi.z - p.z);
+    const float drift = glm::length(slope);
     const int steps = drift > 0.0f ? int(std::ceil(2.0f * drift * rise / grid_cell_)) : 0;
     for (int k = 0; k <= steps; ++k) {
         const glm::vec2 at = glm::vec2(p) + slope * (rise * float(k) / float(std::max(steps, 1)));
         for (uint32_t o : objectsAt(at.x, at.y))
             if (objects_[o].bounds.hi.z > p.z + kShelterEpsM && types_[objects_[o].type].desc.shelters)
-                candidates.push_back(o);  // can reach above p and keeps things off
+                out->push_back(o);  // can reach above p and keeps things off
     }
-    if (steps > 0) {
+}
+
+float EnvScene::shelterRays(glm::vec3 p, bool centre_only) const {
+    // The 9 rays start within kShelterCellM of p on each axis (the grid pads every object by that much) and
+    // drift by their slope per metre of rise.
+    bool covered[9] = {};
+    const int rays = centre_only ? 1 : 9;
+    int open = rays;
+    const bool fanned = !centre_only && desc_.snow_spread_deg > 0.0f;
+    const float drift = fanned ? shelter_drift_ : glm::length(ray_slopes_[4]);
+    thread_local std::vector<uint32_t> candidates;
+    candidates.clear();
+    if (fanned) {
+        for (glm::vec2 slope : ray_slopes_) shelterCandidates(p, slope, &candidates);
+    } else {
+        shelterCandidates(p, ray_slopes_[4], &candidates);
+    }
+    if (drift > 0.0f) {  // several cells' lists (straight down, one cell's: ascending, each id once)
         std::sort(candidates.begin(), candidates.end());
         candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
     }
@@ -522,17 +562,18 @@ float EnvScene::shelterRays(glm::vec3 p, bool centre_only) const {
             continue;
         const EnvObjectType& type = types_[obj.type];
         const glm::vec3 local = obj.placement.toLocal(p);
-        // The world offsets (i, j) * cell and the drift turned into the object's space.
+        // The world offsets (i, j) * cell and the drifts turned into the object's space.
         const float inv = kShelterCellM / obj.placement.scale;
         const glm::vec2 ex(obj.placement.c * inv, -obj.placement.s * inv);  // world +X in object space
         const glm::vec2 ey(obj.placement.s * inv, obj.placement.c * inv);   // world +Y
-        const glm::vec2 local_slope(obj.placement.c * slope.x + obj.placement.s * slope.y,
-                                    -obj.placement.s * slope.x + obj.placement.c * slope.y);
         const float eps = kShelterEpsM / obj.placement.scale;
         for (int k = 0; k < rays; ++k) {
             if (covered[k]) continue;
             const int ray = centre_only ? 4 : k;  // 4: the centre of the 3 x 3
             const float i = float(ray % 3 - 1), j = float(ray / 3 - 1);
+            const glm::vec2 slope = ray_slopes_[size_t(ray)];
+            const glm::vec2 local_slope(obj.placement.c * slope.x + obj.placement.s * slope.y,
+                                        -obj.placement.s * slope.x + obj.placement.c * slope.y);
             const glm::vec3 q(local.x + i * ex.x + j * ey.x, local.y + i * ex.y + j * ey.y, local.z);
             if (type.spans->coveredAlong(q, local_slope, eps, type.bounds.min.z, type.bounds.max.z)) {
                 covered[k] = true;

@@ -16,10 +16,13 @@
 //
 // Shelter: the fraction of 9 rays, from a 3 x 3 grid of kShelterCellM around the point and going back up
 // along the snowfall (EnvironmentDesc::snow_direction; straight up by default), that no object's base
-// geometry crosses more than kShelterEpsM above the point (height_span_map.h). The terrain shelters
-// nothing (it is below).
+// geometry crosses more than kShelterEpsM above the point (height_span_map.h). With a snow_spread_deg the
+// 8 outer rays fan out over a cone of that half-angle around the snowfall (the centre one keeps to it),
+// so a lee or the snow line under a roof fades over a distance that grows with the height of what
+// shelters it. The terrain shelters nothing (it is below).
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -76,6 +79,7 @@ struct EnvWorldField {
     float value = 0.0f;
     Primitive shape;          // in the owner's space
     EnvPlacement owner;       // owner space -> world
+    uint32_t owner_object = UINT32_MAX;  // the object whose type emits it; none for a node's or a global one
     Bounds bounds;            // world AABB of the support (everything for a global field)
 };
 
@@ -126,6 +130,13 @@ public:
 
     // Horizontal drift per metre of rise back along the snowfall ((0, 0) for snow falling straight down).
     glm::vec2 snowSlope() const;
+    // The largest horizontal drift per metre of rise of any shelter ray (the snowfall's plus the spread):
+    // how far sideways what shelters a point can lie, per metre above it.
+    float shelterDrift() const { return shelter_drift_; }
+    // The shelter below which nothing takes snow (SnowSettings::min_open): half the rays when they all
+    // follow the snowfall (a face half under a roof's edge), any one of them when they fan out, where the
+    // depth, which grows with the shelter, already fades the snow out behind a lee.
+    float snowMinOpen() const { return desc_.snow_spread_deg > 0.0f ? 0.1f : 0.5f; }
     // How many fields a query in `box` has to look at (the LOD nodes' gain, §6.1, in the bench).
     size_t candidateFieldCount(const Bounds& box) const;
 
@@ -142,6 +153,8 @@ private:
     std::span<const uint32_t> objectsAt(float x, float y) const;
     EnvSample accumulate(glm::vec3 p, const uint32_t* ids, size_t n) const;
     float shelterRays(glm::vec3 p, bool centre_only) const;
+    // Appends the objects that may shelter p along drift `slope` per metre of rise (ids may repeat).
+    void shelterCandidates(glm::vec3 p, glm::vec2 slope, std::vector<uint32_t>* out) const;
 
     EnvironmentDesc desc_;
     std::vector<EnvObjectType> types_;
@@ -149,6 +162,9 @@ private:
     std::vector<EnvWorldField> fields_;
     std::shared_ptr<const HeightField> terrain_;
     Bounds object_bounds_;
+    // Each shelter ray's drift per metre of rise, world XY (ray 4, the centre, is the snowfall's own).
+    std::array<glm::vec2, 9> ray_slopes_{};
+    float shelter_drift_ = 0.0f;
 
     // Field index: a BVH over the local fields' bounds (leaves hold field ids), plus the global ones.
     struct Node {

@@ -215,6 +215,7 @@ SnowSettings objectSnowSettings(const EnvScene& scene, const EnvObject& o) {
     s.up = glm::normalize(glm::vec3(o.placement.c * up.x + o.placement.s * up.y,
                                     -o.placement.s * up.x + o.placement.c * up.y, up.z));
     s.max_face_angle_deg = o.snow.max_face_angle_deg;
+    s.min_open = scene.snowMinOpen();
     s.d0_m = o.snow.d0_m / o.placement.scale;
     s.target_edge_m = o.snow.target_edge_m / o.placement.scale;
     return s;
@@ -238,7 +239,7 @@ std::vector<std::vector<SnowSegment>> findSnowJoints(const EnvScene& scene, int 
         if (k == 0 || sides[involved[k]].object != sides[involved[k - 1]].object) runs.push_back(k);
     runs.push_back(involved.size());
     std::vector<char> open(sides.size(), 0);
-    const float min_open = SnowSettings{}.min_open;
+    const float min_open = scene.snowMinOpen();
     parallelFor(runs.size() - 1, threads, 1, [&](size_t b, size_t e, int) {
         for (size_t r = b; r < e; ++r) {
             const uint32_t o = sides[involved[runs[r]]].object;

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <set>
 
 #include "env/env_effects.h"
 #include "env/snow_joints.h"
@@ -216,6 +217,88 @@ TEST(EnvEffects, IncrementalEqualsFullAfterRandomEdits) { checkIncrementalEquals
 
 TEST(EnvEffects, IncrementalEqualsFullWithSlantingSnow) {
     checkIncrementalEqualsFull(R"("snow_direction": [0.3, 0.2, -1], )");
+}
+
+TEST(EnvEffects, IncrementalEqualsFullWithFannedSnow) {
+    checkIncrementalEqualsFull(R"("snow_direction": [0.3, 0.2, -1], "snow_spread_deg": 12, )");
+}
+
+// A footprint smaller than the gaps between the 18 signature points (slabs of 2 x 2 m: points 0.8 m apart)
+// that falls between them: the slab must not take the snow of its untrodden twin (Montmartre's trail
+// vanished from the pavement that way).
+TEST(EnvEffects, AFootprintBetweenTheSignaturePointsKeepsItsDent) {
+    // The slab's bounds span x, y in [-1, 1]: points at -0.8, 0, 0.8; the footprint at (0.4, 0.4), 0.13 m.
+    const std::string tree = R"("tree": [{"object": "pavement_slab"}, {"object": "pavement_slab", "at": [5, 0, 0]}])";
+    const std::string step = R"(, {"channel": "occlusion", "value": 0.85, "shape": {"point": {"center": [0.4, 0.4, 0.12], "radius": 0.13}}})";
+    std::string error;
+    EnvScene trodden;
+    ASSERT_TRUE(compileEnv(tree + R"(, "global_fields": [)" + kCold + step + "]", &trodden, &error)) << error;
+    EnvEffects fx;
+    ASSERT_TRUE(computeEnvEffects(trodden, {}, &fx, &error)) << error;
+    EXPECT_EQ(fx.stats.effect_computations, 2u);
+    // Inside the footprint the snow is lower on the trodden slab than at the same place on the other.
+    const auto lowestNear = [&](size_t o, glm::vec2 at) {
+        float z = INFINITY;
+        for (glm::vec3 p : worldSnow(trodden, fx, o))
+            if (glm::length(glm::vec2(p) - at) < 0.05f) z = std::min(z, p.z);
+        return z;
+    };
+    const float dent = lowestNear(0, {0.4f, 0.4f}), plain = lowestNear(1, {5.4f, 0.4f});
+    ASSERT_TRUE(std::isfinite(dent) && std::isfinite(plain));
+    EXPECT_LT(dent, plain - 0.05f);
+}
+
+// Shelter rays fanned about the snowfall fade the snow under a roof's edge in ninths over decimetres. A
+// floor of cobbles (box snow, jointed to each other) across the bus shelter's roof line: a cobble's snow
+// must be what it would get alone, or two neighbours meet at a step across their joint (a crack;
+// Montmartre's cobbles showed dashes of them when they shared by the centre ray's signature).
+TEST(EnvEffects, FannedSnowGivesJointedObjectsTheirOwnSnow) {
+    const float side = 4.0f / 11.0f;
+    std::string tree = R"([{"object": "bus_shelter"})";
+    for (int j = 0; j < 8; ++j)
+        for (int i = 0; i < 12; ++i)
+            tree += R"(, {"object": "road_segment", "scale": 0.0909090909, "snow": {"mode": "box"}, "at": [)" +
+                    std::to_string(-2.0f + side * float(i)) + ", " + std::to_string(-0.2f + side * float(j)) + ", 0]}";
+    tree += "]";
+    const std::string fields = R"(, "global_fields": [)" + kCold + "]";
+    std::string error;
+    EnvScene shared, alone, straight;
+    ASSERT_TRUE(compileEnv(R"("snow_spread_deg": 15, "tree": )" + tree + fields, &shared, &error)) << error;
+    ASSERT_TRUE(compileEnv(R"("snow_spread_deg": 15, "sharing_threshold": -1, "tree": )" + tree + fields, &alone, &error)) << error;
+    ASSERT_TRUE(compileEnv(R"("tree": )" + tree + fields, &straight, &error)) << error;
+    EnvEffects a, b, c;
+    ASSERT_TRUE(computeEnvEffects(shared, {}, &a, &error)) << error;
+    ASSERT_TRUE(computeEnvEffects(alone, {}, &b, &error)) << error;
+    ASSERT_TRUE(computeEnvEffects(straight, {}, &c, &error)) << error;
+    // Objects whose snow ramps to the base at every side (g(0) = 0) meet no one's and may share.
+    const std::vector<std::vector<SnowSegment>> joints = findSnowJoints(shared, 1);
+    size_t jointed = 0;
+    for (size_t o = 0; o < shared.objects().size(); ++o) {
+        if (joints[o].empty()) continue;
+        ++jointed;
+        const EffectClass& ca = a.classes[a.class_of[o]];
+        const EffectClass& cb = b.classes[b.class_of[o]];
+        ASSERT_EQ(ca.members.size(), 1u) << o;
+        ASSERT_EQ(bool(ca.snow), bool(cb.snow)) << o;
+        if (!ca.snow) continue;
+        ASSERT_EQ(ca.snow->positions.size(), cb.snow->positions.size()) << o;
+        for (size_t k = 0; k < ca.snow->positions.size(); ++k)
+            ASSERT_TRUE(test::sameBits(ca.snow->positions[k], cb.snow->positions[k])) << o << " " << k;
+    }
+    EXPECT_GT(jointed, 60u);
+    EXPECT_LT(c.stats.effect_computations, 40u);  // straight snow shares them
+    // The fan softens the roof's line: some cobbles take part of the snow, where straight snow gave each
+    // either all of it or none.
+    const auto depths = [&](const EnvScene& env, const EnvEffects& fx) {
+        std::set<int> cm;  // the highest snow point over each cobble, in millimetres above its top
+        for (size_t o = 1; o < env.objects().size(); ++o) {
+            float top = -INFINITY;
+            for (glm::vec3 p : worldSnow(env, fx, o)) top = std::max(top, p.z);
+            cm.insert(std::isfinite(top) ? int(std::lround(1000.0f * (top - env.objects()[o].bounds.hi.z))) : -1);
+        }
+        return cm;
+    };
+    EXPECT_GT(depths(shared, a).size(), depths(straight, c).size() + 2);
 }
 
 // Snow at 45 degrees: a shelter moved in upwind of a bench covers it from 2 m away (outside the bench's

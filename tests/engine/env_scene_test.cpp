@@ -287,6 +287,57 @@ TEST(EnvScene, ShelterLooksBackAlongSlantingSnow) {
     EXPECT_NE(error.find("/environment/snow_direction: must not be zero"), std::string::npos) << error;
 }
 
+// snow_spread_deg fans the 8 outer rays over a cone about the snowfall (env_scene.h): drifts of
+// tan(15°) = 0.268 (at 11.25° + 90° k) and 0.55 of it (at 56.25° + 90° k), the ray k of the 3 x 3 grid
+// taking the m-th (m = k, skipping the centre). Under the roof (x in [-1, 1], underside at z = 2), from
+// the ground, a ray is covered when it is still over the roof at z = 2 .. 2.1.
+TEST(EnvScene, ShelterFansOutAboutTheSnowfall) {
+    EnvFixture f;
+    EnvScene straight, fanned;
+    std::string error;
+    const std::string tree = R"(, "tree": [{"object": "roof"}]})";
+    ASSERT_TRUE(f.compile(R"({)" + kTypes + tree, &straight, &error)) << error;
+    ASSERT_TRUE(f.compile(R"({"snow_spread_deg": 15, )" + kTypes + tree, &fanned, &error)) << error;
+    // x = 1.2: covered only by the rays drifting 0.1225 m (m = 3, from x - 2.5 cm) and 0.263 m (m = 4,
+    // from x + 2.5 cm) back over the roof per metre: 7 of 9 open. x = 0.8: open only where the drift
+    // carries it past x = 1 by z = 2 (m = 0: +0.263, from x - 2.5 cm; m = 7: +0.1225, from x + 2.5 cm).
+    // Mirrored, the same.
+    EXPECT_NEAR(fanned.shelter({1.2f, 0.0f, 0.0f}), 7.0f / 9.0f, 1e-6f);
+    EXPECT_NEAR(fanned.shelter({-1.2f, 0.0f, 0.0f}), 7.0f / 9.0f, 1e-6f);
+    EXPECT_NEAR(fanned.shelter({0.8f, 0.0f, 0.0f}), 2.0f / 9.0f, 1e-6f);
+    EXPECT_NEAR(fanned.shelter({-0.8f, 0.0f, 0.0f}), 2.0f / 9.0f, 1e-6f);
+    EXPECT_EQ(straight.shelter({1.2f, 0.0f, 0.0f}), 1.0f);
+    EXPECT_EQ(straight.shelter({0.8f, 0.0f, 0.0f}), 0.0f);
+    // Far under the middle every ray meets the roof; far enough out (0.57 m of drift up to z = 2.1) none.
+    EXPECT_EQ(fanned.shelter({0.0f, 0.0f, 0.0f}), 0.0f);
+    EXPECT_EQ(fanned.shelter({1.7f, 0.0f, 0.0f}), 1.0f);
+    // The centre ray keeps to the snowfall (effect sharing compares it).
+    EXPECT_EQ(fanned.shelterCentre({1.2f, 0.0f, 0.0f}), 1.0f);
+    EXPECT_NEAR(fanned.shelterDrift(), 0.26795f, 1e-4f);
+    EXPECT_EQ(straight.shelterDrift(), 0.0f);
+    // The snow takes no cut at half the rays any more: it fades with the shelter itself.
+    EXPECT_EQ(straight.snowMinOpen(), 0.5f);
+    EXPECT_LT(fanned.snowMinOpen(), 1.0f / 9.0f);
+    // Out of range or not a number: refused naming the key; 0 is not written back.
+    Project p;
+    EXPECT_FALSE(f.load(R"({"snow_spread_deg": 25, )" + kTypes + "}", &p, &error));
+    EXPECT_NE(error.find("/environment/snow_spread_deg"), std::string::npos) << error;
+    EXPECT_FALSE(f.load(R"({"snow_spread_deg": -1, )" + kTypes + "}", &p, &error));
+    EXPECT_NE(error.find("/environment/snow_spread_deg"), std::string::npos) << error;
+    EXPECT_FALSE(f.load(R"({"snow_spread_deg": "wide", )" + kTypes + "}", &p, &error));
+    EXPECT_NE(error.find("/environment/snow_spread_deg: expected a number"), std::string::npos) << error;
+    ASSERT_TRUE(f.load(R"({"snow_spread_deg": 12.5, )" + kTypes + "}", &p, &error)) << error;
+    EXPECT_EQ(environmentToJson(p.environment).at("snow_spread_deg").get<double>(), 12.5);
+    ASSERT_TRUE(f.load(R"({)" + kTypes + "}", &p, &error)) << error;
+    EXPECT_FALSE(environmentToJson(p.environment).contains("snow_spread_deg"));
+    // A description made in code is checked too.
+    EnvironmentDesc wide = fanned.desc();
+    wide.snow_spread_deg = std::nanf("");
+    EnvScene refused;
+    EXPECT_FALSE(compileEnvScene(wide, ".", "code", nullptr, &refused, &error));
+    EXPECT_NE(error.find("code: /environment/snow_spread_deg: must be in [0, 20]"), std::string::npos) << error;
+}
+
 // A point on an object's own up-facing face is open to snow that slants a little (Montmartre's 10° wind):
 // the ray's first half-cell step rises more than twice the 3 cm margin, and a step that reached below the
 // margin looked inside the slab under the point, so every paving slab and stair tread of a part taller
