@@ -567,13 +567,17 @@ float EnvScene::shelterRays(glm::vec3 p, bool centre_only) const {
         const glm::vec2 ex(obj.placement.c * inv, -obj.placement.s * inv);  // world +X in object space
         const glm::vec2 ey(obj.placement.s * inv, obj.placement.c * inv);   // world +Y
         const float eps = kShelterEpsM / obj.placement.scale;
+        const auto toObject = [&](glm::vec2 slope) {
+            return glm::vec2(obj.placement.c * slope.x + obj.placement.s * slope.y,
+                             -obj.placement.s * slope.x + obj.placement.c * slope.y);
+        };
+        // One direction turned once for every ray; fanned rays each turn their own.
+        const glm::vec2 snowfall_local = toObject(ray_slopes_[4]);
         for (int k = 0; k < rays; ++k) {
             if (covered[k]) continue;
             const int ray = centre_only ? 4 : k;  // 4: the centre of the 3 x 3
             const float i = float(ray % 3 - 1), j = float(ray / 3 - 1);
-            const glm::vec2 slope = ray_slopes_[size_t(ray)];
-            const glm::vec2 local_slope(obj.placement.c * slope.x + obj.placement.s * slope.y,
-                                        -obj.placement.s * slope.x + obj.placement.c * slope.y);
+            const glm::vec2 local_slope = fanned ? toObject(ray_slopes_[size_t(ray)]) : snowfall_local;
             const glm::vec3 q(local.x + i * ex.x + j * ey.x, local.y + i * ex.y + j * ey.y, local.z);
             if (type.spans->coveredAlong(q, local_slope, eps, type.bounds.min.z, type.bounds.max.z)) {
                 covered[k] = true;
