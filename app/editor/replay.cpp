@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <iterator>
 #include <string>
+#include <string_view>
 #include <nlohmann/json.hpp>
 
 #include "core/atomic_file.h"
@@ -105,25 +106,67 @@ bool loadReplayScript(const std::string& path, std::vector<ReplayAction>* out, s
 
 namespace {
 
-// Every key an action may carry (some only for some actions). A key outside it is refused: a script
-// that said "yaw" for "yaw_deg" used to run from the default camera and silently screenshot the wrong view.
-constexpr const char* kReplayKeys[] = {
-    "a_m", "action", "at", "attractor", "brush", "cancel", "channel", "charge", "chunk", "count", "delta",
-    "distance", "falloff", "frame", "from", "from_camera", "group", "handle", "height", "influence", "layer",
-    "model", "model_scale", "name", "node", "offset_m", "on_surface", "op", "open", "orientation", "overlays",
-    "path", "pitch_deg", "plain_nodes", "points", "radius", "scale", "seed", "size", "snap", "steps",
-    "strategy", "strength", "subtract", "surface", "surfaces", "system", "target", "tile_size", "to", "type",
-    "types", "ui", "value", "visible", "window", "yaw_deg"};
+// The keys each action reads besides "action" and "frame". A key outside its action's list is refused: a
+// script that said "yaw" for "yaw_deg" used to run from the default camera and silently screenshot the
+// wrong view, and one that gave a `view` a "to" (a move's key) was as silently ignored.
+std::vector<std::string_view> replayKeysOf(ReplayKind kind) {
+    switch (kind) {
+        case ReplayKind::PaintStroke:
+        case ReplayKind::SculptStroke:
+        case ReplayKind::EraseStroke:
+            return {"points", "type", "types", "radius", "strength", "falloff", "subtract", "steps", "surface",
+                    "from_camera"};
+        case ReplayKind::Undo:
+        case ReplayKind::Redo:
+        case ReplayKind::Save:
+        case ReplayKind::WaitIdle:
+        case ReplayKind::New: return {};
+        case ReplayKind::SaveAs:
+        case ReplayKind::Open: return {"path"};
+        case ReplayKind::Screenshot: return {"path", "ui", "overlays"};
+        case ReplayKind::View: return {"target", "distance", "yaw_deg", "pitch_deg"};
+        case ReplayKind::Move: return {"from", "to", "steps"};
+        case ReplayKind::GhostTile:
+            return {"type", "types", "count", "delta", "tile_size", "model", "model_scale", "scale", "seed"};
+        case ReplayKind::SetSeed: return {"seed"};
+        case ReplayKind::SetInstancing: return {"type", "strategy", "layer", "orientation", "size"};
+        case ReplayKind::Export: return {"path", "plain_nodes", "chunk"};
+        case ReplayKind::SetVisible: return {"type", "node", "visible"};
+        case ReplayKind::SetAttractor: return {"system", "attractor", "a_m", "influence", "charge", "cancel"};
+        case ReplayKind::ParticleEntry: return {"system", "name", "offset_m"};
+        case ReplayKind::EnvAdd: return {"type", "at", "yaw_deg", "scale", "on_surface"};
+        case ReplayKind::EnvMove: return {"node", "to", "steps"};
+        case ReplayKind::EnvHandle: return {"node", "to", "steps", "handle", "snap"};
+        case ReplayKind::EnvRemove: return {"node"};
+        case ReplayKind::EnvGlobal: return {"channel", "value"};
+        case ReplayKind::Footprints: return {"points"};
+        case ReplayKind::WeatherStroke: return {"points", "brush", "radius", "strength"};
+        case ReplayKind::ShowWindow: return {"window", "open"};
+        case ReplayKind::EnvView: return {"channel", "height", "surfaces"};
+        case ReplayKind::EnvTree: return {"op", "name", "node", "group", "at"};
+    }
+    return {};
+}
 
-// The first key of `a` no action reads, with a hint when a known key starts with it or it with one
-// ("yaw" -> "yaw_deg"); empty when every key is known.
-std::string unknownReplayKey(const json& a) {
+bool readByAction(ReplayKind kind, std::string_view key) {
+    const std::vector<std::string_view> keys = replayKeysOf(kind);
+    return key == "action" || key == "frame" || std::find(keys.begin(), keys.end(), key) != keys.end();
+}
+
+// The first key of action `a` (of kind `kind`) that it does not read, why, and a hint: the actions that
+// do read it, or the action's own key it looks like ("yaw" -> "yaw_deg"); empty when every key is read.
+std::string unreadReplayKey(ReplayKind kind, const json& a) {
     for (const auto& [key, value] : a.items()) {
         (void)value;
-        if (std::find(std::begin(kReplayKeys), std::end(kReplayKeys), key) != std::end(kReplayKeys)) continue;
+        if (readByAction(kind, key)) continue;
+        std::string readers;
+        for (int k = 0; k < kReplayKindCount; ++k)
+            if (readByAction(ReplayKind(k), key)) readers += std::string(readers.empty() ? "" : ", ") + replayKindName(ReplayKind(k));
+        const std::string action = replayKindName(kind);
+        if (!readers.empty()) return "\"" + action + "\" does not read \"" + key + "\" (" + readers + " do)";
         std::string why = "unknown key \"" + key + "\"";
-        for (const char* known : kReplayKeys) {
-            const std::string k = known;
+        for (std::string_view known : replayKeysOf(kind)) {
+            const std::string k(known);
             if (!key.empty() && (k.rfind(key, 0) == 0 || key.rfind(k, 0) == 0)) {
                 why += " (did you mean \"" + k + "\"?)";
                 break;
@@ -162,7 +205,7 @@ bool parseReplayScript(const std::string& text, const std::string& path, std::ve
                 known = true;
             }
         if (!known) return fail("unknown action '" + name + "'");
-        if (const std::string why = unknownReplayKey(a); !why.empty()) return fail(why);
+        if (const std::string why = unreadReplayKey(r.kind, a); !why.empty()) return fail(why);
         try {
             r.frame = a.value("frame", -1);
             r.radius_m = a.value("radius", r.radius_m);

@@ -88,6 +88,12 @@ expect_fail "unknown command" 2 "unknown command 'fly'" -- "$bin" fly
 printf '[{"action": "view", "target": [0, 0], "yaw": 30}]' >"$tmp/typo_replay.json"
 expect_fail "replay: unknown key" 1 'typo_replay.json: action 0: unknown key "yaw" (did you mean "yaw_deg"?)' -- \
   "$bin" edit "$root/assets/scenes/default.json" --replay "$tmp/typo_replay.json"
+# A key another action reads is refused too, naming the actions that read it: a `view` given a move's "to"
+# used to run from the default camera.
+printf '[{"action": "move", "from": [0, 0], "to": [1, 0]}, {"action": "view", "to": [0, 0]}]' >"$tmp/misplaced_replay.json"
+expect_fail "replay: key of another action" 1 \
+  'misplaced_replay.json: action 1: "view" does not read "to" (move, env_move, env_handle do)' -- \
+  "$bin" edit "$root/assets/scenes/default.json" --replay "$tmp/misplaced_replay.json"
 # A parent that is a file cannot be written even by root (CI runs as root, so chmod would not do).
 expect_fail "unwritable stats path" 1 "$tmp/trunc.json/s.json" -- \
   "$bin" build-tile "$root/assets/scenes/default.json" --cache "$tmp/c" --stats "$tmp/trunc.json/s.json"
