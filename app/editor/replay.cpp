@@ -161,7 +161,8 @@ std::string unreadReplayKey(ReplayKind kind, const json& a) {
         if (readByAction(kind, key)) continue;
         std::string readers;
         for (int k = 0; k < kReplayKindCount; ++k)
-            if (readByAction(ReplayKind(k), key)) readers += std::string(readers.empty() ? "" : ", ") + replayKindName(ReplayKind(k));
+            if (readByAction(ReplayKind(k), key))
+                readers += std::string(readers.empty() ? "" : ", ") + replayKindName(ReplayKind(k));
         const std::string action = replayKindName(kind);
         if (!readers.empty()) return "\"" + action + "\" does not read \"" + key + "\" (" + readers + " do)";
         std::string why = "unknown key \"" + key + "\"";

@@ -483,12 +483,17 @@ size_t EnvScene::candidateFieldCount(const Bounds& box) const {
     return ids.size();
 }
 
-std::span<const uint32_t> EnvScene::objectsAt(float x, float y) const {
-    if (grid_nx_ == 0) return {};
+long EnvScene::objectCellAt(float x, float y) const {
+    if (grid_nx_ == 0) return -1;
     const float fx = (x - grid_origin_.x) / grid_cell_, fy = (y - grid_origin_.y) / grid_cell_;
-    if (!(fx >= 0.0f && fy >= 0.0f && fx < float(grid_nx_) && fy < float(grid_ny_))) return {};
-    const size_t c = size_t(int(fy)) * grid_nx_ + size_t(int(fx));
-    return {grid_ids_.data() + grid_first_[c], grid_first_[c + 1] - grid_first_[c]};
+    if (!(fx >= 0.0f && fy >= 0.0f && fx < float(grid_nx_) && fy < float(grid_ny_))) return -1;
+    return long(int(fy)) * grid_nx_ + long(int(fx));
+}
+
+std::span<const uint32_t> EnvScene::objectsAt(float x, float y) const {
+    const long c = objectCellAt(x, y);
+    if (c < 0) return {};
+    return {grid_ids_.data() + grid_first_[size_t(c)], grid_first_[size_t(c) + 1] - grid_first_[size_t(c)]};
 }
 
 // ---- evaluation ------------------------------------------------------------------------------------------
@@ -522,16 +527,37 @@ EnvSample EnvScene::channels(glm::vec3 p) const {
     return accumulate(p, ids.data(), ids.size());
 }
 
-void EnvScene::shelterCandidates(glm::vec3 p, glm::vec2 slope, std::vector<uint32_t>* out) const {
+void EnvScene::ShelterCandidates::begin(size_t objects, size_t cells) {
+    ids.clear();
+    if (round_of.size() < objects) round_of.resize(objects, 0);
+    if (cell_round_of.size() < cells) cell_round_of.resize(cells, 0);
+    if (++round == 0) {  // wrapped: no mark may equal a later round by accident
+        std::fill(round_of.begin(), round_of.end(), 0u);
+        std::fill(cell_round_of.begin(), cell_round_of.end(), 0u);
+        round = 1;
+    }
+}
+
+void EnvScene::shelterCandidates(glm::vec3 p, glm::vec2 slope, ShelterCandidates* out) const {
     // The objects of the grid cells along the ray's drift, up to the top of the scene.
     const float rise = std::max(0.0f, object_bounds_.hi.z - p.z);
     const float drift = glm::length(slope);
     const int steps = drift > 0.0f ? int(std::ceil(2.0f * drift * rise / grid_cell_)) : 0;
     for (int k = 0; k <= steps; ++k) {
         const glm::vec2 at = glm::vec2(p) + slope * (rise * float(k) / float(std::max(steps, 1)));
-        for (uint32_t o : objectsAt(at.x, at.y))
-            if (objects_[o].bounds.hi.z > p.z + kShelterEpsM && types_[objects_[o].type].desc.shelters)
-                out->push_back(o);  // can reach above p and keeps things off
+        // A ray takes two steps a cell, and a fan's rays start in one: each cell's list is read once.
+        const long c = objectCellAt(at.x, at.y);
+        if (c < 0 || out->cell_round_of[size_t(c)] == out->round) continue;
+        out->cell_round_of[size_t(c)] = out->round;
+        for (uint32_t i = grid_first_[size_t(c)]; i < grid_first_[size_t(c) + 1]; ++i) {
+            const uint32_t o = grid_ids_[i];
+            // Listed once, if it can reach above p and keeps things off.
+            if (out->round_of[o] == out->round || objects_[o].bounds.hi.z <= p.z + kShelterEpsM ||
+                !types_[objects_[o].type].desc.shelters)
+                continue;
+            out->round_of[o] = out->round;
+            out->ids.push_back(o);
+        }
     }
 }
 
@@ -543,18 +569,15 @@ float EnvScene::shelterRays(glm::vec3 p, bool centre_only) const {
     int open = rays;
     const bool fanned = !centre_only && desc_.snow_spread_deg > 0.0f;
     const float drift = fanned ? shelter_drift_ : glm::length(ray_slopes_[4]);
-    thread_local std::vector<uint32_t> candidates;
-    candidates.clear();
+    // Whether a ray is covered does not depend on the order the objects are tried in.
+    thread_local ShelterCandidates candidates;
+    candidates.begin(objects_.size(), grid_first_.empty() ? 0 : grid_first_.size() - 1);
     if (fanned) {
         for (glm::vec2 slope : ray_slopes_) shelterCandidates(p, slope, &candidates);
     } else {
         shelterCandidates(p, ray_slopes_[4], &candidates);
     }
-    if (drift > 0.0f) {  // several cells' lists (straight down, one cell's: ascending, each id once)
-        std::sort(candidates.begin(), candidates.end());
-        candidates.erase(std::unique(candidates.begin(), candidates.end()), candidates.end());
-    }
-    for (uint32_t o : candidates) {
+    for (uint32_t o : candidates.ids) {
         const EnvObject& obj = objects_[o];
         const float reach = kShelterCellM + drift * std::max(0.0f, obj.bounds.hi.z - p.z);
         if (obj.bounds.hi.z <= p.z + kShelterEpsM || p.x < obj.bounds.lo.x - reach || p.x > obj.bounds.hi.x + reach ||

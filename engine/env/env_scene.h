@@ -151,10 +151,21 @@ private:
     // The objects whose XY bounds, padded by the shelter rays' reach, hold (x, y) (ascending ids; empty
     // outside the grid).
     std::span<const uint32_t> objectsAt(float x, float y) const;
+    // The grid cell holding (x, y), or -1 outside the grid.
+    long objectCellAt(float x, float y) const;
     EnvSample accumulate(glm::vec3 p, const uint32_t* ids, size_t n) const;
     float shelterRays(glm::vec3 p, bool centre_only) const;
-    // Appends the objects that may shelter p along drift `slope` per metre of rise (ids may repeat).
-    void shelterCandidates(glm::vec3 p, glm::vec2 slope, std::vector<uint32_t>* out) const;
+    // The objects a point's shelter rays may meet, each once (a fanned snowfall's nine rays cross mostly
+    // the same grid cells): ids in the order found, an object marked by the set's current round.
+    struct ShelterCandidates {
+        std::vector<uint32_t> ids;
+        std::vector<uint32_t> round_of;       // per object: the last round that listed it
+        std::vector<uint32_t> cell_round_of;  // per grid cell: the last round that read its list
+        uint32_t round = 0;
+        void begin(size_t objects, size_t cells);
+    };
+    // Adds the objects that may shelter p along drift `slope` per metre of rise.
+    void shelterCandidates(glm::vec3 p, glm::vec2 slope, ShelterCandidates* out) const;
 
     EnvironmentDesc desc_;
     std::vector<EnvObjectType> types_;

@@ -38,7 +38,7 @@ void rasterTriangle(glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec2 origin, flo
 
 }  // namespace
 
-HeightSpanMap::HeightSpanMap(const TriangleMesh& mesh) {
+HeightSpanMap::HeightSpanMap(const TriangleMesh& mesh, bool skip_blocks) {
     const Bounds3 b = meshBounds(mesh);
     const glm::vec2 size(b.max.x - b.min.x, b.max.y - b.min.y);
     cell_ = kShelterCellM;
@@ -72,6 +72,19 @@ HeightSpanMap::HeightSpanMap(const TriangleMesh& mesh) {
             depth_[k] = int16_t(std::clamp(depth, -32000, 32000));
         }
     }
+    if (!skip_blocks) return;
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    block_nx_ = (nx_ + kSpanBlockCells - 1) / kSpanBlockCells;
+    const int block_ny = (ny_ + kSpanBlockCells - 1) / kSpanBlockCells;
+    blocks_.assign(size_t(block_nx_) * size_t(block_ny), SpanBlock{kInf, -kInf});
+    for (int j = 0; j < ny_; ++j)
+        for (int i = 0; i < nx_; ++i) {
+            const size_t c = size_t(j) * size_t(nx_) + size_t(i);
+            if (first_[c] == first_[c + 1]) continue;
+            SpanBlock& block = blocks_[size_t(j / kSpanBlockCells) * size_t(block_nx_) + size_t(i / kSpanBlockCells)];
+            block.bottom = std::min(block.bottom, z_[first_[c]]);
+            block.top = std::max(block.top, depth_[first_[c + 1] - 1] > 0 ? kInf : z_[first_[c + 1] - 1]);
+        }
 }
 
 bool HeightSpanMap::insideSolid(long cell, float z) const {
@@ -127,6 +140,19 @@ bool HeightSpanMap::coveredAlong(glm::vec3 p, glm::vec2 slope, float eps, float 
         const glm::vec2 mid = glm::vec2(p.x, p.y) + slope * (z_mid - p.z);
         const long c = cellOf(mid.x, mid.y);
         if (c < 0) continue;
+        if (!blocks_.empty()) {
+            const int bi = int(c % nx_) / kSpanBlockCells, bj = int(c / nx_) / kSpanBlockCells;
+            const SpanBlock& b = blocks_[size_t(bj) * size_t(block_nx_) + size_t(bi)];
+            // Above the block's every crossing (and not inside an open part there), or below them all:
+            // this step finds nothing, nor do the next ones while their midpoints stay in the block and
+            // their heights on the same side (the ray only rises).
+            const bool above = z0 > b.top, below = z1 < b.bottom;
+            if (above || below) {
+                const float limit = below ? b.bottom : std::numeric_limits<float>::infinity();
+                k = std::max(k, lastStepInBlock(k, bi, bj, p, slope, lo_z, dz, limit));
+                continue;
+            }
+        }
         const float* first = z_.data() + first_[size_t(c)];
         const float* last = z_.data() + first_[size_t(c) + 1];
         const float* it = std::lower_bound(first, last, z0);
@@ -135,6 +161,21 @@ bool HeightSpanMap::coveredAlong(glm::vec3 p, glm::vec2 slope, float eps, float 
         if (insideSolid(c, z_mid)) return true;
     }
     return false;
+}
+
+long HeightSpanMap::lastStepInBlock(long k, int bi, int bj, glm::vec3 p, glm::vec2 slope, float lo_z, float dz,
+                                    float z_limit) const {
+    // Step k' reaches at most lo_z + k' dz; the ray's XY path leaves the block's square at z_exit.
+    double z_exit = double(z_limit);
+    for (int a = 0; a < 2; ++a) {
+        if (std::fabs(slope[a]) < 1e-9f) continue;  // never leaves across this axis
+        const int block = a == 0 ? bi : bj;
+        const int edge_cell = (slope[a] > 0.0f ? block + 1 : block) * kSpanBlockCells;
+        const double edge = double(origin_[a]) + double(edge_cell) * double(cell_);
+        z_exit = std::min(z_exit, double(p.z) + (edge - double(p[a])) / double(slope[a]));
+    }
+    const double last = std::floor((z_exit - double(lo_z)) / double(dz)) - 1.0;
+    return last > double(k) ? long(std::min(last, 1.0e7)) : k;
 }
 
 float HeightSpanMap::surfaceAboveNear(glm::vec3 p, float eps) const {

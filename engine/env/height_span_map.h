@@ -27,7 +27,9 @@ class HeightSpanMap {
 public:
     HeightSpanMap() = default;
     // The mesh must pass validateMesh.
-    explicit HeightSpanMap(const TriangleMesh& mesh);
+    // `skip_blocks` false leaves out the blocks' bounds (below): coveredAlong then tests every step's
+    // cell, the reference its skipping must agree with (tests).
+    explicit HeightSpanMap(const TriangleMesh& mesh, bool skip_blocks = true);
 
     // The highest crossing above z + eps at the cell of (x, y); false when there is none (or (x, y) is
     // outside the grid).
@@ -57,6 +59,17 @@ public:
     size_t crossingCount() const { return z_.size(); }
 
 private:
+    static constexpr int kSpanBlockCells = 8;
+    // Per block of kSpanBlockCells x kSpanBlockCells cells: the lowest and highest crossing in it (+inf
+    // and -inf when it has none); the top is +inf when a line of the block is inside a part above its
+    // last crossing (an open mesh), where a step above every crossing could still be inside.
+    struct SpanBlock {
+        float bottom, top;
+    };
+    // coveredAlong's walk: the last step from step k on (k's midpoint in block (bi, bj)) whose midpoint
+    // is still in the block and whose top is below z_limit, a step short of both to absorb rounding.
+    long lastStepInBlock(long k, int bi, int bj, glm::vec3 p, glm::vec2 slope, float lo_z, float dz,
+                         float z_limit) const;
     // The cell holding (x, y), or -1 outside the grid.
     long cellOf(float x, float y) const;
     // Whether height z of the cell's line lies inside the mesh's closed, outward-wound parts: more faces
@@ -69,6 +82,8 @@ private:
     std::vector<uint32_t> first_;  // nx*ny + 1 offsets into z_
     std::vector<float> z_;         // per cell, ascending
     std::vector<int16_t> depth_;   // per crossing: how many parts the line is inside just above it
+    int block_nx_ = 0;             // blocks along x; no blocks when skipping is off
+    std::vector<SpanBlock> blocks_;
 };
 
 }  // namespace ug
