@@ -164,7 +164,7 @@ std::string unreadReplayKey(ReplayKind kind, const json& a) {
             if (readByAction(ReplayKind(k), key))
                 readers += std::string(readers.empty() ? "" : ", ") + replayKindName(ReplayKind(k));
         const std::string action = replayKindName(kind);
-        if (!readers.empty()) return "\"" + action + "\" does not read \"" + key + "\" (" + readers + " do)";
+        if (!readers.empty()) return "\"" + action + "\" does not read \"" + key + "\" (read by " + readers + ")";
         std::string why = "unknown key \"" + key + "\"";
         for (std::string_view known : replayKeysOf(kind)) {
             const std::string k(known);

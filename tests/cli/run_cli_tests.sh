@@ -92,7 +92,7 @@ expect_fail "replay: unknown key" 1 'typo_replay.json: action 0: unknown key "ya
 # used to run from the default camera.
 printf '[{"action": "move", "from": [0, 0], "to": [1, 0]}, {"action": "view", "to": [0, 0]}]' >"$tmp/misplaced_replay.json"
 expect_fail "replay: key of another action" 1 \
-  'misplaced_replay.json: action 1: "view" does not read "to" (move, env_move, env_handle do)' -- \
+  'misplaced_replay.json: action 1: "view" does not read "to" (read by move, env_move, env_handle)' -- \
   "$bin" edit "$root/assets/scenes/default.json" --replay "$tmp/misplaced_replay.json"
 # A parent that is a file cannot be written even by root (CI runs as root, so chmod would not do).
 expect_fail "unwritable stats path" 1 "$tmp/trunc.json/s.json" -- \
