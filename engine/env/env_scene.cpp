@@ -571,7 +571,7 @@ float EnvScene::shelterRays(glm::vec3 p, bool centre_only) const {
     const float drift = fanned ? shelter_drift_ : glm::length(ray_slopes_[4]);
     // Whether a ray is covered does not depend on the order the objects are tried in.
     thread_local ShelterCandidates candidates;
-    candidates.begin(objects_.size(), grid_first_.empty() ? 0 : grid_first_.size() - 1);
+    candidates.begin(objects_.size(), size_t(grid_nx_) * size_t(grid_ny_));
     if (fanned) {
         for (glm::vec2 slope : ray_slopes_) shelterCandidates(p, slope, &candidates);
     } else {

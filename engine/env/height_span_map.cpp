@@ -94,11 +94,13 @@ bool HeightSpanMap::insideSolid(long cell, float z) const {
     return it != lo && depth_[size_t(it - z_.data()) - 1] > 0;
 }
 
-long HeightSpanMap::cellOf(float x, float y) const {
+long HeightSpanMap::cellAt(float x, float y, int* i, int* j) const {
     if (nx_ == 0) return -1;
     const float fx = (x - origin_.x) / cell_, fy = (y - origin_.y) / cell_;
     if (!(fx >= 0.0f && fy >= 0.0f && fx < float(nx_) && fy < float(ny_))) return -1;
-    return long(int(fy)) * nx_ + long(int(fx));
+    *i = int(fx);
+    *j = int(fy);
+    return long(*j) * nx_ + long(*i);
 }
 
 bool HeightSpanMap::coveredAbove(glm::vec3 p, float eps) const {
@@ -138,10 +140,11 @@ bool HeightSpanMap::coveredAlong(glm::vec3 p, glm::vec2 slope, float eps, float 
         const float z1 = std::min(hi_z, lo_z + float(double(k) * double(dz)));
         const float z_mid = 0.5f * (z0 + z1);
         const glm::vec2 mid = glm::vec2(p.x, p.y) + slope * (z_mid - p.z);
-        const long c = cellOf(mid.x, mid.y);
+        int ci = 0, cj = 0;
+        const long c = cellAt(mid.x, mid.y, &ci, &cj);
         if (c < 0) continue;
         if (!blocks_.empty()) {
-            const int bi = int(c % nx_) / kSpanBlockCells, bj = int(c / nx_) / kSpanBlockCells;
+            const int bi = ci / kSpanBlockCells, bj = cj / kSpanBlockCells;
             const SpanBlock& b = blocks_[size_t(bj) * size_t(block_nx_) + size_t(bi)];
             // Above the block's every crossing (and not inside an open part there), or below them all:
             // this step finds nothing, nor do the next ones while their midpoints stay in the block and

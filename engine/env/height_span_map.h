@@ -71,7 +71,12 @@ private:
     long lastStepInBlock(long k, int bi, int bj, glm::vec3 p, glm::vec2 slope, float lo_z, float dz,
                          float z_limit) const;
     // The cell holding (x, y), or -1 outside the grid.
-    long cellOf(float x, float y) const;
+    long cellOf(float x, float y) const {
+        int i = 0, j = 0;
+        return cellAt(x, y, &i, &j);
+    }
+    // cellOf, with the cell's column and row (coveredAlong's walk needs its block).
+    long cellAt(float x, float y, int* i, int* j) const;
     // Whether height z of the cell's line lies inside the mesh's closed, outward-wound parts: more faces
     // entered (down-facing) than left (up-facing) below it. Overlapping parts count once each.
     bool insideSolid(long cell, float z) const;
